@@ -1,0 +1,84 @@
+"""A whole design: frame curve, sheet, model, material and units, and its fold.
+
+This is what the adapters (STEP, DXF, previews, report) and the CLI consume.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.folding import FoldedSheet, fold
+from onefold_cad.geometry.material import Material, Units
+from onefold_cad.geometry.params import FrameCurve, Model
+from onefold_cad.geometry.sheet import Sheet
+from onefold_cad.geometry.solver import solve
+
+__all__ = ["Design", "build_design"]
+
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
+
+
+@dataclass(frozen=True, eq=False)
+class Design:
+    """Everything needed to solve and fabricate one One-Fold form.
+
+    Attributes:
+        name: file-safe design name (letters, digits, '.', '_', '-').
+        frame: the frame curve (alpha, beta, h_c, radius, divisions).
+        sheet: the flat sheet in the fold frame.
+        model: 'exact' (default) or 'paper'.
+        material: thickness, bend radius, K-factor, kerf, relief hole, density.
+        units: the design's length unit.
+        description: free text for reports and notes.
+    """
+
+    name: str
+    frame: FrameCurve
+    sheet: Sheet
+    model: Model = Model.EXACT
+    material: Material = field(default_factory=Material)
+    units: Units = Units.MM
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not _NAME.match(self.name):
+            raise InvalidParameterError(
+                "name",
+                "must be 1-64 characters of letters, digits, '.', '_' or '-', "
+                f"starting with a letter or digit, got {self.name!r}",
+            )
+        object.__setattr__(self, "model", Model.parse(self.model))
+        object.__setattr__(self, "units", Units.parse(self.units))
+        hole = self.material.relief_hole_diameter
+        if hole > 0.0:
+            inner = _inradius(self.sheet)
+            if hole / 2.0 >= inner:
+                raise InvalidParameterError(
+                    "relief_hole",
+                    f"diameter must be < {2.0 * inner:.6g} (twice the distance from H to the "
+                    f"nearest sheet edge), got {hole:g}",
+                )
+
+    def with_changes(self, **changes: Any) -> Design:
+        """A copy with some fields replaced (validated again)."""
+        return replace(self, **changes)
+
+
+def _inradius(sheet: Sheet) -> float:
+    """Distance from H to the nearest point of the sheet's boundary (length)."""
+    import numpy as np
+
+    v = sheet.vertices
+    w = np.roll(v, -1, axis=0)
+    e = w - v
+    t = np.clip(-(v * e).sum(axis=1) / (e * e).sum(axis=1), 0.0, 1.0)
+    closest = v + t[:, None] * e
+    return float(np.min(np.hypot(closest[:, 0], closest[:, 1])))
+
+
+def build_design(design: Design) -> FoldedSheet:
+    """Solve the direction-surface and fold the sheet of ``design``."""
+    return fold(solve(design.frame, design.model), design.sheet)

@@ -1,0 +1,43 @@
+"""The exception hierarchy of onefold_cad.
+
+Every error derives from :class:`OneFoldError` and from the matching builtin,
+so callers' ``except ValueError`` keeps working (as in ezdxf).
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "OneFoldError",
+    "InvalidParameterError",
+    "InvalidSheetError",
+    "NoSolutionError",
+    "ExportError",
+]
+
+
+class OneFoldError(Exception):
+    """Root of every error raised by onefold_cad."""
+
+
+class InvalidParameterError(OneFoldError, ValueError):
+    """A scalar input is missing, not finite or outside its allowed range.
+
+    Attributes:
+        parameter: the name of the offending parameter, as the API spells it.
+    """
+
+    def __init__(self, parameter: str, message: str) -> None:
+        super().__init__(f"{parameter}: {message}")
+        self.parameter = parameter
+
+
+class InvalidSheetError(InvalidParameterError):
+    """The flat sheet is not a simple polygon star-shaped about H."""
+
+
+class NoSolutionError(OneFoldError, ValueError):
+    """The design has no non-trivial apex (the angle condition cannot be met)."""
+
+
+class ExportError(OneFoldError, RuntimeError):
+    """A valid design could not be turned into a file (CAD kernel failure)."""

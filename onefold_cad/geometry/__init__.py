@@ -1,0 +1,1 @@
+"""The pure geometry core (numpy and scipy only; never build123d or ezdxf)."""

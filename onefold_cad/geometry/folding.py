@@ -1,0 +1,319 @@
+"""Fold a flat sheet onto the solved direction-surface (paper sections 3.3-3.4).
+
+Flat fold frame: H at the origin, fold line on the x axis, the sheet's top
+side facing +z. A flat point at polar coordinates (r, psi) folds to
+``A + r * u(theta)`` with theta = psi on the +y side and theta = -psi on the
+-y side (whose directions are the mirror image in the xz-plane). Distances
+from H and angles at H are kept, so the fold is an isometry of the sheet.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from onefold_cad.geometry.cone import PaperFan
+from onefold_cad.geometry.placement import RestingPlacement, rest_on_ground
+from onefold_cad.geometry.sheet import Sheet
+from onefold_cad.geometry.solver import Solution
+
+__all__ = ["CreaseHalf", "Developability", "FoldedSheet", "fold"]
+
+Array = NDArray[np.float64]
+_MIRROR = np.array([1.0, -1.0, 1.0])
+
+
+@dataclass(frozen=True)
+class CreaseHalf:
+    """One half of the fold line, from the apex to the sheet's edge.
+
+    Attributes:
+        name: 'plus_x' (towards +x in the flat fold frame) or 'minus_x'.
+        length: its length, flat and folded alike (length).
+        end_flat: ``(2,)`` its end on the flat sheet's boundary, fold frame.
+        end_3d: ``(3,)`` that end on the folded form, fold frame.
+        fold_angle_deg: the angle between the two sides' top normals along
+            it (deg); 0 when flat, constant along the half.
+        bend: 'UP' when the two sides rotate towards the flat sheet's top (+z)
+            side (the top faces end inside the fold), 'DOWN' otherwise.
+    """
+
+    name: str
+    length: float
+    end_flat: Array
+    end_3d: Array
+    fold_angle_deg: float
+    bend: str
+
+
+@dataclass(frozen=True)
+class Developability:
+    """Measured differences between the folded form and the flat sheet.
+
+    Lengths in the design unit, areas in unit^2, angles in degrees.
+    """
+
+    max_ruling_length_error: float
+    max_boundary_segment_error: float
+    boundary_length_flat: float
+    boundary_length_3d: float
+    area_flat: float
+    area_3d: float
+    angle_sum_deg: float
+
+    @property
+    def boundary_length_rel_error(self) -> float:
+        """|3D - flat| / flat boundary length."""
+        return abs(self.boundary_length_3d - self.boundary_length_flat) / self.boundary_length_flat
+
+    @property
+    def area_rel_error(self) -> float:
+        """|3D - flat| / flat area."""
+        return abs(self.area_3d - self.area_flat) / self.area_flat
+
+
+@dataclass(frozen=True, eq=False)
+class FoldedSheet:
+    """The folded surface of a sheet, in the fold frame (apex above H).
+
+    Attributes:
+        solution: the solved direction-surface.
+        sheet: the flat sheet.
+        ruling_angles: ``(2,)`` tuple of ``(m_i,)`` flat angles theta (radians)
+            of the rulings of the +y and -y sides, from +x (theta = 0) to -x
+            (theta = pi): the paper model's division rays plus one through
+            every polygon vertex; the exact model's vertex rays.
+        rulings_flat: ``(m, 2, 2)`` the rulings on the flat sheet (from H).
+        rulings_3d: ``(m, 2, 3)`` the rulings on the folded form (from A).
+        crease: the two halves ('plus_x', 'minus_x').
+        time_final_surface: wall time of the fold (s).
+
+    The boundary, the metrics and the resting placement are derived on first
+    access (and cached), so solving stays cheap when only rulings are needed.
+    """
+
+    solution: Solution
+    sheet: Sheet
+    ruling_angles: tuple[Array, Array]
+    rulings_flat: Array
+    rulings_3d: Array
+    crease: tuple[CreaseHalf, CreaseHalf]
+    time_final_surface: float
+    boundary_samples: int = 4000
+
+    @cached_property
+    def boundary_flat(self) -> Array:
+        """``(p, 2)`` closed flat boundary, counter-clockwise from the +x crossing:
+        every vertex and ruling end (paper model, where the folded boundary is
+        straight between them) or ``boundary_samples`` points (exact model)."""
+        if isinstance(self.solution.surface, PaperFan):
+            return _boundary(self.ruling_angles, self.sheet)
+        pts, _ = self.sheet.sample_boundary(self.sheet.perimeter / self.boundary_samples)
+        return pts
+
+    @cached_property
+    def boundary_3d(self) -> Array:
+        """``(p, 3)`` the boundary points folded."""
+        return self.map_points(self.boundary_flat)
+
+    @cached_property
+    def metrics(self) -> Developability:
+        """Developability measured on the folded result."""
+        return _measure(self)
+
+    @cached_property
+    def resting(self) -> RestingPlacement:
+        """The placement that stands the form on the ground (z = 0)."""
+        area, centroid = _fan_area_and_centroid(self.apex, self.boundary_3d)
+        return rest_on_ground(np.vstack([self.boundary_3d, self.apex]), centroid)
+
+    @property
+    def apex(self) -> Array:
+        """The apex ``(3,)`` in the fold frame."""
+        return self.solution.apex
+
+    # -- the fold map -----------------------------------------------------
+    def _polar(self, xy: ArrayLike) -> tuple[Array, Array, Array]:
+        p = np.atleast_2d(np.asarray(xy, dtype=float))
+        r = np.hypot(p[:, 0], p[:, 1])
+        psi = np.arctan2(p[:, 1], p[:, 0])
+        lower = psi < 0.0
+        theta = np.clip(np.abs(psi), 0.0, self.solution.surface.total_angle)
+        return r, theta, lower
+
+    def map_points(self, xy: ArrayLike) -> Array:
+        """Fold flat fold-frame points ``(k, 2)`` to 3D points ``(k, 3)``."""
+        r, theta, lower = self._polar(xy)
+        u, _ = self.solution.surface.frames(theta)
+        u = np.where(lower[:, None], u * _MIRROR, u)
+        return self.apex + r[:, None] * u
+
+    def frames_at(self, xy: ArrayLike) -> tuple[Array, Array, Array]:
+        """Ruling direction, in-surface direction of increasing flat polar
+        angle, and top-side normal ``(k, 3)`` each, at flat points ``(k, 2)``."""
+        _, theta, lower = self._polar(xy)
+        u, e = self.solution.surface.frames(theta)
+        n = np.cross(u, e)
+        u = np.where(lower[:, None], u * _MIRROR, u)
+        e = np.where(lower[:, None], -e * _MIRROR, e)
+        n = np.where(lower[:, None], n * _MIRROR, n)
+        return u, e, n
+
+    def normals(self, xy: ArrayLike) -> Array:
+        """Unit top-side normals ``(k, 3)`` of the folded surface at flat points."""
+        return self.frames_at(xy)[2]
+
+    def mesh(self, angular: int = 180, radial: int = 24) -> tuple[Array, NDArray[np.int64]]:
+        """A triangle mesh of the folded surface for previews.
+
+        Returns ``(vertices (k, 3), faces (m, 3) int)``; both sides, the rays
+        through every polygon vertex included, apex shared.
+        """
+        total = self.solution.surface.total_angle
+        verts: list[Array] = [self.apex[None, :]]
+        faces: list[NDArray[np.int64]] = []
+        base = 1
+        for side, vertex_theta in enumerate(self.ruling_angles):
+            theta = np.unique(np.concatenate([np.linspace(0.0, total, angular + 1), vertex_theta]))
+            psi = theta if side == 0 else -theta
+            rho = self.sheet.ray_lengths(psi)
+            s = np.arange(1, radial + 1) / radial
+            pts = (s[None, :, None] * rho[:, None, None]) * np.stack(
+                [np.cos(psi), np.sin(psi)], axis=-1
+            )[:, None, :]
+            nt = len(theta)
+            verts.append(self.map_points(pts.reshape(-1, 2)))
+            idx = base + np.arange(nt * radial).reshape(nt, radial)
+            a, b = idx[:-1, :-1], idx[1:, :-1]
+            c, d = idx[1:, 1:], idx[:-1, 1:]
+            quads = np.stack([a, b, c, a, c, d], axis=-1).reshape(-1, 3)
+            fan = np.stack([np.zeros(nt - 1, dtype=np.int64), idx[:-1, 0], idx[1:, 0]], axis=-1)
+            tri = np.concatenate([fan, quads])
+            faces.append(tri if side == 0 else tri[:, ::-1])
+            base += nt * radial
+        return np.concatenate(verts), np.concatenate(faces).astype(np.int64)
+
+
+def _side_vertex_angles(sheet: Sheet) -> tuple[Array, Array]:
+    """Flat angles theta of the polygon vertices on each side (with 0 and pi)."""
+    a = sheet.polar_angles
+    k = sheet.minus_x_index
+    upper = np.concatenate([a[: k + 1], [math.pi]])
+    lower = np.concatenate([[0.0], 2.0 * math.pi - a[k:]])
+    upper[0] = lower[0] = 0.0
+    return np.unique(np.clip(upper, 0.0, math.pi)), np.unique(np.clip(lower, 0.0, math.pi))
+
+
+def _boundary(folded_angles: tuple[Array, Array], sheet: Sheet) -> Array:
+    """Closed CCW flat boundary through the ends of the given side rulings."""
+    up, lo = folded_angles
+    psi = np.concatenate([up, 2.0 * math.pi - lo[::-1][1:-1]])
+    rho = sheet.ray_lengths(psi)
+    return np.stack([np.cos(psi), np.sin(psi)], axis=-1) * rho[:, None]
+
+
+def _rulings(solution: Solution, sheet: Sheet, angles: tuple[Array, Array]) -> tuple[Array, Array]:
+    """Flat ``(m, 2, 2)`` and folded ``(m, 2, 3)`` rulings, +y side then -y side."""
+    flat, ends3 = [], []
+    for side, theta in enumerate(angles):
+        psi = theta if side == 0 else -theta
+        rho = sheet.ray_lengths(psi)
+        flat.append(np.stack([np.cos(psi), np.sin(psi)], axis=-1) * rho[:, None])
+        u, _ = solution.surface.frames(theta)
+        if side == 1:
+            u = u * _MIRROR
+        ends3.append(solution.apex + rho[:, None] * u)
+    ends = np.concatenate(flat)
+    e3 = np.concatenate(ends3)
+    flat_r = np.stack([np.zeros_like(ends), ends], axis=1)
+    return flat_r, np.stack([np.broadcast_to(solution.apex, e3.shape), e3], axis=1)
+
+
+def _crease_half(solution: Solution, sheet: Sheet, name: str, end3: Array) -> CreaseHalf:
+    xp, xm = sheet.crease_lengths
+    length, end = (xp, np.array([xp, 0.0])) if name == "plus_x" else (xm, np.array([-xm, 0.0]))
+    theta = 0.0 if name == "plus_x" else solution.surface.total_angle
+    u, e = solution.surface.frames(np.array([theta]))
+    n = np.cross(u, e)[0]
+    n_other = n * _MIRROR
+    cosang = float(np.clip(np.dot(n, n_other), -1.0, 1.0))
+    angle = math.degrees(math.atan2(float(np.linalg.norm(np.cross(n, n_other))), cosang))
+    into_side = e[0] if name == "plus_x" else -e[0]
+    bend = "UP" if float(np.dot(into_side, n_other)) > 0.0 else "DOWN"
+    return CreaseHalf(name, length, end, np.array(end3), angle, bend)
+
+
+def _fan_area_and_centroid(apex: Array, ring: Array) -> tuple[float, Array]:
+    a, b = ring, np.roll(ring, -1, axis=0)
+    areas = 0.5 * np.linalg.norm(np.cross(a - apex, b - apex), axis=1)
+    centroids = (apex + a + b) / 3.0
+    total = float(np.sum(areas))
+    return total, (areas[:, None] * centroids).sum(axis=0) / total
+
+
+def _measure(folded: FoldedSheet) -> Developability:
+    sheet = folded.sheet
+    flat_r, rulings3 = folded.rulings_flat, folded.rulings_3d
+    ruling_err = float(
+        np.max(
+            np.abs(
+                np.linalg.norm(rulings3[:, 1] - rulings3[:, 0], axis=1)
+                - np.linalg.norm(flat_r[:, 1] - flat_r[:, 0], axis=1)
+            )
+        )
+    )
+    b2, b3 = folded.boundary_flat, folded.boundary_3d
+    seg_flat = np.linalg.norm(np.roll(b2, -1, axis=0) - b2, axis=1)
+    seg_3d = np.linalg.norm(np.roll(b3, -1, axis=0) - b3, axis=1)
+    area3, _ = _fan_area_and_centroid(folded.apex, b3)
+    return Developability(
+        max_ruling_length_error=ruling_err,
+        max_boundary_segment_error=float(np.max(np.abs(seg_3d - seg_flat))),
+        boundary_length_flat=sheet.perimeter,
+        boundary_length_3d=float(np.sum(seg_3d)),
+        area_flat=sheet.area,
+        area_3d=area3,
+        angle_sum_deg=folded.solution.angle_sum_deg,
+    )
+
+
+def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> FoldedSheet:
+    """Fold ``sheet`` onto the solved direction-surface.
+
+    Args:
+        solution: from :func:`onefold_cad.geometry.solver.solve`.
+        sheet: the flat sheet in the fold frame.
+        boundary_samples: exact model only: about how many points sample the
+            boundary for :attr:`FoldedSheet.boundary_3d` and the metrics (the
+            paper model's boundary is exact: straight between ruling ends).
+
+    Returns:
+        The :class:`FoldedSheet`: rulings in 3D and the crease computed now;
+        boundary, metrics and resting placement on first access.
+    """
+    t0 = time.perf_counter()
+    surface = solution.surface
+    vert_up, vert_lo = _side_vertex_angles(sheet)
+    if isinstance(surface, PaperFan):
+        assert surface.thetas is not None
+        fan = np.clip(surface.thetas, 0.0, math.pi)
+        angles = (
+            np.unique(np.concatenate([fan, vert_up])),
+            np.unique(np.concatenate([fan, vert_lo])),
+        )
+    else:
+        angles = (vert_up, vert_lo)
+    flat_r, rulings3 = _rulings(solution, sheet, angles)
+    crease = (
+        _crease_half(solution, sheet, "plus_x", rulings3[0, 1]),
+        _crease_half(solution, sheet, "minus_x", rulings3[len(angles[0]) - 1, 1]),
+    )
+    elapsed = time.perf_counter() - t0
+    return FoldedSheet(
+        solution, sheet, angles, flat_r, rulings3, crease, elapsed, int(boundary_samples)
+    )

@@ -1,0 +1,157 @@
+"""Sheet material and fabrication inputs, and the bend formulas.
+
+Lengths are in the design's unit; angles in degrees at the API edge. The
+names follow build123d's sheet-metal vocabulary: ``thickness``,
+``bend_radius``, ``k_factor`` and the reference surface ``sheet_surface``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from enum import Enum
+from typing import Any
+
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.validate import closed_interval, finite
+
+__all__ = ["SheetSurface", "Units", "Material", "BendValues", "bend_values"]
+
+
+class SheetSurface(str, Enum):
+    """Which face of the sheet the designed (reference) surface is.
+
+    INSIDE: the top (+z) face; the material lies below it.
+    OUTSIDE: the bottom face; the material lies above it.
+    MID: the mid-surface; half the thickness each way.
+    """
+
+    INSIDE = "INSIDE"
+    OUTSIDE = "OUTSIDE"
+    MID = "MID"
+
+    @classmethod
+    def parse(cls, value: object) -> SheetSurface:
+        """The reference surface named by ``value`` (case-insensitive)."""
+        if isinstance(value, cls):
+            return value
+        try:
+            return cls(str(value).upper())
+        except ValueError:
+            raise InvalidParameterError(
+                "sheet_surface", f"must be one of INSIDE, OUTSIDE, MID, got {value!r}"
+            ) from None
+
+
+class Units(str, Enum):
+    """Length unit of a design."""
+
+    MM = "mm"
+    IN = "in"
+    FT = "ft"
+
+    @classmethod
+    def parse(cls, value: object) -> Units:
+        """The unit named by ``value`` ('mm', 'in' or 'ft')."""
+        if isinstance(value, cls):
+            return value
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            raise InvalidParameterError(
+                "units", f"must be one of mm, in, ft, got {value!r}"
+            ) from None
+
+    @property
+    def mm(self) -> float:
+        """Millimetres per unit."""
+        return {"mm": 1.0, "in": 25.4, "ft": 304.8}[self.value]
+
+
+@dataclass(frozen=True)
+class Material:
+    """Fabrication inputs (lengths in the design unit).
+
+    Attributes:
+        thickness: sheet thickness t >= 0; 0 means a zero-thickness surface.
+        bend_radius: inside bend radius r >= 0.
+        k_factor: neutral-axis position K in [0, 1].
+        kerf: cutting kerf >= 0; cut contours are offset by kerf/2.
+        relief_hole: diameter of the relief hole at the apex >= 0 (0 = none);
+            None chooses the default: none for t = 0, 2 * t + 2 * r otherwise
+            (at least 3 * t).
+        density: mass per volume (mass unit per design unit^3) > 0, or None.
+        name: a material description for the notes (e.g. '304 stainless').
+        sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
+    """
+
+    thickness: float = 0.0
+    bend_radius: float = 0.0
+    k_factor: float = 0.44
+    kerf: float = 0.0
+    relief_hole: float | None = None
+    density: float | None = None
+    name: str = ""
+    sheet_surface: SheetSurface = SheetSurface.MID
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        for key in ("thickness", "bend_radius", "kerf"):
+            v = finite(key, getattr(self, key))
+            if v < 0.0:
+                raise InvalidParameterError(key, f"must be >= 0, got {v:g}")
+            set_(self, key, v)
+        set_(self, "k_factor", closed_interval("k_factor", self.k_factor, 0.0, 1.0))
+        if self.relief_hole is not None:
+            v = finite("relief_hole", self.relief_hole)
+            if v < 0.0:
+                raise InvalidParameterError("relief_hole", f"must be >= 0 (0 = no hole), got {v:g}")
+            set_(self, "relief_hole", v)
+        if self.density is not None:
+            v = finite("density", self.density)
+            if v <= 0.0:
+                raise InvalidParameterError("density", f"must be > 0, got {v:g}")
+            set_(self, "density", v)
+        set_(self, "sheet_surface", SheetSurface.parse(self.sheet_surface))
+        set_(self, "name", str(self.name))
+
+    @property
+    def relief_hole_diameter(self) -> float:
+        """The relief hole's diameter after applying the default (length)."""
+        if self.relief_hole is not None:
+            return self.relief_hole
+        if self.thickness == 0.0:
+            return 0.0
+        return max(3.0 * self.thickness, 2.0 * (self.thickness + self.bend_radius))
+
+    def with_changes(self, **changes: Any) -> Material:
+        """A copy with some fields replaced (validated again)."""
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class BendValues:
+    """Bend allowance, outside set-back and deduction of one bend (length).
+
+    Attributes:
+        angle_deg: bend angle psi (deg), the angle between the sides' normals.
+        allowance: BA = psi * (r + K t).
+        outside_setback: OSSB = (r + t) tan(psi / 2).
+        deduction: BD = 2 OSSB - BA.
+    """
+
+    angle_deg: float
+    allowance: float
+    outside_setback: float
+    deduction: float
+
+
+def bend_values(angle_deg: float, material: Material) -> BendValues:
+    """The bend allowance, set-back and deduction for a bend of ``angle_deg``."""
+    psi = math.radians(finite("angle_deg", angle_deg))
+    if not 0.0 <= psi < math.pi:
+        raise InvalidParameterError("angle_deg", f"must be in [0, 180) deg, got {angle_deg:g}")
+    t, r, k = material.thickness, material.bend_radius, material.k_factor
+    ba = psi * (r + k * t)
+    ossb = (r + t) * math.tan(psi / 2.0)
+    return BendValues(math.degrees(psi), ba, ossb, 2.0 * ossb - ba)

@@ -1,0 +1,152 @@
+"""The apex: the non-trivial root of the angle condition (paper section 3.2).
+
+S(h), the sum of one side's apex angles with the apex at (0, 0, h), equals
+180 deg at h = 0 (the flat, trivial solution), rises to a maximum and falls
+towards 0 as h grows. The design is the root past the maximum. The paper
+bisects on [l, 2R]; that bracket misses the root for large alpha and beta, so
+:func:`solve` brackets the root itself and refines it with Brent's method.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from onefold_cad.errors import NoSolutionError
+from onefold_cad.geometry.cone import DirectionSurface, ExactCone, PaperFan
+from onefold_cad.geometry.params import FrameCurve, Model
+
+__all__ = ["Solution", "solve", "make_direction_surface"]
+
+_HALF_TURN = math.pi
+
+
+@dataclass(frozen=True, eq=False)
+class Solution:
+    """The solved direction-surface of one design.
+
+    Attributes:
+        frame: the frame curve solved for.
+        model: PAPER (triangle fan) or EXACT (continuous cone).
+        apex_height: h, the apex's height above H (length).
+        surface: the direction-surface with its apex fixed (maps flat angles
+            to ruling directions); shared by both sides (the -y side is the
+            mirror image in the xz-plane).
+        angle_sum_deg: the sum of apex angles around the apex, both sides (deg).
+        angle_condition_error_deg: |angle_sum_deg - 360| (deg).
+        time_direction_surface: wall time spent solving (s).
+        bracket: the (lo, hi) heights the root was refined in (length).
+        evaluations: how many times S(h) was evaluated.
+    """
+
+    frame: FrameCurve
+    model: Model
+    apex_height: float
+    surface: DirectionSurface
+    angle_sum_deg: float
+    angle_condition_error_deg: float
+    time_direction_surface: float
+    bracket: tuple[float, float]
+    evaluations: int
+
+    @property
+    def apex(self) -> NDArray[np.float64]:
+        """The apex A = (0, 0, h) ``(3,)``."""
+        return np.array([0.0, 0.0, self.apex_height])
+
+    @property
+    def direction_vectors(self) -> NDArray[np.float64] | None:
+        """Paper model: the ``(divisions + 1, 3)`` unit direction-vectors of the
+        +y side, from the +x end of the f-line to the -x end; None for EXACT."""
+        return self.surface.directions if isinstance(self.surface, PaperFan) else None
+
+    @property
+    def gammas_deg(self) -> NDArray[np.float64] | None:
+        """Paper model: the ``(divisions,)`` apex angles gamma_i (deg); None for EXACT."""
+        if isinstance(self.surface, PaperFan) and self.surface.gammas is not None:
+            return np.degrees(self.surface.gammas)
+        return None
+
+
+def make_direction_surface(frame: FrameCurve, model: Model | str) -> DirectionSurface:
+    """The (unsolved) direction-surface of ``frame`` in the chosen model."""
+    m = Model.parse(model)
+    return PaperFan(frame) if m is Model.PAPER else ExactCone(frame)
+
+
+def _bracket(surface: DirectionSurface, frame: FrameCurve) -> tuple[float, float, int]:
+    """Heights (lo, hi) with S(lo) > 180 deg > S(hi), lo past the maximum side."""
+    evals = 0
+
+    def excess(h: float) -> float:
+        nonlocal evals
+        evals += 1
+        return surface.angle_sum(h) - _HALF_TURN
+
+    h = frame.paper_lower_bound
+    if excess(h) > 0.0:
+        lo, hi = h, 2.0 * h
+        while excess(hi) > 0.0:
+            lo, hi = hi, 2.0 * hi
+            if hi > 1e12 * frame.radius:  # S -> 0 as h -> inf, so never reached
+                raise NoSolutionError(f"angle-condition root not bracketed for {frame}")
+        return lo, hi, evals
+    hi = h
+    floor = 1e-9 * frame.radius
+    while hi > floor:
+        lo = hi / 1.5
+        if excess(lo) > 0.0:
+            return lo, hi, evals
+        hi = lo
+    raise NoSolutionError(
+        "no non-trivial apex: the sum of apex angles never exceeds 180 deg for "
+        f"alpha={frame.alpha:g} deg, beta={frame.beta:g} deg, h_c={frame.h_c:g}, "
+        f"radius={frame.radius:g}; increase alpha or beta (allowed: (0, 90) deg)"
+    )
+
+
+def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
+    """Find the apex that satisfies the angle condition (360 deg around A).
+
+    Args:
+        frame: the validated frame curve.
+        model: 'exact' (continuous cone) or 'paper' (triangle fan).
+
+    Returns:
+        The :class:`Solution`, with the angle-condition error measured at the
+        returned apex.
+
+    Raises:
+        NoSolutionError: S(h) never exceeds 180 deg, so only the flat sheet
+            satisfies the angle condition.
+    """
+    m = Model.parse(model)
+    t0 = time.perf_counter()
+    surface = make_direction_surface(frame, m)
+    lo, hi, evals = _bracket(surface, frame)
+    counter = [0]
+
+    def excess(h: float) -> float:
+        counter[0] += 1
+        return surface.angle_sum(h) - _HALF_TURN
+
+    h = brentq(excess, lo, hi, xtol=1e-15 * hi, rtol=4.0 * np.finfo(float).eps, maxiter=200)
+    surface.set_apex(float(h))
+    total = 2.0 * math.degrees(surface.total_angle)
+    elapsed = time.perf_counter() - t0
+    return Solution(
+        frame=frame,
+        model=m,
+        apex_height=float(h),
+        surface=surface,
+        angle_sum_deg=total,
+        angle_condition_error_deg=abs(total - 360.0),
+        time_direction_surface=elapsed,
+        bracket=(lo, hi),
+        evaluations=evals + counter[0],
+    )
