@@ -17,7 +17,8 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.cone import PaperFan
+from onefold_cad.geometry.cone import ExactCone, PaperFan
+from onefold_cad.geometry.frame import arc_range
 from onefold_cad.geometry.placement import RestingPlacement, rest_on_ground
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import Solution
@@ -163,6 +164,44 @@ class FoldedSheet:
         e = np.where(lower[:, None], -e * _MIRROR, e)
         n = np.where(lower[:, None], n * _MIRROR, n)
         return u, e, n
+
+    def unfold(self, points: ArrayLike) -> tuple[Array, Array]:
+        """Inverse of :meth:`map_points` for the exact model.
+
+        Each point ``(k, 3)`` is projected centrally from the apex onto the
+        frame curve's plane, which names its ruling; the result is the flat
+        point ``(k, 2)`` of that ruling at the point's distance along it, and
+        the point's distance ``(k,)`` from the cone measured along the cone's
+        normal on that ruling (first-order exact; lengths in the design unit).
+
+        Raises:
+            NotImplementedError: for the paper model (use the exact model).
+        """
+        surface = self.solution.surface
+        if not isinstance(surface, ExactCone):
+            raise NotImplementedError("unfold is defined for the exact model only")
+        p = np.atleast_2d(np.asarray(points, dtype=float))
+        lower = p[:, 1] < 0.0
+        q = np.where(lower[:, None], p * _MIRROR, p)
+        w = q - self.apex
+        frame = self.solution.frame
+        b = math.radians(frame.beta)
+        plane_n = np.array([0.0, -math.sin(b), math.cos(b)])
+        s = -self.apex[2] * math.cos(b) / (w @ plane_n)
+        hit = self.apex + s[:, None] * w
+        d = hit @ np.array([0.0, math.cos(b), math.sin(b)])
+        r0 = frame.radius * math.sin(math.radians(frame.alpha))
+        phi = np.arctan2(d - r0, hit[:, 0] + frame.h_c)
+        p0, p1 = arc_range(frame)
+        phi = np.where(phi < p0 - 0.5 * (p0 + 2 * math.pi - p1), phi + 2 * math.pi, phi)
+        phi = np.clip(phi, p0, p1)
+        theta = surface.theta_of_phi(phi)
+        u, e = surface.frames(theta)
+        n = np.cross(u, e)
+        r = np.einsum("ij,ij->i", w, u)
+        off = np.abs(np.einsum("ij,ij->i", w, n))
+        psi = np.where(lower, -theta, theta)
+        return np.stack([r * np.cos(psi), r * np.sin(psi)], axis=-1), off
 
     def normals(self, xy: ArrayLike) -> Array:
         """Unit top-side normals ``(k, 3)`` of the folded surface at flat points."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from enum import Enum
+from enum import StrEnum
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
@@ -18,7 +18,7 @@ from onefold_cad.geometry.validate import closed_interval, finite
 __all__ = ["SheetSurface", "Units", "Material", "BendValues", "bend_values"]
 
 
-class SheetSurface(str, Enum):
+class SheetSurface(StrEnum):
     """Which face of the sheet the designed (reference) surface is.
 
     INSIDE: the top (+z) face; the material lies below it.
@@ -43,7 +43,7 @@ class SheetSurface(str, Enum):
             ) from None
 
 
-class Units(str, Enum):
+class Units(StrEnum):
     """Length unit of a design."""
 
     MM = "mm"

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from enum import Enum
+from enum import StrEnum
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
@@ -19,7 +19,7 @@ __all__ = ["FrameCurve", "Model", "MAX_DIVISIONS"]
 MAX_DIVISIONS = 10_000_000
 
 
-class Model(str, Enum):
+class Model(StrEnum):
     """Which direction-surface the solver uses.
 
     PAPER: the fan of ``divisions`` planar triangles over the division points

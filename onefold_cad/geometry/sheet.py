@@ -79,8 +79,18 @@ def _check_simple(p: NDArray[np.float64], name: str) -> None:
         d3 = _cross(f, a[i] - a[j])
         d4 = _cross(f, b[i] - a[j])
         proper = (d1 * d2 < -eps) & (d3 * d4 < -eps)
-        touching = ((np.abs(d1) <= eps) | (np.abs(d2) <= eps)) & (d3 * d4 <= eps)
-        touching |= ((np.abs(d3) <= eps) | (np.abs(d4) <= eps)) & (d1 * d2 <= eps)
+        # an endpoint of one edge lying on the other edge (collinear overlaps included)
+        ee = float(e @ e)
+        ff = np.einsum("ij,ij->i", f, f)
+        t_aj = ((a[j] - a[i]) @ e) / ee
+        t_bj = ((b[j] - a[i]) @ e) / ee
+        s_ai = np.einsum("ij,ij->i", a[i] - a[j], f) / ff
+        s_bi = np.einsum("ij,ij->i", b[i] - a[j], f) / ff
+        inside = (-1e-12, 1.0 + 1e-12)
+        touching = (np.abs(d1) <= eps) & (t_aj >= inside[0]) & (t_aj <= inside[1])
+        touching |= (np.abs(d2) <= eps) & (t_bj >= inside[0]) & (t_bj <= inside[1])
+        touching |= (np.abs(d3) <= eps) & (s_ai >= inside[0]) & (s_ai <= inside[1])
+        touching |= (np.abs(d4) <= eps) & (s_bi >= inside[0]) & (s_bi <= inside[1])
         hit = proper | touching
         if np.any(hit):
             k = int(j[np.argmax(hit)])

@@ -103,10 +103,15 @@ def _bracket(surface: DirectionSurface, frame: FrameCurve) -> tuple[float, float
         if excess(lo) > 0.0:
             return lo, hi, evals
         hi = lo
+    hint = "increase alpha or beta (allowed: (0, 90) deg)"
+    if isinstance(surface, PaperFan):
+        hint += (
+            f" or divisions (the paper model's fan of {frame.divisions} triangles is too coarse)"
+        )
     raise NoSolutionError(
         "no non-trivial apex: the sum of apex angles never exceeds 180 deg for "
         f"alpha={frame.alpha:g} deg, beta={frame.beta:g} deg, h_c={frame.h_c:g}, "
-        f"radius={frame.radius:g}; increase alpha or beta (allowed: (0, 90) deg)"
+        f"radius={frame.radius:g}, divisions={frame.divisions}; {hint}"
     )
 
 
