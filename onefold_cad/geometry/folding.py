@@ -27,6 +27,7 @@ __all__ = ["CreaseHalf", "Developability", "FoldedSheet", "fold"]
 
 Array = NDArray[np.float64]
 _MIRROR = np.array([1.0, -1.0, 1.0])
+_RESTING_POINTS = 4000  # boundary points that may become ground contacts
 
 
 @dataclass(frozen=True)
@@ -129,9 +130,12 @@ class FoldedSheet:
 
     @cached_property
     def resting(self) -> RestingPlacement:
-        """The placement that stands the form on the ground (z = 0)."""
+        """The placement that stands the form on the ground (z = 0).
+
+        Its ``touching`` indices refer to ``vstack([boundary_3d, apex])``."""
         area, centroid = _fan_area_and_centroid(self.apex, self.boundary_3d)
-        return rest_on_ground(np.vstack([self.boundary_3d, self.apex]), centroid)
+        pts = np.vstack([self.boundary_3d, self.apex])
+        return rest_on_ground(pts, centroid, candidates=_RESTING_POINTS)
 
     @property
     def apex(self) -> Array:

@@ -69,14 +69,24 @@ def _inside_convex(point2: Array, poly2: Array) -> bool:
     return bool(np.all(eq[:, :2] @ point2 + eq[:, 2] <= 1e-9 * (1 + np.abs(eq[:, 2]).max())))
 
 
-def rest_on_ground(points: ArrayLike, centre_of_mass: ArrayLike) -> RestingPlacement:
+def rest_on_ground(
+    points: ArrayLike, centre_of_mass: ArrayLike, candidates: int | None = None
+) -> RestingPlacement:
     """Find how the form made of ``points`` ``(k, 3)`` rests on the ground.
 
     Args:
         points: the form's boundary points and apex (fold frame).
         centre_of_mass: ``(3,)`` the surface's area centroid.
+        candidates: if given and exceeded, only about this many evenly spaced
+            points (and the last point, the apex) are considered as contacts;
+            the rest are moved with the placement all the same.
     """
-    p = np.asarray(points, dtype=float)
+    allp = np.asarray(points, dtype=float)
+    idx = np.arange(len(allp))
+    if candidates is not None and len(allp) > candidates:
+        step = int(np.ceil(len(allp) / candidates))
+        idx = np.unique(np.concatenate([idx[:-1:step], idx[-1:]]))
+    p = allp[idx]
     com = np.asarray(centre_of_mass, dtype=float)
     scale = float(np.ptp(p, axis=0).max())
     tol = 1e-9 * scale
@@ -103,8 +113,10 @@ def rest_on_ground(points: ArrayLike, centre_of_mass: ArrayLike) -> RestingPlace
         rot = np.eye(3)
         zmin = float(p[:, 2].min())
         on = np.flatnonzero(p[:, 2] <= zmin + tol)
-        return RestingPlacement(rot, np.array([0.0, 0.0, -zmin]), on, 0.0, False)
+        return RestingPlacement(rot, np.array([0.0, 0.0, -zmin]), idx[on], 0.0, False)
     tilt, rot, on, stable = best
     moved = p @ rot.T
     zmin = float(moved[on, 2].mean())
-    return RestingPlacement(rot, np.array([0.0, 0.0, -zmin]), on.astype(np.int64), tilt, stable)
+    return RestingPlacement(
+        rot, np.array([0.0, 0.0, -zmin]), idx[on].astype(np.int64), tilt, stable
+    )
