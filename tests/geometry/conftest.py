@@ -16,7 +16,7 @@ def frames(draw: st.DrawFn, divisions: int | None = None) -> FrameCurve:
     alpha = draw(st.floats(5.0, 85.0))
     beta = draw(st.floats(5.0, 85.0))
     radius = draw(st.floats(10.0, 1000.0))
-    frac = draw(st.floats(-0.95, 0.95))
+    frac = draw(st.floats(-0.999, 0.999))
     n = divisions if divisions is not None else draw(st.integers(12, 400))
     return FrameCurve(alpha, beta, frac * radius * math.cos(math.radians(alpha)), radius, n)
 

@@ -11,7 +11,7 @@ from onefold_cad import FrameCurve, Sheet, fold, solve
 
 from .conftest import frames, sheets
 
-SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 def _angle(a: np.ndarray, b: np.ndarray) -> np.ndarray:
