@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.geometry.frame import arc_points, arc_range, arc_tangents, division_angles
 from onefold_cad.geometry.params import FrameCurve
+from onefold_cad.geometry.validate import cross3
 
 __all__ = ["DirectionSurface", "PaperFan", "ExactCone"]
 
@@ -29,7 +30,7 @@ def _unit(v: Array) -> Array:
 
 def _angles(a: Array, b: Array) -> Array:
     """Angles between row vectors (radians), accurate for tiny and large angles."""
-    c = np.cross(a, b)
+    c = cross3(a, b)
     return np.arctan2(np.sqrt(np.einsum("ij,ij->i", c, c)), np.einsum("ij,ij->i", a, b))
 
 
@@ -43,6 +44,14 @@ class DirectionSurface(ABC):
     @abstractmethod
     def angle_sum(self, h: float) -> float:
         """Sum of the apex angles of one side (radians) for the apex at height h."""
+
+    @abstractmethod
+    def angle_sums(self, h: Array) -> Array:
+        """S(h) for many apex heights at once: ``(m,)`` heights -> ``(m,)`` radians."""
+
+    @abstractmethod
+    def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
+        """S(h) (radians) and dS/dh (radians per length), analytically."""
 
     @abstractmethod
     def set_apex(self, h: float) -> None:
@@ -87,6 +96,45 @@ class PaperFan(DirectionSurface):
     def angle_sum(self, h: float) -> float:
         v = self._vectors(h)
         return float(np.sum(_angles(v[:-1], v[1:])))
+
+    def _pair_terms(self) -> tuple[Array, ...]:
+        """Per-triangle constants: with a, b consecutive points and the apex at
+        height h, (a - h z) x (b - h z) = C - h W and the dot product is
+        D - h Z + h^2; so S(h) costs a few array operations."""
+        if not hasattr(self, "_terms"):
+            a, b = self.points[:-1], self.points[1:]
+            c = cross3(a, b)
+            w = a - b
+            self._terms = (
+                c[:, 0].copy(),
+                c[:, 1].copy(),
+                c[:, 2] ** 2,
+                w[:, 1].copy(),
+                -w[:, 0],
+                np.einsum("ij,ij->i", a, b),
+                a[:, 2] + b[:, 2],
+            )
+        return self._terms
+
+    def angle_sums(self, h: Array) -> Array:
+        c1, c2, c3sq, w1, w2, dot0, zs = self._pair_terms()
+        hh = np.asarray(h, dtype=float)[:, None]
+        s1 = c1 - hh * w1
+        s2 = c2 - hh * w2
+        sin = np.sqrt(s1 * s1 + s2 * s2 + c3sq)
+        cos = dot0 - hh * zs + hh * hh
+        return np.arctan2(sin, cos).sum(axis=1)
+
+    def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
+        c1, c2, c3sq, w1, w2, dot0, zs = self._pair_terms()
+        s1 = c1 - h * w1
+        s2 = c2 - h * w2
+        sin = np.sqrt(s1 * s1 + s2 * s2 + c3sq)
+        cos = dot0 - h * zs + h * h
+        dsin = -(s1 * w1 + s2 * w2) / sin
+        dcos = 2.0 * h - zs
+        slope = (cos * dsin - sin * dcos) / (sin * sin + cos * cos)
+        return float(np.arctan2(sin, cos).sum()), float(slope.sum())
 
     def set_apex(self, h: float) -> None:
         self.height = h
@@ -153,11 +201,44 @@ class ExactCone(DirectionSurface):
         """|du/dphi| at arc points p with tangents dp (radians per radian)."""
         v = p.copy()
         v[:, 2] -= h
-        c = np.cross(dp, v)
+        c = cross3(dp, v)
         return np.sqrt(np.einsum("ij,ij->i", c, c)) / np.einsum("ij,ij->i", v, v)
 
     def angle_sum(self, h: float) -> float:
         return float(np.dot(self._weights, self._speed(h, self._p, self._dp)))
+
+    def _node_terms(self) -> tuple[Array, ...]:
+        """Per-node constants: with v = P - h z, P' x v = K - h L (L = P' x z)."""
+        if not hasattr(self, "_terms"):
+            k = cross3(self._dp, self._p)
+            self._terms = (
+                k[:, 0].copy(),
+                k[:, 1].copy(),
+                k[:, 2] ** 2,
+                self._dp[:, 1].copy(),
+                -self._dp[:, 0],
+                np.einsum("ij,ij->i", self._p, self._p),
+                self._p[:, 2].copy(),
+            )
+        return self._terms
+
+    def angle_sums(self, h: Array) -> Array:
+        k1, k2, k3sq, l1, l2, pp, pz = self._node_terms()
+        hh = np.asarray(h, dtype=float)[:, None]
+        c1 = k1 - hh * l1
+        c2 = k2 - hh * l2
+        vv = pp - 2.0 * hh * pz + hh * hh
+        return (np.sqrt(c1 * c1 + c2 * c2 + k3sq) / vv) @ self._weights
+
+    def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
+        k1, k2, k3sq, l1, l2, pp, pz = self._node_terms()
+        c1 = k1 - h * l1
+        c2 = k2 - h * l2
+        cn = np.sqrt(c1 * c1 + c2 * c2 + k3sq)
+        vv = pp - 2.0 * h * pz + h * h
+        g = cn / vv
+        dg = -(c1 * l1 + c2 * l2) / (cn * vv) - g * (2.0 * h - 2.0 * pz) / vv
+        return float(g @ self._weights), float(dg @ self._weights)
 
     def set_apex(self, h: float) -> None:
         self.height = h

@@ -22,6 +22,7 @@ from onefold_cad.geometry.frame import arc_range
 from onefold_cad.geometry.placement import RestingPlacement, rest_on_ground
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import Solution
+from onefold_cad.geometry.validate import cross3
 
 __all__ = ["CreaseHalf", "Developability", "FoldedSheet", "fold"]
 
@@ -163,7 +164,7 @@ class FoldedSheet:
         angle, and top-side normal ``(k, 3)`` each, at flat points ``(k, 2)``."""
         _, theta, lower = self._polar(xy)
         u, e = self.solution.surface.frames(theta)
-        n = np.cross(u, e)
+        n = cross3(u, e)
         u = np.where(lower[:, None], u * _MIRROR, u)
         e = np.where(lower[:, None], -e * _MIRROR, e)
         n = np.where(lower[:, None], n * _MIRROR, n)
@@ -201,7 +202,7 @@ class FoldedSheet:
         phi = np.clip(phi, p0, p1)
         theta = surface.theta_of_phi(phi)
         u, e = surface.frames(theta)
-        n = np.cross(u, e)
+        n = cross3(u, e)
         r = np.einsum("ij,ij->i", w, u)
         off = np.abs(np.einsum("ij,ij->i", w, n))
         psi = np.where(lower, -theta, theta)
@@ -282,10 +283,10 @@ def _crease_half(solution: Solution, sheet: Sheet, name: str, end3: Array) -> Cr
     length, end = (xp, np.array([xp, 0.0])) if name == "plus_x" else (xm, np.array([-xm, 0.0]))
     theta = 0.0 if name == "plus_x" else solution.surface.total_angle
     u, e = solution.surface.frames(np.array([theta]))
-    n = np.cross(u, e)[0]
+    n = cross3(u, e)[0]
     n_other = n * _MIRROR
     cosang = float(np.clip(np.dot(n, n_other), -1.0, 1.0))
-    angle = math.degrees(math.atan2(float(np.linalg.norm(np.cross(n, n_other))), cosang))
+    angle = math.degrees(math.atan2(float(np.linalg.norm(cross3(n, n_other))), cosang))
     into_side = e[0] if name == "plus_x" else -e[0]
     bend = "UP" if float(np.dot(into_side, n_other)) > 0.0 else "DOWN"
     return CreaseHalf(name, length, end, np.array(end3), angle, bend)
@@ -293,7 +294,7 @@ def _crease_half(solution: Solution, sheet: Sheet, name: str, end3: Array) -> Cr
 
 def _fan_area_and_centroid(apex: Array, ring: Array) -> tuple[float, Array]:
     a, b = ring, np.roll(ring, -1, axis=0)
-    areas = 0.5 * np.linalg.norm(np.cross(a - apex, b - apex), axis=1)
+    areas = 0.5 * np.linalg.norm(cross3(a - apex, b - apex), axis=1)
     centroids = (apex + a + b) / 3.0
     total = float(np.sum(areas))
     return total, (areas[:, None] * centroids).sum(axis=0) / total

@@ -15,6 +15,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import ConvexHull, QhullError
 
+from onefold_cad.geometry.validate import cross3
+
 __all__ = ["RestingPlacement", "rest_on_ground"]
 
 Array = NDArray[np.float64]
@@ -47,7 +49,7 @@ class RestingPlacement:
 def _rotation_to_down(n: Array) -> Array:
     """The smallest rotation taking unit vector ``n`` to (0, 0, -1)."""
     target = np.array([0.0, 0.0, -1.0])
-    axis = np.cross(n, target)
+    axis = cross3(n, target)
     s = float(np.linalg.norm(axis))
     c = float(np.dot(n, target))
     if s < 1e-15:

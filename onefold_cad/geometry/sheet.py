@@ -176,9 +176,10 @@ class Sheet:
             raise InvalidSheetError(name, f"needs at least 3 vertices, got {len(p)}")
         if not np.all(np.isfinite(p)):
             raise InvalidSheetError(name, "vertex coordinates must be finite numbers (no NaN/inf)")
+        scale = float(np.max(np.abs(p)))
+        p[np.abs(p[:, 1]) <= 1e-12 * scale, 1] = 0.0  # on the fold line up to rounding
         nxt = np.roll(p, -1, axis=0)
         seglen = np.hypot(*(nxt - p).T)
-        scale = float(np.max(np.abs(p)))
         if scale == 0.0 or np.any(seglen <= 1e-12 * scale):
             k = int(np.argmin(seglen))
             raise InvalidSheetError(name, f"vertices {k} and {(k + 1) % len(p)} coincide")

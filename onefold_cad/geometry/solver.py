@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 from onefold_cad.errors import NoSolutionError
 from onefold_cad.geometry.cone import DirectionSurface, ExactCone, PaperFan
@@ -79,40 +78,74 @@ def make_direction_surface(frame: FrameCurve, model: Model | str) -> DirectionSu
     return PaperFan(frame) if m is Model.PAPER else ExactCone(frame)
 
 
-def _bracket(surface: DirectionSurface, frame: FrameCurve) -> tuple[float, float, int]:
-    """Heights (lo, hi) with S(lo) > 180 deg > S(hi), lo past the maximum side."""
-    evals = 0
+# Heights tried at once to bracket the root: l * 2**(k/2), k = -40 .. 16.
+_GRID = 2.0 ** (np.arange(-40, 17) / 2.0)
+_GRID_ELEMENTS = 60_000  # above this many (heights x triangles), bracket sequentially
 
-    def excess(h: float) -> float:
-        nonlocal evals
-        evals += 1
-        return surface.angle_sum(h) - _HALF_TURN
 
-    h = frame.paper_lower_bound
-    if excess(h) > 0.0:
-        lo, hi = h, 2.0 * h
-        while excess(hi) > 0.0:
-            lo, hi = hi, 2.0 * hi
-            if hi > 1e12 * frame.radius:  # S -> 0 as h -> inf, so never reached
-                raise NoSolutionError(f"angle-condition root not bracketed for {frame}")
-        return lo, hi, evals
-    hi = h
-    floor = 1e-9 * frame.radius
-    while hi > floor:
-        lo = hi / 1.5
-        if excess(lo) > 0.0:
-            return lo, hi, evals
-        hi = lo
+def _no_solution(frame: FrameCurve, surface: DirectionSurface) -> NoSolutionError:
     hint = "increase alpha or beta (allowed: (0, 90) deg)"
     if isinstance(surface, PaperFan):
         hint += (
             f" or divisions (the paper model's fan of {frame.divisions} triangles is too coarse)"
         )
-    raise NoSolutionError(
+    return NoSolutionError(
         "no non-trivial apex: the sum of apex angles never exceeds 180 deg for "
         f"alpha={frame.alpha:g} deg, beta={frame.beta:g} deg, h_c={frame.h_c:g}, "
         f"radius={frame.radius:g}, divisions={frame.divisions}; {hint}"
     )
+
+
+def _bracket(surface: DirectionSurface, frame: FrameCurve) -> tuple[float, float, int]:
+    """Heights (lo, hi) with S(lo) > 180 deg > S(hi), past the maximum of S."""
+    l0 = frame.paper_lower_bound
+    size = len(getattr(surface, "points", ())) or len(getattr(surface, "_p", ()))
+    if size * len(_GRID) <= _GRID_ELEMENTS:
+        heights = l0 * _GRID
+        above = surface.angle_sums(heights) > _HALF_TURN
+        if not above.any():
+            raise _no_solution(frame, surface)
+        k = int(np.flatnonzero(above)[-1])
+        if k + 1 < len(heights):
+            return float(heights[k]), float(heights[k + 1]), len(heights)
+        lo, evals = float(heights[k]), len(heights)
+    else:
+        lo, evals = l0, 1
+        if not surface.angle_sum(lo) > _HALF_TURN:
+            hi = lo
+            while hi > 1e-9 * frame.radius:
+                lo = hi / 1.5
+                evals += 1
+                if surface.angle_sum(lo) > _HALF_TURN:
+                    return lo, hi, evals
+                hi = lo
+            raise _no_solution(frame, surface)
+    hi = 2.0 * lo
+    while surface.angle_sum(hi) > _HALF_TURN:  # S -> 0 as h -> infinity
+        evals += 1
+        lo, hi = hi, 2.0 * hi
+    return lo, hi, evals + 1
+
+
+def _newton(surface: DirectionSurface, lo: float, hi: float) -> tuple[float, int]:
+    """Root of S(h) = 180 deg in [lo, hi]: Newton's method, kept in the bracket."""
+    h = 0.5 * (lo + hi)
+    for count in range(1, 100):
+        f, slope = surface.angle_sum_and_slope(h)
+        f -= _HALF_TURN
+        if f > 0.0:
+            lo = h
+        else:
+            hi = h
+        if f == 0.0:
+            return h, count
+        new = h - f / slope if slope != 0.0 else h
+        if abs(new - h) <= 1e-15 * h and lo <= new <= hi:
+            return new, count
+        if not lo < new < hi:
+            new = 0.5 * (lo + hi)  # Newton left the bracket: bisect instead
+        h = new
+    return h, 100
 
 
 def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
@@ -134,13 +167,8 @@ def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
     t0 = time.perf_counter()
     surface = make_direction_surface(frame, m)
     lo, hi, evals = _bracket(surface, frame)
-    counter = [0]
-
-    def excess(h: float) -> float:
-        counter[0] += 1
-        return surface.angle_sum(h) - _HALF_TURN
-
-    h = brentq(excess, lo, hi, xtol=1e-15 * hi, rtol=4.0 * np.finfo(float).eps, maxiter=200)
+    h, steps = _newton(surface, lo, hi)
+    evals += steps
     surface.set_apex(float(h))
     total = 2.0 * math.degrees(surface.total_angle)
     elapsed = time.perf_counter() - t0
@@ -153,5 +181,5 @@ def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
         angle_condition_error_deg=abs(total - 360.0),
         time_direction_surface=elapsed,
         bracket=(lo, hi),
-        evaluations=evals + counter[0],
+        evaluations=evals,
     )

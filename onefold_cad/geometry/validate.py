@@ -5,9 +5,11 @@ from __future__ import annotations
 import math
 import numbers
 
+import numpy as np
+
 from onefold_cad.errors import InvalidParameterError
 
-__all__ = ["finite", "positive", "open_interval", "closed_interval", "integer_at_least"]
+__all__ = ["cross3", "finite", "positive", "open_interval", "closed_interval", "integer_at_least"]
 
 
 def finite(name: str, value: object) -> float:
@@ -57,3 +59,15 @@ def integer_at_least(name: str, value: object, lo: int, hi: int | None = None) -
         rng = f">= {lo}" if hi is None else f"in [{lo}, {hi}]"
         raise InvalidParameterError(name, f"must be an integer {rng}, got {n}")
     return n
+
+
+def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product of 3-vectors along the last axis (numpy's np.cross without
+    its axis-juggling overhead, which dominates for the small arrays here)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out

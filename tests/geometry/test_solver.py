@@ -124,7 +124,16 @@ def test_no_solution_is_reported(monkeypatch: pytest.MonkeyPatch) -> None:
         def angle_sum(self, h: float) -> float:
             return math.pi * 100.0 / (100.0 + h)
 
+        def angle_sums(self, h: np.ndarray) -> np.ndarray:
+            return math.pi * 100.0 / (100.0 + np.asarray(h))
+
+        def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
+            return self.angle_sum(h), -math.pi * 100.0 / (100.0 + h) ** 2
+
     monkeypatch.setattr(solver, "make_direction_surface", lambda f, m: Flat(f))
+    with pytest.raises(NoSolutionError, match="alpha=50"):
+        solve(FrameCurve(50, 45), "exact")
+    monkeypatch.setattr(solver, "_GRID_ELEMENTS", 0)  # the sequential bracket too
     with pytest.raises(NoSolutionError, match="alpha=50"):
         solve(FrameCurve(50, 45), "exact")
 
