@@ -243,6 +243,15 @@ class FoldedSheet:
         return np.concatenate(verts), np.concatenate(faces).astype(np.int64)
 
 
+def _merge(theta: Array, tol: float = 1e-12) -> Array:
+    """Sorted angles with those closer than ``tol`` (radians) to the previous merged."""
+    t = np.unique(theta)
+    keep = np.concatenate([[True], np.diff(t) > tol])
+    t = t[keep]
+    t[-1] = max(t[-1], float(theta.max()))
+    return t
+
+
 def _side_vertex_angles(sheet: Sheet) -> tuple[Array, Array]:
     """Flat angles theta of the polygon vertices on each side (with 0 and pi)."""
     a = sheet.polar_angles
@@ -347,8 +356,8 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
         assert surface.thetas is not None
         fan = np.clip(surface.thetas, 0.0, math.pi)
         angles = (
-            np.unique(np.concatenate([fan, vert_up])),
-            np.unique(np.concatenate([fan, vert_lo])),
+            _merge(np.concatenate([fan, vert_up])),
+            _merge(np.concatenate([fan, vert_lo])),
         )
     else:
         angles = (vert_up, vert_lo)
