@@ -1,0 +1,231 @@
+"""DXF flat pattern for laser and plasma cutting (an ezdxf adapter).
+
+Layers (exact names, so a CAM setup maps them once):
+
+- ``CUT``: the outline as one closed LWPOLYLINE (POLYLINE in R12) and the
+  relief hole as a CIRCLE, both offset by kerf/2 when a kerf is given.
+- ``BEND_UP`` / ``BEND_DOWN``: each fold half as a dashed LINE from H to the
+  outline, on the layer of its bend direction seen from the drawing's (top)
+  side; XDATA (application ``ONEFOLD``) holds the direction and angle.
+- ``APEX``: a cross and a small circle at H (always drawn).
+- ``BEND_ZONE``: for t > 0, each half's limit lines at +-BA/2.
+- ``RULINGS`` (optional): rulings as light etch lines.
+- ``NOTES``: design name, units, material, bend data, size, area, mass,
+  and each half's direction and angle next to it.
+
+Everything is in modelspace, in the sheet's own frame; ``$INSUNITS`` and
+``$MEASUREMENT`` follow the design's units (R12 has no ``$INSUNITS``).
+The geometry comes from :mod:`onefold_cad.export.flat_pattern`.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+from ezdxf import units as dxf_units
+from ezdxf.document import Drawing
+
+from onefold_cad.design import Design, build_design
+from onefold_cad.errors import ExportError, InvalidParameterError
+from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
+from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.material import Units
+
+__all__ = ["LAYERS", "draw_flat_pattern", "export_design_dxf", "atomic_output", "write_dxf_atomic"]
+
+#: layer name -> (ACI colour, linetype)
+LAYERS: dict[str, tuple[int, str]] = {
+    "CUT": (7, "Continuous"),
+    "BEND_UP": (1, "DASHED"),
+    "BEND_DOWN": (5, "DASHED"),
+    "APEX": (3, "Continuous"),
+    "BEND_ZONE": (8, "Continuous"),
+    "RULINGS": (9, "Continuous"),
+    "NOTES": (7, "Continuous"),
+}
+_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
+_INSUNITS = {Units.MM: dxf_units.MM, Units.IN: dxf_units.IN, Units.FT: dxf_units.FT}
+_APPID = "ONEFOLD"
+
+
+def _setup(doc: Drawing, pattern: FlatPattern) -> None:
+    """Units, linetype scale, layers and the XDATA application id."""
+    want = _INSUNITS[pattern.units]
+    if doc.dxfversion > "AC1009":  # R12 has no $INSUNITS
+        doc.units = want
+    doc.header["$MEASUREMENT"] = 1 if pattern.units is Units.MM else 0
+    dashed = doc.linetypes.get("DASHED") if "DASHED" in doc.linetypes else None
+    if dashed is None:
+        doc.linetypes.add("DASHED", [0.6, 0.5, -0.1], description="Dashed __ __ __")
+        dashed = doc.linetypes.get("DASHED")
+    period = float(sum(abs(x) for x in dashed.simplified_line_pattern())) or 1.0
+    longest = max(float(np.hypot(*(h.end - h.start))) for h in pattern.halves)
+    doc.header["$LTSCALE"] = max(longest / 25.0 / period, 1e-3)
+    for name, (color, ltype) in LAYERS.items():
+        if name not in doc.layers:
+            doc.layers.add(name, color=color, linetype=ltype)
+    if _APPID not in doc.appids:
+        doc.appids.add(_APPID)
+
+
+def _literal(text: str) -> str:
+    """Escape DXF caret codes ('^J' etc.) so the text reads as written."""
+    return text.replace("^", "^ ")
+
+
+def _text_height(pattern: FlatPattern) -> float:
+    return pattern.scale / 60.0
+
+
+def draw_flat_pattern(
+    pattern: FlatPattern,
+    doc: Drawing | None = None,
+    *,
+    dxfversion: str = "R2000",
+    rulings: bool = True,
+) -> Drawing:
+    """Draw ``pattern`` into the modelspace of ``doc`` (a new document if None).
+
+    Args:
+        pattern: from :func:`onefold_cad.export.flat_pattern.flat_pattern`.
+        doc: an existing ezdxf document to fill (its ``$INSUNITS``,
+            ``$MEASUREMENT`` and ``$LTSCALE`` are set for the design), or None
+            for a new one.
+        dxfversion: 'R2000' (default), 'R12' for old CAM, or a later version;
+            ignored when ``doc`` is given.
+        rulings: draw the RULINGS layer.
+
+    Returns:
+        The document (audited: no errors).
+    """
+    if doc is None:
+        if dxfversion not in _VERSIONS:
+            raise InvalidParameterError(
+                "dxfversion", f"must be one of {', '.join(_VERSIONS)}, got {dxfversion!r}"
+            )
+        doc = ezdxf.new(dxfversion, setup=True)
+    _setup(doc, pattern)
+    msp = doc.modelspace()
+    outline = [tuple(p) for p in pattern.cut_outline.tolist()]
+    if doc.dxfversion > "AC1009":
+        msp.add_lwpolyline(outline, format="xy", close=True, dxfattribs={"layer": "CUT"})
+    else:
+        msp.add_polyline2d(outline, close=True, dxfattribs={"layer": "CUT"})
+    apex = tuple(pattern.apex.tolist())
+    if pattern.cut_hole_diameter > 0.0:
+        msp.add_circle(apex, pattern.cut_hole_diameter / 2.0, dxfattribs={"layer": "CUT"})
+
+    h = _text_height(pattern)
+    fold_deg = math.degrees(math.atan2(pattern.fold_direction[1], pattern.fold_direction[0]))
+    for half in pattern.halves:
+        line = msp.add_line(
+            tuple(half.start.tolist()), tuple(half.end.tolist()), dxfattribs={"layer": half.layer}
+        )
+        line.set_xdata(_APPID, [(1000, half.name), (1000, half.bend), (1040, half.angle_deg)])
+        for a, b in half.zone:
+            msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "BEND_ZONE"})
+        mid = (half.start + half.end) / 2.0
+        normal = np.array([-pattern.fold_direction[1], pattern.fold_direction[0]])
+        zone_w = max((abs((z[0] - pattern.apex) @ normal) for z in half.zone), default=0.0)
+        away = max(h, 1.5 * zone_w)
+        pos = mid + normal * away
+        label = msp.add_text(half.label, height=h, rotation=fold_deg, dxfattribs={"layer": "NOTES"})
+        label.set_placement(
+            tuple(pos.tolist()), align=ezdxf.enums.TextEntityAlignment.BOTTOM_CENTER
+        )
+
+    _apex_mark(msp, pattern)
+    if rulings:
+        for a, b in pattern.rulings:
+            msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "RULINGS"})
+    x0, y0 = pattern.outline.min(axis=0) - max(pattern.kerf, 0.0)
+    for i, text in enumerate(pattern.notes):
+        msp.add_text(
+            _literal(text),
+            height=h,
+            dxfattribs={"layer": "NOTES", "insert": (x0, y0 - (2 + 1.6 * i) * h)},
+        )
+    auditor = doc.audit()
+    if auditor.has_errors:
+        raise ExportError(f"the DXF document failed its audit: {auditor.errors}")
+    return doc
+
+
+def _apex_mark(msp: object, pattern: FlatPattern) -> None:
+    """A cross at +-45 deg to the fold line and a small circle at H."""
+    m = pattern.scale / 50.0
+    radius = m / 2.0
+    for d in (pattern.hole_diameter, pattern.cut_hole_diameter):
+        if abs(radius - d / 2.0) < 1e-3 * m:  # never on top of a CUT circle
+            radius *= 1.5
+    f = pattern.fold_direction
+    n = np.array([-f[1], f[0]])
+    for arm in ((f + n) / math.sqrt(2.0), (f - n) / math.sqrt(2.0)):
+        a, b = pattern.apex - m * arm, pattern.apex + m * arm
+        msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
+    msp.add_circle(tuple(pattern.apex.tolist()), radius, dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
+
+
+@contextmanager
+def atomic_output(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """Yield a temporary path next to ``path``; replace ``path`` with it on success.
+
+    On any error the temporary file is removed and ``path`` is left as it
+    was; an OSError becomes :class:`ExportError` naming the file.
+    """
+    out = Path(path)
+    if not out.parent.is_dir():
+        raise ExportError(f"cannot write {out}: directory {out.parent} does not exist")
+    fd, name = tempfile.mkstemp(prefix=f".{out.stem}.", suffix=out.suffix, dir=out.parent)
+    os.close(fd)
+    tmp = Path(name)
+    try:
+        yield tmp
+        umask = os.umask(0o022)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, out)
+    except OSError as exc:
+        raise ExportError(f"cannot write {out}: {exc}") from exc
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
+def write_dxf_atomic(doc: Drawing, path: str | os.PathLike[str]) -> Path:
+    """Save ``doc`` to ``path`` via a temporary file in the same directory."""
+    with atomic_output(path) as tmp:
+        doc.saveas(tmp)
+    return Path(path)
+
+
+def export_design_dxf(
+    design: Design,
+    path: str | os.PathLike[str],
+    folded: FoldedSheet | None = None,
+    *,
+    dxfversion: str = "R2000",
+    rulings: bool = True,
+) -> Path:
+    """Write the flat pattern of ``design`` as a DXF file (atomically).
+
+    Args:
+        design: the design.
+        path: the output file; nothing is written if anything fails.
+        folded: ``build_design(design)`` if already computed.
+        dxfversion: 'R2000' (default) or 'R12' (or a later version).
+        rulings: include the RULINGS layer.
+
+    Returns:
+        The path written.
+    """
+    folded = build_design(design) if folded is None else folded
+    pattern = flat_pattern(design, folded)
+    doc = draw_flat_pattern(pattern, dxfversion=dxfversion, rulings=rulings)
+    return write_dxf_atomic(doc, path)

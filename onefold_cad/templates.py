@@ -1,0 +1,367 @@
+"""Design templates: TOML files of data only, turned into validated designs.
+
+A template names every input of a :class:`~onefold_cad.design.Design`::
+
+    name = "table1-row1"            # file-safe design name
+    description = "..."             # one line, shown by `onefold templates`
+    units = "mm"                    # mm, in or ft
+    model = "exact"                 # exact or paper
+
+    [frame]                         # the frame curve (degrees, design unit)
+    alpha = 50.0
+    beta = 45.0
+    h_c = 0.0
+    radius = 100.0
+    divisions = 90
+
+    [sheet.quadrilateral]           # exactly one of quadrilateral, polygon, rectangle
+    x_plus = 300.0
+    x_minus = 300.0
+    y_plus = 300.0
+    y_minus = 300.0
+
+    [material]                      # all optional
+    name = "paper"
+    thickness = 0.1
+
+``[sheet]`` instead holds ``polygon = [[x, y], ...]`` (fold frame: fold line
+on the x axis, H at the origin) or a ``[sheet.rectangle]`` table with
+``width``, ``height`` and ``apex_fraction``. Unknown keys and values of the
+wrong type raise :class:`~onefold_cad.errors.InvalidParameterError` naming
+the full key (``frame.alpah``). The shipped templates live in the repository's
+``templates/`` folder, installed to ``<prefix>/share/onefold_cad/templates``.
+"""
+
+from __future__ import annotations
+
+import sys
+import sysconfig
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from onefold_cad.design import Design
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.material import Material
+from onefold_cad.geometry.params import FrameCurve
+from onefold_cad.geometry.sheet import Sheet
+
+__all__ = [
+    "DEFAULT_TEMPLATE",
+    "TemplateInfo",
+    "design_from_data",
+    "design_to_data",
+    "find_template",
+    "list_templates",
+    "load_template",
+    "read_template",
+    "template_dirs",
+]
+
+#: The template `make demo` builds and that `onefold solve` starts from without one.
+DEFAULT_TEMPLATE = "patkau-one-fold"
+
+_NUMBER = "number"
+_TOP: dict[str, str] = {"name": "str", "description": "str", "units": "str", "model": "str"}
+_FRAME: dict[str, str] = {
+    "alpha": _NUMBER,
+    "beta": _NUMBER,
+    "h_c": _NUMBER,
+    "radius": _NUMBER,
+    "divisions": "int",
+}
+_QUAD: dict[str, str] = {k: _NUMBER for k in ("x_plus", "x_minus", "y_plus", "y_minus")}
+_RECT: dict[str, str] = {k: _NUMBER for k in ("width", "height", "apex_fraction")}
+_MATERIAL: dict[str, str] = {
+    "name": "str",
+    "thickness": _NUMBER,
+    "bend_radius": _NUMBER,
+    "k_factor": _NUMBER,
+    "kerf": _NUMBER,
+    "relief_hole": _NUMBER,
+    "density": _NUMBER,
+    "sheet_surface": "str",
+}
+_SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
+
+
+@dataclass(frozen=True)
+class TemplateInfo:
+    """A shipped template: its name (file stem), file and one-line description."""
+
+    name: str
+    path: Path
+    description: str
+
+
+# -- locating templates ------------------------------------------------------
+def template_dirs() -> list[Path]:
+    """Folders that may hold the shipped templates, in search order.
+
+    The repository's ``templates/`` (source checkouts and editable installs)
+    and ``<prefix>/share/onefold_cad/templates`` (where ``pip install .``
+    puts them).
+    """
+    here = Path(__file__).resolve().parent
+    candidates = [
+        here.parent / "templates",
+        Path(sysconfig.get_path("data")) / "share" / "onefold_cad" / "templates",
+        Path(sys.prefix) / "share" / "onefold_cad" / "templates",
+    ]
+    seen: list[Path] = []
+    for c in candidates:
+        if c.is_dir() and c not in seen:
+            seen.append(c)
+    return seen
+
+
+def _shipped() -> dict[str, Path]:
+    found: dict[str, Path] = {}
+    for d in template_dirs():
+        for p in sorted(d.glob("*.toml")):
+            found.setdefault(p.stem, p)
+    return found
+
+
+def list_templates() -> list[TemplateInfo]:
+    """The shipped templates, sorted by name."""
+    out = []
+    for name, path in sorted(_shipped().items()):
+        data = read_template(path)
+        out.append(TemplateInfo(name, path, str(data.get("description", "")).strip()))
+    return out
+
+
+def find_template(ref: str | Path) -> Path:
+    """The file of a template given as a path or as a shipped template's name."""
+    p = Path(ref)
+    if p.is_file():
+        return p
+    shipped = _shipped()
+    key = p.name.removesuffix(".toml")
+    if str(ref) == key and key in shipped:
+        return shipped[key]
+    names = ", ".join(sorted(shipped)) or "none found"
+    raise InvalidParameterError(
+        "template",
+        f"no such file or shipped template: {str(ref)!r} (shipped templates: {names})",
+    )
+
+
+# -- reading -------------------------------------------------------------------
+def read_template(path: str | Path) -> dict[str, Any]:
+    """The raw TOML data of a template file (not yet validated)."""
+    p = Path(path)
+    try:
+        with p.open("rb") as fh:
+            return tomllib.load(fh)
+    except OSError as exc:
+        raise InvalidParameterError("template", f"cannot read {str(p)!r}: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InvalidParameterError("template", f"{p}: not valid TOML: {exc}") from None
+
+
+def load_template(path: str | Path) -> Design:
+    """Read and validate the template at ``path`` (a file or a shipped name)."""
+    p = find_template(path)
+    return design_from_data(read_template(p))
+
+
+# -- validating ------------------------------------------------------------------
+def _check_table(data: object, spec: Mapping[str, str], where: str) -> dict[str, Any]:
+    """Check keys and value types of one table; return a plain dict copy."""
+    if not isinstance(data, Mapping):
+        raise InvalidParameterError(where or "template", "must be a table")
+    out: dict[str, Any] = {}
+    for key, value in data.items():
+        full = f"{where}.{key}" if where else key
+        kind = spec.get(key)
+        if kind is None:
+            allowed = ", ".join(spec)
+            raise InvalidParameterError(full, f"unknown key (allowed here: {allowed})")
+        ok = {
+            "str": isinstance(value, str),
+            "int": isinstance(value, int) and not isinstance(value, bool),
+            _NUMBER: isinstance(value, int | float) and not isinstance(value, bool),
+        }[kind]
+        if not ok:
+            wanted = {"str": "a string", "int": "an integer", _NUMBER: "a number"}[kind]
+            raise InvalidParameterError(
+                full, f"must be {wanted}, got {type(value).__name__} {value!r}"
+            )
+        out[key] = value
+    return out
+
+
+def _sheet_kind(data: Mapping[str, Any], where: str = "sheet") -> str:
+    kinds = [k for k in data if k in _SHEET_KINDS]
+    for key in data:
+        if key not in _SHEET_KINDS:
+            raise InvalidParameterError(
+                f"{where}.{key}", f"unknown key (allowed here: {', '.join(_SHEET_KINDS)})"
+            )
+    if len(kinds) != 1:
+        raise InvalidParameterError(
+            where, f"needs exactly one of {', '.join(_SHEET_KINDS)}, got {len(kinds)}"
+        )
+    return kinds[0]
+
+
+def _polygon_points(value: object, where: str) -> list[list[float]]:
+    if not isinstance(value, list):
+        raise InvalidParameterError(where, "must be a list of [x, y] pairs")
+    pts = []
+    for i, pair in enumerate(value):
+        if (
+            not isinstance(pair, list)
+            or len(pair) != 2
+            or not all(isinstance(c, int | float) and not isinstance(c, bool) for c in pair)
+        ):
+            raise InvalidParameterError(
+                f"{where}[{i}]", f"must be a pair [x, y] of numbers, got {pair!r}"
+            )
+        pts.append([float(pair[0]), float(pair[1])])
+    return pts
+
+
+def _renamed(exc: InvalidParameterError, name: str) -> InvalidParameterError:
+    msg = str(exc)
+    prefix = f"{exc.parameter}: "
+    return type(exc)(name, msg[len(prefix) :] if msg.startswith(prefix) else msg)
+
+
+def design_from_data(
+    data: Mapping[str, Any],
+    *,
+    key_names: Mapping[str, str] | None = None,
+) -> Design:
+    """Validate template data (as read from TOML) and build the design.
+
+    Args:
+        data: the template's tables.
+        key_names: how to name a full key (``frame.alpha``) in errors, e.g.
+            ``{"frame.alpha": "--alpha"}`` when the value came from a flag.
+
+    Raises:
+        InvalidParameterError: an unknown key, a value of the wrong type or
+            out of range; the message names the full key.
+    """
+    names = dict(key_names or {})
+
+    def fail(key: str, exc: InvalidParameterError) -> InvalidParameterError:
+        return _renamed(exc, names.get(key, key))
+
+    try:
+        top_spec = {**_TOP, "frame": "table", "sheet": "table", "material": "table"}
+        for key in data:
+            if key not in top_spec:
+                raise InvalidParameterError(
+                    key, f"unknown key (allowed at top level: {', '.join(top_spec)})"
+                )
+        top = _check_table({k: v for k, v in data.items() if k in _TOP}, _TOP, "")
+        frame = _check_table(data.get("frame", {}), _FRAME, "frame")
+        material = _check_table(data.get("material", {}), _MATERIAL, "material")
+        sheet_data = data.get("sheet")
+        if sheet_data is None:
+            raise InvalidParameterError(
+                "sheet", "missing: give sheet.quadrilateral, sheet.polygon or sheet.rectangle"
+            )
+        if not isinstance(sheet_data, Mapping):
+            raise InvalidParameterError("sheet", "must be a table")
+        kind = _sheet_kind(sheet_data)
+        if kind == "polygon":
+            sheet_args: Any = _polygon_points(sheet_data[kind], "sheet.polygon")
+        else:
+            spec = _QUAD if kind == "quadrilateral" else _RECT
+            sheet_args = _check_table(sheet_data[kind], spec, f"sheet.{kind}")
+    except InvalidParameterError as exc:
+        raise fail(exc.parameter, exc) from None
+
+    missing = [k for k in ("alpha", "beta") if k not in frame]
+    if missing:
+        raise fail(
+            f"frame.{missing[0]}", InvalidParameterError("x", "missing (a number in (0, 90) deg)")
+        )
+    required = {"quadrilateral": tuple(_QUAD), "rectangle": ("width", "height")}.get(kind, ())
+    for key in required:
+        if key not in sheet_args:
+            raise fail(f"sheet.{kind}.{key}", InvalidParameterError("x", "missing (a number > 0)"))
+
+    try:
+        fc = FrameCurve(**frame)
+    except InvalidParameterError as exc:
+        raise fail(f"frame.{exc.parameter}", exc) from None
+    try:
+        if kind == "polygon":
+            sheet = Sheet.polygon(sheet_args, name="polygon")
+        elif kind == "quadrilateral":
+            sheet = Sheet.quadrilateral(**sheet_args)
+        else:
+            sheet = Sheet.rectangle(**sheet_args)
+    except InvalidParameterError as exc:
+        key = "sheet.polygon" if kind == "polygon" else f"sheet.{kind}.{exc.parameter}"
+        raise fail(key, exc) from None
+    try:
+        mat = Material(**material)
+    except InvalidParameterError as exc:
+        raise fail(f"material.{exc.parameter}", exc) from None
+    try:
+        return Design(
+            name=top.get("name", "onefold"),
+            frame=fc,
+            sheet=sheet,
+            model=top.get("model", "exact"),
+            material=mat,
+            units=top.get("units", "mm"),
+            description=top.get("description", "").strip(),
+        )
+    except InvalidParameterError as exc:
+        key = "material.relief_hole" if exc.parameter == "relief_hole" else exc.parameter
+        raise fail(key, exc) from None
+
+
+def _num(x: float) -> float | int:
+    return int(x) if isinstance(x, int) else float(x)
+
+
+def design_to_data(design: Design) -> dict[str, Any]:
+    """The template data of ``design`` (the inverse of :func:`design_from_data`).
+
+    The ``sheet`` table holds the sheet's own inputs (quadrilateral, rectangle
+    or polygon vertices in the fold frame). An unset relief hole is left out.
+    """
+    f, m, s = design.frame, design.material, design.sheet
+    if s.kind in ("quadrilateral", "rectangle"):
+        sheet: dict[str, Any] = {s.kind: {k: _num(v) for k, v in s.inputs.items()}}  # type: ignore[arg-type]
+    else:
+        pts = s.inputs.get("polygon", s.vertices.tolist())
+        sheet = {"polygon": [[float(x), float(y)] for x, y in pts]}  # type: ignore[union-attr]
+    material: dict[str, Any] = {
+        "name": m.name,
+        "thickness": m.thickness,
+        "bend_radius": m.bend_radius,
+        "k_factor": m.k_factor,
+        "kerf": m.kerf,
+        "sheet_surface": m.sheet_surface.value,
+    }
+    if m.relief_hole is not None:
+        material["relief_hole"] = m.relief_hole
+    if m.density is not None:
+        material["density"] = m.density
+    return {
+        "name": design.name,
+        "description": design.description,
+        "units": design.units.value,
+        "model": design.model.value,
+        "frame": {
+            "alpha": f.alpha,
+            "beta": f.beta,
+            "h_c": f.h_c,
+            "radius": f.radius,
+            "divisions": f.divisions,
+        },
+        "sheet": sheet,
+        "material": material,
+    }
