@@ -50,7 +50,12 @@ _MAT = "Material"
 
 # -- the flags shared by build and solve --------------------------------------
 ModelOpt = Annotated[
-    Model | None, typer.Option("--model", help="Direction-surface: exact cone or the paper's fan.")
+    Model | None,
+    typer.Option(
+        "--model",
+        help="Direction-surface: the exact cone or the paper's triangle fan "
+        "(default: the template's model, exact if it names none).",
+    ),
 ]
 Alpha = Annotated[
     float | None, typer.Option(help="Arc opening alpha, deg in (0, 90).", rich_help_panel=_FRAME)
