@@ -22,9 +22,6 @@ from __future__ import annotations
 
 import math
 import os
-import tempfile
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 
 import ezdxf
@@ -34,6 +31,7 @@ from ezdxf.document import Drawing
 
 from onefold_cad.design import Design, build_design
 from onefold_cad.errors import ExportError, InvalidParameterError
+from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Units
@@ -171,31 +169,6 @@ def _apex_mark(msp: object, pattern: FlatPattern) -> None:
         a, b = pattern.apex - m * arm, pattern.apex + m * arm
         msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
     msp.add_circle(tuple(pattern.apex.tolist()), radius, dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
-
-
-@contextmanager
-def atomic_output(path: str | os.PathLike[str]) -> Iterator[Path]:
-    """Yield a temporary path next to ``path``; replace ``path`` with it on success.
-
-    On any error the temporary file is removed and ``path`` is left as it
-    was; an OSError becomes :class:`ExportError` naming the file.
-    """
-    out = Path(path)
-    if not out.parent.is_dir():
-        raise ExportError(f"cannot write {out}: directory {out.parent} does not exist")
-    fd, name = tempfile.mkstemp(prefix=f".{out.stem}.", suffix=out.suffix, dir=out.parent)
-    os.close(fd)
-    tmp = Path(name)
-    try:
-        yield tmp
-        umask = os.umask(0o022)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, out)
-    except OSError as exc:
-        raise ExportError(f"cannot write {out}: {exc}") from exc
-    finally:
-        tmp.unlink(missing_ok=True)
 
 
 def write_dxf_atomic(doc: Drawing, path: str | os.PathLike[str]) -> Path:

@@ -8,13 +8,13 @@ pays for it.
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.errors import ExportError
+from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.folding import FoldedSheet
 
 __all__ = ["render_folded_preview", "resting_mesh"]
@@ -126,23 +126,10 @@ def render_folded_preview(
         ax.set_title(title, fontsize=10)
     fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.95)
 
-    tmp = None
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
-        with os.fdopen(fd, "wb") as fh:
-            fig.savefig(fh, format="png", dpi=dpi)
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; honour the umask
-        os.replace(tmp, out)
     except OSError as exc:
         raise ExportError(f"cannot write preview {str(out)!r}: {exc.strerror or exc}") from exc
-    finally:
-        if tmp is not None and os.path.exists(tmp):
-            os.unlink(tmp)
+    with atomic_output(out) as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi)
     return out
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
@@ -20,6 +19,7 @@ from scipy.spatial import ConvexHull, QhullError
 
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
+from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import bend_values
@@ -191,22 +191,6 @@ def write_report(path: str | os.PathLike[str], report: dict[str, Any]) -> Path:
         text = report_json(report)
     except ValueError as exc:
         raise ExportError(f"report of {report.get('name')!r} is not valid JSON: {exc}") from exc
-    tmp = None
-    try:
-        fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; honour the umask
-        os.replace(tmp, out)
-    except OSError as exc:
-        raise ExportError(f"cannot write report {str(out)!r}: {exc.strerror or exc}") from exc
-    finally:
-        if tmp is not None and os.path.exists(tmp):
-            os.unlink(tmp)
+    with atomic_output(out) as tmp:
+        tmp.write_text(text, encoding="utf-8")
     return out
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
