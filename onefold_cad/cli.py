@@ -10,12 +10,14 @@ renames them into place only when the whole design succeeded.
 from __future__ import annotations
 
 import copy
+import functools
+import inspect
 import os
 import shutil
 import sys
 import tempfile
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -48,7 +50,7 @@ _FRAME = "Frame curve (paper section 3.2)"
 _SHEET = "Sheet (fold frame: fold line on the x axis, H at the origin)"
 _MAT = "Material"
 
-# -- the flags shared by build and solve --------------------------------------
+# -- the flags shared by build and solve (see with_design_flags) -------------
 ModelOpt = Annotated[
     Model | None,
     typer.Option(
@@ -132,6 +134,56 @@ Density = Annotated[
     float | None, typer.Option(help="Density (mass / unit^3) > 0.", rich_help_panel=_MAT)
 ]
 UnitsOpt = Annotated[Units | None, typer.Option("--units", help="Length unit of the design.")]
+
+# Parameter name -> option, in the order the help lists them.
+DESIGN_FLAGS: dict[str, Any] = {
+    "model": ModelOpt,
+    "alpha": Alpha,
+    "beta": Beta,
+    "hc": Hc,
+    "radius": Radius,
+    "divisions": Divisions,
+    "x_plus": XPlus,
+    "x_minus": XMinus,
+    "y_plus": YPlus,
+    "y_minus": YMinus,
+    "polygon": Polygon,
+    "rectangle": Rectangle,
+    "apex_fraction": ApexFraction,
+    "thickness": Thickness,
+    "bend_radius": BendRadius,
+    "k_factor": KFactor,
+    "kerf": Kerf,
+    "relief_hole": ReliefHole,
+    "density": Density,
+    "units": UnitsOpt,
+}
+
+
+def with_design_flags(command: Callable[..., None]) -> Callable[..., None]:
+    """Give ``command`` the options of :data:`DESIGN_FLAGS` after its own ones.
+
+    ``command`` declares a keyword-only parameter ``flags`` instead of one
+    parameter per design flag; it receives ``{parameter name: value}`` for
+    every flag (None where not given). Typer reads the command's parameters
+    from ``__signature__``, so the flags are declared once for every command.
+    """
+    sig = inspect.signature(command, eval_str=True)
+    if "flags" not in sig.parameters:
+        raise TypeError(f"{command.__name__}() must take a keyword-only parameter 'flags'")
+    own = [p for p in sig.parameters.values() if p.name != "flags"]
+    added = [
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=opt)
+        for name, opt in DESIGN_FLAGS.items()
+    ]
+
+    @functools.wraps(command)
+    def wrapper(**kwargs: Any) -> None:
+        flags = {name: kwargs.pop(name, None) for name in DESIGN_FLAGS}
+        command(**kwargs, flags=flags)
+
+    wrapper.__signature__ = sig.replace(parameters=[*own, *added])  # type: ignore[attr-defined]
+    return wrapper
 
 
 class Overrides:
@@ -333,6 +385,7 @@ def _stage_design(design: Design, folded: FoldedSheet, stage: Path) -> list[Path
 
 # -- commands -----------------------------------------------------------------
 @app.command()
+@with_design_flags
 def build(
     templates: Annotated[
         list[str] | None,
@@ -346,26 +399,8 @@ def build(
     name: Annotated[
         str | None, typer.Option(help="File name stem (one template only; default: its name).")
     ] = None,
-    model: ModelOpt = None,
-    alpha: Alpha = None,
-    beta: Beta = None,
-    hc: Hc = None,
-    radius: Radius = None,
-    divisions: Divisions = None,
-    x_plus: XPlus = None,
-    x_minus: XMinus = None,
-    y_plus: YPlus = None,
-    y_minus: YMinus = None,
-    polygon: Polygon = None,
-    rectangle: Rectangle = None,
-    apex_fraction: ApexFraction = None,
-    thickness: Thickness = None,
-    bend_radius: BendRadius = None,
-    k_factor: KFactor = None,
-    kerf: Kerf = None,
-    relief_hole: ReliefHole = None,
-    density: Density = None,
-    units: UnitsOpt = None,
+    *,
+    flags: dict[str, Any],
 ) -> None:
     """Write NAME.step, NAME.dxf, NAME.json, NAME-3d.png and NAME-flat.svg per template.
 
@@ -373,11 +408,10 @@ def build(
     the default template). Files are written under temporary names and moved
     into OUTDIR only when every design of the call succeeded.
     """
-    flags = {k: v for k, v in locals().items() if k not in ("templates", "outdir")}
     refs = list(templates or [])
     if name is not None and len(refs) > 1:
         raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
-    designs = load_designs(refs, Overrides(**flags))
+    designs = load_designs(refs, Overrides(**flags, name=name))
     stems = [d.name for d in designs]
     dup = sorted({s for s in stems if stems.count(s) > 1})
     if dup:
@@ -420,6 +454,7 @@ def build(
 
 
 @app.command()
+@with_design_flags
 def solve(
     template: Annotated[
         str | None,
@@ -430,29 +465,10 @@ def solve(
         ),
     ] = None,
     json_: Annotated[bool, typer.Option("--json", help="Print the JSON report.")] = False,
-    model: ModelOpt = None,
-    alpha: Alpha = None,
-    beta: Beta = None,
-    hc: Hc = None,
-    radius: Radius = None,
-    divisions: Divisions = None,
-    x_plus: XPlus = None,
-    x_minus: XMinus = None,
-    y_plus: YPlus = None,
-    y_minus: YMinus = None,
-    polygon: Polygon = None,
-    rectangle: Rectangle = None,
-    apex_fraction: ApexFraction = None,
-    thickness: Thickness = None,
-    bend_radius: BendRadius = None,
-    k_factor: KFactor = None,
-    kerf: Kerf = None,
-    relief_hole: ReliefHole = None,
-    density: Density = None,
-    units: UnitsOpt = None,
+    *,
+    flags: dict[str, Any],
 ) -> None:
     """Solve a design and print the result (nothing is written)."""
-    flags = {k: v for k, v in locals().items() if k not in ("template", "json_")}
     from onefold_cad.export.report import design_report, report_json
 
     (design,) = load_designs([template] if template else [], Overrides(**flags))
