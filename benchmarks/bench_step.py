@@ -1,71 +1,66 @@
-"""Benchmark: build and write the STEP of every template (or the Table 1 designs).
+"""Benchmark: build and write the STEP of every shipped template, shell and solid.
 
-Prints times as ratios against solving the same design (measured in the same
-run); asserts nothing about timings. Run: ``python benchmarks/bench_step.py``.
+For each template: solve + fold (the baseline, measured in the same run), then
+building the part (:func:`build_part`) and writing the STEP
+(:func:`export_design_step`) for the reference surface ('shell') and, for
+exact-model designs with thickness and a relief hole, the sheet's solid;
+printed as seconds and as ratios to the baseline, with the face count and the
+file size. Asserts nothing about timings.
+
+Run from the repository root::
+
+    .venv/bin/python benchmarks/bench_step.py [--repeat 3] [--only NAME ...]
 """
 
 from __future__ import annotations
 
-import glob
-import os
+import argparse
+import sys
 import tempfile
-import time
+from functools import partial
 from pathlib import Path
 
-from onefold_cad import Design, FrameCurve, Sheet, build_design
-from onefold_cad.export.step import build_part, export_design_step
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-TABLE1 = [
-    (0, 50, 45, 90, 300, 300, 300, 300),
-    (0, 50, 45, 20, 300, 300, 300, 300),
-    (0, 32, 34, 90, 300, 300, 300, 300),
-    (68, 32, 34, 90, 300, 96, 103, 201),
-]
+from bench_solver import best_of, machine_info  # noqa: E402
+
+from onefold_cad import build_design  # noqa: E402
+from onefold_cad.export.step import build_part, default_body, export_design_step  # noqa: E402
+from onefold_cad.templates import list_templates, load_template  # noqa: E402
 
 
-def designs() -> list[Design]:
-    """The templates in templates/*.toml when the loader exists, else Table 1."""
-    root = Path(__file__).resolve().parents[1]
-    paths = sorted(glob.glob(str(root / "templates" / "*.toml")))
-    try:
-        from onefold_cad.templates import load_template  # type: ignore[attr-defined]
-    except ImportError:
-        load_template = None
-    if paths and load_template is not None:
-        return [load_template(p) for p in paths]
-    return [
-        Design(f"table1-{i}", FrameCurve(a, b, hc, 100, n), Sheet.quadrilateral(xp, xm, yp, ym))
-        for i, (hc, a, b, n, yp, ym, xp, xm) in enumerate(TABLE1)
-    ]
-
-
-def _best(fn, repeat: int = 3) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
-def main() -> None:
-    print(f"{'design':24s} {'solve s':>9s} {'build/solve':>12s} {'write/solve':>12s} {'KiB':>8s}")
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=3, help="best of N runs (default 3)")
+    ap.add_argument("--only", nargs="*", help="template names (default: all)")
+    args = ap.parse_args(argv)
+    infos = [t for t in list_templates() if not args.only or t.name in args.only]
+    print("machine: " + ", ".join(f"{k} {v}" for k, v in machine_info().items()))
+    print()
+    print(
+        "| template | body | solve + fold (s) | build (s) | build / solve | write (s) "
+        "| write / solve | faces | KiB |"
+    )
+    print("|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
-        for d in designs():
-            folded = build_design(d)
-            t_solve = _best(lambda d=d: build_design(d))
-            path = Path(tmp) / f"{d.name}.step"
-            try:
-                t_build = _best(lambda d=d, f=folded: build_part(d, f))
-                t_write = _best(lambda d=d, f=folded, p=path: export_design_step(d, p, f))
-                size = os.path.getsize(path) / 1024
+        for info in infos:
+            design = load_template(info.path)
+            folded = build_design(design)
+            t_solve = best_of(partial(build_design, design), args.repeat)[0]
+            bodies = ["shell"] + (["solid"] if default_body(design) == "solid" else [])
+            for body in bodies:
+                path = Path(tmp) / f"{design.name}-{body}.step"
+                build = partial(build_part, design, folded, body=body)
+                t_build, part = best_of(build, args.repeat)
+                write = partial(export_design_step, design, path, folded, body=body)
+                t_write = best_of(write, args.repeat)[0]
                 print(
-                    f"{d.name:24s} {t_solve:9.4f} {t_build / t_solve:12.1f} "
-                    f"{t_write / t_solve:12.1f} {size:8.1f}"
+                    f"| {info.name} | {body} | {t_solve:.2e} | {t_build:.3f} | "
+                    f"{t_build / t_solve:.0f}x | {t_write:.3f} | {t_write / t_solve:.0f}x | "
+                    f"{len(part.faces())} | {path.stat().st_size / 1024:.0f} |"
                 )
-            except Exception as err:  # report and go on (e.g. thickness not supported yet)
-                print(f"{d.name:24s} {t_solve:9.4f} failed: {err}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

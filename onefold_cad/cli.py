@@ -26,7 +26,7 @@ import typer
 from onefold_cad.design import Design, build_design
 from onefold_cad.errors import InvalidParameterError, OneFoldError
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import Units
+from onefold_cad.geometry.material import SheetSurface, Units
 from onefold_cad.geometry.params import Model
 from onefold_cad.templates import (
     DEFAULT_TEMPLATE,
@@ -133,6 +133,15 @@ ReliefHole = Annotated[
 Density = Annotated[
     float | None, typer.Option(help="Density (mass / unit^3) > 0.", rich_help_panel=_MAT)
 ]
+SheetSurfaceOpt = Annotated[
+    SheetSurface | None,
+    typer.Option(
+        "--sheet-surface",
+        help="Which face of the sheet the folded surface is: INSIDE (material below "
+        "the top face), OUTSIDE (above it) or MID.",
+        rich_help_panel=_MAT,
+    ),
+]
 UnitsOpt = Annotated[Units | None, typer.Option("--units", help="Length unit of the design.")]
 
 # Parameter name -> option, in the order the help lists them.
@@ -156,6 +165,7 @@ DESIGN_FLAGS: dict[str, Any] = {
     "kerf": Kerf,
     "relief_hole": ReliefHole,
     "density": Density,
+    "sheet_surface": SheetSurfaceOpt,
     "units": UnitsOpt,
 }
 
@@ -227,6 +237,9 @@ class Overrides:
             out["model"] = Model(v["model"]).value
         if "units" in v:
             out["units"] = Units(v["units"]).value
+        if "sheet_surface" in v:
+            out.setdefault("material", {})["sheet_surface"] = SheetSurface(v["sheet_surface"]).value
+            names["material.sheet_surface"] = "--sheet-surface"
         if "name" in v:
             out["name"] = v["name"]
             names["name"] = "--name"
@@ -362,7 +375,9 @@ def _summary(report: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def _stage_design(design: Design, folded: FoldedSheet, stage: Path) -> list[Path]:
+def _stage_design(
+    design: Design, folded: FoldedSheet, stage: Path, body: str | None = None
+) -> list[Path]:
     """Write all files of one design into the folder ``stage``; return them."""
     from onefold_cad.export.dxf import export_design_dxf
     from onefold_cad.export.dxf_preview import render_preview
@@ -372,7 +387,7 @@ def _stage_design(design: Design, folded: FoldedSheet, stage: Path) -> list[Path
 
     stem = design.name
     stage.mkdir()
-    step = export_design_step(design, stage / f"{stem}.step", folded=folded)
+    step = export_design_step(design, stage / f"{stem}.step", folded=folded, body=body)
     dxf = export_design_dxf(design, stage / f"{stem}.dxf", folded=folded)
     flat = render_preview(dxf, stage / f"{stem}-flat.svg")
     view = render_folded_preview(
@@ -399,6 +414,14 @@ def build(
     name: Annotated[
         str | None, typer.Option(help="File name stem (one template only; default: its name).")
     ] = None,
+    body: Annotated[
+        str,
+        typer.Option(
+            help="STEP body: 'solid' (the sheet's thickness, exact model), 'shell' (the "
+            "reference surface) or 'auto': solid when the design has thickness and a "
+            "relief hole, else shell.",
+        ),
+    ] = "auto",
     *,
     flags: dict[str, Any],
 ) -> None:
@@ -409,6 +432,9 @@ def build(
     into OUTDIR only when every design of the call succeeded.
     """
     refs = list(templates or [])
+    if body not in ("auto", "solid", "shell"):
+        raise InvalidParameterError("--body", f"must be 'auto', 'solid' or 'shell', got {body!r}")
+    step_body = None if body == "auto" else body
     if name is not None and len(refs) > 1:
         raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
     designs = load_designs(refs, Overrides(**flags, name=name))
@@ -419,6 +445,7 @@ def build(
             "templates", f"two templates share the name {dup[0]!r}; their files would collide"
         )
     from onefold_cad.export.flat_pattern import flat_pattern
+    from onefold_cad.export.step import default_body
 
     # Every design solves and has a valid flat pattern before any file is written.
     solved = [(d, build_design(d)) for d in designs]
@@ -437,9 +464,11 @@ def build(
         staged: list[Path] = []
         for i, (design, folded) in enumerate(solved, 1):
             t0 = time.perf_counter()
-            staged += _stage_design(design, folded, staging / str(i))
+            staged += _stage_design(design, folded, staging / str(i), step_body)
+            kind = step_body or default_body(design)
             typer.echo(
-                f"[{i}/{n}] {design.name} done in {time.perf_counter() - t0:.1f} s", err=True
+                f"[{i}/{n}] {design.name} done in {time.perf_counter() - t0:.1f} s (STEP {kind})",
+                err=True,
             )
         # Every file of every design exists: only now do they move into place.
         mode = 0o666 & ~_umask()

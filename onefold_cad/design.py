@@ -16,7 +16,7 @@ from onefold_cad.geometry.params import FrameCurve, Model
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import solve
 
-__all__ = ["Design", "build_design"]
+__all__ = ["Design", "build_design", "sheet_inradius"]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
 
@@ -54,7 +54,7 @@ class Design:
         object.__setattr__(self, "units", Units.parse(self.units))
         hole = self.material.relief_hole_diameter
         if hole > 0.0:
-            inner = _inradius(self.sheet)
+            inner = sheet_inradius(self.sheet)
             if hole / 2.0 >= inner:
                 raise InvalidParameterError(
                     "relief_hole",
@@ -67,7 +67,7 @@ class Design:
         return replace(self, **changes)
 
 
-def _inradius(sheet: Sheet) -> float:
+def sheet_inradius(sheet: Sheet) -> float:
     """Distance from H to the nearest point of the sheet's boundary (length)."""
     import numpy as np
 

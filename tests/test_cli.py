@@ -80,6 +80,9 @@ def test_solve_flags_override_the_template():
     b = json.loads(run("solve", "table1-row3", "--json").stdout)
     assert a["apex_height"] == pytest.approx(b["apex_height"], rel=1e-12)
     assert a["fold_angles_deg"] == pytest.approx(b["fold_angles_deg"], rel=1e-12)
+    c = json.loads(run("solve", "table1-row1", "--sheet-surface", "OUTSIDE", "--json").stdout)
+    assert c["inputs"]["material"]["sheet_surface"] == "OUTSIDE"
+    assert b["inputs"]["material"]["sheet_surface"] == "MID"
 
 
 def test_solve_sheet_flags_units_and_human_output():
@@ -156,14 +159,27 @@ BAD = [
     (["--relief-hole", "1e6"], "relief-hole", "must be <"),
     (["--density", "0"], "density", "> 0"),
     (["--units", "furlong"], "units", "mm"),
+    (["--sheet-surface", "TOP"], "sheet-surface", "INSIDE"),
     (["--model", "fan"], "model", "exact"),
     (["--alpah", "3"], "alpah", "option"),
     (["no-such-template"], "template", "no such file"),
 ]
 
 
+# Only build makes the STEP solid, whose relief hole must clear the apex.
+BUILD_ONLY = [
+    (["--body", "mesh"], "body", "'auto', 'solid' or 'shell'"),
+    (
+        ["table1-row1", "--model", "exact", "--thickness", "3", "--sheet-surface", "INSIDE"],
+        "relief_hole",
+        "must be in (11.88",
+    ),
+    (["paper-square", "--body", "solid"], "relief_hole", "got 0"),
+    (["table1-row1", "--thickness", "3", "--body", "solid"], "model", "'exact'"),
+]
+
 # build runs every case (it is the command that writes files); solve a sample of them.
-CASES = [("build", *b) for b in BAD] + [("solve", *b) for b in BAD[::5]]
+CASES = [("build", *b) for b in BAD + BUILD_ONLY] + [("solve", *b) for b in BAD[::5]]
 
 
 @pytest.mark.parametrize(

@@ -124,3 +124,19 @@ def test_pdoc_builds_the_api_reference(reference, tmp_path):
         assert page.is_file(), mod
     solver = (tmp_path / "onefold_cad" / "geometry" / "solver.html").read_text()
     assert "angle_condition_error_deg" in solver  # the Solution docstring made it in
+
+
+def test_readme_python_examples_run(tmp_path):
+    """The README's Python blocks, run in order as one script, write what they say."""
+    readme = (DOCS.parent / "README.md").read_text()
+    code = "\n".join(re.findall(r"```python\n(.*?)```", readme, flags=re.S))
+    assert "build_part" in code and "export_stl" in code
+    script = tmp_path / "readme_example.py"
+    script.write_text(code)
+    proc = subprocess.run(
+        [sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=600
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.splitlines()[1].startswith("True ")  # the solid is valid
+    for name in ("demo.stl", "demo.glb", "demo.brep", "demo.step"):
+        assert (tmp_path / name).stat().st_size > 0

@@ -7,24 +7,35 @@ import math
 import build123d as bd
 import numpy as np
 import pytest
+from OCP.BRep import BRep_Tool
 from OCP.collections import (
     IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaceMap,
 )
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopExp import TopExp
+from OCP.TopoDS import TopoDS
 
 from onefold_cad import (
     Design,
-    ExportError,
     FrameCurve,
     InvalidParameterError,
     Material,
     Sheet,
+    SheetSurface,
     Units,
     build_design,
 )
-from onefold_cad.export.step import build_shell, export_design_step, measure
+from onefold_cad.export.step import (
+    build_part,
+    build_shell,
+    default_body,
+    export_design_step,
+    measure,
+    min_relief_hole,
+    sheet_offsets,
+)
 from onefold_cad.geometry.frame import arc_points
+from onefold_cad.geometry.thick_sheet import slab_volume
 
 TABLE1 = [  # (H_c, alpha, beta, divisions, Y+, Y-, X+, X-)
     (0, 50, 45, 90, 300, 300, 300, 300),
@@ -200,6 +211,92 @@ def test_deterministic_bytes_units_and_name(tmp_path):
     assert measure(re_in) == pytest.approx(measure(re_mm) * 25.4**2, rel=1e-6)
 
 
+# -- the sheet as a solid of thickness t ------------------------------------
+SOLID_CASES = {  # name: (case, thickness, sheet_surface, relief hole; None = default)
+    "table1-0-mid": ("table1-0", 3.0, SheetSurface.MID, None),
+    "table1-0-inside": ("table1-0", 3.0, SheetSurface.INSIDE, 14.0),
+    "table1-0-outside": ("table1-0", 3.0, SheetSurface.OUTSIDE, None),
+    "table1-3-outside": ("table1-3", 2.0, SheetSurface.OUTSIDE, None),
+    "rect-ft-in-mm-mid": ("rect-ft-in-mm", 3.57, SheetSurface.MID, None),
+    "star-inside": ("star", 2.5, SheetSurface.INSIDE, 15.0),
+}
+
+
+@pytest.fixture(scope="module", params=sorted(SOLID_CASES))
+def solid_trip(request, tmp_path_factory):
+    case, t, surface, hole = SOLID_CASES[request.param]
+    design = CASES[case][0]
+    folded = build_design(design)
+    material = Material(thickness=t, sheet_surface=surface, relief_hole=hole)
+    design = design.with_changes(material=material)
+    path = tmp_path_factory.mktemp("solid") / f"{design.name}.step"
+    export_design_step(design, path, folded)  # default body: the solid
+    return design, folded, bd.import_step(path)
+
+
+def test_solid_is_one_valid_solid(solid_trip):
+    _, _, shape = solid_trip
+    assert shape.is_valid
+    assert len(shape.solids()) == 1
+    assert len(shape.shells()) == 1
+    m = _face_edge_map(shape)
+    for i in range(1, m.Extent() + 1):  # closed: every edge joins two faces
+        edge = TopoDS.Edge(m.FindKey(i))
+        assert m.FindFromIndex(i).Size() == 2 or BRep_Tool.Degenerated_s(edge)
+
+
+def test_solid_volume_is_area_times_thickness(solid_trip):
+    design, folded, shape = solid_trip
+    m = design.material
+    area = measure(build_shell(folded, relief_hole=m.relief_hole_diameter))
+    volume = measure(shape, "volume")
+    assert volume == pytest.approx(area * m.thickness, rel=0.01)  # the issue's criterion
+    if m.sheet_surface is SheetSurface.MID:  # the mid-surface of a developable slab
+        assert volume == pytest.approx(area * m.thickness, rel=1e-3)
+    # the volume computed from the geometry (curvature of the offsets, mitre)
+    assert volume == pytest.approx(slab_volume(folded, m, m.relief_hole_diameter), rel=2e-3)
+
+
+def test_solid_lies_on_the_side_sheet_surface_names(solid_trip):
+    """Points off the reference surface along its top normal are inside the
+    solid between the offsets sheet_offsets(material) and outside beyond them."""
+    design, folded, shape = solid_trip
+    m = design.material
+    s0, s1 = sheet_offsets(m)
+    t = m.thickness
+    r_hole = 0.5 * m.relief_hole_diameter
+    sheet = design.sheet
+    pts, checked = [], 0
+    for psi in np.concatenate([np.linspace(0.3, math.pi - 0.3, 5), -np.linspace(0.3, 2.8, 5)]):
+        edge = float(sheet.ray_lengths(np.array([psi]))[0])
+        for frac in (0.3, 0.7):
+            r = r_hole + 3 * t + frac * (edge - r_hole - 6 * t)
+            pts.append([r * math.cos(psi), r * math.sin(psi)])
+    xy = np.array(pts)
+    base = folded.map_points(xy)
+    normal = folded.normals(xy)
+    for p, n in zip(base, normal, strict=True):
+        inside = [0.5 * (s0 + s1), s0 + 0.05 * t, s1 - 0.05 * t]
+        outside = [s0 - 0.1 * t, s1 + 0.1 * t]
+        for s in inside:
+            assert shape.is_inside(bd.Vector(*(p + s * n)))
+        for s in outside:
+            assert not shape.is_inside(bd.Vector(*(p + s * n)))
+        checked += 1
+    assert checked == 20
+
+
+def test_solid_faces_do_not_grow_with_divisions():
+    design = CASES["table1-0"][0].with_changes(material=Material(thickness=3.0))
+    counts = {
+        n: len(
+            build_part(design.with_changes(frame=design.frame.with_changes(divisions=n))).faces()
+        )
+        for n in (20, 90)
+    }
+    assert counts[20] == counts[90]
+
+
 def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
     design = CASES["table1-0"][0]
     folded = build_design(design)
@@ -208,11 +305,23 @@ def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
     with pytest.raises(InvalidParameterError, match="faces"):
         build_shell(folded, faces="fan")
     thick = design.with_changes(material=Material(thickness=1.0))
-    with pytest.raises((ExportError, InvalidParameterError)):
-        export_design_step(thick, tmp_path / "thick.step", folded, body="solid")
+    need = min_relief_hole(folded, thick.material)
+    assert 0.0 < need < thick.material.relief_hole_diameter  # the default hole is wide enough
+    for hole in (0.0, 0.9 * need):  # no hole, or one too small for the mitre
+        small = thick.with_changes(material=thick.material.with_changes(relief_hole=hole))
+        with pytest.raises(InvalidParameterError, match=r"relief_hole: diameter must be in \("):
+            export_design_step(small, tmp_path / "thick.step", folded, body="solid")
+    with pytest.raises(InvalidParameterError, match="thickness"):
+        export_design_step(design, tmp_path / "thick.step", folded, body="solid")
+    paper = thick.with_changes(model="paper")
+    with pytest.raises(InvalidParameterError, match="model"):
+        export_design_step(paper, tmp_path / "thick.step", body="solid")
     with pytest.raises(InvalidParameterError, match="body"):
         export_design_step(thick, tmp_path / "thick.step", folded, body="mesh")
     assert list(tmp_path.iterdir()) == []
-    # the default body is the reference surface, which works with thickness too
-    written = export_design_step(thick, tmp_path / "thick.step", folded)
+    # a design with thickness but no hole falls back to the reference surface
+    flat_hole = thick.with_changes(material=thick.material.with_changes(relief_hole=0.0))
+    assert default_body(flat_hole) == "shell" and default_body(thick) == "solid"
+    written = export_design_step(flat_hole, tmp_path / "thick.step", folded)
     assert written.stat().st_size > 0 and [p.name for p in tmp_path.iterdir()] == ["thick.step"]
+    assert len(bd.import_step(written).solids()) == 0

@@ -1,0 +1,282 @@
+"""The sheet as a solid of thickness t (exact model), for the STEP adapter.
+
+Each side of the fold is the slab between the offsets ``s = s0`` and
+``s = s1`` of the exact cone (:class:`onefold_cad.geometry.thick_sheet.SideMap`:
+``F(theta, r, s) = A + r u(theta) + s n(theta)``; ``sheet_surface`` INSIDE
+s in [-t, 0], OUTSIDE [0, t], MID [-t/2, t/2]). F is a straight line in r
+for fixed theta and s, and in s for fixed theta and r, so the slab, cut into
+sectors at the polygon's vertex directions, is bounded by ruled faces only:
+
+* the two sheet faces, ruled between the relief hole's offset curve and the
+  sheet edge's offset curve;
+* the relief-hole wall and the cut edge's wall, ruled between the two faces'
+  curves (perpendicular to the sheet, as a laser or plasma cut leaves them).
+
+Those curves are B-splines interpolated through points of F with theta as
+their parameter, refined until their deviation at the midpoints is below a
+tolerance, so each ruling of a face joins the two curves' points of the same
+theta: the rulings are exact, the curves carry the interpolation error.
+
+The crease is mitred: past each crease half the slab continues as a flat
+block in the crease ruling's tangent plane (C1 with the cone), deep enough
+(:func:`~onefold_cad.geometry.thick_sheet.mitre_depth`) that cutting at the
+fold's plane of symmetry y = 0 leaves the whole mitre; the -y side is the
+mirror image of a slab built for the mirrored sheet. The volume is area x t
+for MID (the mid-surface of a developable slab) up to the mitre, and within
+about t / (2 x the surface's bend radius) otherwise.
+
+Lengths are in the design unit; angles in radians.
+"""
+
+from __future__ import annotations
+
+import math
+
+import build123d as bd
+import numpy as np
+from numpy.typing import NDArray
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeEdge,
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_MakePolygon,
+    BRepBuilderAPI_MakeSolid,
+    BRepBuilderAPI_MakeWire,
+    BRepBuilderAPI_Sewing,
+)
+from OCP.BRepFill import BRepFill
+from OCP.collections import HArray1_double, HArray1_gp_Pnt
+from OCP.GC import GC_MakeArcOfCircle
+from OCP.Geom import Geom_BSplineCurve
+from OCP.GeomAPI import GeomAPI_Interpolate
+from OCP.gp import gp_Pnt
+from OCP.ShapeFix import ShapeFix_Solid
+from OCP.TopAbs import TopAbs_SHELL
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face
+
+from onefold_cad.errors import ExportError
+from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth
+
+__all__ = ["thick_solid"]
+
+Array = NDArray[np.float64]
+
+
+def _interpolate(pts: Array, params: Array) -> Geom_BSplineCurve:
+    arr = HArray1_gp_Pnt(1, len(pts))
+    par = HArray1_double(1, len(pts))
+    for i, (p, t) in enumerate(zip(pts, params, strict=True)):
+        arr.SetValue(i + 1, gp_Pnt(*map(float, p)))
+        par.SetValue(i + 1, float(t))
+    interp = GeomAPI_Interpolate(arr, par, False, 1e-12)
+    interp.Perform()
+    if not interp.IsDone():
+        raise ExportError("could not interpolate an offset curve of the thick sheet")
+    return interp.Curve()
+
+
+def _curve_value(curve: Geom_BSplineCurve, t: Array) -> Array:
+    out = np.empty((len(t), 3))
+    for i, ti in enumerate(t):
+        p = curve.Value(float(ti))
+        out[i] = (p.X(), p.Y(), p.Z())
+    return out
+
+
+def _fit(fn, phi0: float, phi1: float, tol: float) -> Geom_BSplineCurve:
+    """A B-spline through ``fn(phi)`` for phi in [phi0, phi1], parameter phi,
+    doubled in density until the midpoints deviate by at most ``tol``."""
+    n = 17
+    while True:
+        phi = np.linspace(phi0, phi1, n)
+        curve = _interpolate(fn(phi), phi)
+        mid = 0.5 * (phi[:-1] + phi[1:])
+        err = float(np.max(np.linalg.norm(_curve_value(curve, mid) - fn(mid), axis=1)))
+        if err <= tol or n > 4000:
+            return curve
+        n = 2 * n - 1
+
+
+def _ruled(c0: TopoDS_Edge, c1: TopoDS_Edge) -> TopoDS_Face:
+    return BRepFill.Face_s(c0, c1)
+
+
+def _side_faces(
+    side: SideMap,
+    hole: float,
+    s_range: tuple[float, float],
+    span: tuple[float, float],
+    tol: float,
+) -> list[TopoDS_Face]:
+    """Faces of the slab of one side over the flat angles ``span`` (radians,
+    within [0, pi]): ruled faces per sector between vertex directions and the
+    planar cross-sections at both ends."""
+    s0, s1 = s_range
+    t0, t1 = span
+    reach = _inner_reach(side, hole, s_range)
+    cand = np.concatenate([side.vertex_angles, [reach, side.total - reach]])
+    # small sectors next to the creases keep the faces that meet y = 0 small
+    cand = np.sort(cand[(cand > t0 + 1e-9) & (cand < t1 - 1e-9)])
+    cand = cand[np.concatenate([[True], np.diff(cand) > 1e-9])] if len(cand) else cand
+    breaks = np.concatenate([[t0], cand, [t1]])
+    faces: list[TopoDS_Face] = []
+    for a, b in zip(breaks[:-1], breaks[1:], strict=True):
+
+        def inner(phi: Array, s: float) -> Array:
+            return side.points(phi, np.full(len(phi), hole), s)
+
+        def outer(phi: Array, s: float) -> Array:
+            return side.points(phi, side.edge_radius(phi), s)
+
+        edges = {}
+        for name, fn in (("in", inner), ("out", outer)):
+            for j, s in enumerate(s_range):
+                curve = _fit(lambda p, fn=fn, s=s: fn(p, s), a, b, tol)
+                edges[name, j] = BRepBuilderAPI_MakeEdge(curve).Edge()
+        faces.append(BRepFill.Face_s(edges["in", 0], edges["out", 0]))
+        faces.append(BRepFill.Face_s(edges["in", 1], edges["out", 1]))
+        faces.append(BRepFill.Face_s(edges["in", 0], edges["in", 1]))
+        faces.append(BRepFill.Face_s(edges["out", 0], edges["out", 1]))
+    for phi in span:
+        if phi in (0.0, side.total):
+            continue  # the crease's cross-section is shared with the mitre block
+        p = np.array([phi])
+        r_out = side.edge_radius(p)
+        corners = [
+            side.points(p, np.array([hole]), s0)[0],
+            side.points(p, r_out, s0)[0],
+            side.points(p, r_out, s1)[0],
+            side.points(p, np.array([hole]), s1)[0],
+        ]
+        faces.append(_polygon_face(corners))
+    return faces
+
+
+def _polygon_face(corners: list[Array]) -> TopoDS_Face:
+    poly = BRepBuilderAPI_MakePolygon()
+    for c in corners:
+        poly.Add(gp_Pnt(*map(float, c)))
+    poly.Close()
+    return BRepBuilderAPI_MakeFace(poly.Wire(), True).Face()
+
+
+def _mitre_block(
+    side: SideMap, hole: float, s_range: tuple[float, float], end: int
+) -> list[TopoDS_Face]:
+    """Faces of the flat block that continues the slab past crease half ``end``
+    (0: theta = 0, 1: theta = pi) in the crease ruling's tangent plane, as deep
+    as :func:`mitre_depth`, minus its face on the crease's cross-section.
+
+    In that plane, x runs along the crease ruling and d away from the sheet;
+    the block spans the hole's circle to the crease's length in x, [0, depth]
+    in d and ``s_range`` along the normal.
+    """
+    depth = mitre_depth(side, s_range)
+    theta = 0.0 if end == 0 else side.total
+    u, e, n = side.crease_frame(end)
+    away = -e if end == 0 else e  # past the crease, away from this side's sheet
+    length = float(side.edge_radius(np.array([theta]))[0])
+    if not depth < hole:
+        raise ExportError("the relief hole is too small to mitre the thick sheet at the crease")
+    x_in = math.sqrt(hole * hole - depth * depth)
+    half = 0.5 * math.asin(depth / hole)  # the middle of the hole's arc
+
+    def at(x: float, d: float, s: float) -> gp_Pnt:
+        return gp_Pnt(*map(float, side.apex + x * u + d * away + s * n))
+
+    faces = []
+    arcs = []
+    for s in s_range:
+        arc = GC_MakeArcOfCircle(
+            at(hole, 0.0, s),
+            at(hole * math.cos(half), hole * math.sin(half), s),
+            at(x_in, depth, s),
+        ).Value()
+        arcs.append(BRepBuilderAPI_MakeEdge(arc).Edge())
+        lines = [
+            BRepBuilderAPI_MakeEdge(at(hole, 0.0, s), at(length, 0.0, s)).Edge(),
+            BRepBuilderAPI_MakeEdge(at(length, 0.0, s), at(length, depth, s)).Edge(),
+            BRepBuilderAPI_MakeEdge(at(length, depth, s), at(x_in, depth, s)).Edge(),
+        ]
+        wire = BRepBuilderAPI_MakeWire()
+        for edge in (*lines, arcs[-1]):
+            wire.Add(edge)
+        faces.append(BRepBuilderAPI_MakeFace(wire.Wire(), True).Face())
+    s0, s1 = s_range
+    faces.append(BRepFill.Face_s(arcs[0], arcs[1]))  # the hole's wall
+    for x0, d0, x1, d1 in ((length, 0.0, length, depth), (length, depth, x_in, depth)):
+        corners = [at(x0, d0, s0), at(x1, d1, s0), at(x1, d1, s1), at(x0, d0, s1)]
+        faces.append(_polygon_face([np.array([c.X(), c.Y(), c.Z()]) for c in corners]))
+    return faces
+
+
+def _inner_reach(side: SideMap, hole: float, s_range: tuple[float, float]) -> float:
+    """How far inside the cone (radians from either crease) the slab still
+    reaches below the plane y = 0: the concave side's mitre."""
+    reach = 0.0
+    for start, step in ((0.0, 1.0), (side.total, -1.0)):
+        for k in range(1, 158):
+            t = np.array([start + step * 0.01 * k])
+            r_out = float(side.edge_radius(t)[0])
+            y = min(side.points(t, np.array([r]), s)[0, 1] for r in (hole, r_out) for s in s_range)
+            if y > 0.0:
+                reach = max(reach, 0.01 * k)
+                break
+    return reach
+
+
+def _solid_from_faces(faces: list[TopoDS_Face], tol: float) -> bd.Solid:
+    sewing = BRepBuilderAPI_Sewing(tol)
+    for f in faces:
+        sewing.Add(f)
+    sewing.Perform()
+    shell = sewing.SewedShape()
+    if shell.ShapeType() != TopAbs_SHELL:
+        raise ExportError(f"sewing the thick sheet gave a {shell.ShapeType().name}")
+    mk = BRepBuilderAPI_MakeSolid(TopoDS.Shell(shell))
+    fix = ShapeFix_Solid(mk.Solid())
+    fix.Perform()
+    return bd.Solid(fix.Solid())
+
+
+#: The fold's plane of symmetry, facing the upper (+y) side.
+_SYMMETRY = bd.Plane(origin=(0.0, 0.0, 0.0), x_dir=(1.0, 0.0, 0.0), z_dir=(0.0, 1.0, 0.0))
+
+
+def _upper_half(solid: bd.Solid) -> bd.Solid:
+    """The part of ``solid`` on the +y side of the plane y = 0."""
+    kept = solid.split(_SYMMETRY, keep=bd.Keep.TOP)
+    solids = kept.solids() if kept is not None else []
+    if len(solids) != 1:
+        raise ExportError(f"cutting the thick sheet at the crease gave {len(solids)} solids")
+    return solids[0]
+
+
+def thick_solid(
+    folded: FoldedSheet, hole_diameter: float, s_range: tuple[float, float], tol: float
+) -> bd.Solid:
+    """The sheet between the offsets ``s_range`` of the reference surface, with a
+    relief hole of ``hole_diameter`` about the apex, mitred at the crease.
+
+    Each side is built in two pieces, one per crease half: the cone's slab
+    from the crease to the middle of the side, sewn to a flat block that
+    continues it past the crease (:func:`_mitre_block`). Every piece is cut at
+    the plane of symmetry y = 0 and the four pieces are fused (the -y side
+    built mirrored, then mirrored back). One piece per crease half keeps the
+    two blocks, which may cross each other next to the apex, apart.
+    """
+    pieces = []
+    hole = 0.5 * hole_diameter
+    for lower in (False, True):
+        side = SideMap(folded, lower=lower)
+        mid = 0.5 * side.total
+        for end, span in ((0, (0.0, mid)), (1, (mid, side.total))):
+            faces = _side_faces(side, hole, s_range, span, tol)
+            faces += _mitre_block(side, hole, s_range, end)
+            half = _upper_half(_solid_from_faces(faces, 10 * tol))
+            pieces.append(half.mirror(bd.Plane.XZ) if lower else half)
+    fused = pieces[0].fuse(*pieces[1:], tol=10 * tol).clean()  # fuzzy: the cut faces meet
+    solids = fused.solids()
+    if len(solids) != 1:
+        raise ExportError(f"fusing the pieces of the thick sheet gave {len(solids)} solids")
+    return solids[0]
