@@ -10,28 +10,18 @@ top-side normal is ``u x e``.
 
 from __future__ import annotations
 
+import math
 from abc import ABC, abstractmethod
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.frame import arc_points, arc_range, arc_tangents, division_angles
+from onefold_cad.geometry.frame import arc_range, division_angles
 from onefold_cad.geometry.params import FrameCurve
-from onefold_cad.geometry.validate import cross3
 
 __all__ = ["DirectionSurface", "PaperFan", "ExactCone"]
 
 Array = NDArray[np.float64]
-
-
-def _unit(v: Array) -> Array:
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
-
-
-def _angles(a: Array, b: Array) -> Array:
-    """Angles between row vectors (radians), accurate for tiny and large angles."""
-    c = cross3(a, b)
-    return np.arctan2(np.sqrt(np.einsum("ij,ij->i", c, c)), np.einsum("ij,ij->i", a, b))
 
 
 class DirectionSurface(ABC):
@@ -53,6 +43,12 @@ class DirectionSurface(ABC):
     def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
         """S(h) (radians) and dS/dh (radians per length), analytically."""
 
+    def refine(self, h: float) -> bool:
+        """Make the surface's numerics fit the apex at height h; True if that
+        changed S(h), so the apex must be solved again. (Only the exact
+        model's quadrature adapts.)"""
+        return False
+
     @abstractmethod
     def set_apex(self, h: float) -> None:
         """Fix the apex height; afterwards :meth:`frames` may be called."""
@@ -61,6 +57,15 @@ class DirectionSurface(ABC):
     def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
         """Unit ruling directions ``u`` and in-surface normals ``e`` ``(k, 3)``
         at flat angles ``theta`` in [0, total angle] (radians)."""
+
+    def directions_at(self, theta: ArrayLike) -> Array:
+        """The ``u`` of :meth:`frames` alone."""
+        return self.frames(theta)[0]
+
+    def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
+        """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats."""
+        u, e = self.frames(np.array([theta]))
+        return u[0].tolist(), e[0].tolist()
 
     @property
     @abstractmethod
@@ -76,72 +81,119 @@ class DirectionSurface(ABC):
 
 
 class PaperFan(DirectionSurface):
-    """The fan of ``divisions`` planar triangles of the paper (section 3.2)."""
+    """The fan of ``divisions`` planar triangles of the paper (section 3.2).
+
+    Attributes:
+        points: ``(divisions + 1, 3)`` the division points of the frame curve,
+            from the f-line's +x end to its -x end.
+        directions: once the apex is set, the ``(divisions + 1, 3)`` unit
+            direction-vectors from the apex to the points.
+        gammas: once the apex is set, the ``(divisions,)`` apex angles (radians).
+        thetas: once the apex is set, the ``(divisions + 1,)`` cumulative flat
+            angles theta_k = gamma_1 + ... + gamma_k (radians), theta_0 = 0.
+    """
 
     def __init__(self, frame: FrameCurve) -> None:
         super().__init__(frame)
-        self.points = arc_points(frame, division_angles(frame))
-        self._xy = self.points[:, :2]
-        self._z = self.points[:, 2]
+        phi = division_angles(frame)
+        r = frame.radius
+        a, b = math.radians(frame.alpha), math.radians(frame.beta)
+        cb, sb = math.cos(b), math.sin(b)
+        # the division points (x, d cos b, d sin b), as in frame.arc_points
+        x = -frame.h_c + r * np.cos(phi)
+        d = r * math.sin(a) + r * np.sin(phi)
+        pts = np.empty((len(phi), 3))
+        pts[:, 0] = x
+        np.multiply(d, cb, out=pts[:, 1])
+        np.multiply(d, sb, out=pts[:, 2])
+        self.points = pts
         self.directions: Array | None = None
         self.gammas: Array | None = None
         self.thetas: Array | None = None
+        # Triangle i has the corners A = (0, 0, h), P_i and P_i+1. With
+        # m = x_i d_i+1 - d_i x_i+1 and the differences dx, dd of P_i+1 - P_i,
+        #   (P_i - A) x (P_i+1 - A) = (h cb dd, -(sb m + h dx), cb m),
+        #   (P_i - A) . (P_i+1 - A) = dot_i - h zs_i + h^2  (zs_i = z_i + z_i+1),
+        # so sin^2 and cos of gamma_i (times |P_i - A| |P_i+1 - A|) are quadratics
+        # in h: for the solver, the coefficients of (1, h, h^2) of sin^2, cos,
+        # d(sin^2)/dh / 2 and d(cos)/dh side by side, so that S(h) and S'(h)
+        # cost one matrix product.
+        x0, x1, d0, d1 = x[:-1], x[1:], d[:-1], d[1:]
+        n = len(x0)
+        q = np.zeros((3, 4 * n))
+        sin2, cos, dsin2, dcos = (slice(k * n, (k + 1) * n) for k in range(4))
+        m = x0 * d1
+        m -= d0 * x1
+        dx = x1 - x0
+        cdd = d1 - d0
+        cdd *= cb
+        np.multiply(m, m, out=q[0, sin2])
+        np.multiply(m, dx, out=q[0, dsin2])
+        q[0, dsin2] *= sb
+        np.multiply(q[0, dsin2], 2.0, out=q[1, sin2])
+        np.multiply(dx, dx, out=q[2, sin2])
+        q[2, sin2] += cdd * cdd
+        q[1, dsin2] = q[2, sin2]
+        np.multiply(x0, x1, out=q[0, cos])
+        q[0, cos] += d0 * d1
+        np.add(d0, d1, out=q[1, cos])
+        q[1, cos] *= -sb
+        q[2, cos] = 1.0
+        q[0, dcos] = q[1, cos]
+        q[1, dcos] = 2.0
+        self._quad = q
+        self._n = n
+        self._terms = (m, dx, cdd, sb, cb)
 
-    def _vectors(self, h: float) -> Array:
-        v = np.empty_like(self.points)
-        v[:, :2] = self._xy
-        v[:, 2] = self._z - h
-        return v
+    def _sin_cos(self, h: Array | float) -> tuple[Array, Array]:
+        """|(P_i - A) x (P_i+1 - A)| and (P_i - A) . (P_i+1 - A), from the terms
+        unexpanded (``h`` a float or a column ``(k, 1)``)."""
+        m, dx, cdd, sb, cb = self._terms
+        n = self._n
+        s2 = sb * m + h * dx
+        t = h * cdd
+        cm = cb * m
+        dot, zs = self._quad[0, n : 2 * n], self._quad[1, n : 2 * n]
+        return np.sqrt(t * t + s2 * s2 + cm * cm), dot + h * (h + zs)
 
     def angle_sum(self, h: float) -> float:
-        v = self._vectors(h)
-        return float(np.sum(_angles(v[:-1], v[1:])))
-
-    def _pair_terms(self) -> tuple[Array, ...]:
-        """Per-triangle constants: with a, b consecutive points and the apex at
-        height h, (a - h z) x (b - h z) = C - h W and the dot product is
-        D - h Z + h^2; so S(h) costs a few array operations."""
-        if not hasattr(self, "_terms"):
-            a, b = self.points[:-1], self.points[1:]
-            c = cross3(a, b)
-            w = a - b
-            self._terms = (
-                c[:, 0].copy(),
-                c[:, 1].copy(),
-                c[:, 2] ** 2,
-                w[:, 1].copy(),
-                -w[:, 0],
-                np.einsum("ij,ij->i", a, b),
-                a[:, 2] + b[:, 2],
-            )
-        return self._terms
+        return float(np.arctan2(*self._sin_cos(float(h))).sum())
 
     def angle_sums(self, h: Array) -> Array:
-        c1, c2, c3sq, w1, w2, dot0, zs = self._pair_terms()
         hh = np.asarray(h, dtype=float)[:, None]
-        s1 = c1 - hh * w1
-        s2 = c2 - hh * w2
-        sin = np.sqrt(s1 * s1 + s2 * s2 + c3sq)
-        cos = dot0 - hh * zs + hh * hh
-        return np.arctan2(sin, cos).sum(axis=1)
+        return np.arctan2(*self._sin_cos(hh)).sum(axis=1)
 
     def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
-        c1, c2, c3sq, w1, w2, dot0, zs = self._pair_terms()
-        s1 = c1 - h * w1
-        s2 = c2 - h * w2
-        sin = np.sqrt(s1 * s1 + s2 * s2 + c3sq)
-        cos = dot0 - h * zs + h * h
-        dsin = -(s1 * w1 + s2 * w2) / sin
-        dcos = 2.0 * h - zs
-        slope = (cos * dsin - sin * dcos) / (sin * sin + cos * cos)
+        n = self._n
+        q = np.array((1.0, h, h * h)) @ self._quad
+        sin2, cos, dsin2, dcos = q[:n], q[n : 2 * n], q[2 * n : 3 * n], q[3 * n :]
+        sin = np.sqrt(sin2)
+        # d/dh atan2(sin, cos) = (cos sin' - sin cos') / (sin^2 + cos^2), sin' = dsin2 / sin
+        slope = cos * dsin2
+        slope -= sin2 * dcos
+        den = cos * cos
+        den += sin2
+        den *= sin
+        slope /= den
         return float(np.arctan2(sin, cos).sum()), float(slope.sum())
 
     def set_apex(self, h: float) -> None:
         self.height = h
-        v = self._vectors(h)
-        self.directions = _unit(v)
-        self.gammas = _angles(v[:-1], v[1:])
-        self.thetas = np.concatenate([[0.0], np.cumsum(self.gammas)])
+        v = self.points.copy()
+        v[:, 2] -= h
+        v /= np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
+        self.directions = v
+        # gamma_i from the chord between unit vectors: 2 asin(|d_i+1 - d_i| / 2)
+        chord = v[1:] - v[:-1]
+        half = np.sqrt(np.einsum("ij,ij->i", chord, chord))
+        half *= 0.5
+        gammas = np.arcsin(half, out=half)
+        gammas *= 2.0
+        self.gammas = gammas
+        thetas = np.empty(len(v))
+        thetas[0] = 0.0
+        np.cumsum(gammas, out=thetas[1:])
+        self.thetas = thetas
 
     @property
     def total_angle(self) -> float:
@@ -151,30 +203,116 @@ class PaperFan(DirectionSurface):
     def sector(self, theta: ArrayLike) -> NDArray[np.int64]:
         """Index k of the triangle whose flat sector [theta_k, theta_k+1] holds theta."""
         assert self.thetas is not None
-        t = np.asarray(theta, dtype=float)
-        k = np.searchsorted(self.thetas, t, side="right") - 1
-        return np.clip(k, 0, len(self.thetas) - 2)
+        k = self.thetas.searchsorted(np.asarray(theta, dtype=float), side="right")
+        k -= 1
+        np.minimum(k, len(self.thetas) - 2, out=k)
+        return np.maximum(k, 0, out=k)
 
-    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
-        assert self.directions is not None and self.thetas is not None
-        assert self.gammas is not None
+    # In triangle k, with g its apex angle, the ray at the flat angle w from
+    # direction d_k is the spherical interpolation (slerp) of d_k and d_k+1,
+    #   u = (sin(g - w) d_k + sin(w) d_k+1) / sin(g),
+    # and its in-surface direction is e = du/dw
+    #   = (cos(w) d_k+1 - cos(g - w) d_k) / sin(g);
+    # on a division (w = 0) u is d_k exactly.
+
+    def _locate(self, theta: ArrayLike) -> tuple[NDArray[np.int64], Array]:
+        """The triangles k holding flat angles ``theta`` and the angles w
+        (radians) of ``theta`` from direction k."""
+        assert self.thetas is not None
         t = np.asarray(theta, dtype=float)
         k = self.sector(t)
-        d0, d1 = self.directions[k], self.directions[k + 1]
-        g = self.gammas[k]
-        # unit vector in triangle k's plane, perpendicular to d0, towards d1
-        e0 = _unit(d1 - np.cos(g)[:, None] * d0)
-        w = (t - self.thetas[k])[:, None]
-        u = np.cos(w) * d0 + np.sin(w) * e0
-        e = -np.sin(w) * d0 + np.cos(w) * e0
+        return k, t - self.thetas.take(k)
+
+    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
+        assert self.directions is not None and self.gammas is not None
+        k, w = self._locate(theta)
+        g = self.gammas.take(k)
+        rest = g - w
+        sg = np.sin(g)
+        a0, a1 = np.sin(rest), np.sin(w)
+        b0, b1 = np.cos(rest), np.cos(w)
+        a0 /= sg
+        a1 /= sg
+        b0 /= sg
+        b1 /= sg
+        d0 = self.directions.take(k, axis=0)
+        d1 = self.directions.take(k + 1, axis=0)
+        u = a0[:, None] * d0
+        u += a1[:, None] * d1
+        e = b1[:, None] * d1
+        e -= b0[:, None] * d0
+        return u, e
+
+    def directions_at(self, theta: ArrayLike) -> Array:
+        """The unit ruling directions ``(k, 3)`` at flat angles ``theta``: the
+        ``u`` of :meth:`frames`. Rays on a division are gathered; the few
+        others (a sheet's vertex rays) are interpolated one by one."""
+        assert self.directions is not None
+        k, w = self._locate(theta)
+        u = self.directions.take(k, axis=0)
+        (off,) = w.nonzero()
+        if len(off) > _FEW:
+            u[off] = self.frames(np.asarray(theta, dtype=float)[off])[0]
+        else:
+            for j in off.tolist():
+                u[j] = self._frame1(int(k[j]), float(w[j]))[0]
+        return u
+
+    def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
+        """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats."""
+        assert self.thetas is not None
+        k = int(self.thetas.searchsorted(theta, side="right")) - 1
+        k = min(max(k, 0), len(self.thetas) - 2)
+        return self._frame1(k, theta - float(self.thetas[k]))
+
+    def _frame1(self, k: int, w: float) -> tuple[list[float], list[float]]:
+        """The slerp of triangle k at angle w, in plain Python (faster than
+        numpy for one ray)."""
+        assert self.directions is not None and self.gammas is not None
+        g = float(self.gammas[k])
+        sg = math.sin(g)
+        a0, a1 = math.sin(g - w) / sg, math.sin(w) / sg
+        b0, b1 = math.cos(g - w) / sg, math.cos(w) / sg
+        d0, d1 = self.directions[k].tolist(), self.directions[k + 1].tolist()
+        u = [a0 * p + a1 * q for p, q in zip(d0, d1, strict=True)]
+        e = [b1 * q - b0 * p for p, q in zip(d0, d1, strict=True)]
         return u, e
 
 
-# Composite Gauss-Legendre rule on the arc parameter: the integrand is analytic
-# on the closed arc, so this converges geometrically; the test suite checks it
-# against a rule with four times as many nodes.
+#: Up to this many rays are interpolated in plain Python by PaperFan.directions_at.
+_FEW = 8
+
+
+# Composite Gauss-Legendre rule on the arc parameter, 20 nodes per panel. The
+# integrand is analytic on the closed arc. Its complex singularities include
+# the zeros of |P(phi) - A|^2 = K0 + K1 cos(phi) + K2 sin(phi), at imaginary
+# distance acosh(K0 / hypot(K1, K2)) from the real axis: panels no wider than
+# 2 * _PANEL_REACH times that distance leave them outside the Bernstein
+# ellipse of parameter 5, where the 20-point rule's error is about 5^-40.
+# The zeros of |P' x (P - A)| approach the real axis as beta -> 90 deg; those
+# show in the Legendre coefficients of the integrand on each panel, so the
+# rule is checked at the apex and refined (panels doubled, up to _MAX_PANELS)
+# until the last two coefficients are below _TAIL_TOL of the integrand.
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(20)
-_PANELS = 96
+_PANEL_REACH = 0.4
+_MAX_PANELS = 16384
+_TAIL_TOL = 1e-12
+#: Rows of the last two Legendre coefficients of the polynomial through the nodes.
+_TAIL = np.linalg.inv(np.polynomial.legendre.legvander(_GL_NODES, 19))[-2:]
+
+
+def _integration_matrix(nodes: Array) -> Array:
+    """M with (M @ f)_i = integral from -1 to nodes_i of the polynomial that
+    interpolates f at ``nodes`` (exact for polynomials of degree < len(nodes))."""
+    leg = np.polynomial.legendre
+    n = len(nodes)
+    # column j: the integral from -1 of the Legendre polynomial P_j, at the nodes
+    integrals = leg.legval(nodes, leg.legint(np.eye(n), lbnd=-1)).T
+    return integrals @ np.linalg.inv(leg.legvander(nodes, n - 1))
+
+
+#: theta at the nodes of a panel from the integrand there (for initial guesses).
+_NODE_INTEGRALS = _integration_matrix(_GL_NODES)
 
 
 class ExactCone(DirectionSurface):
@@ -182,115 +320,257 @@ class ExactCone(DirectionSurface):
 
     The developed angle theta(phi) = integral of |u'(phi)| dphi, with u the
     unit vector from the apex to the arc point P(phi), is evaluated by
-    composite Gauss-Legendre quadrature and inverted by Newton's method.
+    composite Gauss-Legendre quadrature (``panels`` panels of 20 nodes; by
+    default as many as the apex height needs, see :meth:`refine`) and
+    inverted by Newton's method.
+
+    With c = cos(phi), s = sin(phi), w = R - h_c c + R sin(alpha) s and
+    d = R sin(alpha) + R s:
+    |u'| = R |(h cb c, sb w - h s, cb w)| / |P - A|^2,
+    |P - A|^2 = (R c - h_c)^2 + d^2 - 2 h sb d + h^2 (cb, sb: cos and sin of beta).
     """
 
-    def __init__(self, frame: FrameCurve, panels: int = _PANELS) -> None:
+    def __init__(self, frame: FrameCurve, panels: int | None = None) -> None:
         super().__init__(frame)
-        p0, p1 = arc_range(frame)
-        self.edges = np.linspace(p0, p1, panels + 1)
-        half = 0.5 * np.diff(self.edges)
-        mid = 0.5 * (self.edges[:-1] + self.edges[1:])
-        self._nodes = (mid[:, None] + half[:, None] * _GL_NODES[None, :]).ravel()
-        self._weights = (half[:, None] * _GL_WEIGHTS[None, :]).ravel()
-        self._p = arc_points(frame, self._nodes)
-        self._dp = arc_tangents(frame, self._nodes)
+        r = frame.radius
+        a, b = math.radians(frame.alpha), math.radians(frame.beta)
+        self._r, self._hc, self._rsa = r, frame.h_c, r * math.sin(a)
+        self._cb, self._sb = math.cos(b), math.sin(b)
+        self.fixed_panels = panels
         self._panel_theta: Array | None = None
+        self._node_speed: Array | None = None  # |u'| at the nodes, (panels, 20)
+        self._table: tuple[Array, Array] | None = None  # see _node_table
+        self._checked: tuple[float, Array] | None = None  # see refine
+        if panels is None:
+            l0 = frame.paper_lower_bound
+            panels = max(self._panels_for(l0), self._panels_for(2.0 * l0))
+        self._build(panels)
 
-    def _speed(self, h: float, p: Array, dp: Array) -> Array:
-        """|du/dphi| at arc points p with tangents dp (radians per radian)."""
-        v = p.copy()
-        v[:, 2] -= h
-        c = cross3(dp, v)
-        return np.sqrt(np.einsum("ij,ij->i", c, c)) / np.einsum("ij,ij->i", v, v)
+    # -- the quadrature rule -------------------------------------------------
+    def _panels_for(self, h: float) -> int:
+        """Panels the rule needs for the apex at height h (see _PANEL_REACH)."""
+        r, hc, rsa, sb = self._r, self._hc, self._rsa, self._sb
+        k0 = r * r + hc * hc + rsa * rsa - 2.0 * h * sb * rsa + h * h
+        reach = math.acosh(max(k0 / math.hypot(2.0 * r * hc, 2.0 * r * (rsa - h * sb)), 1.0))
+        span = math.pi + 2.0 * math.radians(self.frame.alpha)
+        if not reach > 0.0:
+            return _MAX_PANELS
+        return min(_MAX_PANELS, max(1, math.ceil(0.5 * span / (_PANEL_REACH * reach))))
 
+    def _build(self, panels: int) -> None:
+        self._checked = None
+        p0, p1 = arc_range(self.frame)
+        width = (p1 - p0) / panels
+        self.edges = np.arange(panels + 1) * width + p0
+        self.edges[-1] = p1
+        half = 0.5 * width
+        mid = self.edges[:-1] + half
+        self._half = half
+        self._nodes = (mid[:, None] + half * _GL_NODES).ravel()
+        self._node_phi = np.concatenate(((p0,), self._nodes, (p1,)))
+        weights = np.empty((panels, len(_GL_WEIGHTS)))
+        weights[:] = half * _GL_WEIGHTS
+        self._weights = weights.ravel()
+        c, s = np.cos(self._nodes), np.sin(self._nodes)
+        self._cs = (c, s)
+        r, hc, rsa, sb, cb = self._r, self._hc, self._rsa, self._sb, self._cb
+        # |u'| = r sqrt(w^2 - 2 h sb w s + h^2 (cb^2 c^2 + s^2)) / (x^2 + d^2 - 2 h sb d + h^2):
+        # quadratics in h, side by side as coefficients of (1, h, h^2) for the
+        # numerator^2, the denominator and half their derivatives
+        w = r - hc * c + rsa * s
+        d = rsa + r * s
+        n = len(c)
+        q = np.zeros((3, 4 * n))
+        half_b = -sb * w * s
+        c2 = (cb * c) ** 2 + s * s
+        half_e = -sb * d
+        # |P|^2 = (r c - h_c)^2 + d^2
+        pp = (r * r + hc * hc + rsa * rsa) - (2.0 * r * hc) * c + (2.0 * r * rsa) * s
+        q[0, :n], q[1, :n], q[2, :n] = w * w, 2.0 * half_b, c2
+        q[0, n : 2 * n], q[1, n : 2 * n], q[2, n : 2 * n] = pp, 2.0 * half_e, 1.0
+        q[0, 2 * n : 3 * n], q[1, 2 * n : 3 * n] = half_b, c2
+        q[0, 3 * n :], q[1, 3 * n :] = half_e, 1.0
+        self._quad = q
+        self._n = n
+        self._rw = r * self._weights
+
+    def refine(self, h: float) -> bool:
+        """Make the rule fine enough for the apex at height h; True if it changed
+        (the apex must then be solved again)."""
+        if self.fixed_panels is not None:
+            return False
+        panels = len(self.edges) - 1
+        need = self._panels_for(h)
+        if need <= panels:
+            speed = self._speed_cs(h, *self._cs).reshape(panels, -1)
+            tail = float(np.abs(speed @ _TAIL.T).max())
+            if tail <= _TAIL_TOL * float(speed.max()) or panels >= _MAX_PANELS:
+                self._checked = (h, speed)  # set_apex(h) reuses it
+                return False
+            need = 2 * panels
+        self._build(min(need, _MAX_PANELS))
+        return True
+
+    def _speed_cs(self, h: float | Array, c: Array, s: Array) -> Array:
+        """|u'(phi)| (radians per radian) at arc parameters with cosines ``c`` and
+        sines ``s``, for apex heights ``h`` (a float, or an array broadcasting)."""
+        r, hc, rsa, sb, cb = self._r, self._hc, self._rsa, self._sb, self._cb
+        w = r - hc * c + rsa * s
+        t1 = (h * cb) * c
+        t2 = sb * w - h * s
+        t3 = cb * w
+        # |P - A|^2 = k0 + k1 c + k2 s
+        k0 = r * r + hc * hc + rsa * rsa - 2.0 * h * sb * rsa + h * h
+        vv = k0 - (2.0 * r * hc) * c + (2.0 * r) * (rsa - h * sb) * s
+        return r * np.sqrt(t1 * t1 + t2 * t2 + t3 * t3) / vv
+
+    def _speed(self, h: float, phi: Array) -> Array:
+        return self._speed_cs(h, np.cos(phi), np.sin(phi))
+
+    # -- the angle condition ---------------------------------------------------
     def angle_sum(self, h: float) -> float:
-        return float(np.dot(self._weights, self._speed(h, self._p, self._dp)))
-
-    def _node_terms(self) -> tuple[Array, ...]:
-        """Per-node constants: with v = P - h z, P' x v = K - h L (L = P' x z)."""
-        if not hasattr(self, "_terms"):
-            k = cross3(self._dp, self._p)
-            self._terms = (
-                k[:, 0].copy(),
-                k[:, 1].copy(),
-                k[:, 2] ** 2,
-                self._dp[:, 1].copy(),
-                -self._dp[:, 0],
-                np.einsum("ij,ij->i", self._p, self._p),
-                self._p[:, 2].copy(),
-            )
-        return self._terms
+        return float(self._speed_cs(float(h), *self._cs) @ self._weights)
 
     def angle_sums(self, h: Array) -> Array:
-        k1, k2, k3sq, l1, l2, pp, pz = self._node_terms()
         hh = np.asarray(h, dtype=float)[:, None]
-        c1 = k1 - hh * l1
-        c2 = k2 - hh * l2
-        vv = pp - 2.0 * hh * pz + hh * hh
-        return (np.sqrt(c1 * c1 + c2 * c2 + k3sq) / vv) @ self._weights
+        c, s = self._cs
+        return self._speed_cs(hh, c[None, :], s[None, :]) @ self._weights
 
     def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
-        k1, k2, k3sq, l1, l2, pp, pz = self._node_terms()
-        c1 = k1 - h * l1
-        c2 = k2 - h * l2
-        cn = np.sqrt(c1 * c1 + c2 * c2 + k3sq)
-        vv = pp - 2.0 * h * pz + h * h
-        g = cn / vv
-        dg = -(c1 * l1 + c2 * l2) / (cn * vv) - g * (2.0 * h - 2.0 * pz) / vv
-        return float(g @ self._weights), float(dg @ self._weights)
+        n = self._n
+        q = np.array((1.0, h, h * h)) @ self._quad
+        num2, vv, dnum, dvv = q[:n], q[n : 2 * n], q[2 * n : 3 * n], q[3 * n :]
+        g = np.sqrt(num2)
+        g /= vv
+        # d/dh [sqrt(num2) / vv] = g (num2' / (2 num2) - vv' / vv)
+        slope = g * (dnum / num2 - 2.0 * dvv / vv)
+        return float(g @ self._rw), float(slope @ self._rw)
 
     def set_apex(self, h: float) -> None:
         self.height = h
-        per_panel = (self._weights * self._speed(h, self._p, self._dp)).reshape(
-            len(self.edges) - 1, -1
-        )
-        self._panel_theta = np.concatenate([[0.0], np.cumsum(per_panel.sum(axis=1))])
+        panels = len(self.edges) - 1
+        if self._checked is not None and self._checked[0] == h:
+            speed = self._checked[1]
+        else:
+            speed = self._speed_cs(h, *self._cs).reshape(panels, -1)
+        theta = np.empty(panels + 1)
+        theta[0] = 0.0
+        np.cumsum(speed @ (self._half * _GL_WEIGHTS), out=theta[1:])
+        self._panel_theta = theta
+        self._node_speed = speed
+        self._table = None
+
+    def _node_table(self) -> tuple[Array, Array]:
+        """theta and phi, ascending, at the start of the arc, every node and the
+        end of the arc (for first guesses of :meth:`phi_of_theta`)."""
+        if self._table is None:
+            assert self._panel_theta is not None and self._node_speed is not None
+            theta = self._panel_theta
+            nodes = self._node_speed @ (self._half * _NODE_INTEGRALS.T)
+            nodes += theta[:-1, None]
+            self._table = (np.concatenate(((0.0,), nodes.ravel(), theta[-1:])), self._node_phi)
+        return self._table
 
     @property
     def total_angle(self) -> float:
         assert self._panel_theta is not None
         return float(self._panel_theta[-1])
 
+    # -- theta(phi) and its inverse --------------------------------------------
+    def _theta_and_speed(self, phi: Array) -> tuple[Array, Array]:
+        """theta(phi) (by a 20-point rule from the start of phi's panel) and
+        |u'(phi)|, for ``(k,)`` arc parameters in range."""
+        assert self._panel_theta is not None and self.height is not None
+        k = self.edges.searchsorted(phi, side="right")
+        k -= 1
+        np.minimum(k, len(self.edges) - 2, out=k)
+        np.maximum(k, 0, out=k)
+        a = self.edges.take(k)
+        half = 0.5 * (phi - a)
+        pts = np.empty((len(phi), 21))
+        pts[:, :20] = (a + half)[:, None] + half[:, None] * _GL_NODES
+        pts[:, 20] = phi
+        speed = self._speed(self.height, pts)
+        theta = self._panel_theta.take(k) + half * (speed[:, :20] @ _GL_WEIGHTS)
+        return theta, speed[:, 20]
+
     def theta_of_phi(self, phi: ArrayLike) -> Array:
         """Developed angle theta (radians) at arc parameters ``phi``."""
-        assert self._panel_theta is not None and self.height is not None
         ph = np.atleast_1d(np.asarray(phi, dtype=float))
-        k = np.clip(np.searchsorted(self.edges, ph, side="right") - 1, 0, len(self.edges) - 2)
-        a = self.edges[k]
-        half = 0.5 * (ph - a)
-        nodes = (a + half)[:, None] + half[:, None] * _GL_NODES[None, :]
-        flat = nodes.ravel()
-        s = self._speed(self.height, arc_points(self.frame, flat), arc_tangents(self.frame, flat))
-        partial = (s.reshape(nodes.shape) * _GL_WEIGHTS[None, :]).sum(axis=1) * half
-        return self._panel_theta[k] + partial
+        return self._theta_and_speed(ph)[0]
 
     def phi_of_theta(self, theta: ArrayLike) -> Array:
         """Arc parameters phi (radians) at developed angles ``theta`` (Newton)."""
         assert self._panel_theta is not None and self.height is not None
         t = np.atleast_1d(np.asarray(theta, dtype=float))
-        k = np.clip(np.searchsorted(self._panel_theta, t, side="right") - 1, 0, len(self.edges) - 2)
-        span = self._panel_theta[k + 1] - self._panel_theta[k]
-        frac = (t - self._panel_theta[k]) / span
-        phi = self.edges[k] + frac * (self.edges[k + 1] - self.edges[k])
-        lo, hi = self.edges[0], self.edges[-1]
+        # first guess: linear between the tabulated nodes
+        th_tab, ph_tab = self._node_table()
+        j = th_tab.searchsorted(t, side="right")
+        j -= 1
+        np.minimum(j, len(th_tab) - 2, out=j)
+        np.maximum(j, 0, out=j)
+        t0, t1 = th_tab.take(j), th_tab.take(j + 1)
+        p0, p1 = ph_tab.take(j), ph_tab.take(j + 1)
+        phi = p0 + (t - t0) / (t1 - t0) * (p1 - p0)
+        lo, hi = float(self.edges[0]), float(self.edges[-1])
         for _ in range(20):
-            f = self.theta_of_phi(phi) - t
-            ds = self._speed(
-                self.height, arc_points(self.frame, phi), arc_tangents(self.frame, phi)
-            )
-            step = f / ds
-            phi = np.clip(phi - step, lo, hi)
-            if float(np.max(np.abs(step), initial=0.0)) <= 1e-14:
+            f, speed = self._theta_and_speed(phi)
+            step = (f - t) / speed
+            phi -= step
+            np.minimum(np.maximum(phi, lo, out=phi), hi, out=phi)
+            # Newton leaves an error of about step^2 |u''| / (2 |u'|)
+            if float(np.max(np.abs(step), initial=0.0)) <= 1e-9:
                 break
         return phi
 
-    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
+    def _directions(self, phi: Array) -> Array:
+        """Unit vectors ``(k, 3)`` from the apex to the arc points at ``phi``."""
         assert self.height is not None
-        phi = self.phi_of_theta(theta)
-        v = arc_points(self.frame, phi)
+        r = self._r
+        c, s = np.cos(phi), np.sin(phi)
+        d = self._rsa + r * s
+        v = np.empty((len(phi), 3))
+        np.multiply(c, r, out=v[:, 0])
+        v[:, 0] -= self._hc
+        np.multiply(d, self._cb, out=v[:, 1])
+        np.multiply(d, self._sb, out=v[:, 2])
         v[:, 2] -= self.height
-        dp = arc_tangents(self.frame, phi)
-        u = _unit(v)
-        e = _unit(dp - np.einsum("ij,ij->i", dp, u)[:, None] * u)
+        v /= np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
+        return v
+
+    def directions_at(self, theta: ArrayLike) -> Array:
+        return self._directions(self.phi_of_theta(theta))
+
+    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
+        phi = self.phi_of_theta(theta)
+        u = self._directions(phi)
+        c, s = np.cos(phi), np.sin(phi)
+        e = np.empty_like(u)  # P'(phi) / r, a unit vector
+        np.negative(s, out=e[:, 0])
+        np.multiply(c, self._cb, out=e[:, 1])
+        np.multiply(c, self._sb, out=e[:, 2])
+        e -= np.einsum("ij,ij->i", e, u)[:, None] * u
+        e /= np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
         return u, e
+
+    def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
+        """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats
+        (the ends of the arc without iterating)."""
+        assert self.height is not None
+        if theta <= 0.0:
+            phi = float(self.edges[0])
+        elif theta >= self.total_angle:
+            phi = float(self.edges[-1])
+        else:
+            phi = float(self.phi_of_theta(theta)[0])
+        r, cb, sb = self._r, self._cb, self._sb
+        c, s = math.cos(phi), math.sin(phi)
+        d = self._rsa + r * s
+        v = (r * c - self._hc, d * cb, d * sb - self.height)
+        norm = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+        u = [x / norm for x in v]
+        dp = (-s, c * cb, c * sb)
+        along = dp[0] * u[0] + dp[1] * u[1] + dp[2] * u[2]
+        e = [p - along * q for p, q in zip(dp, u, strict=True)]
+        norm = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
+        return u, [x / norm for x in e]

@@ -96,8 +96,10 @@ class FoldedSheet:
         crease: the two halves ('plus_x', 'minus_x').
         time_final_surface: wall time of the fold (s).
 
-    The boundary, the metrics and the resting placement are derived on first
-    access (and cached), so solving stays cheap when only rulings are needed.
+    The exact model's sampled boundary, the metrics and the resting placement
+    are derived on first access (and cached), so folding stays cheap when only
+    rulings are needed; :func:`fold` fills in the paper model's boundary (the
+    ruling ends) itself.
     """
 
     solution: Solution
@@ -115,13 +117,15 @@ class FoldedSheet:
         every vertex and ruling end (paper model, where the folded boundary is
         straight between them) or ``boundary_samples`` points (exact model)."""
         if isinstance(self.solution.surface, PaperFan):
-            return _boundary(self.ruling_angles, self.sheet)
+            return self.rulings_flat[:, 1].take(_ring(self.ruling_angles), axis=0)
         pts, _ = self.sheet.sample_boundary(self.sheet.perimeter / self.boundary_samples)
         return pts
 
     @cached_property
     def boundary_3d(self) -> Array:
-        """``(p, 3)`` the boundary points folded."""
+        """``(p, 3)`` the boundary points folded (paper model: the ruling ends)."""
+        if isinstance(self.solution.surface, PaperFan):
+            return self.rulings_3d[:, 1].take(_ring(self.ruling_angles), axis=0)
         return self.map_points(self.boundary_flat)
 
     @cached_property
@@ -243,62 +247,44 @@ class FoldedSheet:
         return np.concatenate(verts), np.concatenate(faces).astype(np.int64)
 
 
-def _merge(theta: Array, tol: float = 1e-12) -> Array:
-    """Sorted angles with those closer than ``tol`` (radians) to the previous merged."""
-    t = np.unique(theta)
-    keep = np.concatenate([[True], np.diff(t) > tol])
+def _merge(fan: Array, vertices: Array, tol: float = 1e-12) -> Array:
+    """The sorted union of two angle lists (radians), leaving out every angle
+    closer than ``tol`` to the one before it; the largest angle is kept."""
+    t = np.concatenate((fan, vertices))
+    t.sort(kind="stable")  # two sorted runs: a merge
+    keep = np.empty(len(t), dtype=bool)
+    keep[0] = True
+    np.greater(t[1:] - t[:-1], tol, out=keep[1:])
+    last = t[-1]
     t = t[keep]
-    t[-1] = max(t[-1], float(theta.max()))
+    t[-1] = max(t[-1], last)
     return t
 
 
-def _side_vertex_angles(sheet: Sheet) -> tuple[Array, Array]:
-    """Flat angles theta of the polygon vertices on each side (with 0 and pi)."""
-    a = sheet.polar_angles
-    k = sheet.minus_x_index
-    upper = np.concatenate([a[: k + 1], [math.pi]])
-    lower = np.concatenate([[0.0], 2.0 * math.pi - a[k:]])
-    upper[0] = lower[0] = 0.0
-    return np.unique(np.clip(upper, 0.0, math.pi)), np.unique(np.clip(lower, 0.0, math.pi))
+def _ring(angles: tuple[Array, Array]) -> NDArray[np.int64]:
+    """Indices of the ruling ends in boundary order (counter-clockwise from the +x
+    crossing): the +y side's from +x to -x, then the -y side's back, without
+    the two crease ends again."""
+    mu, m = len(angles[0]), len(angles[0]) + len(angles[1])
+    return np.concatenate((np.arange(mu), np.arange(m - 2, mu, -1)))
 
 
-def _boundary(folded_angles: tuple[Array, Array], sheet: Sheet) -> Array:
-    """Closed CCW flat boundary through the ends of the given side rulings."""
-    up, lo = folded_angles
-    psi = np.concatenate([up, 2.0 * math.pi - lo[::-1][1:-1]])
-    rho = sheet.ray_lengths(psi)
-    return np.stack([np.cos(psi), np.sin(psi)], axis=-1) * rho[:, None]
-
-
-def _rulings(solution: Solution, sheet: Sheet, angles: tuple[Array, Array]) -> tuple[Array, Array]:
-    """Flat ``(m, 2, 2)`` and folded ``(m, 2, 3)`` rulings, +y side then -y side."""
-    flat, ends3 = [], []
-    for side, theta in enumerate(angles):
-        psi = theta if side == 0 else -theta
-        rho = sheet.ray_lengths(psi)
-        flat.append(np.stack([np.cos(psi), np.sin(psi)], axis=-1) * rho[:, None])
-        u, _ = solution.surface.frames(theta)
-        if side == 1:
-            u = u * _MIRROR
-        ends3.append(solution.apex + rho[:, None] * u)
-    ends = np.concatenate(flat)
-    e3 = np.concatenate(ends3)
-    flat_r = np.stack([np.zeros_like(ends), ends], axis=1)
-    return flat_r, np.stack([np.broadcast_to(solution.apex, e3.shape), e3], axis=1)
-
-
-def _crease_half(solution: Solution, sheet: Sheet, name: str, end3: Array) -> CreaseHalf:
-    xp, xm = sheet.crease_lengths
-    length, end = (xp, np.array([xp, 0.0])) if name == "plus_x" else (xm, np.array([-xm, 0.0]))
-    theta = 0.0 if name == "plus_x" else solution.surface.total_angle
-    u, e = solution.surface.frames(np.array([theta]))
-    n = cross3(u, e)[0]
-    n_other = n * _MIRROR
-    cosang = float(np.clip(np.dot(n, n_other), -1.0, 1.0))
-    angle = math.degrees(math.atan2(float(np.linalg.norm(cross3(n, n_other))), cosang))
-    into_side = e[0] if name == "plus_x" else -e[0]
-    bend = "UP" if float(np.dot(into_side, n_other)) > 0.0 else "DOWN"
-    return CreaseHalf(name, length, end, np.array(end3), angle, bend)
+def _crease_half(
+    name: str, length: float, end3: Array, u: list[float], e: list[float]
+) -> CreaseHalf:
+    """The crease half ``name`` from the ruling direction ``u`` and the in-surface
+    direction ``e`` of the +y side on it (3-vectors as floats: few enough that
+    plain Python beats numpy)."""
+    n = (u[1] * e[2] - u[2] * e[1], u[2] * e[0] - u[0] * e[2], u[0] * e[1] - u[1] * e[0])
+    o = (n[0], -n[1], n[2])  # the -y side's normal: the mirror image
+    c = (n[1] * o[2] - n[2] * o[1], n[2] * o[0] - n[0] * o[2], n[0] * o[1] - n[1] * o[0])
+    cosang = min(max(n[0] * o[0] + n[1] * o[1] + n[2] * o[2], -1.0), 1.0)
+    angle = math.degrees(math.atan2(math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), cosang))
+    into = e[0] * o[0] + e[1] * o[1] + e[2] * o[2]  # the +y side, entered from the crease
+    if name == "minus_x":
+        into = -into
+    end = np.array([length if name == "plus_x" else -length, 0.0])
+    return CreaseHalf(name, length, end, end3.copy(), angle, "UP" if into > 0.0 else "DOWN")
 
 
 def _fan_area_and_centroid(apex: Array, ring: Array) -> tuple[float, Array]:
@@ -346,27 +332,54 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
             paper model's boundary is exact: straight between ruling ends).
 
     Returns:
-        The :class:`FoldedSheet`: rulings in 3D and the crease computed now;
-        boundary, metrics and resting placement on first access.
+        The :class:`FoldedSheet`: the rulings in 3D, the crease and (paper
+        model) the boundary computed now; the exact model's sampled boundary,
+        the metrics and the resting placement on first access.
     """
     t0 = time.perf_counter()
     surface = solution.surface
-    vert_up, vert_lo = _side_vertex_angles(sheet)
+    vert_up, vert_lo = sheet._side_angles
     if isinstance(surface, PaperFan):
         assert surface.thetas is not None
-        fan = np.clip(surface.thetas, 0.0, math.pi)
-        angles = (
-            _merge(np.concatenate([fan, vert_up])),
-            _merge(np.concatenate([fan, vert_lo])),
-        )
+        fan = np.minimum(surface.thetas, math.pi)  # theta_0 = 0: only the top can overshoot
+        up, lo = _merge(fan, vert_up), _merge(fan, vert_lo)
     else:
-        angles = (vert_up, vert_lo)
-    flat_r, rulings3 = _rulings(solution, sheet, angles)
+        up, lo = vert_up.copy(), vert_lo.copy()  # the sheet's are read-only
+    mu, m = len(up), len(up) + len(lo)
+    theta = np.concatenate((up, lo))
+    # the +y side's directions (rays on a paper fan's divisions are its
+    # direction-vectors); the crease halves need the in-surface direction too
+    u = surface.directions_at(theta)
+    crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
+    psi = theta.copy()
+    np.negative(psi[mu:], out=psi[mu:])  # the -y side's flat angles run clockwise
+    rho, cos, sin = sheet._rays(psi)
+    flat_r = np.zeros((m, 2, 2))
+    np.multiply(rho, cos, out=flat_r[:, 1, 0])
+    np.multiply(rho, sin, out=flat_r[:, 1, 1])
+    apex = solution.apex
+    rulings3 = np.empty((m, 2, 3))
+    rulings3[:, 0] = apex
+    ends3 = rulings3[:, 1]
+    np.multiply(rho[:, None], u, out=ends3)
+    np.negative(ends3[mu:, 1], out=ends3[mu:, 1])  # the -y side: the mirror image
+    ends3[:, 2] += apex[2]
+    xp, xm = sheet.crease_lengths
     crease = (
-        _crease_half(solution, sheet, "plus_x", rulings3[0, 1]),
-        _crease_half(solution, sheet, "minus_x", rulings3[len(angles[0]) - 1, 1]),
+        _crease_half("plus_x", xp, ends3[0], *crease_frames[0]),
+        _crease_half("minus_x", xm, ends3[mu - 1], *crease_frames[1]),
     )
+    boundary: dict[str, Array] = {}
+    if isinstance(surface, PaperFan):
+        # the paper model's boundary is straight between the ruling ends: it is
+        # part of the fold, so fill the cached properties' slots with it now
+        # (the +y side's ends from +x to -x, then the -y side's back; see _ring)
+        ends2 = flat_r[:, 1]
+        boundary["boundary_flat"] = np.concatenate((ends2[:mu], ends2[m - 2 : mu : -1]))
+        boundary["boundary_3d"] = np.concatenate((ends3[:mu], ends3[m - 2 : mu : -1]))
     elapsed = time.perf_counter() - t0
-    return FoldedSheet(
-        solution, sheet, angles, flat_r, rulings3, crease, elapsed, int(boundary_samples)
+    folded = FoldedSheet(
+        solution, sheet, (up, lo), flat_r, rulings3, crease, elapsed, int(boundary_samples)
     )
+    folded.__dict__.update(boundary)
+    return folded

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -276,39 +277,72 @@ class Sheet:
         """The sheet's largest distance from H (length), a scale for tolerances."""
         return float(np.max(np.hypot(self.vertices[:, 0], self.vertices[:, 1])))
 
-    @property
+    @cached_property
     def minus_x_index(self) -> int:
         """Index of the vertex where the boundary crosses the -x axis."""
         v = self.vertices
         return int(np.flatnonzero((v[:, 1] == 0.0) & (v[:, 0] < 0.0))[0])
 
-    @property
+    @cached_property
     def crease_lengths(self) -> tuple[float, float]:
         """Flat lengths of the fold line from H towards +x and towards -x."""
         v = self.vertices
         return float(v[0, 0]), float(-v[self.minus_x_index, 0])
 
-    @property
+    @cached_property
     def polar_angles(self) -> NDArray[np.float64]:
-        """``(n,)`` polar angle of each vertex in [0, 2 pi) (radians, CCW from +x)."""
+        """``(n,)`` polar angle of each vertex in [0, 2 pi) (radians, CCW from +x);
+        read-only, computed once."""
         v = self.vertices
         a = np.arctan2(v[:, 1], v[:, 0]) % _TWO_PI
         a[0] = 0.0
+        a.setflags(write=False)
         return a
+
+    @cached_property
+    def _side_angles(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Flat angles theta (radians, read-only) of the vertices of the upper
+        (y >= 0, counter-clockwise from +x) and the lower side (clockwise from
+        +x), each sorted from 0 to pi, both ends included."""
+        a = self.polar_angles
+        k = self.minus_x_index
+        upper = np.concatenate([a[: k + 1], [math.pi]])
+        lower = np.concatenate([[0.0], _TWO_PI - a[k:]])
+        upper[0] = lower[0] = 0.0
+        out = np.unique(np.clip(upper, 0.0, math.pi)), np.unique(np.clip(lower, 0.0, math.pi))
+        for side in out:
+            side.setflags(write=False)
+        return out
+
+    @cached_property
+    def _edge_table(self) -> tuple[NDArray[np.float64], ...]:
+        """Per edge k (vertex k to k + 1): its x and y extent and the cross
+        product vertex_k x edge_k, for :meth:`_rays`."""
+        v = self.vertices
+        e = np.roll(v, -1, axis=0) - v
+        return e[:, 0].copy(), e[:, 1].copy(), _cross(v, e)
+
+    def _rays(
+        self, psi: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Distances from H to the boundary along polar angles ``psi`` (radians,
+        any), with cos(psi) and sin(psi): three ``(k,)`` arrays. Exact: one line
+        intersection per ray, ``rho = (v_k x e_k) / (d x e_k)`` with d the ray's
+        unit direction and e_k the edge the ray meets."""
+        ang = np.asarray(psi, dtype=float) % _TWO_PI
+        # polar_angles is increasing from 0 and ang >= 0, so the index is in [0, n - 1]
+        i = self.polar_angles.searchsorted(ang, side="right")
+        i -= 1
+        ex, ey, moment = self._edge_table
+        c, s = np.cos(ang), np.sin(ang)
+        return moment.take(i) / (c * ey.take(i) - s * ex.take(i)), c, s
 
     def ray_lengths(self, psi: ArrayLike) -> NDArray[np.float64]:
         """Distance from H to the boundary along polar angles ``psi`` (radians, any).
 
         Returns ``(k,)`` lengths; exact (one line intersection per ray).
         """
-        ang = np.asarray(psi, dtype=float) % _TWO_PI
-        a = self.polar_angles
-        v = self.vertices
-        i = np.clip(np.searchsorted(a, ang, side="right") - 1, 0, len(v) - 1)
-        p0 = v[i]
-        e = np.roll(v, -1, axis=0)[i] - p0
-        d = np.stack([np.cos(ang), np.sin(ang)], axis=-1)
-        return _cross(p0, e) / _cross(d, e)
+        return self._rays(psi)[0]
 
     def sample_boundary(self, max_step: float) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
         """Points along the closed boundary no further apart than ``max_step``.

@@ -4,7 +4,8 @@ S(h), the sum of one side's apex angles with the apex at (0, 0, h), equals
 180 deg at h = 0 (the flat, trivial solution), rises to a maximum and falls
 towards 0 as h grows. The design is the root past the maximum. The paper
 bisects on [l, 2R]; that bracket misses the root for large alpha and beta, so
-:func:`solve` brackets the root itself and refines it with Brent's method.
+:func:`solve` finds the root with a safeguarded Newton's method of its own,
+which keeps every height it has tried as a bound on the root.
 """
 
 from __future__ import annotations
@@ -78,11 +79,6 @@ def make_direction_surface(frame: FrameCurve, model: Model | str) -> DirectionSu
     return PaperFan(frame) if m is Model.PAPER else ExactCone(frame)
 
 
-# Heights tried at once to bracket the root: l * 2**(k/2), k = -40 .. 16.
-_GRID = 2.0 ** (np.arange(-40, 17) / 2.0)
-_GRID_ELEMENTS = 60_000  # above this many (heights x triangles), bracket sequentially
-
-
 def _no_solution(frame: FrameCurve, surface: DirectionSurface) -> NoSolutionError:
     hint = "increase alpha or beta (allowed: (0, 90) deg)"
     if isinstance(surface, PaperFan):
@@ -96,56 +92,70 @@ def _no_solution(frame: FrameCurve, surface: DirectionSurface) -> NoSolutionErro
     )
 
 
-def _bracket(surface: DirectionSurface, frame: FrameCurve) -> tuple[float, float, int]:
-    """Heights (lo, hi) with S(lo) > 180 deg > S(hi), past the maximum of S."""
+#: The lowest apex height searched, as a fraction of the paper's lower bound l:
+#: below it S(h) - 180 deg is lost in rounding (S(0) = 180 deg exactly).
+_FLOOR = 2.0**-20
+#: A Newton step smaller than this (relative to h) on the falling flank of S
+#: ends the search: the error it leaves is of the order of its square.
+_STEP_TOL = 1e-8
+_MAX_EVALUATIONS = 200
+#: A measured |S(h) - 180 deg| above this (radians) at the root gets one more
+#: Newton step (rare: the search's expanded S(h) loses digits only when the
+#: apex is very low).
+_POLISH = 1e-13
+
+
+def _find_root(
+    surface: DirectionSurface, frame: FrameCurve, start: float
+) -> tuple[float, float, float, int]:
+    """The non-trivial root of S(h) = 180 deg: (h, lo, hi, evaluations).
+
+    S(h) > 180 deg exactly on (0, h*), so every evaluation is a lower (S above
+    180 deg) or an upper (below) bound of h*. Newton's method from ``start``
+    (the paper's lower bound l, or a previous root), kept inside the known
+    bounds: before the maximum of S (S above 180 deg and still rising) the
+    height doubles; a step out of the bounds bisects them, or, with no lower
+    bound yet, goes to a quarter of the upper one. Below ``_FLOOR * l``
+    without a lower bound there is no non-trivial root.
+    The search ends with a Newton step below ``_STEP_TOL * h`` on the falling
+    flank of S, where h* is the only root (:func:`solve` measures the angle
+    condition at the result), or when the bounds meet.
+    """
     l0 = frame.paper_lower_bound
-    size = len(getattr(surface, "points", ())) or len(getattr(surface, "_p", ()))
-    if size * len(_GRID) <= _GRID_ELEMENTS:
-        heights = l0 * _GRID
-        above = surface.angle_sums(heights) > _HALF_TURN
-        if not above.any():
-            raise _no_solution(frame, surface)
-        k = int(np.flatnonzero(above)[-1])
-        if k + 1 < len(heights):
-            return float(heights[k]), float(heights[k + 1]), len(heights)
-        lo, evals = float(heights[k]), len(heights)
-    else:
-        lo, evals = l0, 1
-        if not surface.angle_sum(lo) > _HALF_TURN:
-            hi = lo
-            while hi > 1e-9 * frame.radius:
-                lo = hi / 1.5
-                evals += 1
-                if surface.angle_sum(lo) > _HALF_TURN:
-                    return lo, hi, evals
-                hi = lo
-            raise _no_solution(frame, surface)
-    hi = 2.0 * lo
-    while surface.angle_sum(hi) > _HALF_TURN:  # S -> 0 as h -> infinity
-        evals += 1
-        lo, hi = hi, 2.0 * hi
-    return lo, hi, evals + 1
-
-
-def _newton(surface: DirectionSurface, lo: float, hi: float) -> tuple[float, int]:
-    """Root of S(h) = 180 deg in [lo, hi]: Newton's method, kept in the bracket."""
-    h = 0.5 * (lo + hi)
-    for count in range(1, 100):
-        f, slope = surface.angle_sum_and_slope(h)
-        f -= _HALF_TURN
+    floor = _FLOOR * l0
+    lo, hi = 0.0, math.inf
+    h = start
+    for evals in range(1, _MAX_EVALUATIONS + 1):
+        s, slope = surface.angle_sum_and_slope(h)
+        f = s - _HALF_TURN
         if f > 0.0:
             lo = h
-        else:
+        elif f < 0.0:
             hi = h
-        if f == 0.0:
-            return h, count
-        new = h - f / slope if slope != 0.0 else h
-        if abs(new - h) <= 1e-15 * h and lo <= new <= hi:
-            return new, count
+        else:
+            return h, lo or h, h if math.isinf(hi) else hi, evals
+        if lo == 0.0 and hi <= floor:
+            raise _no_solution(frame, surface)
+        if f > 0.0 and slope >= 0.0:
+            new = 2.0 * h  # still on the rising flank of S: climb past its maximum
+        else:
+            new = h - f / slope if slope != 0.0 else math.nan
+        if (slope < 0.0 and abs(new - h) <= _STEP_TOL * h) or hi - lo <= 4e-16 * lo:
+            new = min(max(new, lo), hi)
+            return new, lo or new, new if math.isinf(hi) else hi, evals
         if not lo < new < hi:
-            new = 0.5 * (lo + hi)  # Newton left the bracket: bisect instead
+            if math.isinf(hi):
+                new = 2.0 * h
+            elif lo == 0.0:
+                new = 0.25 * hi
+            else:
+                new = 0.5 * (lo + hi)
+        if lo == 0.0 and new < floor:
+            new = floor  # below it S(h) - 180 deg is rounding noise
         h = new
-    return h, 100
+    if lo == 0.0 or math.isinf(hi):
+        raise _no_solution(frame, surface)
+    return h, lo, hi, _MAX_EVALUATIONS
 
 
 def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
@@ -166,10 +176,18 @@ def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
     m = Model.parse(model)
     t0 = time.perf_counter()
     surface = make_direction_surface(frame, m)
-    lo, hi, evals = _bracket(surface, frame)
-    h, steps = _newton(surface, lo, hi)
-    evals += steps
+    h, lo, hi, evals = _find_root(surface, frame, frame.paper_lower_bound)
+    while surface.refine(h):  # a finer rule (exact model): solve again from h
+        h, lo, hi, more = _find_root(surface, frame, h)
+        evals += more
     surface.set_apex(float(h))
+    residual = surface.total_angle - _HALF_TURN
+    if abs(residual) > _POLISH:
+        # the search's S(h) (expanded in h) and the angle sum set_apex measures
+        # (unexpanded) differ by more than rounding: one Newton step on the latter
+        h -= residual / surface.angle_sum_and_slope(h)[1]
+        surface.set_apex(float(h))
+        evals += 1
     total = 2.0 * math.degrees(surface.total_angle)
     elapsed = time.perf_counter() - t0
     return Solution(

@@ -139,3 +139,29 @@ def test_mesh_is_on_the_surface() -> None:
     assert faces.max() < len(verts)
     _, off = folded.unfold(verts[1:])
     assert off.max() < 1e-9 * folded.sheet.size
+
+
+@SETTINGS
+@given(frame=frames(), sheet=sheets)
+def test_fold_results_agree_with_the_fold_map(frame: FrameCurve, sheet: Sheet) -> None:
+    # fold() builds rulings, crease ends and (paper model) the boundary in bulk;
+    # the general map of flat points gives the same points
+    for model in ("paper", "exact"):
+        folded = fold(solve(frame, model), sheet)
+        ends2, ends3 = folded.rulings_flat[:, 1], folded.rulings_3d[:, 1]
+        scale = sheet.size
+        np.testing.assert_allclose(folded.map_points(ends2), ends3, rtol=0, atol=1e-9 * scale)
+        assert np.array_equal(folded.rulings_3d[:, 0], np.tile(folded.apex, (len(ends3), 1)))
+        up, lo = folded.ruling_angles
+        assert np.all(np.diff(up) > 1e-12) and np.all(np.diff(lo) > 1e-12)
+        assert up[0] == lo[0] == 0.0 and up[-1] == lo[-1] == math.pi
+        # every vertex has a ruling through it
+        for v in sheet.vertices:
+            assert np.min(np.linalg.norm(ends2 - v, axis=1)) <= 1e-9 * scale
+        if model == "paper":
+            # the boundary is the ruling ends, counter-clockwise, each once
+            b2, b3 = folded.boundary_flat, folded.boundary_3d
+            assert len(b2) == len(ends2) - 2
+            np.testing.assert_allclose(folded.map_points(b2), b3, rtol=0, atol=1e-9 * scale)
+            area = 0.5 * np.sum(b2[:, 0] * np.roll(b2[:, 1], -1) - b2[:, 1] * np.roll(b2[:, 0], -1))
+            assert abs(area - sheet.area) <= 1e-9 * sheet.area
