@@ -87,3 +87,11 @@ def test_bench_solver_measure_one_repetition():
     assert set(row.ours) == {"paper", "exact"}
     text = bench_solver.render([row] * 4, row, [], 1)
     assert "Table 1" in text and row.label in text
+
+
+def test_bench_step_runs_on_one_template(capsys):
+    import bench_step
+
+    assert bench_step.main(["--repeat", "1", "--only", "table1-row2"]) == 0
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| table1")]
+    assert len(rows) == 1 and "| shell |" in rows[0]
