@@ -88,7 +88,7 @@ class ConePatch:
             ``C(phi) = centre + R (cos(phi) ex + sin(phi) ey)``.
         radius: R.
         scale: the ruling length factor L (v = 1 is L times the arc's distance).
-        phi0: the arc parameter at u0 (radians).
+        phi0, phi1: the arc parameters at u0 and u1 (radians).
     """
 
     surface: Geom_BSplineSurface
@@ -101,6 +101,7 @@ class ConePatch:
     radius: float
     scale: float
     phi0: float
+    phi1: float
 
     def arc(self, phi: Array) -> Array:
         """Arc points ``(k, 3)`` at arc parameters ``phi``."""
@@ -111,8 +112,12 @@ class ConePatch:
         """Arc parameters (radians) of the rulings at surface parameters ``u``."""
         pts = np.array([_xyz(self.surface.Value(float(t), 1.0)) for t in np.atleast_1d(u)])
         d = (pts - self.apex) / self.scale + self.apex - self.centre
-        phi = np.unwrap(np.arctan2(d @ self.ey, d @ self.ex))
-        return phi + 2.0 * np.pi * np.round((self.phi0 - phi[0]) / (2.0 * np.pi))
+        phi = np.arctan2(d @ self.ey, d @ self.ex)
+        # the branch next to the linear map u -> phi (an arc may span more
+        # than pi, where one atan2 branch cannot hold it)
+        t = (np.atleast_1d(np.asarray(u, dtype=float)) - self.u0) / (self.u1 - self.u0)
+        near = self.phi0 + t * (self.phi1 - self.phi0)
+        return phi + 2.0 * np.pi * np.round((near - phi) / (2.0 * np.pi))
 
     def v_of(self, phi: Array, r: Array) -> Array:
         """Surface parameter v of the point at distance ``r`` from A on ruling ``phi``."""
@@ -143,7 +148,7 @@ def cone_patch(cone: ExactCone, phi0: float, phi1: float, mirror: bool, reach: f
         Geom_TrimmedCurve(circle, float(phi0), float(phi1)), Convert_RationalC1
     )
     c0, c1 = arc.FirstParameter(), arc.LastParameter()
-    probe = ConePatch(None, c0, c1, apex, centre, ex, ey, fr.radius, 1.0, phi0)  # type: ignore[arg-type]
+    probe = ConePatch(None, c0, c1, apex, centre, ex, ey, fr.radius, 1.0, phi0, phi1)  # type: ignore[arg-type]
     dmin = float(np.min(np.linalg.norm(probe.arc(np.linspace(phi0, phi1, 64)) - apex, axis=1)))
     scale = 1.02 * reach / dmin
     n = arc.NbPoles()
@@ -166,7 +171,7 @@ def cone_patch(cone: ExactCone, phi0: float, phi1: float, mirror: bool, reach: f
         vk.SetValue(i + 1, float(i))
         vm.SetValue(i + 1, 2)
     surface = Geom_BSplineSurface(poles, weights, uk, vk, um, vm, arc.Degree(), 1)
-    return ConePatch(surface, c0, c1, apex, centre, ex, ey, fr.radius, scale, phi0)
+    return ConePatch(surface, c0, c1, apex, centre, ex, ey, fr.radius, scale, phi0, phi1)
 
 
 def _pcurve(us: Array, vs: Array) -> Geom2dAPI_Interpolate:
