@@ -149,35 +149,53 @@ def min_relief_hole(folded: FoldedSheet, material: Material) -> float:
     return max(min_hole_diameter(SideMap(folded, lower=lower), s_range) for lower in (False, True))
 
 
-def slab_volume(folded: FoldedSheet, material: Material, hole_diameter: float) -> float:
-    """The volume of the thick sheet (length^3): both sides' slabs between the
-    offsets :func:`sheet_offsets` of the cone, from the relief hole to the
-    sheet's edge, plus the crease's mitre.
+def slab_volume(
+    folded: FoldedSheet, material: Material, hole_diameter: float, *, samples: int = 1200
+) -> float:
+    """The volume of the thick sheet that :mod:`onefold_cad.export.solid` builds
+    (length^3), integrated numerically from the geometry, independently of the
+    B-rep: a check on the CAD kernel's result.
 
-    The map F(theta, r, s) has Jacobian ``r - s k(theta)``, so a side's slab
-    holds ``A t - (s1^2 - s0^2) / 2 * integral k(theta) (R(theta) - h) dtheta``;
-    at each crease half the mitre adds ``tan(psi / 2) (s_convex^2 -
-    s_concave^2)`` per unit length, psi the fold angle, to first order in t
-    (the sheet's curvature next to the crease and the ends of the mitre are
-    left out: they change the volume by O(t^3)).
+    Per side (in the +y side's coordinates; the -y side is its mirror image),
+    the slab between the offsets :func:`sheet_offsets` of the cone, from the
+    relief hole to the sheet's edge, where it lies on its own side of the
+    fold's plane of symmetry (y > 0), with the Jacobian ``r - s k(theta)`` of
+    the map F; plus the kept part of the flat blocks that continue it past
+    each crease half (the convex side of the mitre). Midpoint rules with
+    ``samples`` angles, ``samples / 10`` radii and 24 offsets: relative error
+    about 1e-4 (the edge of the mitre cuts through the cells).
     """
     s0, s1 = sheet_offsets(material)
     h = 0.5 * hole_diameter
+    n_s = 24
+    s = s0 + (np.arange(n_s) + 0.5) * (s1 - s0) / n_s
+    ds = (s1 - s0) / n_s
+    n_r = max(samples // 10, 20)
+    rho = (np.arange(n_r) + 0.5) / n_r
     total = 0.0
     for lower in (False, True):
         side = SideMap(folded, lower=lower)
-        theta = np.linspace(0.0, side.total, 4001)
+        dth = side.total / samples
+        theta = (np.arange(samples) + 0.5) * dth
+        u, _, n = side.frames(theta)
+        k = side.curvature(theta)
         r_out = side.edge_radius(theta)
-        k = side.curvature(np.clip(theta, 1e-6, side.total - 1e-6))
-        flat = 0.5 * (r_out**2 - h * h) * (s1 - s0)
-        bend = 0.5 * (s1 * s1 - s0 * s0) * k * (r_out - h)
-        total += float(np.trapezoid(flat - bend, theta))
+        r = h + rho[None, :] * (r_out - h)[:, None]  # (theta, r)
+        dr = (r_out - h) / n_r
+        y = side.apex[1] + r[:, :, None] * u[:, None, None, 1] + s * n[:, None, None, 1]
+        jac = r[:, :, None] - s[None, None, :] * k[:, None, None]
+        cell = (dth * dr)[:, None, None] * ds
+        total += float(np.sum(np.where(y > 0.0, jac, 0.0) * cell))
+        depth = mitre_depth(side, (s0, s1))
         for end in (0, 1):
-            _, e, n = side.crease_frame(end)
+            _, e, nn = side.crease_frame(end)
             into = e[1] if end == 0 else -e[1]
-            slope = abs(n[1]) / into  # tan(psi / 2)
-            convex = max(s0 * np.sign(n[1]), s1 * np.sign(n[1]), 0.0)
-            concave = max(-s0 * np.sign(n[1]), -s1 * np.sign(n[1]), 0.0)
-            length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0]) - h
-            total += 0.5 * slope * (convex**2 - concave**2) * length
+            length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
+            # kept past the crease: 0 <= d < min(depth, s n_y / into), x from the hole to the end
+            d_max = np.clip(s * nn[1] / into, 0.0, depth)
+            n_d = 200
+            frac = (np.arange(n_d) + 0.5) / n_d
+            d = d_max[:, None] * frac[None, :]
+            x_in = np.sqrt(np.maximum(h * h - d * d, 0.0))
+            total += float(np.sum((length - x_in) * (d_max[:, None] / n_d)) * ds)
     return total
