@@ -361,7 +361,12 @@ def _summary(report: dict[str, Any]) -> str:
             f"length {h['length']:.6g}  BA {h['bend_allowance']:.4g}  BD {h['bend_deduction']:.4g}"
         )
     lines += [
-        f"  relief hole diameter     {report['relief_hole_diameter']:.4g} {u}",
+        f"  relief hole diameter     {report['relief_hole_diameter']:.4g} {u}"
+        + (
+            f" (a STEP solid needs > {report['solid_min_relief_hole']:.4g} {u})"
+            if report["solid_min_relief_hole"] is not None
+            else ""
+        ),
         f"  sheet size (designed)    {f['size'][0]:.6g} x {f['size'][1]:.6g} {u}, "
         f"area {f['area']:.6g} {u}^2",
         f"  flat pattern size        {report['flat_size'][0]:.6g} x {report['flat_size'][1]:.6g} "

@@ -23,6 +23,7 @@ from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import bend_values
+from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import design_to_data
 
 __all__ = ["REPORT_VERSION", "design_report", "write_report", "report_json"]
@@ -79,6 +80,12 @@ def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     return out
 
 
+def _solid_min_hole(design: Design, folded: FoldedSheet) -> float | None:
+    if design.model.value != "exact" or design.material.thickness <= 0.0:
+        return None
+    return float(min_relief_hole(folded, design.material))
+
+
 def design_report(
     design: Design,
     folded: FoldedSheet,
@@ -99,7 +106,9 @@ def design_report(
         model, else null), ``fold_angles_deg`` and ``bend`` keyed
         ``plus_x``/``minus_x``, ``crease`` (per half: length, fold angle, bend
         direction, bend allowance, outside set-back and bend deduction),
-        ``relief_hole_diameter``, ``flat_size`` and ``flat_area`` (the cut
+        ``relief_hole_diameter``, ``solid_min_relief_hole`` (the smallest
+        hole a STEP solid of this thickness needs; null for the paper model
+        or zero thickness), ``flat_size`` and ``flat_area`` (the cut
         part: thickness-compensated outline, net of the relief hole),
         ``flat_pattern`` (its compensation shift and residual), ``sheet`` (the
         designed sheet: size in its own frame, area, perimeter, vertices),
@@ -135,6 +144,7 @@ def design_report(
         "bend": {k: v["bend"] for k, v in crease.items()},
         "crease": crease,
         "relief_hole_diameter": float(hole),
+        "solid_min_relief_hole": _solid_min_hole(design, folded),
         "flat_size": list(fp.size),
         "flat_area": float(fp.area),
         "flat_pattern": {

@@ -111,6 +111,7 @@ def test_areas_sizes_and_mass(steel):
     assert rep["surface_area"] == pytest.approx(600 * 400, rel=1e-3)
     hole = rep["relief_hole_diameter"]
     assert hole == design.material.relief_hole_diameter > 0
+    assert 0 < rep["solid_min_relief_hole"] < hole  # the default hole is wide enough
     # The cut part loses the bend deductions and the hole, so it is smaller.
     assert rep["flat_area"] < 600 * 400 - math.pi * hole**2 / 4 + 1e-6
     assert rep["flat_size"][0] <= 600 + 1e-9 and rep["flat_size"][1] <= 400 + 1e-9
@@ -129,6 +130,7 @@ def test_paper_model_reports_its_gammas(paper, steel):
     assert steel[2]["gammas_deg"] is None  # exact model: no fan
     assert rep["apex_height"] == folded.solution.apex_height > 0
     assert rep["relief_hole_diameter"] == 0.0
+    assert rep["solid_min_relief_hole"] is None  # paper model: no solid
     assert rep["mass"] is None
 
 
