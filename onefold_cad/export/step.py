@@ -41,13 +41,17 @@ Example::
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import build123d as bd
 from OCP.BRepGProp import BRepGProp
 from OCP.GeomAbs import GeomAbs_C2
 from OCP.GProp import GProp_GProps
+from OCP.Interface import Interface_Static
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideContinuity
+from OCP.STEPControl import STEPControl_Controller
 from OCP.TopAbs import TopAbs_SHELL
 from OCP.TopoDS import TopoDS
 
@@ -77,6 +81,7 @@ __all__ = [
 STEP_TIMESTAMP = "2000-01-01T00:00:00"
 
 _UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
+_STEP_UNIT_NAME = {Units.MM: "MM", Units.IN: "INCH", Units.FT: "FT"}
 #: Deviation allowed for the boundary curves on the cone, relative to sheet.size.
 BOUNDARY_TOLERANCE = 1e-7
 
@@ -278,7 +283,7 @@ def export_design_step(
     """
     target = Path(path)
     part = build_part(design, folded, body=body)
-    with atomic_output(target) as tmp:
+    with atomic_output(target) as tmp, _step_unit(design.units):
         try:
             ok = bd.export_step(part, tmp, unit=_UNIT[design.units], timestamp=STEP_TIMESTAMP)
         except RuntimeError as err:
@@ -286,3 +291,17 @@ def export_design_step(
         if not ok:
             raise ExportError("writing STEP failed")
     return target
+
+
+@contextmanager
+def _step_unit(units: Units) -> Iterator[None]:
+    """OCC's STEP writer writes in its ``write.step.unit`` setting (mm unless
+    set; build123d's ``unit`` alone gives inch files but writes foot designs
+    in mm): set it to the design's unit while writing, then restore it."""
+    STEPControl_Controller.Init_s()
+    before = Interface_Static.CVal_s("write.step.unit")
+    Interface_Static.SetCVal_s("write.step.unit", _STEP_UNIT_NAME[units])
+    try:
+        yield
+    finally:
+        Interface_Static.SetCVal_s("write.step.unit", before)

@@ -207,10 +207,16 @@ def test_deterministic_bytes_units_and_name(tmp_path):
     c = export_design_step(inch, tmp_path / "c.step")
     assert "INCH" in c.read_text().upper()
     assert "INCH" not in text.upper()
+    foot = design.with_changes(units=Units.FT, name="foot")
+    e = export_design_step(foot, tmp_path / "e.step")
+    assert "CONVERSION_BASED_UNIT('FOOT'" in e.read_text()
     # the re-read shape is in the file's unit converted to mm by the reader
     re_in = bd.import_step(c)
     re_mm = bd.import_step(a)
     assert measure(re_in) == pytest.approx(measure(re_mm) * 25.4**2, rel=1e-6)
+    assert measure(bd.import_step(e)) == pytest.approx(measure(re_mm) * 304.8**2, rel=1e-6)
+    # the writer's unit setting is restored: a mm file afterwards is in mm again
+    assert export_design_step(design, tmp_path / "f.step").read_bytes() == a.read_bytes()
 
 
 @settings(max_examples=15, deadline=None)
