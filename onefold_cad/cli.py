@@ -18,6 +18,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable, Sequence
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -133,6 +134,16 @@ ReliefHole = Annotated[
 Density = Annotated[
     float | None, typer.Option(help="Density (mass / unit^3) > 0.", rich_help_panel=_MAT)
 ]
+
+
+class Body(StrEnum):
+    """What the STEP holds."""
+
+    AUTO = "auto"
+    SOLID = "solid"
+    SHELL = "shell"
+
+
 SheetSurfaceOpt = Annotated[
     SheetSurface | None,
     typer.Option(
@@ -420,13 +431,13 @@ def build(
         str | None, typer.Option(help="File name stem (one template only; default: its name).")
     ] = None,
     body: Annotated[
-        str,
+        Body,
         typer.Option(
             help="STEP body: 'solid' (the sheet's thickness, exact model), 'shell' (the "
             "reference surface) or 'auto': solid when the design has thickness and a "
             "relief hole, else shell.",
         ),
-    ] = "auto",
+    ] = Body.AUTO,
     *,
     flags: dict[str, Any],
 ) -> None:
@@ -437,9 +448,7 @@ def build(
     into OUTDIR only when every design of the call succeeded.
     """
     refs = list(templates or [])
-    if body not in ("auto", "solid", "shell"):
-        raise InvalidParameterError("--body", f"must be 'auto', 'solid' or 'shell', got {body!r}")
-    step_body = None if body == "auto" else body
+    step_body = None if Body(body) is Body.AUTO else Body(body).value
     if name is not None and len(refs) > 1:
         raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
     designs = load_designs(refs, Overrides(**flags, name=name))

@@ -5,6 +5,7 @@ This is what the adapters (STEP, DXF, previews, report) and the CLI consume.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -15,8 +16,9 @@ from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.params import FrameCurve, Model
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import solve
+from onefold_cad.geometry.thick_sheet import min_relief_hole
 
-__all__ = ["Design", "build_design", "sheet_inradius"]
+__all__ = ["Design", "build_design", "relief_hole_diameter", "sheet_inradius"]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
 
@@ -55,6 +57,13 @@ class Design:
         hole = self.material.relief_hole_diameter
         if hole > 0.0:
             inner = sheet_inradius(self.sheet)
+            if hole / 2.0 >= inner and self.material.relief_hole is None:
+                raise InvalidParameterError(
+                    "thickness",
+                    f"{self.material.thickness:g} is too thick for this sheet: the default "
+                    f"relief hole max(3 t, 2 (t + r)) = {hole:g} must be < {2.0 * inner:.6g} "
+                    "(twice the distance from H to the nearest sheet edge); set a relief_hole",
+                )
             if hole / 2.0 >= inner:
                 raise InvalidParameterError(
                     "relief_hole",
@@ -77,6 +86,26 @@ def sheet_inradius(sheet: Sheet) -> float:
     t = np.clip(-(v * e).sum(axis=1) / (e * e).sum(axis=1), 0.0, 1.0)
     closest = v + t[:, None] * e
     return float(np.min(np.hypot(closest[:, 0], closest[:, 1])))
+
+
+def relief_hole_diameter(design: Design, folded: FoldedSheet) -> float:
+    """The relief hole every export cuts (length): the material's when it is
+    set; else none for a zero-thickness sheet, and otherwise the larger of
+    max(3 t, 2 (t + r)) and, for the exact model, 1.1 x the smallest hole a
+    solid of that thickness needs (:func:`min_relief_hole`), rounded up to
+    two significant digits."""
+    m = design.material
+    default = m.relief_hole_diameter
+    if m.relief_hole is not None or m.thickness <= 0.0 or design.model.value != "exact":
+        return default
+    try:
+        need = 1.1 * min_relief_hole(folded, m)
+    except InvalidParameterError:  # no mitre (a flat fold): the solid will say so
+        return default
+    if need <= default:
+        return default
+    step = 10.0 ** (math.floor(math.log10(need)) - 1)
+    return max(default, math.ceil(need / step - 1e-9) * step)
 
 
 def build_design(design: Design) -> FoldedSheet:

@@ -168,14 +168,16 @@ BAD = [
 
 # Only build makes the STEP solid, whose relief hole must clear the apex.
 BUILD_ONLY = [
-    (["--body", "mesh"], "body", "'auto', 'solid' or 'shell'"),
+    (["--body", "mesh"], "body", "'auto', 'solid', 'shell'"),
     (
-        ["table1-row1", "--model", "exact", "--thickness", "3", "--sheet-surface", "INSIDE"],
+        ["table1-row1", "--model", "exact", "--thickness", "3", "--sheet-surface", "INSIDE"]
+        + ["--relief-hole", "9"],
         "relief_hole",
         "must be in (11.88",
     ),
     (["paper-square", "--body", "solid"], "relief_hole", "got 0"),
     (["table1-row1", "--thickness", "3", "--body", "solid"], "model", "'exact'"),
+    (["table1-row1", "--model", "exact", "--thickness", "150"], "thickness", "too thick"),
 ]
 
 # build runs every case (it is the command that writes files); solve a sample of them.

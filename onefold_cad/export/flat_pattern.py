@@ -41,7 +41,7 @@ import numpy as np
 from ezdxf.math import offset_vertices_2d
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design
+from onefold_cad.design import Design, relief_hole_diameter
 from onefold_cad.errors import InvalidParameterError, InvalidSheetError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Units, bend_values
@@ -305,7 +305,7 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
 
     origin = np.zeros(2)
     inner = _inradius(outline, origin)
-    hole = mat.relief_hole_diameter
+    hole = relief_hole_diameter(design, folded)
     if hole > 0.0 and hole / 2.0 >= inner:
         raise InvalidParameterError(
             "relief_hole",

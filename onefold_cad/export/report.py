@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
-from onefold_cad.design import Design
+from onefold_cad.design import Design, relief_hole_diameter
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
@@ -122,7 +122,7 @@ def design_report(
     fp = flat_pattern(design, folded) if pattern is None else pattern
     own = sheet.to_sheet.apply(sheet.vertices)
     flat_size = own.max(axis=0) - own.min(axis=0)
-    hole = mat.relief_hole_diameter
+    hole = relief_hole_diameter(design, folded)
     gammas = sol.gammas_deg
     crease = _crease(design, folded)
     mass = None

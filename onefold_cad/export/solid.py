@@ -51,9 +51,10 @@ from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Pnt
 from OCP.ShapeFix import ShapeFix_Solid
 from OCP.TopAbs import TopAbs_SHELL
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face
+from OCP.TopoDS import TopoDS, TopoDS_Face
 
 from onefold_cad.errors import ExportError
+from onefold_cad.export.measure import measure
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth
 
@@ -92,13 +93,14 @@ def _fit(fn, phi0: float, phi1: float, tol: float) -> Geom_BSplineCurve:
         curve = _interpolate(fn(phi), phi)
         mid = 0.5 * (phi[:-1] + phi[1:])
         err = float(np.max(np.linalg.norm(_curve_value(curve, mid) - fn(mid), axis=1)))
-        if err <= tol or n > 4000:
+        if err <= tol:
             return curve
+        if n > 4000:
+            raise ExportError(
+                f"an edge curve of the thick sheet misses the tolerance {tol:.3g} "
+                f"(by {err:.3g}) with {n} points"
+            )
         n = 2 * n - 1
-
-
-def _ruled(c0: TopoDS_Edge, c1: TopoDS_Edge) -> TopoDS_Face:
-    return BRepFill.Face_s(c0, c1)
 
 
 def _side_faces(
@@ -138,8 +140,6 @@ def _side_faces(
         faces.append(BRepFill.Face_s(edges["in", 0], edges["in", 1]))
         faces.append(BRepFill.Face_s(edges["out", 0], edges["out", 1]))
     for phi in span:
-        if phi in (0.0, side.total):
-            continue  # the crease's cross-section is shared with the mitre block
         p = np.array([phi])
         r_out = side.edge_radius(p)
         corners = [
@@ -165,7 +165,7 @@ def _mitre_block(
 ) -> list[TopoDS_Face]:
     """Faces of the flat block that continues the slab past crease half ``end``
     (0: theta = 0, 1: theta = pi) in the crease ruling's tangent plane, as deep
-    as :func:`mitre_depth`, minus its face on the crease's cross-section.
+    as :func:`mitre_depth` (a closed solid's faces).
 
     In that plane, x runs along the crease ruling and d away from the sheet;
     the block spans the hole's circle to the crease's length in x, [0, depth]
@@ -204,7 +204,8 @@ def _mitre_block(
         faces.append(BRepBuilderAPI_MakeFace(wire.Wire(), True).Face())
     s0, s1 = s_range
     faces.append(BRepFill.Face_s(arcs[0], arcs[1]))  # the hole's wall
-    for x0, d0, x1, d1 in ((length, 0.0, length, depth), (length, depth, x_in, depth)):
+    crease = ((hole, 0.0, length, 0.0), (length, 0.0, length, depth), (length, depth, x_in, depth))
+    for x0, d0, x1, d1 in crease:
         corners = [at(x0, d0, s0), at(x1, d1, s0), at(x1, d1, s1), at(x0, d0, s1)]
         faces.append(_polygon_face([np.array([c.X(), c.Y(), c.Z()]) for c in corners]))
     return faces
@@ -258,25 +259,74 @@ def thick_solid(
     """The sheet between the offsets ``s_range`` of the reference surface, with a
     relief hole of ``hole_diameter`` about the apex, mitred at the crease.
 
-    Each side is built in two pieces, one per crease half: the cone's slab
-    from the crease to the middle of the side, sewn to a flat block that
-    continues it past the crease (:func:`_mitre_block`). Every piece is cut at
-    the plane of symmetry y = 0 and the four pieces are fused (the -y side
-    built mirrored, then mirrored back). One piece per crease half keeps the
-    two blocks, which may cross each other next to the apex, apart.
+    Per side: the cone's slab, and for each crease half a flat block that
+    continues it past the crease (:func:`_mitre_block`), all cut at the plane
+    of symmetry y = 0; each block is also cut at the plane through the apex
+    that bisects the two crease halves, keeping its own half's side (on sharp
+    folds the crease halves are only 13-40 deg apart and an uncut block would
+    reach through the other half's sheet next to the apex). The six pieces
+    are fused (the -y side built mirrored, then mirrored back).
     """
     pieces = []
     hole = 0.5 * hole_diameter
     for lower in (False, True):
         side = SideMap(folded, lower=lower)
-        mid = 0.5 * side.total
-        for end, span in ((0, (0.0, mid)), (1, (mid, side.total))):
-            faces = _side_faces(side, hole, s_range, span, tol)
-            faces += _mitre_block(side, hole, s_range, end)
-            half = _upper_half(_solid_from_faces(faces, 10 * tol))
-            pieces.append(half.mirror(bd.Plane.XZ) if lower else half)
-    fused = pieces[0].fuse(*pieces[1:], tol=10 * tol).clean()  # fuzzy: the cut faces meet
-    solids = fused.solids()
-    if len(solids) != 1:
-        raise ExportError(f"fusing the pieces of the thick sheet gave {len(solids)} solids")
-    return solids[0]
+        faces = _side_faces(side, hole, s_range, (0.0, side.total), tol)
+        kept = [_upper_half(_solid_from_faces(faces, 10 * tol))]
+        u0, u1 = side.crease_frame(0)[0], side.crease_frame(1)[0]
+        m = (u0 - u1) / np.linalg.norm(u0 - u1)  # normal of the crease halves' bisector
+        for end, normal in ((0, m), (1, -m)):
+            block = _solid_from_faces(_mitre_block(side, hole, s_range, end), 10 * tol)
+            for plane in (_SYMMETRY, _plane(side.apex, normal)):
+                block = _keep_top(block, plane) if block is not None else None
+            if block is not None:  # none when the convex side has no material
+                kept.append(block)
+        pieces += [k.mirror(bd.Plane.XZ) for k in kept] if lower else kept
+    return _union(pieces, 10 * tol)
+
+
+def _plane(origin: Array, normal: Array) -> bd.Plane:
+    return bd.Plane(origin=tuple(map(float, origin)), z_dir=tuple(map(float, normal)))
+
+
+def _keep_top(solid: bd.Solid, plane: bd.Plane) -> bd.Solid | None:
+    """The part of ``solid`` on the side of ``plane`` its normal points to,
+    or None when nothing is there."""
+    kept = solid.split(plane, keep=bd.Keep.TOP)
+    solids = kept.solids() if kept is not None else []
+    if len(solids) > 1:
+        raise ExportError(f"cutting a mitre of the thick sheet gave {len(solids)} solids")
+    return solids[0] if solids else None
+
+
+def _union(pieces: list[bd.Solid], tol: float) -> bd.Solid:
+    """One solid of the pieces: OCC's fuse, with a fuzzy tolerance, plain, or
+    side by side. Each can fail on some inputs, so the first whose result is
+    one valid solid holding the pieces' total volume is kept (they only touch:
+    across y = 0, at the creases' cross-sections, and the two mitres of a side
+    at the plane that bisects the crease halves)."""
+    total = sum(measure(p, "volume") for p in pieces)
+    attempts = (
+        lambda: pieces[0].fuse(*pieces[1:], tol=tol),
+        lambda: pieces[0].fuse(*pieces[1:]),
+        lambda: (
+            pieces[0]
+            .fuse(*pieces[1 : len(pieces) // 2])
+            .fuse(pieces[len(pieces) // 2].fuse(*pieces[len(pieces) // 2 + 1 :]))
+        ),
+    )
+    found = "no result"
+    for attempt in attempts:
+        try:
+            solids = attempt().clean().solids()
+        except Exception as err:  # OCC's StdFail_NotDone and friends
+            found = err.__class__.__name__
+            continue
+        if len(solids) != 1:
+            found = f"{len(solids)} solids"
+            continue
+        volume = measure(solids[0], "volume")
+        if solids[0].is_valid and abs(volume - total) <= 1e-5 * total:
+            return solids[0]
+        found = f"valid {solids[0].is_valid}, volume {volume:.6g} of {total:.6g}"
+    raise ExportError(f"fusing the pieces of the thick sheet failed ({found})")

@@ -161,7 +161,8 @@ def slab_volume(
     relief hole to the sheet's edge, where it lies on its own side of the
     fold's plane of symmetry (y > 0), with the Jacobian ``r - s k(theta)`` of
     the map F; plus the kept part of the flat blocks that continue it past
-    each crease half (the convex side of the mitre). Midpoint rules with
+    each crease half (the convex side of the mitre), each on its own side of
+    the plane through the apex that bisects the two crease halves. Midpoint rules with
     ``samples`` angles, ``samples / 10`` radii and 24 offsets: relative error
     about 1e-4 (the edge of the mitre cuts through the cells).
     """
@@ -187,9 +188,12 @@ def slab_volume(
         cell = (dth * dr)[:, None, None] * ds
         total += float(np.sum(np.where(y > 0.0, jac, 0.0) * cell))
         depth = mitre_depth(side, (s0, s1))
-        for end in (0, 1):
-            _, e, nn = side.crease_frame(end)
+        u0, u1 = side.crease_frame(0)[0], side.crease_frame(1)[0]
+        m = (u0 - u1) / np.linalg.norm(u0 - u1)
+        for end, sign in ((0, 1.0), (1, -1.0)):
+            uu, e, nn = side.crease_frame(end)
             into = e[1] if end == 0 else -e[1]
+            away = -e if end == 0 else e
             length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
             # kept past the crease: 0 <= d < min(depth, s n_y / into), x from the hole to the end
             d_max = np.clip(s * nn[1] / into, 0.0, depth)
@@ -197,5 +201,9 @@ def slab_volume(
             frac = (np.arange(n_d) + 0.5) / n_d
             d = d_max[:, None] * frac[None, :]
             x_in = np.sqrt(np.maximum(h * h - d * d, 0.0))
-            total += float(np.sum((length - x_in) * (d_max[:, None] / n_d)) * ds)
+            # and on its own side of the plane bisecting the crease halves
+            x_cut = -(d * (away @ m) + s[:, None] * (nn @ m)) / (uu @ m)
+            x_from = np.maximum(x_in, x_cut) if sign * (uu @ m) > 0 else x_in
+            kept = np.clip(length - x_from, 0.0, None)
+            total += float(np.sum(kept * (d_max[:, None] / n_d)) * ds)
     return total

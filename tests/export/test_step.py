@@ -19,6 +19,7 @@ from OCP.TopoDS import TopoDS
 
 from onefold_cad import (
     Design,
+    ExportError,
     FrameCurve,
     InvalidParameterError,
     Material,
@@ -27,8 +28,10 @@ from onefold_cad import (
     Units,
     build_design,
 )
+from onefold_cad.design import relief_hole_diameter
+from onefold_cad.export.flat_pattern import flat_pattern
+from onefold_cad.export.report import design_report
 from onefold_cad.export.step import (
-    build_part,
     build_shell,
     default_body,
     export_design_step,
@@ -336,17 +339,6 @@ def test_solid_lies_on_the_side_sheet_surface_names(solid_trip):
     assert checked == 20
 
 
-def test_solid_faces_do_not_grow_with_divisions():
-    design = CASES["table1-0"][0].with_changes(material=Material(thickness=3.0))
-    counts = {
-        n: len(
-            build_part(design.with_changes(frame=design.frame.with_changes(divisions=n))).faces()
-        )
-        for n in (20, 90)
-    }
-    assert counts[20] == counts[90]
-
-
 def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
     design = CASES["table1-0"][0]
     folded = build_design(design)
@@ -375,3 +367,41 @@ def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
     written = export_design_step(flat_hole, tmp_path / "thick.step", folded)
     assert written.stat().st_size > 0 and [p.name for p in tmp_path.iterdir()] == ["thick.step"]
     assert len(bd.import_step(written).solids()) == 0
+
+
+def test_default_relief_hole_fits_the_solid_and_every_export_cuts_it(tmp_path):
+    """INSIDE on Table 1's square at t = 3 needs a hole > 11.88; the default
+    max(3 t, 2 (t + r)) = 9 is raised to 1.1 x that, rounded up (14), and the
+    STEP, the DXF's flat pattern and the report all use it."""
+    design = CASES["table1-0"][0].with_changes(
+        material=Material(thickness=3.0, sheet_surface=SheetSurface.INSIDE)
+    )
+    folded = build_design(design)
+    need = min_relief_hole(folded, design.material)
+    hole = relief_hole_diameter(design, folded)
+    assert design.material.relief_hole_diameter == 9.0 < need < hole == 14.0
+    assert flat_pattern(design, folded).hole_diameter == hole
+    assert design_report(design, folded)["relief_hole_diameter"] == hole
+    shape = bd.import_step(export_design_step(design, tmp_path / "d.step", folded))
+    assert shape.is_valid and len(shape.solids()) == 1
+    area = measure(build_shell(folded, relief_hole=hole))
+    assert measure(shape, "volume") == pytest.approx(area * 3.0, rel=0.01)
+    # an explicit hole is kept as it is (and this one is too small for a solid)
+    fixed = design.with_changes(material=design.material.with_changes(relief_hole=9.0))
+    assert relief_hole_diameter(fixed, folded) == 9.0
+
+
+def test_kernel_failure_is_an_export_error_and_leaves_no_file(tmp_path, monkeypatch):
+    import onefold_cad.export.step as step
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("simulated OCC failure")
+
+    design = CASES["table1-0"][0].with_changes(material=Material(thickness=3.0))
+    monkeypatch.setattr(step, "thick_solid", broken)
+    with pytest.raises(ExportError, match="simulated OCC failure"):
+        export_design_step(design, tmp_path / "x.step")
+    monkeypatch.setattr(step, "ruled_faces", broken)
+    with pytest.raises(ExportError, match="simulated OCC failure"):
+        export_design_step(design, tmp_path / "x.step", body="shell")
+    assert list(tmp_path.iterdir()) == []
