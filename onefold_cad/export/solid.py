@@ -30,6 +30,7 @@ Lengths are in the design unit; angles in radians.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import build123d as bd
@@ -300,25 +301,23 @@ def _keep_top(solid: bd.Solid, plane: bd.Plane) -> bd.Solid | None:
 
 
 def _union(pieces: list[bd.Solid], tol: float) -> bd.Solid:
-    """One solid of the pieces: OCC's fuse, with a fuzzy tolerance, plain, or
+    """One solid of the pieces: OCC's fuse, plain, with a fuzzy tolerance, or
     side by side. Each can fail on some inputs, so the first whose result is
     one valid solid holding the pieces' total volume is kept (they only touch:
     across y = 0, at the creases' cross-sections, and the two mitres of a side
     at the plane that bisects the crease halves)."""
     total = sum(measure(p, "volume") for p in pieces)
     attempts = (
-        lambda: pieces[0].fuse(*pieces[1:], tol=tol),
-        lambda: pieces[0].fuse(*pieces[1:]),
-        lambda: (
-            pieces[0]
-            .fuse(*pieces[1 : len(pieces) // 2])
-            .fuse(pieces[len(pieces) // 2].fuse(*pieces[len(pieces) // 2 + 1 :]))
+        lambda ps: ps[0].fuse(*ps[1:]),
+        lambda ps: ps[0].fuse(*ps[1:], tol=tol),
+        lambda ps: (
+            ps[0].fuse(*ps[1 : len(ps) // 2]).fuse(ps[len(ps) // 2].fuse(*ps[len(ps) // 2 + 1 :]))
         ),
     )
     found = "no result"
     for attempt in attempts:
-        try:
-            solids = attempt().clean().solids()
+        try:  # on deep copies: a boolean may change its arguments' tolerances
+            solids = attempt([copy.deepcopy(p) for p in pieces]).clean().solids()
         except Exception as err:  # OCC's StdFail_NotDone and friends
             found = err.__class__.__name__
             continue
