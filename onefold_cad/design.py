@@ -14,7 +14,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.params import FrameCurve, Model
-from onefold_cad.geometry.sheet import Sheet
+from onefold_cad.geometry.sheet import Sheet, boundary_distance
 from onefold_cad.geometry.solver import solve
 from onefold_cad.geometry.thick_sheet import min_relief_hole
 
@@ -78,14 +78,7 @@ class Design:
 
 def sheet_inradius(sheet: Sheet) -> float:
     """Distance from H to the nearest point of the sheet's boundary (length)."""
-    import numpy as np
-
-    v = sheet.vertices
-    w = np.roll(v, -1, axis=0)
-    e = w - v
-    t = np.clip(-(v * e).sum(axis=1) / (e * e).sum(axis=1), 0.0, 1.0)
-    closest = v + t[:, None] * e
-    return float(np.min(np.hypot(closest[:, 0], closest[:, 1])))
+    return boundary_distance(sheet.vertices)
 
 
 def relief_hole_diameter(design: Design, folded: FoldedSheet) -> float:

@@ -42,14 +42,16 @@ from OCP.collections import (
     Array2_double,
     Array2_gp_Pnt,
     HArray1_double,
+    HArray1_gp_Pnt,
     HArray1_gp_Pnt2d,
 )
 from OCP.Convert import Convert_ParameterisationType
 from OCP.GC import GC_MakeArcOfCircle
-from OCP.Geom import Geom_BSplineSurface, Geom_Circle, Geom_TrimmedCurve
-from OCP.Geom2d import Geom2d_Line
+from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Circle, Geom_TrimmedCurve
+from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
 from OCP.Geom2dAPI import Geom2dAPI_Interpolate
 from OCP.GeomAbs import GeomAbs_C2
+from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.GeomConvert import GeomConvert
 from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec
 from OCP.ShapeFix import ShapeFix_Shape
@@ -60,7 +62,7 @@ from onefold_cad.errors import ExportError
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 
-__all__ = ["ConePatch", "cone_patch", "ruled_faces", "fan_faces", "sew"]
+__all__ = ["ConePatch", "cone_patch", "ruled_faces", "fan_faces", "sew", "interpolate"]
 
 Convert_RationalC1 = Convert_ParameterisationType.Convert_RationalC1
 Array = NDArray[np.float64]
@@ -174,16 +176,25 @@ def cone_patch(cone: ExactCone, phi0: float, phi1: float, mirror: bool, reach: f
     return ConePatch(surface, c0, c1, apex, centre, ex, ey, fr.radius, scale, phi0, phi1)
 
 
-def _pcurve(us: Array, vs: Array) -> Geom2dAPI_Interpolate:
-    pts = HArray1_gp_Pnt2d(1, len(us))
-    par = HArray1_double(1, len(us))
-    for i, (u, v) in enumerate(zip(us, vs, strict=True)):
-        pts.SetValue(i + 1, gp_Pnt2d(float(u), float(v)))
-        par.SetValue(i + 1, float(u))
-    interp = Geom2dAPI_Interpolate(pts, par, False, 1e-12)
+def interpolate(points: Array, params: Array, what: str) -> Geom_BSplineCurve | Geom2d_BSplineCurve:
+    """The B-spline through ``points`` ``(k, 2)`` (a pcurve) or ``(k, 3)`` at the
+    parameters ``params`` ``(k,)``, by OCC's interpolation.
+
+    Raises:
+        ExportError: the interpolation failed (``what`` names the curve).
+    """
+    pts = np.asarray(points, dtype=float)
+    plane = pts.shape[1] == 2
+    arr = (HArray1_gp_Pnt2d if plane else HArray1_gp_Pnt)(1, len(pts))
+    par = HArray1_double(1, len(pts))
+    point = gp_Pnt2d if plane else gp_Pnt
+    for i, (p, t) in enumerate(zip(pts, params, strict=True)):
+        arr.SetValue(i + 1, point(*map(float, p)))
+        par.SetValue(i + 1, float(t))
+    interp = (Geom2dAPI_Interpolate if plane else GeomAPI_Interpolate)(arr, par, False, 1e-12)
     interp.Perform()
     if not interp.IsDone():
-        raise ExportError("could not interpolate a boundary curve on the cone")
+        raise ExportError(f"could not interpolate {what}")
     return interp.Curve()
 
 
@@ -197,7 +208,8 @@ def _fit_pcurve(
     while True:
         us = np.linspace(u0, u1, n)
         phi = patch.phi_of_u(us)
-        curve = _pcurve(us, patch.v_of(phi, radius_at(phi)))
+        uv = np.stack([us, patch.v_of(phi, radius_at(phi))], axis=1)
+        curve = interpolate(uv, us, "a boundary curve on the cone")
         # deviation at the midpoints between the interpolation nodes
         um = 0.5 * (us[:-1] + us[1:])
         got = np.array([[curve.Value(float(t)).X(), curve.Value(float(t)).Y()] for t in um])

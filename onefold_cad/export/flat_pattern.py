@@ -45,7 +45,7 @@ from onefold_cad.design import Design, relief_hole_diameter
 from onefold_cad.errors import InvalidParameterError, InvalidSheetError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Units, bend_values
-from onefold_cad.geometry.sheet import _check_simple
+from onefold_cad.geometry.sheet import _check_simple, boundary_distance
 
 __all__ = ["FoldHalf", "FlatPattern", "flat_pattern", "polygon_area", "polygon_perimeter"]
 
@@ -237,12 +237,12 @@ def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> Arra
     return np.array(out, dtype=float).reshape(-1, 2, 2)
 
 
-def _inradius(p: Array, point: Array) -> float:
-    """Distance from ``point`` to the closed polygon ``p``'s boundary."""
-    v = p - point
-    e = np.roll(v, -1, axis=0) - v
-    t = np.clip(-(v * e).sum(axis=1) / (e * e).sum(axis=1), 0.0, 1.0)
-    return float(np.min(np.hypot(*(v + t[:, None] * e).T)))
+def _require_simple(polygon: Array, param: str, what: str) -> None:
+    """InvalidParameterError naming ``param`` unless ``polygon`` is simple."""
+    try:
+        _check_simple(polygon, param)
+    except InvalidSheetError as exc:
+        raise InvalidParameterError(param, f"{what} ({exc})") from None
 
 
 def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
@@ -291,12 +291,7 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
                 "the thickness-compensated outline is invalid: a bend zone's edge no longer "
                 "reaches past H; reduce thickness or bend_radius",
             )
-        try:
-            _check_simple(outline, "thickness")
-        except InvalidSheetError as exc:
-            raise InvalidParameterError(
-                "thickness", f"the thickness-compensated outline is invalid ({exc})"
-            ) from None
+        _require_simple(outline, "thickness", "the thickness-compensated outline is invalid")
     else:
         outline = v.copy()
         end_plus, end_minus = v[0].copy(), v[k].copy()
@@ -304,7 +299,7 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
     zones = [z if z.size and abs(z[0, 0, 1]) > tol else np.zeros((0, 2, 2)) for z in zones]
 
     origin = np.zeros(2)
-    inner = _inradius(outline, origin)
+    inner = boundary_distance(outline, origin)
     hole = relief_hole_diameter(design, folded)
     if hole > 0.0 and hole / 2.0 >= inner:
         raise InvalidParameterError(
@@ -325,12 +320,7 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
     outline_s = place.apply(outline)
     if kerf > 0.0:
         cut = np.array([(p.x, p.y) for p in offset_vertices_2d(outline_s, -kerf / 2.0, True)])
-        try:
-            _check_simple(cut, "kerf")
-        except InvalidSheetError as exc:
-            raise InvalidParameterError(
-                "kerf", f"the kerf offset self-intersects ({exc})"
-            ) from None
+        _require_simple(cut, "kerf", "the kerf offset self-intersects")
     else:
         cut = outline_s.copy()
 

@@ -45,16 +45,15 @@ from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_Sewing,
 )
 from OCP.BRepFill import BRepFill
-from OCP.collections import HArray1_double, HArray1_gp_Pnt
 from OCP.GC import GC_MakeArcOfCircle
 from OCP.Geom import Geom_BSplineCurve
-from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Pnt
 from OCP.ShapeFix import ShapeFix_Solid
 from OCP.TopAbs import TopAbs_SHELL
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
 from onefold_cad.errors import ExportError
+from onefold_cad.export.brep import interpolate
 from onefold_cad.export.measure import measure
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth
@@ -62,19 +61,6 @@ from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth
 __all__ = ["thick_solid"]
 
 Array = NDArray[np.float64]
-
-
-def _interpolate(pts: Array, params: Array) -> Geom_BSplineCurve:
-    arr = HArray1_gp_Pnt(1, len(pts))
-    par = HArray1_double(1, len(pts))
-    for i, (p, t) in enumerate(zip(pts, params, strict=True)):
-        arr.SetValue(i + 1, gp_Pnt(*map(float, p)))
-        par.SetValue(i + 1, float(t))
-    interp = GeomAPI_Interpolate(arr, par, False, 1e-12)
-    interp.Perform()
-    if not interp.IsDone():
-        raise ExportError("could not interpolate an offset curve of the thick sheet")
-    return interp.Curve()
 
 
 def _curve_value(curve: Geom_BSplineCurve, t: Array) -> Array:
@@ -91,7 +77,7 @@ def _fit(fn, phi0: float, phi1: float, tol: float) -> Geom_BSplineCurve:
     n = 17
     while True:
         phi = np.linspace(phi0, phi1, n)
-        curve = _interpolate(fn(phi), phi)
+        curve = interpolate(fn(phi), phi, "an edge curve of the thick sheet")
         mid = 0.5 * (phi[:-1] + phi[1:])
         err = float(np.max(np.linalg.norm(_curve_value(curve, mid) - fn(mid), axis=1)))
         if err <= tol:

@@ -103,6 +103,15 @@ def _check_simple(p: NDArray[np.float64], name: str) -> None:
             )
 
 
+def boundary_distance(polygon: ArrayLike, point: ArrayLike = (0.0, 0.0)) -> float:
+    """Distance from ``point`` to the boundary of the closed polygon ``(n, 2)``
+    (length): the largest circle about ``point`` that stays inside it."""
+    v = np.asarray(polygon, dtype=float) - np.asarray(point, dtype=float)
+    e = np.roll(v, -1, axis=0) - v
+    t = np.clip(-(v * e).sum(axis=1) / (e * e).sum(axis=1), 0.0, 1.0)
+    return float(np.min(np.hypot(*(v + t[:, None] * e).T)))
+
+
 def _insert_axis_crossings(p: NDArray[np.float64]) -> NDArray[np.float64]:
     """Return ``p`` with the x-axis crossings inserted, starting at the +x crossing."""
     out: list[NDArray[np.float64]] = []

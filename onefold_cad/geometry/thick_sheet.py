@@ -23,7 +23,6 @@ from numpy.typing import NDArray
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.frame import arc_points, arc_tangents
 from onefold_cad.geometry.material import Material, SheetSurface
 
 __all__ = [
@@ -64,7 +63,6 @@ class SideMap:
                 "model", "must be 'exact' for the thick sheet's offsets, got 'paper'"
             )
         self.cone = cone
-        self.frame = cone.frame
         self.apex = folded.apex
         self.sheet = folded.sheet
         self.total = cone.total_angle
@@ -77,12 +75,7 @@ class SideMap:
     def frames(self, theta: Array) -> tuple[Array, Array, Array]:
         """Ruling direction u, in-surface direction e (of increasing theta) and
         top normal n ``(k, 3)`` at flat angles ``theta`` in [0, pi] (radians)."""
-        phi = self.cone.phi_of_theta(np.atleast_1d(np.asarray(theta, dtype=float)))
-        v = arc_points(self.frame, phi) - self.apex
-        dp = arc_tangents(self.frame, phi)
-        u = v / np.linalg.norm(v, axis=1, keepdims=True)
-        e = dp - np.einsum("ij,ij->i", dp, u)[:, None] * u
-        e /= np.linalg.norm(e, axis=1, keepdims=True)
+        u, e = self.cone.frames(np.atleast_1d(np.asarray(theta, dtype=float)))
         return u, e, np.cross(u, e)
 
     def crease_frame(self, end: int) -> tuple[Array, Array, Array]:
