@@ -8,6 +8,7 @@ previews and JSON reports.
 from onefold_cad.design import Design, build_design
 from onefold_cad.errors import (
     ExportError,
+    FabricationError,
     InvalidParameterError,
     InvalidSheetError,
     NoSolutionError,
@@ -28,6 +29,7 @@ __all__ = [
     "Design",
     "Developability",
     "ExportError",
+    "FabricationError",
     "FoldedSheet",
     "FrameCurve",
     "InvalidParameterError",

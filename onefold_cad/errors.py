@@ -12,6 +12,7 @@ __all__ = [
     "InvalidSheetError",
     "NoSolutionError",
     "ExportError",
+    "FabricationError",
 ]
 
 
@@ -41,3 +42,20 @@ class NoSolutionError(OneFoldError, ValueError):
 
 class ExportError(OneFoldError, RuntimeError):
     """A valid design could not be turned into a file (CAD kernel failure)."""
+
+
+class FabricationError(OneFoldError, ValueError):
+    """The geometry is solved, but a fabrication file of it would be wrong.
+
+    Raised only by writers (DXF blank, STEP solid) when the bend model's
+    limits are passed (a bend zone reaching a sheet corner, a set-back large
+    beside the flanges, ...). ``solve`` never raises it: it reports the same
+    message as a warning.
+
+    Attributes:
+        parameter: what to change, as the CLI spells it (e.g. 'bend_radius').
+    """
+
+    def __init__(self, parameter: str, message: str) -> None:
+        super().__init__(f"{parameter}: {message}")
+        self.parameter = parameter
