@@ -17,6 +17,7 @@ from onefold_cad.geometry.params import FrameCurve, Model
 from onefold_cad.geometry.sheet import Sheet, boundary_distance
 from onefold_cad.geometry.solver import solve
 from onefold_cad.geometry.thick_sheet import min_relief_hole
+from onefold_cad.geometry.validate import check_magnitudes
 
 __all__ = ["Design", "build_design", "relief_hole_diameter", "sheet_inradius"]
 
@@ -54,6 +55,7 @@ class Design:
             )
         object.__setattr__(self, "model", Model.parse(self.model))
         object.__setattr__(self, "units", Units.parse(self.units))
+        check_magnitudes(self.frame.radius, self.sheet.size, self.material)
         hole = self.material.relief_hole_diameter
         if hole > 0.0:
             inner = sheet_inradius(self.sheet)

@@ -6,17 +6,29 @@ Angles are in degrees at this edge of the API; lengths are in the design's unit.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, replace
 from enum import StrEnum
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.validate import finite, integer_at_least, open_interval, positive
+from onefold_cad.geometry.validate import finite, integer_at_least, length, open_interval
 
-__all__ = ["FrameCurve", "Model", "MAX_DIVISIONS"]
+__all__ = ["FrameCurve", "Model", "MAX_DIVISIONS", "MIN_ANGLE_DEG"]
 
-#: Upper limit on ``divisions`` (memory guard: 10 million triangles).
-MAX_DIVISIONS = 10_000_000
+#: Smallest alpha and beta (deg). The construction squares them in radians
+#: (sin^2, 1 - cos); from 1e-100 deg those squares stay normal doubles
+#: (3e-204 > 2.2e-308), below it they underflow and the angle is 0 in effect
+#: (beta = 5e-324 deg is exactly 0 in radians).
+MIN_ANGLE_DEG = 1e-100
+
+#: Upper limit on ``divisions``. The fan's triangles span at most 360/10 000
+#: deg of the arc each, so its chords stay within R (1 - cos(pi / 10 000))
+#: < 5e-8 R of the arc: past 10 000 the paper model is the exact cone to
+#: within the 1e-7 tolerance (use ``model='exact'`` for the limit). At the cap,
+#: solve + fold + flat pattern + DXF take about a second (docs/reliability.md);
+#: the DXF's cost grows linearly (one ruling line per division).
+MAX_DIVISIONS = 10_000
 
 
 class Model(StrEnum):
@@ -53,12 +65,17 @@ class FrameCurve:
     the x axis so that its plane makes the angle ``beta`` with the y axis.
 
     Attributes:
-        alpha: arc opening in degrees, in (0, 90).
-        beta: tilt of the arc's plane from the y axis in degrees, in (0, 90).
+        alpha: arc opening in degrees, in (0, 90), at least
+            :data:`MIN_ANGLE_DEG` (1e-100).
+        beta: tilt of the arc's plane from the y axis in degrees, in (0, 90),
+            at least :data:`MIN_ANGLE_DEG`.
         h_c: offset of H from the f-line midpoint (length); positive puts H on
             the +x side of the midpoint. |h_c| < radius * cos(alpha).
-        radius: arc radius R (length), > 0. The paper's H_c values assume 100.
-        divisions: number of triangles of the paper model's fan, >= 1.
+        radius: arc radius R (length), in [1e-30, 1e30] (see
+            :data:`onefold_cad.geometry.validate.MAX_LENGTH`). The paper's
+            H_c values assume 100.
+        divisions: number of triangles of the paper model's fan, in
+            [1, :data:`MAX_DIVISIONS`] = [1, 10 000].
     """
 
     alpha: float
@@ -69,11 +86,11 @@ class FrameCurve:
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
-        set_(self, "alpha", open_interval("alpha", self.alpha, 0.0, 90.0, " deg"))
-        set_(self, "beta", open_interval("beta", self.beta, 0.0, 90.0, " deg"))
-        set_(self, "radius", positive("radius", self.radius))
+        set_(self, "alpha", _angle("alpha", self.alpha))
+        set_(self, "beta", _angle("beta", self.beta))
+        set_(self, "radius", length("radius", self.radius))
         set_(self, "h_c", finite("h_c", self.h_c))
-        set_(self, "divisions", integer_at_least("divisions", self.divisions, 1, MAX_DIVISIONS))
+        set_(self, "divisions", _divisions(self.divisions))
         half = self.half_chord
         if not abs(self.h_c) < half:
             raise InvalidParameterError(
@@ -96,3 +113,34 @@ class FrameCurve:
     def with_changes(self, **changes: Any) -> FrameCurve:
         """Return a copy with some fields replaced (validated again)."""
         return replace(self, **changes)
+
+
+def _divisions(value: object) -> int:
+    """``divisions`` checked against [1, MAX_DIVISIONS], with the cap's reason."""
+    n = integer_at_least("divisions", value, 1, None if _over_cap(value) else MAX_DIVISIONS)
+    if n > MAX_DIVISIONS:
+        raise InvalidParameterError(
+            "divisions",
+            f"must be an integer in [1, {MAX_DIVISIONS}], got {n} (at {MAX_DIVISIONS} the "
+            "fan is within 5e-8 R of the exact cone; use the exact model for finer)",
+        )
+    return n
+
+
+def _over_cap(value: object) -> bool:
+    """Whether ``value`` is a number above MAX_DIVISIONS (to explain the cap)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    return math.isfinite(value) and value > MAX_DIVISIONS
+
+
+def _angle(name: str, value: object) -> float:
+    """alpha or beta checked against (0, 90) deg and the underflow floor."""
+    x = open_interval(name, value, 0.0, 90.0, " deg")
+    if x < MIN_ANGLE_DEG:
+        raise InvalidParameterError(
+            name,
+            f"must be in (0, 90) deg and at least {MIN_ANGLE_DEG:g} deg (its square in radians "
+            f"must not underflow), got {x:g}",
+        )
+    return x

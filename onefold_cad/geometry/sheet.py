@@ -16,12 +16,30 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.errors import InvalidSheetError
-from onefold_cad.geometry.validate import open_interval, positive
+from onefold_cad.errors import InvalidParameterError, InvalidSheetError
+from onefold_cad.geometry.validate import (
+    MAX_LENGTH,
+    MIN_LENGTH,
+    finite,
+    float_errors,
+    length,
+    positive,
+)
 
-__all__ = ["Placement2D", "Sheet"]
+__all__ = ["MAX_VERTICES", "MIN_FEATURE", "Placement2D", "Sheet"]
 
 _TWO_PI = 2.0 * math.pi
+#: Most vertices a polygon sheet may have. A polygon of 10 000 vertices follows
+#: a smooth outline (a circle at the worst) to 1 - cos(pi / 10 000) < 5e-8 of
+#: its size, below the 1e-7 tolerance, so a user never needs more; at the cap,
+#: validating, folding and writing the flat pattern and DXF take well under
+#: a second each (docs/reliability.md).
+MAX_VERTICES = 10_000
+#: Smallest feature of a quadrilateral or rectangle sheet relative to the
+#: sheet's size: a side length, a distance along an axis, H's distance from a
+#: corner. The polygon check puts points within 1e-12 of the size of the fold
+#: line on it; 1e-9 keeps every vertex a thousand times clear of that.
+MIN_FEATURE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -62,45 +80,199 @@ def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def _check_simple(p: NDArray[np.float64], name: str) -> None:
-    """Raise if two non-adjacent edges of the closed polygon ``p`` touch or cross."""
+#: Sweep coordinates are turned by this angle (radians, no rational multiple
+#: of pi) so that, in practice, no edge is vertical and no two vertices share
+#: the sweep coordinate; the sweep's order only decides which edges are
+#: compared, every comparison uses the original coordinates.
+_SWEEP_ANGLE = 0.6180339887498949
+#: Two edges closer than this fraction of the polygon's scale (its largest
+#: coordinate magnitude) touch.
+_TOUCH = 1e-12
+
+
+def _edges_meet(p: list[list[float]], i: int, k: int, scale: float) -> bool:
+    """Whether edges i and k (vertex i to i + 1, k to k + 1) of the closed polygon
+    ``p`` cross or touch: cross properly, or an endpoint of one lies within
+    ``_TOUCH * scale`` of the other (collinear overlaps included)."""
     n = len(p)
-    a, b = p, np.roll(p, -1, axis=0)
+    (ax, ay), (bx, by) = p[i], p[(i + 1) % n]
+    (cx, cy), (dx, dy) = p[k], p[(k + 1) % n]
+    ex, ey, fx, fy = bx - ax, by - ay, dx - cx, dy - cy
+    ee, ff = ex * ex + ey * ey, fx * fx + fy * fy
+    if ee == 0.0 or ff == 0.0:
+        return False  # a zero-length edge meets nothing (callers remove them)
+    # cross products: |e| (resp. |f|) times the signed distance of a point from the line
+    d1 = ex * (cy - ay) - ey * (cx - ax)
+    d2 = ex * (dy - ay) - ey * (dx - ax)
+    d3 = fx * (ay - cy) - fy * (ax - cx)
+    d4 = fx * (by - cy) - fy * (bx - cx)
+    tol_e, tol_f = _TOUCH * scale * math.sqrt(ee), _TOUCH * scale * math.sqrt(ff)
+    if ((d1 > tol_e and d2 < -tol_e) or (d1 < -tol_e and d2 > tol_e)) and (
+        (d3 > tol_f and d4 < -tol_f) or (d3 < -tol_f and d4 > tol_f)
+    ):
+        return True  # a proper crossing
+    lo, hi = -_TOUCH, 1.0 + _TOUCH
+    for d, tol, px, py, ox, oy, ux, uy, uu in (
+        (d1, tol_e, cx, cy, ax, ay, ex, ey, ee),
+        (d2, tol_e, dx, dy, ax, ay, ex, ey, ee),
+        (d3, tol_f, ax, ay, cx, cy, fx, fy, ff),
+        (d4, tol_f, bx, by, cx, cy, fx, fy, ff),
+    ):
+        if abs(d) <= tol and lo <= ((px - ox) * ux + (py - oy) * uy) / uu <= hi:
+            return True  # an endpoint on the other edge
+    return False
+
+
+def _check_simple(p: NDArray[np.float64], name: str) -> None:
+    """Raise if two non-adjacent edges of the closed polygon ``p`` touch or cross.
+
+    Args:
+        p: ``(n, 2)`` vertices (length), either orientation, no repeats of
+            consecutive vertices.
+        name: the parameter named in the error.
+
+    Raises:
+        InvalidSheetError: 'polygon self-intersects', naming the two edges
+            (edge i runs from vertex i to vertex i + 1) and their ends.
+
+    A sweep line (Shamos and Hoey, 1976): the edges crossing the sweep line
+    are kept in their order along it; an edge is compared with its
+    neighbours when it enters (and with every edge through its first point,
+    which covers collinear overlaps), and the two edges beside it with each
+    other when it leaves. If any two edges meet, the leftmost meeting point is
+    found that way, so O(n log n) comparisons (sort and binary searches) and
+    at most 3 n edge tests decide. Below :data:`MAX_VERTICES` the list
+    insertions (memmove, O(n) each in principle) cost less than the
+    comparisons. Tolerance: points within 1e-12 of the polygon's scale of
+    an edge lie on it.
+    """
+    n = len(p)
+    if n < 4:
+        return  # every pair of a triangle's edges is adjacent
     scale = float(np.max(np.abs(p)))
-    eps = 1e-12 * scale * scale
-    for i in range(n):  # O(n^2) work, vectorized over the second edge
-        j = np.arange(i + 1, n)
-        j = j[(j != (i + 1) % n) & ((j + 1) % n != i)]
-        if j.size == 0:
+    pts = p.tolist()
+    c, s = math.cos(_SWEEP_ANGLE), math.sin(_SWEEP_ANGLE)
+    sx = (p[:, 0] * c - p[:, 1] * s).tolist()
+    sy = (p[:, 0] * s + p[:, 1] * c).tolist()
+    left, right, slope = [0] * n, [0] * n, [0.0] * n
+    events = []
+    for i in range(n):
+        a, b = i, (i + 1) % n
+        if (sx[b], sy[b]) < (sx[a], sy[a]):
+            a, b = b, a
+        left[i], right[i] = a, b
+        dx = sx[b] - sx[a]
+        slope[i] = (sy[b] - sy[a]) / dx if dx != 0.0 else math.inf
+        events.append((sx[a], sy[a], 0, i))  # enters (before any edge leaves at that point)
+        events.append((sx[b], sy[b], 1, i))  # leaves
+    events.sort()
+
+    def height(e: int, x0: float, y0: float) -> float:
+        """Where edge e crosses the sweep line at x0 (y0 on a vertical edge)."""
+        a, b = left[e], right[e]
+        if slope[e] == math.inf:
+            return min(max(y0, sy[a]), sy[b])
+        return sy[a] + (x0 - sx[a]) * slope[e]
+
+    def test(i: int, k: int) -> None:
+        if k == (i + 1) % n or i == (k + 1) % n or not _edges_meet(pts, i, k, scale):
+            return
+        i, k = min(i, k), max(i, k)
+        raise InvalidSheetError(
+            name,
+            f"polygon self-intersects: edge {i} ({pts[i]} -> {pts[(i + 1) % n]}) "
+            f"meets edge {k} ({pts[k]} -> {pts[(k + 1) % n]}); a simple polygon is required",
+        )
+
+    tie = _TOUCH * scale
+    status: list[int] = []  # edges crossing the sweep line, bottom to top
+    for x0, y0, leaves, e in events:
+        if leaves:
+            j = status.index(e)
+            if 0 < j < len(status) - 1:
+                test(status[j - 1], status[j + 1])
+            del status[j]
             continue
-        e = b[i] - a[i]
-        f = b[j] - a[j]
-        d1 = _cross(e, a[j] - a[i])
-        d2 = _cross(e, b[j] - a[i])
-        d3 = _cross(f, a[i] - a[j])
-        d4 = _cross(f, b[i] - a[j])
-        proper = (d1 * d2 < -eps) & (d3 * d4 < -eps)
-        # an endpoint of one edge lying on the other edge (collinear overlaps included)
-        ee = float(e @ e)
-        ff = np.einsum("ij,ij->i", f, f)
-        t_aj = ((a[j] - a[i]) @ e) / ee
-        t_bj = ((b[j] - a[i]) @ e) / ee
-        s_ai = np.einsum("ij,ij->i", a[i] - a[j], f) / ff
-        s_bi = np.einsum("ij,ij->i", b[i] - a[j], f) / ff
-        inside = (-1e-12, 1.0 + 1e-12)
-        touching = (np.abs(d1) <= eps) & (t_aj >= inside[0]) & (t_aj <= inside[1])
-        touching |= (np.abs(d2) <= eps) & (t_bj >= inside[0]) & (t_bj <= inside[1])
-        touching |= (np.abs(d3) <= eps) & (s_ai >= inside[0]) & (s_ai <= inside[1])
-        touching |= (np.abs(d4) <= eps) & (s_bi >= inside[0]) & (s_bi <= inside[1])
-        hit = proper | touching
-        if np.any(hit):
-            k = int(j[np.argmax(hit)])
-            raise InvalidSheetError(
-                name,
-                f"polygon self-intersects: edge {i} ({a[i].tolist()} -> {b[i].tolist()}) "
-                f"meets edge {k} ({a[k].tolist()} -> {b[k].tolist()}); "
-                "a simple polygon is required",
-            )
+        lo, hi = 0, len(status)
+        while lo < hi:  # binary search: the first edge above e at (x0, y0)
+            mid = (lo + hi) // 2
+            t = status[mid]
+            yt = height(t, x0, y0)
+            if yt < y0 or (yt == y0 and slope[t] < slope[e]):
+                lo = mid + 1
+            else:
+                hi = mid
+        status.insert(lo, e)
+        # the neighbours, and beyond them every edge through the same point
+        # (ties: collinear overlaps and edges through a vertex)
+        j = lo - 1
+        while j >= 0:
+            test(status[j], e)
+            if abs(height(status[j], x0, y0) - y0) > tie:
+                break
+            j -= 1
+        j = lo + 1
+        while j < len(status):
+            test(e, status[j])
+            if abs(height(status[j], x0, y0) - y0) > tie:
+                break
+            j += 1
+
+
+def _validated(p: NDArray[np.float64], scale: float, name: str) -> NDArray[np.float64]:
+    """The checks of :meth:`Sheet.polygon` on finite vertices ``(n, 2)`` whose
+    largest coordinate magnitude ``scale`` is within the length bounds; returns
+    them counter-clockwise, with coordinates within 1e-12 * scale of the fold
+    line set on it.
+
+    A polygon whose vertices, seen from H, turn strictly counter-clockwise (each
+    edge by less than 180 deg) once around is simple: its edges lie in disjoint
+    angular sectors. That O(n) test accepts every valid sheet; only a polygon
+    that fails it goes through the O(n log n) :func:`_check_simple`, so that a
+    self-intersection is reported as one before the other reasons.
+    """
+    p = p.copy()
+    p[np.abs(p[:, 1]) <= _TOUCH * scale, 1] = 0.0  # on the fold line up to rounding
+    nxt = np.roll(p, -1, axis=0)
+    seglen = np.hypot(*(nxt - p).T)
+    if scale == 0.0 or np.any(seglen <= _TOUCH * scale):
+        k = int(np.argmin(seglen))
+        raise InvalidSheetError(name, f"vertices {k} and {(k + 1) % len(p)} coincide")
+    if float(np.sum(_cross(p, nxt))) < 0.0:
+        p = p[::-1].copy()
+        nxt = np.roll(p, -1, axis=0)
+        seglen = np.hypot(*(nxt - p).T)
+    r = np.hypot(p[:, 0], p[:, 1])
+    steps = np.arctan2(_cross(p, nxt), np.einsum("ij,ij->i", p, nxt))
+    winding = round(float(np.sum(steps)) / _TWO_PI)
+    edge_dist = np.abs(_cross(p, nxt - p)) / seglen
+    on_edge = (edge_dist <= _TOUCH * scale) & (np.einsum("ij,ij->i", p, nxt) <= 0.0)
+    if (
+        winding == 1
+        and bool(np.all(steps > 1e-12))
+        and bool(np.all(steps < math.pi))
+        and bool(np.all(r > _TOUCH * scale))
+        and not bool(np.any(on_edge))
+    ):
+        return p  # strictly star-shaped about H, hence simple
+    _check_simple(p, name)
+    if np.any(r <= _TOUCH * scale):
+        raise InvalidSheetError(name, "H (the origin) must lie strictly inside, not on a vertex")
+    if np.any(on_edge) or winding == 0:
+        raise InvalidSheetError(
+            name, "H (the origin of the fold frame) must lie strictly inside the polygon"
+        )
+    if np.any(steps <= 1e-12) or np.any(steps >= math.pi):
+        k = int(np.argmin(steps))
+        raise InvalidSheetError(
+            name,
+            "polygon must be star-shaped about H: seen from H its vertices must turn "
+            f"strictly counter-clockwise, but edge {k} ({p[k].tolist()} -> "
+            f"{nxt[k].tolist()}) turns back or lies on a ray from H",
+        )
+    raise InvalidSheetError(  # a simple polygon winds once about a point inside it
+        name, f"polygon self-intersects: it winds {winding} times around H"
+    )
 
 
 def boundary_distance(polygon: ArrayLike, point: ArrayLike = (0.0, 0.0)) -> float:
@@ -170,13 +342,17 @@ class Sheet:
             name: the parameter name used in error messages.
 
         Raises:
-            InvalidSheetError: fewer than 3 vertices, non-finite coordinates,
-                repeated vertices, self-intersection, H not strictly inside, or
-                not strictly star-shaped about H.
+            InvalidSheetError: fewer than 3 or more than :data:`MAX_VERTICES`
+                (10 000) vertices, non-finite coordinates, the largest
+                coordinate magnitude outside [1e-30, 1e30] (see
+                :data:`onefold_cad.geometry.validate.MAX_LENGTH`), repeated
+                vertices, self-intersection, H not strictly inside, or not
+                strictly star-shaped about H. Points within 1e-12 of the
+                largest coordinate magnitude of each other coincide.
         """
         try:
             p = np.array(points, dtype=float)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise InvalidSheetError(name, "must be a list of (x, y) pairs") from None
         if p.ndim != 2 or p.shape[1] != 2:
             raise InvalidSheetError(name, f"must be a list of (x, y) pairs, got shape {p.shape}")
@@ -184,42 +360,24 @@ class Sheet:
             p = p[:-1]
         if len(p) < 3:
             raise InvalidSheetError(name, f"needs at least 3 vertices, got {len(p)}")
+        if len(p) > MAX_VERTICES:
+            raise InvalidSheetError(
+                name,
+                f"must have at most {MAX_VERTICES} vertices, got {len(p)} (at {MAX_VERTICES} "
+                "a polygon follows any smooth outline to 5e-8 of its size; sample it coarser)",
+            )
         if not np.all(np.isfinite(p)):
             raise InvalidSheetError(name, "vertex coordinates must be finite numbers (no NaN/inf)")
         scale = float(np.max(np.abs(p)))
-        p[np.abs(p[:, 1]) <= 1e-12 * scale, 1] = 0.0  # on the fold line up to rounding
-        nxt = np.roll(p, -1, axis=0)
-        seglen = np.hypot(*(nxt - p).T)
-        if scale == 0.0 or np.any(seglen <= 1e-12 * scale):
-            k = int(np.argmin(seglen))
-            raise InvalidSheetError(name, f"vertices {k} and {(k + 1) % len(p)} coincide")
-        _check_simple(p, name)
-        signed_area = 0.5 * float(np.sum(_cross(p, nxt)))
-        if signed_area < 0.0:
-            p = p[::-1].copy()
-            nxt = np.roll(p, -1, axis=0)
-        r = np.hypot(p[:, 0], p[:, 1])
-        if np.any(r <= 1e-12 * scale):
-            raise InvalidSheetError(
-                name, "H (the origin) must lie strictly inside, not on a vertex"
-            )
-        # Winding number of the (simple) polygon about H.
-        steps = np.arctan2(_cross(p, nxt), np.einsum("ij,ij->i", p, nxt))
-        winding = float(np.sum(steps)) / _TWO_PI
-        edge_dist = np.abs(_cross(p, nxt - p)) / seglen
-        on_edge = (edge_dist <= 1e-12 * scale) & (np.einsum("ij,ij->i", p, nxt) <= 0.0)
-        if np.any(on_edge) or abs(winding) < 0.5:
-            raise InvalidSheetError(
-                name, "H (the origin of the fold frame) must lie strictly inside the polygon"
-            )
-        if np.any(steps <= 1e-12) or np.any(steps >= math.pi):
-            k = int(np.argmin(steps))
+        if scale > MAX_LENGTH or 0.0 < scale < MIN_LENGTH:
             raise InvalidSheetError(
                 name,
-                "polygon must be star-shaped about H: seen from H its vertices must turn "
-                f"strictly counter-clockwise, but edge {k} ({p[k].tolist()} -> "
-                f"{nxt[k].tolist()}) turns back or lies on a ray from H",
+                f"the largest vertex coordinate magnitude must be in [{MIN_LENGTH:g}, "
+                f"{MAX_LENGTH:g}] (design units; beyond, products of lengths leave double "
+                f"precision), got {scale:g}",
             )
+        with float_errors():
+            p = _validated(p, scale, name)
         q = _insert_axis_crossings(p)
         q.setflags(write=False)
         return cls(q, to_sheet or Placement2D(), kind, dict(inputs or {"polygon": p.tolist()}))
@@ -230,16 +388,29 @@ class Sheet:
 
         Args:
             x_plus, x_minus: distances from H to the vertices on the +x and -x
-                axis (X+ and X-), > 0.
+                axis (X+ and X-), in [1e-30, 1e30].
             y_plus, y_minus: distances from H to the vertices on the +y and -y
-                axis (Y+ and Y-), > 0.
+                axis (Y+ and Y-), in [1e-30, 1e30].
+
+        Each of the four must be at least :data:`MIN_FEATURE` (1e-9) times the
+        largest of them.
         """
-        xp = positive("x_plus", x_plus)
-        xm = positive("x_minus", x_minus)
-        yp = positive("y_plus", y_plus)
-        ym = positive("y_minus", y_minus)
+        xp = length("x_plus", x_plus)
+        xm = length("x_minus", x_minus)
+        yp = length("y_plus", y_plus)
+        ym = length("y_minus", y_minus)
+        values = {"x_plus": xp, "x_minus": xm, "y_plus": yp, "y_minus": ym}
+        big = max(values.values())
+        for key, v in values.items():
+            if v < MIN_FEATURE * big:
+                raise InvalidParameterError(
+                    key,
+                    f"must be at least {MIN_FEATURE:g} times the largest of x_plus, x_minus, "
+                    f"y_plus, y_minus ({big:g}), i.e. >= {MIN_FEATURE * big:g}, got {v:g} "
+                    "(smaller sheet features are lost in the sheet's rounding)",
+                )
         pts = [(xp, 0.0), (0.0, yp), (-xm, 0.0), (0.0, -ym)]
-        inputs = {"x_plus": xp, "x_minus": xm, "y_plus": yp, "y_minus": ym}
+        inputs = dict(values)
         return cls.polygon(pts, kind="quadrilateral", inputs=inputs)
 
     @classmethod
@@ -250,10 +421,29 @@ class Sheet:
         axes; the fold runs along the diagonal from (0, 0) to (width, height)
         and H lies at ``apex_fraction`` of the way along it. The fold frame's
         +x axis points towards (width, height).
+
+        Args:
+            width, height: side lengths in [1e-30, 1e30], the shorter at least
+                :data:`MIN_FEATURE` (1e-9) times the longer.
+            apex_fraction: in [1e-9, 1 - 1e-9], i.e. the open (0, 1) less the
+                last 1e-9 of the diagonal at each end.
         """
-        w = positive("width", width)
-        h = positive("height", height)
-        f = open_interval("apex_fraction", apex_fraction, 0.0, 1.0)
+        w = length("width", width)
+        h = length("height", height)
+        short, long_ = ("width", "height") if w < h else ("height", "width")
+        if min(w, h) < MIN_FEATURE * max(w, h):
+            raise InvalidParameterError(
+                short,
+                f"must be at least {MIN_FEATURE:g} times the {long_} ({max(w, h):g}), got "
+                f"{min(w, h):g} (a thinner sheet is lost in its rounding)",
+            )
+        f = finite("apex_fraction", apex_fraction)
+        if not MIN_FEATURE <= f <= 1.0 - MIN_FEATURE:
+            raise InvalidParameterError(
+                "apex_fraction",
+                f"must be in [{MIN_FEATURE:g}, 1 - {MIN_FEATURE:g}] (within (0, 1), H at least "
+                f"{MIN_FEATURE:g} of the diagonal from a corner), got {f:g}",
+            )
         angle = math.degrees(math.atan2(h, w))
         place = Placement2D(angle, f * w, f * h)
         corners = np.array([(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)])

@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import math
+import warnings
 
+import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from onefold_cad import (
     Design,
@@ -12,11 +16,21 @@ from onefold_cad import (
     InvalidParameterError,
     InvalidSheetError,
     Material,
+    NoSolutionError,
     Sheet,
     bend_values,
+    build_design,
+)
+from onefold_cad.geometry.params import MAX_DIVISIONS, MIN_ANGLE_DEG
+from onefold_cad.geometry.validate import (
+    MAX_LENGTH,
+    MAX_SHEET_TO_RADIUS,
+    MIN_LENGTH,
+    MIN_SHEET_TO_RADIUS,
 )
 
 NAN, INF = math.nan, math.inf
+UP, DOWN = math.inf, -math.inf
 
 
 @pytest.mark.parametrize(
@@ -35,6 +49,9 @@ NAN, INF = math.nan, math.inf
         ({"alpha": 50, "beta": 45, "radius": 0}, "radius", "> 0"),
         ({"alpha": 50, "beta": 45, "radius": -5}, "radius", "> 0"),
         ({"alpha": 50, "beta": 45, "radius": NAN}, "radius", "finite"),
+        ({"alpha": 50, "beta": 45, "radius": 1e308}, "radius", "[1e-30, 1e+30]"),
+        ({"alpha": 50, "beta": 45, "radius": 1e-300}, "radius", "[1e-30, 1e+30]"),
+        ({"alpha": 50, "beta": 45, "divisions": 10_000_000}, "divisions", "[1, 10000]"),
         ({"alpha": 50, "beta": 45, "divisions": 0}, "divisions", "integer in [1, "),
         ({"alpha": 50, "beta": 45, "divisions": 2.5}, "divisions", "integer"),
         ({"alpha": 50, "beta": 45, "divisions": "20"}, "divisions", "integer"),
@@ -182,3 +199,121 @@ def test_bend_values_formulas() -> None:
     assert b.deduction == pytest.approx(10.0 - math.pi / 2 * 3.8)
     with pytest.raises(InvalidParameterError, match="angle_deg"):
         bend_values(180.0, m)
+
+
+# -- caps and magnitude bounds: just inside passes, just outside names the parameter ----
+@pytest.mark.parametrize("name", ["alpha", "beta"])
+def test_angle_floor_boundary(name: str) -> None:
+    other = {"alpha": 50.0, "beta": 45.0}
+    assert getattr(FrameCurve(**{**other, name: MIN_ANGLE_DEG}), name) == MIN_ANGLE_DEG
+    for bad in (np.nextafter(MIN_ANGLE_DEG, DOWN), 5e-324):
+        with pytest.raises(InvalidParameterError, match=f"^{name}: must be in \\(0, 90\\) deg and"):
+            FrameCurve(**{**other, name: bad})
+
+
+def test_divisions_cap_boundary() -> None:
+    assert FrameCurve(50, 45, divisions=MAX_DIVISIONS).divisions == 10_000
+    with pytest.raises(
+        InvalidParameterError,
+        match=r"^divisions: must be an integer in \[1, 10000\], got 10001 \(at 10000 the fan",
+    ):
+        FrameCurve(50, 45, divisions=MAX_DIVISIONS + 1)
+
+
+def test_the_fan_at_the_cap_is_within_5e_8_R_of_the_arc() -> None:
+    # the cap's reason, derived independently: the largest chord-to-arc gap of
+    # 10 000 equal divisions of an arc of at most 360 deg
+    sagitta = 1.0 - math.cos(math.pi / MAX_DIVISIONS)
+    assert sagitta < 5e-8 < 1e-7
+
+
+@pytest.mark.parametrize(
+    ("radius", "ok"),
+    [
+        (MAX_LENGTH, True),
+        (np.nextafter(MAX_LENGTH, UP), False),
+        (MIN_LENGTH, True),
+        (np.nextafter(MIN_LENGTH, DOWN), False),
+    ],
+)
+def test_radius_magnitude_boundary(radius: float, ok: bool) -> None:
+    if ok:
+        assert FrameCurve(50, 45, radius=radius).radius == radius
+    else:
+        with pytest.raises(InvalidParameterError, match=r"^radius: must be in \[1e-30, 1e\+30\]"):
+            FrameCurve(50, 45, radius=radius)
+
+
+@pytest.mark.parametrize(
+    ("size", "ok"),
+    [
+        (MIN_SHEET_TO_RADIUS, True),  # radius 1
+        (np.nextafter(MIN_SHEET_TO_RADIUS, DOWN), False),
+        (MAX_SHEET_TO_RADIUS, True),
+        (np.nextafter(MAX_SHEET_TO_RADIUS, UP), False),
+    ],
+)
+def test_sheet_to_radius_boundary(size: float, ok: bool) -> None:
+    sheet = Sheet.quadrilateral(size, size, size, size)
+    assert sheet.size == size
+    frame = FrameCurve(50, 45, radius=1.0)
+    if ok:
+        Design("x", frame, sheet)
+    else:
+        with pytest.raises(
+            InvalidParameterError, match=r"^frame.radius: must be within \[1e-06, 1e\+06\] times"
+        ):
+            Design("x", frame, sheet)
+
+
+@pytest.mark.parametrize("key", ["thickness", "bend_radius", "kerf", "relief_hole"])
+def test_material_magnitude_boundary(key: str) -> None:
+    frame, sheet = FrameCurve(50, 45, radius=1e29), Sheet.quadrilateral(*[1e30] * 4)
+    base = {"relief_hole": 0.0} if key != "relief_hole" else {}
+    Design("x", frame, sheet, material=Material(**{**base, key: 0.0}))
+    Design("x", frame, sheet, material=Material(**{**base, key: 5e-324}))  # no lower bound
+    Design("x", frame, sheet, material=Material(**{**base, key: MAX_LENGTH}))
+    with pytest.raises(
+        InvalidParameterError, match=f"^material.{key}: must be in \\[0, 1e\\+30\\]"
+    ):
+        Design("x", frame, sheet, material=Material(**{**base, key: np.nextafter(MAX_LENGTH, UP)}))
+    with pytest.raises(InvalidParameterError, match=f"^material.{key}: must be in"):
+        Design("x", frame, sheet, material=Material(**{**base, key: 1e300}))
+
+
+@st.composite
+def in_bounds_designs(draw: st.DrawFn) -> Design:
+    """Designs over the whole allowed magnitude range: R in [1e-30, 1e30], the
+    sheet from 1e-6 to 1e6 R (inside the absolute bounds), H anywhere inside
+    the f-line, both models; alpha and beta over the fuzz's range [1e-4, 90)
+    (below it the solver's own conditioning decides, see docs/reliability.md)."""
+    radius = 10.0 ** draw(st.floats(-30.0, 30.0))
+    lo = max(math.log10(MIN_SHEET_TO_RADIUS), math.log10(MIN_LENGTH / radius))
+    hi = min(math.log10(MAX_SHEET_TO_RADIUS), math.log10(MAX_LENGTH / radius))
+    size = radius * 10.0 ** draw(st.floats(lo, hi))
+    alpha = draw(st.floats(1e-4, 90.0, exclude_max=True))
+    beta = draw(st.floats(1e-4, 90.0, exclude_max=True))
+    frac = draw(st.floats(-1.0, 1.0, exclude_min=True, exclude_max=True))
+    h_c = frac * radius * math.cos(math.radians(alpha))
+    model = draw(st.sampled_from(["paper", "exact"]))
+    sides = [size] + [size * draw(st.floats(0.2, 1.0)) for _ in range(3)]  # the size is `size`
+    frame = FrameCurve(alpha, beta, h_c, radius, draw(st.integers(1, 400)))
+    sheet = Sheet.quadrilateral(*sides)
+    return Design("x", frame, sheet, model=model)
+
+
+@settings(max_examples=150, deadline=None)
+@given(in_bounds_designs())
+def test_in_bounds_designs_fold_to_finite_numbers_without_warnings(design: Design) -> None:
+    # The bounds' promise: inside them nothing overflows, divides by zero or
+    # turns NaN (warnings are errors here); the answer is a finite fold or a
+    # NoSolutionError.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            folded = build_design(design)
+        except NoSolutionError:
+            return
+        assert math.isfinite(folded.solution.apex_height)
+        assert np.all(np.isfinite(folded.rulings_3d))
+        assert all(math.isfinite(c.fold_angle_deg) for c in folded.crease)
