@@ -25,11 +25,11 @@ def fuzz() -> ModuleType:
 
 
 def test_seeded_slice_has_no_crash_hang_or_wrong_answer(fuzz: ModuleType) -> None:
-    run = fuzz.fuzz(n=120, seed=2026, workers=2, step_fraction=0.0, mp_fraction=0.02)
+    run = fuzz.fuzz(n=100, seed=2026, workers=2, step_fraction=0.0, mp_fraction=0.02)
     text = fuzz.summary(run)
     classes = [r["cls"] for _, r in run["designs"]]
-    assert len(classes) == 120 and all(c in fuzz.CLASSES for c in classes)
-    assert classes.count("ok") >= 40, text  # the slice exercises real folds, not only refusals
+    assert len(classes) == 100 and all(c in fuzz.CLASSES for c in classes)
+    assert classes.count("ok") >= 30, text  # the slice exercises real folds, not only refusals
     bad = [c for c in classes if c in ("crash", "hang", "wrong")]
     assert not bad, text
     assert all(r["cls"] == "refused" for _, _, r in run["cli"]), text
