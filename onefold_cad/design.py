@@ -13,7 +13,7 @@ from typing import Any
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.material import Material, Units
-from onefold_cad.geometry.params import FrameCurve, Model
+from onefold_cad.geometry.params import FrameCurve, Model, check_design_divisions
 from onefold_cad.geometry.sheet import Sheet, boundary_distance
 from onefold_cad.geometry.solver import solve
 from onefold_cad.geometry.thick_sheet import min_relief_hole
@@ -55,6 +55,7 @@ class Design:
             )
         object.__setattr__(self, "model", Model.parse(self.model))
         object.__setattr__(self, "units", Units.parse(self.units))
+        check_design_divisions(self.frame)
         check_magnitudes(self.frame.radius, self.sheet.size, self.material)
         hole = self.material.relief_hole_diameter
         if hole > 0.0:

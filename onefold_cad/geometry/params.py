@@ -14,7 +14,7 @@ from typing import Any
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.validate import finite, integer_at_least, length, open_interval
 
-__all__ = ["FrameCurve", "Model", "MAX_DIVISIONS", "MIN_ANGLE_DEG"]
+__all__ = ["FrameCurve", "Model", "MAX_DESIGN_DIVISIONS", "MAX_DIVISIONS", "MIN_ANGLE_DEG"]
 
 #: Smallest alpha and beta (deg). The construction squares them in radians
 #: (sin^2, 1 - cos); from 1e-100 deg those squares stay normal doubles
@@ -22,13 +22,19 @@ __all__ = ["FrameCurve", "Model", "MAX_DIVISIONS", "MIN_ANGLE_DEG"]
 #: (beta = 5e-324 deg is exactly 0 in radians).
 MIN_ANGLE_DEG = 1e-100
 
-#: Upper limit on ``divisions``. The fan's triangles span at most 360/10 000
-#: deg of the arc each, so its chords stay within R (1 - cos(pi / 10 000))
-#: < 5e-8 R of the arc: past 10 000 the paper model is the exact cone to
-#: within the 1e-7 tolerance (use ``model='exact'`` for the limit). At the cap,
-#: solve + fold + flat pattern + DXF take about a second (docs/reliability.md);
-#: the DXF's cost grows linearly (one ruling line per division).
-MAX_DIVISIONS = 10_000
+#: Upper limit on ``divisions`` of a :class:`FrameCurve` (what ``solve`` and
+#: ``fold`` accept: both stay well under a second there; the solver's own
+#: convergence studies use it). A :class:`~onefold_cad.design.Design` (the
+#: CLI, templates and every file) takes at most :data:`MAX_DESIGN_DIVISIONS`.
+MAX_DIVISIONS = 100_000
+#: Upper limit on ``divisions`` in a design. The fan's triangles span at most
+#: 360/10 000 deg of the arc each, so its chords stay within
+#: R (1 - cos(pi / 10 000)) < 5e-8 R of the arc: past 10 000 the paper model
+#: is the exact cone to within the 1e-7 tolerance (use ``model='exact'`` for
+#: the limit), while the flat pattern, DXF and STEP grow with every division
+#: (at the cap solve + fold + flat pattern + DXF take about a second,
+#: docs/reliability.md).
+MAX_DESIGN_DIVISIONS = 10_000
 
 
 class Model(StrEnum):
@@ -75,7 +81,8 @@ class FrameCurve:
             :data:`onefold_cad.geometry.validate.MAX_LENGTH`). The paper's
             H_c values assume 100.
         divisions: number of triangles of the paper model's fan, in
-            [1, :data:`MAX_DIVISIONS`] = [1, 10 000].
+            [1, :data:`MAX_DIVISIONS`] = [1, 100 000]; a design takes at
+            most :data:`MAX_DESIGN_DIVISIONS` = 10 000.
     """
 
     alpha: float
@@ -121,8 +128,9 @@ def _divisions(value: object) -> int:
     if n > MAX_DIVISIONS:
         raise InvalidParameterError(
             "divisions",
-            f"must be an integer in [1, {MAX_DIVISIONS}], got {n} (at {MAX_DIVISIONS} the "
-            "fan is within 5e-8 R of the exact cone; use the exact model for finer)",
+            f"must be an integer in [1, {MAX_DIVISIONS}], got {n} (a design takes at most "
+            f"{MAX_DESIGN_DIVISIONS}: there the fan is within 5e-8 R of the exact cone; use "
+            "the exact model for finer)",
         )
     return n
 
@@ -144,3 +152,16 @@ def _angle(name: str, value: object) -> float:
             f"must not underflow), got {x:g}",
         )
     return x
+
+
+def check_design_divisions(frame: FrameCurve) -> None:
+    """Raise unless ``frame.divisions`` <= MAX_DESIGN_DIVISIONS (called by
+    :class:`~onefold_cad.design.Design`; names 'frame.divisions')."""
+    if frame.divisions > MAX_DESIGN_DIVISIONS:
+        raise InvalidParameterError(
+            "frame.divisions",
+            f"must be an integer in [1, {MAX_DESIGN_DIVISIONS}] in a design, got "
+            f"{frame.divisions} (at {MAX_DESIGN_DIVISIONS} the fan is within 5e-8 R of the "
+            "exact cone, and the flat pattern and STEP grow with every division; use the "
+            "exact model for finer)",
+        )

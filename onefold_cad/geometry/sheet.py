@@ -137,14 +137,14 @@ def _check_simple(p: NDArray[np.float64], name: str) -> None:
 
     A sweep line (Shamos and Hoey, 1976): the edges crossing the sweep line
     are kept in their order along it; an edge is compared with its
-    neighbours when it enters (and with every edge through its first point,
-    which covers collinear overlaps), and the two edges beside it with each
-    other when it leaves. If any two edges meet, the leftmost meeting point is
-    found that way, so O(n log n) comparisons (sort and binary searches) and
-    at most 3 n edge tests decide. Below :data:`MAX_VERTICES` the list
-    insertions (memmove, O(n) each in principle) cost less than the
-    comparisons. Tolerance: points within 1e-12 of the polygon's scale of
-    an edge lie on it.
+    neighbours when it enters, the two edges beside it with each other when
+    it leaves, and at each event every pair of edges through the event's
+    point (touching vertices, collinear overlaps: a handful at most). If any
+    two edges meet, the leftmost meeting point is found that way, so
+    O(n log n) comparisons (sort and binary searches) and O(n) edge tests
+    decide. Below :data:`MAX_VERTICES` the list insertions (memmove, O(n)
+    each in principle) cost less than the comparisons. Tolerance: points
+    within 1e-12 of the polygon's scale of an edge lie on it.
     """
     n = len(p)
     if n < 4:
@@ -186,12 +186,30 @@ def _check_simple(p: NDArray[np.float64], name: str) -> None:
 
     tie = _TOUCH * scale
     status: list[int] = []  # edges crossing the sweep line, bottom to top
+
+    def through_point(j: int, x0: float, y0: float) -> tuple[int, int]:
+        """The run status[lo:hi] around position j of edges through (x0, y0)."""
+        lo, hi = j, j + 1
+        while lo > 0 and abs(height(status[lo - 1], x0, y0) - y0) <= tie:
+            lo -= 1
+        while hi < len(status) and abs(height(status[hi], x0, y0) - y0) <= tie:
+            hi += 1
+        return lo, hi
+
+    def test_run(lo: int, hi: int) -> None:
+        """Every pair of edges through one point, and the run's outer neighbours."""
+        run = status[max(lo - 1, 0) : hi + 1]
+        for a in range(len(run)):
+            for b in range(a + 1, len(run)):
+                test(run[a], run[b])
+
     for x0, y0, leaves, e in events:
         if leaves:
             j = status.index(e)
-            if 0 < j < len(status) - 1:
-                test(status[j - 1], status[j + 1])
+            test_run(*through_point(j, x0, y0))
             del status[j]
+            if 0 < j < len(status):
+                test(status[j - 1], status[j])
             continue
         lo, hi = 0, len(status)
         while lo < hi:  # binary search: the first edge above e at (x0, y0)
@@ -203,20 +221,7 @@ def _check_simple(p: NDArray[np.float64], name: str) -> None:
             else:
                 hi = mid
         status.insert(lo, e)
-        # the neighbours, and beyond them every edge through the same point
-        # (ties: collinear overlaps and edges through a vertex)
-        j = lo - 1
-        while j >= 0:
-            test(status[j], e)
-            if abs(height(status[j], x0, y0) - y0) > tie:
-                break
-            j -= 1
-        j = lo + 1
-        while j < len(status):
-            test(e, status[j])
-            if abs(height(status[j], x0, y0) - y0) > tie:
-                break
-            j += 1
+        test_run(*through_point(lo, x0, y0))
 
 
 def _validated(p: NDArray[np.float64], scale: float, name: str) -> NDArray[np.float64]:

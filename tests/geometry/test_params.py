@@ -21,7 +21,7 @@ from onefold_cad import (
     bend_values,
     build_design,
 )
-from onefold_cad.geometry.params import MAX_DIVISIONS, MIN_ANGLE_DEG
+from onefold_cad.geometry.params import MAX_DESIGN_DIVISIONS, MAX_DIVISIONS, MIN_ANGLE_DEG
 from onefold_cad.geometry.validate import (
     MAX_LENGTH,
     MAX_SHEET_TO_RADIUS,
@@ -51,7 +51,7 @@ UP, DOWN = math.inf, -math.inf
         ({"alpha": 50, "beta": 45, "radius": NAN}, "radius", "finite"),
         ({"alpha": 50, "beta": 45, "radius": 1e308}, "radius", "[1e-30, 1e+30]"),
         ({"alpha": 50, "beta": 45, "radius": 1e-300}, "radius", "[1e-30, 1e+30]"),
-        ({"alpha": 50, "beta": 45, "divisions": 10_000_000}, "divisions", "[1, 10000]"),
+        ({"alpha": 50, "beta": 45, "divisions": 10_000_000}, "divisions", "[1, 100000]"),
         ({"alpha": 50, "beta": 45, "divisions": 0}, "divisions", "integer in [1, "),
         ({"alpha": 50, "beta": 45, "divisions": 2.5}, "divisions", "integer"),
         ({"alpha": 50, "beta": 45, "divisions": "20"}, "divisions", "integer"),
@@ -212,18 +212,25 @@ def test_angle_floor_boundary(name: str) -> None:
 
 
 def test_divisions_cap_boundary() -> None:
-    assert FrameCurve(50, 45, divisions=MAX_DIVISIONS).divisions == 10_000
+    assert FrameCurve(50, 45, divisions=MAX_DIVISIONS).divisions == 100_000
     with pytest.raises(
-        InvalidParameterError,
-        match=r"^divisions: must be an integer in \[1, 10000\], got 10001 \(at 10000 the fan",
+        InvalidParameterError, match=r"^divisions: must be an integer in \[1, 100000\], got 100001"
     ):
         FrameCurve(50, 45, divisions=MAX_DIVISIONS + 1)
+    sheet = Sheet.quadrilateral(300, 300, 300, 300)
+    Design("x", FrameCurve(50, 45, divisions=MAX_DESIGN_DIVISIONS), sheet, model="paper")
+    with pytest.raises(
+        InvalidParameterError,
+        match=r"^frame.divisions: must be an integer in \[1, 10000\] in a design, got 10001 "
+        r"\(at 10000 the fan is within 5e-8 R",
+    ):
+        Design("x", FrameCurve(50, 45, divisions=MAX_DESIGN_DIVISIONS + 1), sheet)
 
 
 def test_the_fan_at_the_cap_is_within_5e_8_R_of_the_arc() -> None:
     # the cap's reason, derived independently: the largest chord-to-arc gap of
     # 10 000 equal divisions of an arc of at most 360 deg
-    sagitta = 1.0 - math.cos(math.pi / MAX_DIVISIONS)
+    sagitta = 1.0 - math.cos(math.pi / MAX_DESIGN_DIVISIONS)
     assert sagitta < 5e-8 < 1e-7
 
 
@@ -285,14 +292,14 @@ def test_material_magnitude_boundary(key: str) -> None:
 def in_bounds_designs(draw: st.DrawFn) -> Design:
     """Designs over the whole allowed magnitude range: R in [1e-30, 1e30], the
     sheet from 1e-6 to 1e6 R (inside the absolute bounds), H anywhere inside
-    the f-line, both models; alpha and beta over the fuzz's range [1e-4, 90)
-    (below it the solver's own conditioning decides, see docs/reliability.md)."""
+    the f-line, both models; alpha and beta over the fuzz's range [1e-4, 89.99]
+    (beyond it the solver's own conditioning decides, see docs/reliability.md)."""
     radius = 10.0 ** draw(st.floats(-30.0, 30.0))
-    lo = max(math.log10(MIN_SHEET_TO_RADIUS), math.log10(MIN_LENGTH / radius))
+    lo = max(math.log10(MIN_SHEET_TO_RADIUS), math.log10(5.0 * MIN_LENGTH / radius))
     hi = min(math.log10(MAX_SHEET_TO_RADIUS), math.log10(MAX_LENGTH / radius))
-    size = radius * 10.0 ** draw(st.floats(lo, hi))
-    alpha = draw(st.floats(1e-4, 90.0, exclude_max=True))
-    beta = draw(st.floats(1e-4, 90.0, exclude_max=True))
+    size = radius * 10.0 ** draw(st.floats(lo + 1e-9, hi - 1e-9))  # the edges: tests above
+    alpha = draw(st.floats(1e-4, 89.99))
+    beta = draw(st.floats(1e-4, 89.99))
     frac = draw(st.floats(-1.0, 1.0, exclude_min=True, exclude_max=True))
     h_c = frac * radius * math.cos(math.radians(alpha))
     model = draw(st.sampled_from(["paper", "exact"]))
