@@ -195,8 +195,10 @@ def page_values(design: Design) -> dict[str, Any]:
 
     Returns:
         ``{"values": {control: text}, "sheet_kind": ..., "units": ...,
-        "hc_limit": R cos(alpha)}`` (``hc`` must stay strictly inside
-        ``(-hc_limit, hc_limit)``, see :class:`onefold_cad.FrameCurve`).
+        "hc_limit": R cos(alpha), "sheet_size": ...}`` (``hc`` must stay
+        strictly inside ``(-hc_limit, hc_limit)``, see
+        :class:`onefold_cad.FrameCurve`; ``sheet_size`` is the sheet's largest
+        distance from H, a scale for the sliders).
     """
     data = design_to_data(design)
     frame, material = data["frame"], data["material"]
@@ -222,4 +224,5 @@ def page_values(design: Design) -> dict[str, Any]:
         "sheet_kind": kind,
         "units": design.units.value,
         "hc_limit": limit if math.isfinite(limit) else None,
+        "sheet_size": design.sheet.size,
     }

@@ -269,6 +269,13 @@ class ExploreHandler(BaseHTTPRequestHandler):
             text = " ".join(str(exc).split())
             self._send(HTTPStatus.UNPROCESSABLE_ENTITY, text.encode("utf-8"), _TEXT)
             return
+        except QueryError:
+            raise
+        except Exception as exc:  # the page shows this line instead of a broken download
+            traceback.print_exc(file=sys.stderr)
+            text = f"internal error ({type(exc).__name__}: {' '.join(str(exc).split())})"
+            self._send(HTTPStatus.INTERNAL_SERVER_ERROR, text.encode("utf-8"), _TEXT)
+            return
         disposition = f'attachment; filename="{file.filename}"'
         self._send(
             HTTPStatus.OK,

@@ -69,6 +69,23 @@ def test_a_refused_download_says_why(server):
     assert status == 422 and body.decode() == "--alpha: must be in (0, 90) deg, got 95"
 
 
+def test_an_unexpected_failure_is_a_message_too(server, monkeypatch, capsys):
+    import onefold_cad.explore.server as srv
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(srv, "design_state", broken)
+    monkeypatch.setattr(srv, "make_download", broken)
+    status, _, body = get(server, "/api/state?alpha=33")
+    state = json.loads(body)
+    assert status == 500 and not state["ok"]
+    assert state["messages"][0]["text"] == "internal error (RuntimeError: boom)"
+    status, _, body = get(server, "/download/dxf?alpha=33")
+    assert status == 500 and body == b"internal error (RuntimeError: boom)"
+    assert "RuntimeError: boom" in capsys.readouterr().err  # the traceback, for the user
+
+
 @pytest.mark.parametrize(
     "host",
     ["evil.example", "evil.example:{port}", "127.0.0.1", "127.0.0.2:{port}", "localhost:1"],

@@ -62,10 +62,9 @@ function fitRanges(page) {
   for (const k of ['width', 'height', 'x_plus', 'x_minus', 'y_plus', 'y_minus']) {
     if (k in v) setRange(k, num(k) / 5, num(k) * 3);
   }
-  const dims = Object.keys(v).filter((k) => ['width', 'height', 'x_plus', 'x_minus', 'y_plus', 'y_minus'].includes(k)).map(num);
-  const size = dims.length ? Math.max(...dims) : 100;
-  setRange('thickness', 0, Math.max(4 * num('thickness'), size / 500));
-  setRange('bend_radius', 0, Math.max(4 * num('bend_radius'), 4 * num('thickness'), size / 500));
+  const size = page.sheet_size;
+  setRange('thickness', 0, Math.max(4 * num('thickness'), size / 200));
+  setRange('bend_radius', 0, Math.max(4 * num('bend_radius'), 4 * num('thickness'), size / 200));
 }
 
 function fitHcRange(page) {
