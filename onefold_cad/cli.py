@@ -528,6 +528,30 @@ def templates_cmd() -> None:
         typer.echo(f"{t.name:<{width}}  {t.description}")
 
 
+@app.command()
+def explore(
+    template: Annotated[
+        str | None,
+        typer.Argument(
+            metavar="[TEMPLATE.toml]",
+            help=f"Template file or shipped template name (default: {DEFAULT_TEMPLATE}).",
+            show_default=False,
+        ),
+    ] = None,
+    port: Annotated[int, typer.Option(help="Port on 127.0.0.1 (0: any free port).")] = 8765,
+    no_browser: Annotated[
+        bool, typer.Option("--no-browser", help="Only print the address; do not open a browser.")
+    ] = False,
+) -> None:
+    """Explore a design in the browser: sliders, 3D form, flat pattern, downloads.
+
+    Serves a page on 127.0.0.1 until Ctrl+C; the solver runs here, the page only draws.
+    """
+    from onefold_cad.explore import serve
+
+    serve(template, port=port, open_browser=not no_browser)
+
+
 def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
