@@ -3,7 +3,8 @@
     .venv/bin/python scripts/readme_images.py
 
 writes docs/images/readme-folded.png (the default template folded, standing on
-the ground) and docs/images/readme-flat.png (its flat pattern, from its DXF).
+the ground, with its legend) and docs/images/readme-flat.png (its flat
+pattern, from its DXF), both :data:`WIDTH_PX` pixels wide.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from onefold_cad.export.preview import render_folded_preview
 from onefold_cad.templates import DEFAULT_TEMPLATE, load_template
 
 IMAGES = Path(__file__).resolve().parent.parent / "docs" / "images"
+#: Width of both pictures (pixels): readable on a README page.
+WIDTH_PX = 1000
 
 
 def main() -> None:
@@ -29,11 +32,11 @@ def main() -> None:
         IMAGES / "readme-folded.png",
         title=f"{design.name} (folded, resting on the ground)",
         units=design.units.value,
-        size_px=(800, 560),
+        size_px=(WIDTH_PX, 760),
     )
     with tempfile.TemporaryDirectory() as tmp:
         dxf = export_design_dxf(design, Path(tmp) / f"{design.name}.dxf", folded=folded)
-        render_preview(dxf, IMAGES / "readme-flat.png", dpi=60)
+        render_preview(dxf, IMAGES / "readme-flat.png", dpi=100, width_px=WIDTH_PX)
     print(f"wrote {IMAGES / 'readme-folded.png'} and {IMAGES / 'readme-flat.png'}")
 
 

@@ -239,7 +239,7 @@ class FoldedSheet:
             idx = base + np.arange(nt * radial).reshape(nt, radial)
             a, b = idx[:-1, :-1], idx[1:, :-1]
             c, d = idx[1:, 1:], idx[:-1, 1:]
-            quads = np.stack([a, b, c, a, c, d], axis=-1).reshape(-1, 3)
+            quads = np.stack([a, c, b, a, d, c], axis=-1).reshape(-1, 3)  # top side: u x e
             fan = np.stack([np.zeros(nt - 1, dtype=np.int64), idx[:-1, 0], idx[1:, 0]], axis=-1)
             tri = np.concatenate([fan, quads])
             faces.append(tri if side == 0 else tri[:, ::-1])
