@@ -144,7 +144,7 @@ def bend_table(pattern: FlatPattern) -> str:
         lines.append(
             f"  {r.reference} reference: SB {r.setback:.4f}, BA {r.allowance:.4f}, "
             f"BD {r.deduction:.4f}, shift {r.shift:.4f}; blank moved {r.shift_used:.4f} "
-            f"({r.compensation}), width error {r.width_error + 0.0:+.4f}"
+            f"({r.compensation}), width error {round(r.width_error, 9) + 0.0:+.4f}"
         )
     return "\n".join(lines)
 

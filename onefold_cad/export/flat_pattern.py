@@ -425,7 +425,7 @@ def _notes(p: FlatPattern, design: Design) -> tuple[str, ...]:
         )
         lines += [f"limit passed: {q.message}" for q in p.problems]
     else:
-        e = p.move.errors
+        e = [round(x, 9) + 0.0 for x in p.move.errors]  # no '-0.0000'
         lines.append(
             f"thickness compensation: each side moved {p.shift:.4f} {u} towards the fold line "
             "(the mean of the halves' shifts SB - BA/2); blank width error across +x, -x: "

@@ -366,24 +366,16 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
                 "the bend would replace that much of the designed surface",
                 MAX_SETBACK_FRACTION * depth,
             )
+    corners: tuple[list[tuple[float, Array]], ...] = ([], [])  # per half: (distance, corner)
     for chain, sign in zip(chains, (1.0, -1.0), strict=True):
         side = "+y" if sign > 0 else "-y"
         x, y = chain[:, 0], chain[:, 1] - d  # y: distance from the fold line in the blank
         last = len(chain) - 1
-        for i in range(1, last):
-            for h, b in enumerate(bends):
-                beside = x[i] >= 0.0 if h == 0 else x[i] <= 0.0
-                if beside and not y[i] > c[h]:
-                    corner = place.apply(chain[i] * np.array([1.0, sign]))
-                    add(
-                        b,
-                        "corner",
-                        f"the sheet corner at ({corner[0]:.4g}, {corner[1]:.4g}) {u} lies "
-                        f"{chain[i, 1]:.4g} {u} from the fold line, inside the bend zone (it must "
-                        f"lie farther than d + BA/2 = {d + c[h]:.4g} {u}; "
-                        f"SB = {b.setback:.4g} {u})",
-                        chain[i, 1] - (d - b.shift),
-                    )
+        inner_x, inner_y = x[1:last], y[1:last]
+        for h in (0, 1):
+            beside = inner_x >= 0.0 if h == 0 else inner_x <= 0.0
+            for i in np.flatnonzero(beside & ~(inner_y > c[h])) + 1:
+                corners[h].append((float(chain[i, 1]), chain[i] * np.array([1.0, sign])))
         for i in range(1, last - 1):  # edges between corners that pass over H
             if x[i] * x[i + 1] < 0.0:
                 y0 = _line_at_h(np.array([x[i], y[i]]), np.array([x[i + 1], y[i + 1]]))
@@ -412,4 +404,19 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
                         f"pass farther than d + BA/2 = {d + c[h]:.4g} {u})",
                         y0 + b.shift,
                     )
-    return tuple(problems)
+    for h, found in enumerate(corners):
+        if found:
+            b = bends[h]
+            dist, worst = min(found, key=lambda f: f[0])
+            at = place.apply(worst)
+            more = f" (and {len(found) - 1} more corners)" if len(found) > 1 else ""
+            add(
+                b,
+                "corner",
+                f"the sheet corner at ({at[0]:.4g}, {at[1]:.4g}) {u} lies {dist:.4g} {u} from "
+                f"the fold line, inside the bend zone{more} (a corner must lie farther than "
+                f"d + BA/2 = {d + c[h]:.4g} {u}; SB = {b.setback:.4g} {u})",
+                dist - (d - b.shift),
+            )
+    order = {"setback": 0, "corner": 1, "edge": 2}
+    return tuple(sorted(problems, key=lambda q: order[q.kind]))

@@ -284,3 +284,29 @@ def test_blank_move_is_the_mean_and_its_errors():
     assert none.shift == 0.0
     assert none.errors == pytest.approx((2 * hb[0]["shift"], 2 * hb[1]["shift"]), rel=1e-12)
     assert S_TABLE[("INSIDE", "DOWN")] == bends[0].s == 1.0
+
+
+def test_corners_in_a_zone_are_one_problem_per_half_naming_the_closest():
+    """A finely sampled edge running obliquely into a crease end puts many polygon
+    corners within SB of the fold line (symmetric fold: |y| <= SB): one problem per half,
+    naming the closest corner and how many more there are."""
+    frame, ref = _table1()
+    psi = ref.crease[0].fold_angle_deg
+    t, r, k = 2.0, 3.0, 0.44
+    sb = (r + 0.5 * t) * math.tan(math.radians(psi) / 2)
+    n = 400
+    ang = (np.arange(n) + 0.5) * 2 * math.pi / n
+    rad = 200 + 50 * np.sin(7 * ang)
+    pts = np.stack([np.cos(ang), np.sin(ang)], axis=1) * rad[:, None]
+    mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
+    design = Design("fine", frame, Sheet.polygon(pts), material=mat)
+    folded = build_design(design)
+    v = np.asarray(design.sheet.vertices)
+    inner = [p for i, p in enumerate(v) if i not in (0, design.sheet.minus_x_index)]
+    problems = check_bends(design, folded)
+    assert [(p.half, p.kind) for p in problems] == [("plus_x", "corner"), ("minus_x", "corner")]
+    for p, side in zip(problems, (1.0, -1.0), strict=True):
+        near = [q for q in inner if abs(q[1]) <= sb and side * q[0] >= 0]
+        closest = min(abs(q[1]) for q in near)
+        assert f"lies {closest:.4g} mm from the fold line" in p.message
+        assert f"(and {len(near) - 1} more corners)" in p.message
