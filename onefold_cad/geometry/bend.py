@@ -347,7 +347,8 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
 
     def add(b: BendValues, kind: str, text: str, target: float) -> None:
         head = (
-            f"{b.half} (fold angle {b.angle_deg:.2f} deg, {b.direction}, {b.reference} reference)"
+            f"{b.half} (fold angle {b.angle_deg:.2f} deg, {b.direction}, {b.reference} reference, "
+            f"bend_radius {b.radius:g} {u}, thickness {b.thickness:g} {u})"
         )
         line = f"{head}: {text}; {_radius_hint(target, b)}"
         problems.append(BendProblem(b.half, b.angle_deg, kind, "bend_radius", line))
