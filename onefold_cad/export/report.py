@@ -18,11 +18,11 @@ import numpy as np
 from scipy.spatial import ConvexHull, QhullError
 
 from onefold_cad.design import Design, relief_hole_diameter
-from onefold_cad.errors import ExportError
+from onefold_cad.errors import ExportError, FabricationError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
+from onefold_cad.geometry.bend import crease_bends
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import bend_values
 from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import design_to_data
 
@@ -65,8 +65,7 @@ def _resting(folded: FoldedSheet) -> dict[str, Any]:
 
 def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     out: dict[str, Any] = {}
-    for half in folded.crease:
-        bv = bend_values(half.fold_angle_deg, design.material)
+    for half, bv in zip(folded.crease, crease_bends(folded, design.material), strict=True):
         out[half.name] = {
             "length": float(half.length),
             "fold_angle_deg": float(half.fold_angle_deg),
@@ -74,10 +73,22 @@ def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
             "bend_allowance": bv.allowance,
             "outside_setback": bv.outside_setback,
             "bend_deduction": bv.deduction,
+            "reference_surface": bv.reference.value,
+            "setback": bv.setback,
+            "shift": bv.shift,
             "end_flat": _floats(half.end_flat),
             "end_3d": _floats(half.end_3d),
         }
     return out
+
+
+def _flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
+    """The compensated pattern, or (past the bend limits, which ``build``
+    refuses) the uncompensated one, its problems listed in the report."""
+    try:
+        return flat_pattern(design, folded)
+    except FabricationError:
+        return flat_pattern(design, folded, "none")
 
 
 def _solid_min_hole(design: Design, folded: FoldedSheet) -> float | None:
@@ -119,7 +130,7 @@ def design_report(
         (``direction_surface``, ``final_surface``) and ``files``.
     """
     sol, sheet, mat, m = folded.solution, folded.sheet, design.material, folded.metrics
-    fp = flat_pattern(design, folded) if pattern is None else pattern
+    fp = _flat_pattern(design, folded) if pattern is None else pattern
     own = sheet.to_sheet.apply(sheet.vertices)
     flat_size = own.max(axis=0) - own.min(axis=0)
     hole = relief_hole_diameter(design, folded)
@@ -154,6 +165,8 @@ def design_report(
             "cut_hole_diameter": float(fp.cut_hole_diameter),
             "shift": float(fp.shift),
             "residual": float(fp.residual),
+            "compensation": fp.compensation,
+            "bend_problems": [q.message for q in fp.problems],
             "kerf": float(fp.kerf),
         },
         "sheet": {

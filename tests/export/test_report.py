@@ -82,9 +82,9 @@ def test_fold_angles_and_bend_values_per_half(steel):
         assert rep["bend"][half.name] == half.bend in ("UP", "DOWN")
         psi = math.radians(entry["fold_angle_deg"])
         ba = psi * (r + k * t)
-        ossb = (r + t) * math.tan(psi / 2)
+        sb = (r + t / 2) * math.tan(psi / 2)  # the MID reference surface's setback
         assert entry["bend_allowance"] == pytest.approx(ba, rel=1e-12)
-        assert entry["bend_deduction"] == pytest.approx(2 * ossb - ba, rel=1e-12)
+        assert entry["bend_deduction"] == pytest.approx(2 * sb - ba, rel=1e-12)
     # An asymmetric design (H off the f-line's midpoint) folds its halves differently.
     a, b = rep["fold_angles_deg"].values()
     assert abs(a - b) > 0.1

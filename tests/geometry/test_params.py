@@ -179,6 +179,8 @@ def test_bend_values_formulas() -> None:
     b = bend_values(90.0, m)
     assert b.allowance == pytest.approx(math.pi / 2 * (3 + 0.8))
     assert b.outside_setback == pytest.approx(5.0)
-    assert b.deduction == pytest.approx(10.0 - math.pi / 2 * 3.8)
+    # MID reference: the setback is the mid-surface's, (r + t/2) tan(psi/2) = 4
+    assert b.setback == pytest.approx(4.0)
+    assert b.deduction == pytest.approx(8.0 - math.pi / 2 * 3.8)
     with pytest.raises(InvalidParameterError, match="angle_deg"):
         bend_values(180.0, m)
