@@ -38,10 +38,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from ezdxf.math import offset_vertices_2d
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, relief_hole_diameter
+from onefold_cad.design import Design, design_mass, relief_hole_diameter
 from onefold_cad.errors import InvalidParameterError, InvalidSheetError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Units, bend_values
@@ -319,6 +318,8 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
     place = sheet.to_sheet
     outline_s = place.apply(outline)
     if kerf > 0.0:
+        from ezdxf.math import offset_vertices_2d  # ezdxf only when a kerf is cut
+
         cut = np.array([(p.x, p.y) for p in offset_vertices_2d(outline_s, -kerf / 2.0, True)])
         _require_simple(cut, "kerf", "the kerf offset self-intersects")
     else:
@@ -392,7 +393,7 @@ def _with_notes(p: FlatPattern, design: Design) -> FlatPattern:
     if p.hole_diameter > 0.0:
         lines.append(f"relief hole: diameter {p.hole_diameter:g} {u} at the apex mark")
     lines.append(f"flat size: {w:.3f} x {h:.3f} {u}, area {p.area:.3f} sq {u}")
-    if mat.density is not None:
-        mass = p.area * mat.thickness * mat.density
-        lines.append(f"mass: {mass:.6g} (density {mat.density:g} per cubic {u})")
+    mass = design_mass(design, p.area)  # the one mass formula (kg or lb, density kg/m^3)
+    if mass is not None:
+        lines.append(f"mass: {mass}")
     return replace(p, notes=tuple(lines))
