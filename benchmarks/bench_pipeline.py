@@ -9,8 +9,9 @@ For each template the stages are timed in this process with
 :func:`interleave.interleave` (CPU time, the stages interleaved A B C ... with
 the order rotated every round, medians with the 25th and 75th percentiles).
 The writers are ``onefold build``'s own (:data:`onefold_cad.export.writers.WRITERS`),
-each called on a fresh build context (so the flat preview pays for its flat
-pattern) and writing into a temporary folder. The ratio is the median of the
+each called on a fresh fold and build context (so a writer pays for what it
+derives: the flat preview its flat pattern, the report the metrics and the
+resting placement) and writing into a temporary folder. The ratio is the median of the
 per-round ratios stage / ``solve + fold`` of the same template. Imports are
 warmed up before timing (whole processes, imports included, are
 ``bench_cli.py``'s). A stage that raises a OneFoldError is shown as FAILED
@@ -48,7 +49,9 @@ def stages(design: Design, out: Path) -> dict[str, Callable[[], Any]]:
         w = WRITERS[name]
 
         def call() -> Any:
-            ctx = BuildContext(design, folded)
+            # a fresh fold: what FoldedSheet derives on first use (metrics, resting
+            # placement, the exact model's boundary) is paid by the stage using it
+            ctx = BuildContext(design, build_design(design))
             ctx.files = [out / f"{design.name}{WRITERS[n].suffix}" for n in WRITERS]
             return w.write(ctx, out / f"{design.name}{w.suffix}")
 
