@@ -152,33 +152,20 @@ def _sheet_inputs(sheet: Any) -> str:
 
 
 # -- CLI -------------------------------------------------------------------------------
-CLI_ENV = {"COLUMNS": "100", "NO_COLOR": "1", "TERM": "dumb"}
-
-
 def cli_help(args: list[str]) -> str:
-    """The output of ``onefold ARGS --help`` at 100 columns, trailing blanks removed."""
-    from typer.testing import CliRunner
+    """The output of ``onefold ARGS --help`` (100 columns), trailing blanks removed."""
+    from onefold_cad.cli import help_text
 
-    from onefold_cad.cli import app
-
-    res = CliRunner().invoke(app, [*args, "--help"], env=CLI_ENV)
-    if res.exit_code != 0:
-        raise RuntimeError(f"onefold {' '.join(args)} --help failed: {res.output}")
-    lines = [ln.rstrip() for ln in res.output.splitlines()]
-    while lines and not lines[0]:
-        lines.pop(0)
-    return "\n".join(lines).rstrip() + "\n"
+    lines = [ln.rstrip() for ln in help_text(args[0] if args else "").splitlines()]
+    return "\n".join(lines).strip("\n") + "\n"
 
 
 def cli_block() -> str:
     """The CLI reference: ``onefold --help`` and each command's ``--help``."""
-    import typer.main
+    from onefold_cad.cli import COMMANDS
 
-    from onefold_cad.cli import app
-
-    names = sorted(getattr(typer.main.get_command(app), "commands", {}))
     out = ["### `onefold`", "", "```text", cli_help([]).rstrip(), "```", ""]
-    for name in names:
+    for name in sorted(COMMANDS):
         out += [f"### `onefold {name}`", "", "```text", cli_help([name]).rstrip(), "```", ""]
     return "\n".join(out)
 

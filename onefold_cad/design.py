@@ -1,6 +1,10 @@
 """A whole design: frame curve, sheet, model, material and units, and its fold.
 
 This is what the adapters (STEP, DXF, previews, report) and the CLI consume.
+A design holds geometry and fabrication inputs; it never refuses a value for
+a fabrication reason (a relief hole too large for the sheet, an implausible
+density): :func:`fabrication_warnings` names those, ``solve`` prints them and
+the writers refuse.
 """
 
 from __future__ import annotations
@@ -10,7 +14,9 @@ import re
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from onefold_cad.errors import InvalidParameterError
+import numpy as np
+
+from onefold_cad.errors import FabricationError, InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.params import FrameCurve, Model
@@ -18,9 +24,26 @@ from onefold_cad.geometry.sheet import Sheet, boundary_distance
 from onefold_cad.geometry.solver import solve
 from onefold_cad.geometry.thick_sheet import min_relief_hole
 
-__all__ = ["Design", "build_design", "relief_hole_diameter", "sheet_inradius"]
+__all__ = [
+    "KG_PER_LB",
+    "Design",
+    "Mass",
+    "build_design",
+    "design_mass",
+    "fabrication_warnings",
+    "relief_hole_diameter",
+    "relief_hole_problem",
+    "sheet_inradius",
+]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
+
+#: Kilograms per pound (the international avoirdupois pound, exact by definition).
+KG_PER_LB = 0.45359237
+
+#: Densities (kg/m^3) outside this range are not those of a sheet material: lighter
+#: than air, or denser than osmium (22 590 kg/m^3), the densest element.
+PLAUSIBLE_DENSITY = (1.0, 23_000.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -33,7 +56,8 @@ class Design:
         sheet: the flat sheet in the fold frame.
         model: 'exact' (default) or 'paper'.
         material: thickness, bend radius, K-factor, kerf, relief hole, density.
-        units: the design's length unit.
+        units: the design's length unit: every length of ``frame``, ``sheet``
+            and ``material`` is in it (the density is in kg/m^3 whatever it is).
         description: free text for reports and notes.
     """
 
@@ -54,26 +78,50 @@ class Design:
             )
         object.__setattr__(self, "model", Model.parse(self.model))
         object.__setattr__(self, "units", Units.parse(self.units))
-        hole = self.material.relief_hole_diameter
-        if hole > 0.0:
-            inner = sheet_inradius(self.sheet)
-            if hole / 2.0 >= inner and self.material.relief_hole is None:
-                raise InvalidParameterError(
-                    "thickness",
-                    f"{self.material.thickness:g} is too thick for this sheet: the default "
-                    f"relief hole max(3 t, 2 (t + r)) = {hole:g} must be < {2.0 * inner:.6g} "
-                    "(twice the distance from H to the nearest sheet edge); set a relief_hole",
-                )
-            if hole / 2.0 >= inner:
-                raise InvalidParameterError(
-                    "relief_hole",
-                    f"diameter must be < {2.0 * inner:.6g} (twice the distance from H to the "
-                    f"nearest sheet edge), got {hole:g}",
-                )
 
     def with_changes(self, **changes: Any) -> Design:
         """A copy with some fields replaced (validated again)."""
         return replace(self, **changes)
+
+    def in_units(self, units: Units | str) -> Design:
+        """The same design with every length converted into ``units``.
+
+        Converted: the frame's radius and h_c, the sheet (its inputs, so a
+        rectangle stays a rectangle), the thickness, bend radius, kerf and
+        an explicit relief hole. Angles, divisions, the K-factor and the
+        density (kg/m^3) do not depend on the length unit. The factor is
+        ``Units.factor_to`` (1 in = 25.4 mm, 1 ft = 304.8 mm exactly).
+        """
+        to = Units.parse(units)
+        if to is self.units:
+            return self
+        f = self.units.factor_to(to)
+        fr, m = self.frame, self.material
+        frame = fr.with_changes(radius=fr.radius * f, h_c=fr.h_c * f)
+        material = m.with_changes(
+            thickness=m.thickness * f,
+            bend_radius=m.bend_radius * f,
+            kerf=m.kerf * f,
+            relief_hole=None if m.relief_hole is None else m.relief_hole * f,
+        )
+        return replace(
+            self, frame=frame, sheet=_scaled_sheet(self.sheet, f), material=material, units=to
+        )
+
+
+def _scaled_sheet(sheet: Sheet, f: float) -> Sheet:
+    """``sheet`` with every length multiplied by ``f``, rebuilt from its inputs."""
+    inputs = sheet.inputs
+    if sheet.kind == "rectangle":
+        return Sheet.rectangle(
+            float(inputs["width"]) * f,  # type: ignore[arg-type]
+            float(inputs["height"]) * f,  # type: ignore[arg-type]
+            float(inputs["apex_fraction"]),  # type: ignore[arg-type]
+        )
+    if sheet.kind == "quadrilateral":
+        return Sheet.quadrilateral(**{k: float(v) * f for k, v in inputs.items()})  # type: ignore[arg-type]
+    points = np.asarray(inputs.get("polygon", sheet.vertices), dtype=float) * f
+    return Sheet.polygon(points, name="polygon")
 
 
 def sheet_inradius(sheet: Sheet) -> float:
@@ -99,6 +147,82 @@ def relief_hole_diameter(design: Design, folded: FoldedSheet) -> float:
         return default
     step = 10.0 ** (math.floor(math.log10(need)) - 1)
     return max(default, math.ceil(need / step - 1e-9) * step)
+
+
+@dataclass(frozen=True)
+class Mass:
+    """The mass of the cut part.
+
+    Attributes:
+        value: the mass, in ``unit``.
+        unit: 'kg' (mm designs) or 'lb' (inch and foot designs).
+        density: the density used, kg/m^3.
+    """
+
+    value: float
+    unit: str
+    density: float
+
+    def __str__(self) -> str:
+        return f"{self.value:.6g} {self.unit} (density {self.density:g} kg/m^3)"
+
+
+def design_mass(design: Design, net_area: float) -> Mass | None:
+    """The mass of a part of ``net_area`` (design unit^2) cut from the design's
+    sheet, or None without a density or thickness. The one mass formula:
+    density (kg/m^3) x thickness x area, the volume converted to m^3 with the
+    design unit's length in metres; reported in kg for mm designs and in lb
+    (1 lb = 0.45359237 kg) for inch and foot designs."""
+    m = design.material
+    if m.density is None or m.thickness <= 0.0:
+        return None
+    metres = design.units.mm / 1000.0
+    kg = m.density * m.thickness * net_area * metres**3
+    unit = design.units.mass_unit
+    return Mass(kg if unit == "kg" else kg / KG_PER_LB, unit, m.density)
+
+
+def relief_hole_problem(design: Design) -> FabricationError | None:
+    """The refusal every writer of the cut part (DXF, STEP) gives when the relief
+    hole does not fit inside the sheet around H, or None when it fits.
+
+    Named after the thickness when the hole is the default (it follows from
+    t and r), else after the relief hole."""
+    m, u = design.material, design.units.value
+    hole = m.relief_hole_diameter
+    inner = sheet_inradius(design.sheet)
+    if not (hole > 0.0 and hole / 2.0 >= inner):
+        return None
+    limit = f"{2.0 * inner:.6g} {u} (twice the distance from H to the nearest sheet edge)"
+    if m.relief_hole is None:
+        return FabricationError(
+            "thickness",
+            f"{m.thickness:g} {u} is too thick for this sheet: the default relief hole "
+            f"max(3 t, 2 (t + r)) = {hole:g} {u} must be < {limit}; set a relief hole, or a "
+            "smaller thickness or bend radius",
+        )
+    return FabricationError("relief_hole", f"diameter {hole:g} {u} must be < {limit}")
+
+
+def fabrication_warnings(design: Design) -> list[str]:
+    """What the design's own values tell about fabricating it, one line each:
+    a relief hole that does not fit inside the sheet around H (the DXF and
+    STEP writers refuse it: :func:`relief_hole_problem`) and a density no
+    sheet material has. Empty when nothing is wrong. The geometry is solved
+    regardless."""
+    out = []
+    hole = relief_hole_problem(design)
+    if hole is not None:
+        out.append(f"{hole}; build refuses the DXF and STEP")
+    m = design.material
+    lo, hi = PLAUSIBLE_DENSITY
+    if m.density is not None and not lo <= m.density <= hi:
+        out.append(
+            f"density: {m.density:g} kg/m^3 is no sheet material's (densities are in kg/m^3, "
+            f"e.g. 7850 for steel, 800 for paper; expected {lo:g} to {hi:g}); the mass is "
+            "computed with it as given"
+        )
+    return out
 
 
 def build_design(design: Design) -> FoldedSheet:

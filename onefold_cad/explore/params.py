@@ -3,8 +3,8 @@
 The page sends every control's value as text (``alpha=30&beta=30&...``). This
 module checks the query's shape (known names only, each once, bounded
 lengths), hands the values to the ``onefold`` command's own option parser
-(:data:`onefold_cad.cli.DESIGN_FLAGS`, as ``--alpha=30`` ...), applies them to
-the chosen template's data with :class:`onefold_cad.cli.Overrides` and
+(:data:`onefold_cad.flags.DESIGN_FLAGS`, as ``--alpha=30`` ...), applies them to
+the chosen template's data with :class:`onefold_cad.flags.Overrides` and
 validates the result with :func:`onefold_cad.templates.design_from_data`. So
 a bad value gets exactly the message ``onefold solve`` prints for it.
 
@@ -121,12 +121,10 @@ def parse_query(query: str) -> dict[str, str]:
 
 
 @functools.cache
-def _solve_command() -> Any:
-    import typer.main
+def _solve_parser() -> Any:
+    from onefold_cad.cli import build_parser
 
-    from onefold_cad.cli import app
-
-    return typer.main.get_command(app).commands["solve"]  # type: ignore[attr-defined]
+    return build_parser()["solve"]
 
 
 def _controls_of(flag: str) -> tuple[str, ...]:
@@ -135,9 +133,8 @@ def _controls_of(flag: str) -> tuple[str, ...]:
 
 def _cli_flags(params: Mapping[str, str]) -> dict[str, Any]:
     """The design flags parsed by ``onefold solve``'s own option parser."""
-    import typer
-
-    from onefold_cad.cli import DESIGN_FLAGS
+    from onefold_cad.cli import UsageError
+    from onefold_cad.flags import DESIGN_FLAGS
 
     args = []
     if "width" in params or "height" in params:
@@ -146,14 +143,12 @@ def _cli_flags(params: Mapping[str, str]) -> dict[str, Any]:
         if name in PAGE_FLAGS and PAGE_FLAGS[name] != "--rectangle":
             args.append(f"{PAGE_FLAGS[name]}={text}")
     try:
-        ctx = _solve_command().make_context("solve", args)
-    except typer.TyperException as exc:  # click's usage errors, as `main` reports them
-        param = getattr(exc, "param", None)
-        flags = getattr(param, "opts", None) or []
-        controls = tuple(c for f in flags for c in _controls_of(f))
-        text = exc.format_message()  # type: ignore[attr-defined]
-        raise ParameterProblem(" ".join(text.split()), controls) from None
-    return {k: ctx.params.get(k) for k in DESIGN_FLAGS}
+        ns = _solve_parser().parse_intermixed_args(args)
+    except UsageError as exc:  # the parser's one-line message, as `main` reports it
+        text = " ".join(str(exc).split())
+        flag = text.split(":", 1)[0]
+        raise ParameterProblem(text, _controls_of(flag)) from None
+    return {f.dest: getattr(ns, f.dest) for f in DESIGN_FLAGS}
 
 
 def design_from_params(
@@ -169,7 +164,7 @@ def design_from_params(
     Raises:
         ParameterProblem: a value the CLI would refuse, with its message.
     """
-    from onefold_cad.cli import Overrides
+    from onefold_cad.flags import Overrides
 
     key = params.get("template", default)
     if key not in templates:

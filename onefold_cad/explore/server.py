@@ -88,7 +88,7 @@ def load_templates(ref: str | None) -> tuple[dict[str, dict[str, Any]], str]:
     validated as ``onefold solve`` would (same messages); the shipped
     templates follow it. The page names a template by its key only.
     """
-    from onefold_cad.cli import Overrides, load_designs
+    from onefold_cad.flags import load_jobs
     from onefold_cad.templates import (
         DEFAULT_TEMPLATE,
         find_template,
@@ -97,7 +97,7 @@ def load_templates(ref: str | None) -> tuple[dict[str, dict[str, Any]], str]:
     )
 
     path = find_template(ref or DEFAULT_TEMPLATE)
-    load_designs([str(path)], Overrides())
+    load_jobs([str(path)], {})
     templates: dict[str, dict[str, Any]] = {path.stem: read_template(path)}
     for info in list_templates():
         if info.path.resolve() != Path(path).resolve():

@@ -74,10 +74,10 @@ def _numbers(design: Design, folded: Any, report: dict[str, Any] | None) -> dict
         }
         return {
             "fold_angles": fold,
-            "apex_height": report["apex_height"],
+            "apex_height": report["direction_surface"]["apex_height"],
             "angle_condition_error_deg": report["angle_condition_error_deg"],
             "height": r["height"],
-            "span": r["footprint"]["width"],
+            "span": r["span"],
             "depth": r["footprint"]["depth"],
             "footprint_area": r["footprint"]["area"],
             "tilt_deg": r["tilt_deg"],

@@ -37,13 +37,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, relief_hole_diameter
+from onefold_cad.design import Design, design_mass, relief_hole_diameter
 from onefold_cad.errors import FabricationError, InvalidParameterError, InvalidSheetError
 from onefold_cad.geometry.bend import (
     BendProblem,
     BendValues,
     BlankMove,
     Compensation,
+    bend_error,
     blank_move,
     check_bends,
     crease_bends,
@@ -301,9 +302,9 @@ def flat_pattern(
     t = mat.thickness
     bends = crease_bends(folded, mat)
     problems = check_bends(design, folded)
-    if problems and comp is Compensation.SHARP:
-        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
-        raise FabricationError(problems[0].parameter, problems[0].message + more)
+    error = bend_error(problems)
+    if error is not None and comp is Compensation.SHARP:
+        raise error
     sharp = comp is Compensation.SHARP and t > 0.0
     move = blank_move(bends, comp if t > 0.0 else Compensation.NONE)
     shift = move.shift
@@ -346,7 +347,7 @@ def flat_pattern(
     place = sheet.to_sheet
     outline_s = place.apply(outline)
     if kerf > 0.0:
-        from ezdxf.math import offset_vertices_2d
+        from ezdxf.math import offset_vertices_2d  # ezdxf only when a kerf is cut
 
         cut = np.array([(p.x, p.y) for p in offset_vertices_2d(outline_s, -kerf / 2.0, True)])
         try:
@@ -436,8 +437,7 @@ def _notes(p: FlatPattern, design: Design) -> tuple[str, ...]:
     if p.hole_diameter > 0.0:
         lines.append(f"relief hole: diameter {p.hole_diameter:g} {u} at the apex mark")
     lines.append(f"flat size: {w:.3f} x {h:.3f} {u}, area {p.area:.3f} sq {u}")
-    if mat.density is not None:
-        # mass line: its unit is being defined by the cli owner (kg for mm, lb for in/ft)
-        mass = p.area * mat.thickness * mat.density
-        lines.append(f"mass: {mass:.6g} (density {mat.density:g} per cubic {u})")
+    mass = design_mass(design, p.area)  # the one mass formula (kg or lb, density kg/m^3)
+    if mass is not None:
+        lines.append(f"mass: {mass}")
     return tuple(lines)

@@ -3,59 +3,126 @@
 The report is plain JSON data (numbers, strings, lists, dicts): what
 ``onefold solve --json`` prints and ``onefold build`` writes as ``NAME.json``.
 Lengths are in the design's unit (``units``), areas in unit^2, angles in
-degrees, times in seconds.
+degrees, times in seconds, the mass in ``mass.unit`` (kg or lb) and the
+density in kg/m^3. Every number is checked to be finite before the report
+is printed or written (:func:`check_finite`).
+
+This module imports numpy and the geometry core only; the flat pattern is
+imported when a report is made.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
+from numpy.typing import NDArray
 
-from onefold_cad.design import Design, relief_hole_diameter
-from onefold_cad.errors import ExportError, FabricationError
+from onefold_cad.design import Design, design_mass, fabrication_warnings, relief_hole_diameter
+from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
-from onefold_cad.geometry.bend import crease_bends
+from onefold_cad.geometry.bend import bend_error, check_bends, crease_bends
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import design_to_data
 
-__all__ = ["REPORT_VERSION", "design_report", "write_report", "report_json"]
+if TYPE_CHECKING:
+    from onefold_cad.export.flat_pattern import FlatPattern
+
+__all__ = [
+    "REPORT_VERSION",
+    "check_finite",
+    "design_report",
+    "design_warnings",
+    "report_json",
+    "write_report",
+]
 
 #: Bumped when a key of the report changes meaning or disappears.
-REPORT_VERSION = 1
+#: 2: ``apex_height``/``apex`` moved to ``direction_surface``; ``mass`` became
+#: ``{value, unit, density}``; ``warnings``, ``sources``, ``resting.span`` added;
+#: the flat pattern keys are null when the flat pattern cannot be made.
+REPORT_VERSION = 2
+
+#: What the paper's h is, said wherever it is printed.
+APEX_HEIGHT_MEANING = (
+    "the paper's h: height of the direction-surface apex A above H for the frame "
+    "curve of radius R; it scales with R, not with the sheet (the folded form's "
+    "size is under 'resting')"
+)
 
 
 def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def _footprint_area(xy: np.ndarray) -> float:
-    """Area of the convex hull of ground-projected points ``(k, 2)``."""
-    try:
-        return float(ConvexHull(xy).volume)
-    except QhullError:
-        return 0.0
+def _hull_2d(xy: NDArray[np.float64]) -> list[tuple[float, float]]:
+    """The convex hull of points ``(k, 2)``: its vertices counter-clockwise
+    (Andrew's monotone chain; collinear points dropped)."""
+    pts = [(float(x), float(y)) for x, y in np.unique(np.asarray(xy, dtype=float), axis=0)]
+    if len(pts) < 3:
+        return pts
+
+    def chain(seq: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        out: list[tuple[float, float]] = []
+        for px, py in seq:
+            while len(out) >= 2:
+                (ax, ay), (bx, by) = out[-2], out[-1]
+                if (bx - ax) * (py - ay) - (by - ay) * (px - ax) > 0.0:
+                    break
+                out.pop()
+            out.append((px, py))
+        return out
+
+    return chain(pts)[:-1] + chain(pts[::-1])[:-1]
+
+
+def _diameter(hull: list[tuple[float, float]]) -> float:
+    """The largest distance between two vertices of a convex polygon given
+    counter-clockwise (rotating calipers over its antipodal pairs)."""
+    n = len(hull)
+    if n < 3:
+        return math.dist(hull[0], hull[-1]) if n else 0.0
+
+    def area2(i: int, j: int, k: int) -> float:
+        (ax, ay), (bx, by), (cx, cy) = hull[i], hull[j], hull[k]
+        return abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
+
+    best, j = 0.0, 1
+    for i in range(n):
+        i1 = (i + 1) % n
+        while area2(i, i1, (j + 1) % n) > area2(i, i1, j):
+            j = (j + 1) % n
+        best = max(best, math.dist(hull[i], hull[j]), math.dist(hull[i1], hull[j]))
+    return best
+
+
+def _footprint(xy: NDArray[np.float64]) -> tuple[float, float]:
+    """Area of the convex hull of ground points ``(k, 2)`` and the span: the
+    largest distance between two of them (the hull's diameter)."""
+    hull = _hull_2d(xy)
+    if len(hull) < 3:
+        return 0.0, _diameter(hull)
+    x, y = np.array(hull).T
+    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    return area, _diameter(hull)
 
 
 def _resting(folded: FoldedSheet) -> dict[str, Any]:
     pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     size = hi - lo
+    area, span = _footprint(pts[:, :2])
     return {
         "bounding_box": {"min": _floats(lo), "max": _floats(hi)},
         "height": float(size[2]),
-        "footprint": {
-            "width": float(size[0]),
-            "depth": float(size[1]),
-            "area": _footprint_area(pts[:, :2]),
-        },
+        "span": span,
+        "footprint": {"width": float(size[0]), "depth": float(size[1]), "area": area},
         "apex": _floats(pts[-1]),
         "tilt_deg": float(folded.resting.tilt_deg),
         "stable": bool(folded.resting.stable),
@@ -82,80 +149,37 @@ def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     return out
 
 
-def _flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
-    """The compensated pattern, or (past the bend limits, which ``build``
-    refuses) the uncompensated one, its problems listed in the report."""
-    try:
-        return flat_pattern(design, folded)
-    except FabricationError:
-        return flat_pattern(design, folded, "none")
-
-
-def _solid_min_hole(design: Design, folded: FoldedSheet) -> float | None:
+def _solid_min_hole(design: Design, folded: FoldedSheet, warnings: list[str]) -> float | None:
     if design.model.value != "exact" or design.material.thickness <= 0.0:
         return None
-    return float(min_relief_hole(folded, design.material))
+    try:
+        return float(min_relief_hole(folded, design.material))
+    except InvalidParameterError as exc:  # e.g. a flat fold has no mitre
+        warnings.append(str(exc))
+        return None
 
 
-def design_report(
-    design: Design,
-    folded: FoldedSheet,
-    files: Iterable[str | os.PathLike[str]] = (),
-    pattern: FlatPattern | None = None,
-) -> dict[str, Any]:
-    """Everything a fabricator or a test needs to know about one fold.
+def _flat_pattern(design: Design, folded: FoldedSheet, warnings: list[str]) -> FlatPattern | None:
+    """The flat pattern, or None with the writer's refusal as a warning."""
+    from onefold_cad.export.flat_pattern import flat_pattern
 
-    Args:
-        design: the design.
-        folded: ``build_design(design)``.
-        files: the files written for the design (listed by name).
-        pattern: ``flat_pattern(design, folded)`` if already computed.
+    try:
+        try:
+            return flat_pattern(design, folded)
+        except FabricationError:  # past the bend model's limits: design_warnings names them
+            return flat_pattern(design, folded, "none")
+    except OneFoldError as exc:  # the writer's parameter checks (hole, kerf)
+        param = getattr(exc, "parameter", None)
+        if not any(param and w.startswith(f"{param}:") for w in warnings):  # said already
+            warnings.append(f"{exc} (flat pattern; build refuses the DXF)")
+        return None
 
-    Returns:
-        A JSON-serialisable dict: ``inputs`` (the design as template data),
-        ``apex_height``, ``angle_condition_error_deg``, ``gammas_deg`` (paper
-        model, else null), ``fold_angles_deg`` and ``bend`` keyed
-        ``plus_x``/``minus_x``, ``crease`` (per half: length, fold angle, bend
-        direction, bend allowance, outside set-back and bend deduction),
-        ``relief_hole_diameter``, ``solid_min_relief_hole`` (the smallest
-        hole a STEP solid of this thickness needs; null for the paper model
-        or zero thickness), ``flat_size`` and ``flat_area`` (the cut
-        part: thickness-compensated outline, net of the relief hole),
-        ``flat_pattern`` (its compensation shift and residual), ``sheet`` (the
-        designed sheet: size in its own frame, area, perimeter, vertices),
-        ``surface_area`` (measured on the folded surface), ``mass`` (if a
-        density and thickness are given), ``resting`` (bounding box,
-        height, footprint of the form standing on the ground),
-        ``developability`` (measured errors), ``timings_s``
-        (``direction_surface``, ``final_surface``) and ``files``.
-    """
-    sol, sheet, mat, m = folded.solution, folded.sheet, design.material, folded.metrics
-    fp = _flat_pattern(design, folded) if pattern is None else pattern
-    own = sheet.to_sheet.apply(sheet.vertices)
-    flat_size = own.max(axis=0) - own.min(axis=0)
-    hole = relief_hole_diameter(design, folded)
-    gammas = sol.gammas_deg
-    crease = _crease(design, folded)
-    mass = None
-    if mat.density is not None and mat.thickness > 0.0:
-        mass = mat.density * mat.thickness * fp.area
+
+def _pattern_keys(design: Design, fp: FlatPattern | None) -> dict[str, Any]:
+    if fp is None:
+        return {"flat_size": None, "flat_area": None, "flat_pattern": None, "mass": None}
+    mass = design_mass(design, fp.area)
     return {
-        "report_version": REPORT_VERSION,
-        "name": design.name,
-        "description": design.description,
-        "units": design.units.value,
-        "model": design.model.value,
-        "inputs": design_to_data(design),
-        "apex_height": float(sol.apex_height),
-        "apex": _floats(sol.apex),
-        "angle_sum_deg": float(sol.angle_sum_deg),
-        "angle_condition_error_deg": float(sol.angle_condition_error_deg),
-        "gammas_deg": None if gammas is None else _floats(gammas),
-        "fold_angles_deg": {k: v["fold_angle_deg"] for k, v in crease.items()},
-        "bend": {k: v["bend"] for k, v in crease.items()},
-        "crease": crease,
-        "relief_hole_diameter": float(hole),
-        "solid_min_relief_hole": _solid_min_hole(design, folded),
         "flat_size": list(fp.size),
         "flat_area": float(fp.area),
         "flat_pattern": {
@@ -169,6 +193,110 @@ def design_report(
             "bend_problems": [q.message for q in fp.problems],
             "kerf": float(fp.kerf),
         },
+        "mass": None
+        if mass is None
+        else {"value": mass.value, "unit": mass.unit, "density": mass.density},
+    }
+
+
+def design_warnings(design: Design, folded: FoldedSheet) -> list[str]:
+    """What ``solve`` and ``build`` warn about before any writer runs, one
+    line each: the solver's own warnings (when it gives any),
+    :func:`~onefold_cad.design.fabrication_warnings` and the bend model's
+    limits (:func:`~onefold_cad.geometry.bend.check_bends`)."""
+    error = bend_error(check_bends(design, folded))
+    bends = (
+        []
+        if error is None
+        else [
+            f"{error}; build refuses the DXF and STEP solid "
+            "(--compensation none writes the uncompensated blank)"
+        ]
+    )
+    return [*getattr(folded.solution, "warnings", ()), *fabrication_warnings(design), *bends]
+
+
+def design_report(
+    design: Design,
+    folded: FoldedSheet,
+    files: Iterable[str | os.PathLike[str]] = (),
+    pattern: FlatPattern | None = None,
+    *,
+    sources: Mapping[str, str] | None = None,
+    timings: Mapping[str, float] | None = None,
+    warnings: Iterable[str] = (),
+) -> dict[str, Any]:
+    """Everything a fabricator or a test needs to know about one fold.
+
+    The geometry is always reported; what a writer would refuse (a flat
+    pattern that cannot be made, a relief hole that does not fit, ...) is a
+    line in ``warnings`` and the keys that depend on it are null.
+
+    Args:
+        design: the design.
+        folded: ``build_design(design)``.
+        files: the files written for the design (listed by name).
+        pattern: ``flat_pattern(design, folded)`` if already computed.
+        sources: where each input came from, keyed like the template
+            (``material.thickness`` -> ``--thickness``, ``template NAME``,
+            ``inherited from template NAME`` or ``default``).
+        timings: further stage times (s) to report, e.g. ``{"step": 2.1}``.
+        warnings: warnings found elsewhere, added before the report's own.
+
+    Returns:
+        A JSON-serialisable dict: ``inputs`` (the design as template data),
+        ``sources``, ``direction_surface`` (``apex_height``: the paper's h
+        at ``frame_radius`` R, and ``apex``), ``angle_sum_deg``,
+        ``angle_condition_error_deg``, ``gammas_deg`` (paper model, else
+        null), ``fold_angles_deg`` and ``bend`` keyed ``plus_x``/``minus_x``,
+        ``crease`` (per half: length, fold angle, bend direction, bend
+        allowance, outside set-back and bend deduction),
+        ``relief_hole_diameter``, ``solid_min_relief_hole`` (the smallest
+        hole a STEP solid of this thickness needs; null for the paper model
+        or zero thickness), ``flat_size`` and ``flat_area`` (the cut part:
+        thickness-compensated outline, net of the relief hole),
+        ``flat_pattern`` (its compensation shift and residual), ``sheet``
+        (the designed sheet: size in its own frame, area, perimeter,
+        vertices), ``surface_area`` (measured on the folded surface),
+        ``mass`` (``{value, unit, density}`` or null), ``resting`` (the form
+        standing on the ground: bounding box, height, span, footprint),
+        ``developability`` (measured errors), ``warnings``, ``timings_s``
+        and ``files``.
+    """
+    sol, sheet, m = folded.solution, folded.sheet, folded.metrics
+    notes = [*warnings, *design_warnings(design, folded)]
+    fp = _flat_pattern(design, folded, notes) if pattern is None else pattern
+    own = sheet.to_sheet.apply(sheet.vertices)
+    flat_size = own.max(axis=0) - own.min(axis=0)
+    gammas = sol.gammas_deg
+    crease = _crease(design, folded)
+    solid_hole = _solid_min_hole(design, folded, notes)
+    stage_times = {"direction_surface": float(sol.time_direction_surface)}
+    stage_times["final_surface"] = float(folded.time_final_surface)
+    stage_times.update({k: float(v) for k, v in (timings or {}).items()})
+    return {
+        "report_version": REPORT_VERSION,
+        "name": design.name,
+        "description": design.description,
+        "units": design.units.value,
+        "model": design.model.value,
+        "inputs": design_to_data(design),
+        "sources": dict(sources or {}),
+        "direction_surface": {
+            "apex_height": float(sol.apex_height),
+            "frame_radius": float(design.frame.radius),
+            "apex": _floats(sol.apex),
+            "meaning": APEX_HEIGHT_MEANING,
+        },
+        "angle_sum_deg": float(sol.angle_sum_deg),
+        "angle_condition_error_deg": float(sol.angle_condition_error_deg),
+        "gammas_deg": None if gammas is None else _floats(gammas),
+        "fold_angles_deg": {k: v["fold_angle_deg"] for k, v in crease.items()},
+        "bend": {k: v["bend"] for k, v in crease.items()},
+        "crease": crease,
+        "relief_hole_diameter": float(relief_hole_diameter(design, folded)),
+        "solid_min_relief_hole": solid_hole,
+        **_pattern_keys(design, fp),
         "sheet": {
             "kind": sheet.kind,
             "size": _floats(flat_size),
@@ -177,7 +305,6 @@ def design_report(
             "vertices": _floats(sheet.vertices),
         },
         "surface_area": float(m.area_3d),
-        "mass": mass,
         "resting": _resting(folded),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
@@ -189,30 +316,50 @@ def design_report(
             "area_3d": float(m.area_3d),
             "area_rel_error": float(m.area_rel_error),
         },
-        "timings_s": {
-            "direction_surface": float(sol.time_direction_surface),
-            "final_surface": float(folded.time_final_surface),
-        },
+        "warnings": list(dict.fromkeys(notes)),  # in order, each once
+        "timings_s": stage_times,
         "files": [Path(f).name for f in files],
     }
 
 
-def report_json(report: dict[str, Any]) -> str:
-    """The report as indented JSON text (strict: no NaN or infinity)."""
+def check_finite(report: Mapping[str, Any], where: str = "") -> None:
+    """Raise :class:`ExportError` naming the first key whose number is NaN or
+    infinite (``resting.height``, ``crease.plus_x.end_3d[2]``)."""
+
+    def walk(value: Any, key: str) -> None:
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ExportError(
+                f"the report of {report.get('name')!r} has {key} = {value}: not a finite "
+                "number (the computation failed for this design); nothing written"
+            )
+        if isinstance(value, Mapping):
+            for k, v in value.items():
+                walk(v, f"{key}.{k}" if key else str(k))
+        elif isinstance(value, list | tuple):
+            for i, v in enumerate(value):
+                walk(v, f"{key}[{i}]")
+
+    walk(report, where)
+
+
+def report_json(report: Mapping[str, Any]) -> str:
+    """The report as indented JSON text, after :func:`check_finite`."""
+    check_finite(report)
     return json.dumps(report, indent=2, allow_nan=False) + "\n"
 
 
-def write_report(path: str | os.PathLike[str], report: dict[str, Any]) -> Path:
+def write_report(path: str | os.PathLike[str], report: Mapping[str, Any]) -> Path:
     """Write ``report`` as JSON to ``path`` atomically (temp name, then rename).
 
     Raises:
-        ExportError: the file could not be written or the report holds a
-            non-finite number.
+        ExportError: the report holds a non-finite number (naming its key)
+            or another value JSON cannot hold, or the file could not be
+            written.
     """
     out = Path(path)
     try:
         text = report_json(report)
-    except ValueError as exc:
+    except (TypeError, ValueError) as exc:
         raise ExportError(f"report of {report.get('name')!r} is not valid JSON: {exc}") from exc
     with atomic_output(out) as tmp:
         tmp.write_text(text, encoding="utf-8")

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.errors import InvalidParameterError
+from onefold_cad.errors import FabricationError, InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.thick_sheet import sheet_offsets
@@ -51,6 +51,7 @@ __all__ = [
     "BendValues",
     "BlankMove",
     "Compensation",
+    "bend_error",
     "bend_model",
     "blank_move",
     "check_bends",
@@ -421,3 +422,12 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
             )
     order = {"setback": 0, "corner": 1, "edge": 2}
     return tuple(sorted(problems, key=lambda q: order[q.kind]))
+
+
+def bend_error(problems: tuple[BendProblem, ...]) -> FabricationError | None:
+    """The error a writer raises for ``problems`` (:func:`check_bends`): the
+    first problem's line and how many more there are; None when there are none."""
+    if not problems:
+        return None
+    more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+    return FabricationError(problems[0].parameter, problems[0].message + more)

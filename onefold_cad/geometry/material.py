@@ -66,8 +66,18 @@ class Units(StrEnum):
 
     @property
     def mm(self) -> float:
-        """Millimetres per unit."""
+        """Millimetres per unit (exact: 1 in = 25.4 mm, 1 ft = 304.8 mm)."""
         return {"mm": 1.0, "in": 25.4, "ft": 304.8}[self.value]
+
+    def factor_to(self, other: Units | str) -> float:
+        """The factor that turns a length in this unit into one in ``other``."""
+        return self.mm / Units.parse(other).mm
+
+    @property
+    def mass_unit(self) -> str:
+        """The unit masses are reported in: 'kg' for mm designs, 'lb' for inch
+        and foot designs."""
+        return "kg" if self is Units.MM else "lb"
 
 
 @dataclass(frozen=True)
@@ -82,7 +92,8 @@ class Material:
         relief_hole: diameter of the relief hole at the apex >= 0 (0 = none);
             None chooses the default: none for t = 0, 2 * t + 2 * r otherwise
             (at least 3 * t).
-        density: mass per volume (mass unit per design unit^3) > 0, or None.
+        density: kg/m^3 > 0 (e.g. 7850 for steel), or None; independent of
+            the design's length unit (see :func:`onefold_cad.design.design_mass`).
         name: a material description for the notes (e.g. '304 stainless').
         sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
     """

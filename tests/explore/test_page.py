@@ -97,10 +97,10 @@ def test_moving_alpha_changes_the_fold_angles_and_the_picture(tab, server):
     assert tab.errors == []
 
 
-def test_a_bad_value_shows_the_clis_message_and_the_page_recovers(tab, capsys):
-    capsys.readouterr()
+def test_a_bad_value_shows_the_clis_message_and_the_page_recovers(tab, capfd):
+    capfd.readouterr()
     assert main(["solve", "--alpha", "95"]) == 2
-    cli = capsys.readouterr().err.strip().removeprefix("onefold: error: ")
+    cli = capfd.readouterr().err.strip().removeprefix("onefold: error: ")
     good = tab.text("#fold-angles")
     tab.change("#alpha-num", "95")
     assert tab.text("#messages") == f"error: {cli}"

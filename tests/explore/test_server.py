@@ -173,14 +173,10 @@ def test_a_busy_port_is_an_error_naming_the_flag(server):
 
 
 def test_the_commands_default_port_is_the_servers():
-    import typer.main
-
-    from onefold_cad.cli import app
+    from onefold_cad.cli import build_parser
     from onefold_cad.explore import DEFAULT_PORT
 
-    command = typer.main.get_command(app).commands["explore"]
-    port = next(p for p in command.params if p.name == "port")
-    assert port.default == DEFAULT_PORT
+    assert build_parser()["explore"].get_default("port") == DEFAULT_PORT
 
 
 def test_a_bad_template_is_refused_with_the_clis_message():

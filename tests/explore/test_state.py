@@ -73,9 +73,9 @@ def test_the_numbers_are_the_reports(templates):
     assert n["units"] == "mm"
     assert {k: v["deg"] for k, v in n["fold_angles"].items()} == r["fold_angles_deg"]
     assert {k: v["bend"] for k, v in n["fold_angles"].items()} == r["bend"]
-    assert n["apex_height"] == r["apex_height"]
+    assert n["apex_height"] == r["direction_surface"]["apex_height"]
     assert n["height"] == r["resting"]["height"]
-    assert n["span"] == r["resting"]["footprint"]["width"]
+    assert n["span"] == r["resting"]["span"]
     assert n["depth"] == r["resting"]["footprint"]["depth"]
     assert n["flat_size"] == r["flat_size"]
 
@@ -88,16 +88,16 @@ def test_moving_alpha_moves_the_fold_angles(templates):
 
 
 def test_a_design_the_flat_pattern_refuses_keeps_its_form_and_gets_the_builds_message(
-    capsys, tmp_path
+    capfd, tmp_path
 ):
     """Bend zones reaching the corners: no flat pattern, the CLI's words, the form still shown."""
     data, key = load_templates("paper-square")
     args = {"thickness": "5", "bend_radius": "150"}
-    capsys.readouterr()
+    capfd.readouterr()
     status = main(
         ["build", "paper-square", "--thickness", "5", "--bend-radius", "150", "-o", str(tmp_path)]
     )
-    err = capsys.readouterr().err.strip().splitlines()
+    err = capfd.readouterr().err.strip().splitlines()
     assert status == 2 and err[-1].startswith("onefold: error: ")
     state = design_state(design_from_params(args, data, key))
     assert state["ok"] and state["flat_svg"] is None

@@ -46,7 +46,7 @@ SHAPES = {
 MATERIALS = {
     "bare": Material(),
     "kerf": Material(kerf=0.5),
-    "thick": Material(thickness=2.0, bend_radius=3.0, k_factor=0.44, density=7.9e-6, name="S235"),
+    "thick": Material(thickness=2.0, bend_radius=3.0, k_factor=0.44, density=7900.0, name="S235"),
     "thick_kerf": Material(thickness=1.5, bend_radius=1.0, k_factor=0.33, kerf=0.4),
     "thick_inside": Material(
         thickness=2.5, bend_radius=0.0, k_factor=0.5, sheet_surface="INSIDE", relief_hole=12.0
@@ -327,8 +327,10 @@ def test_notes_content_and_mass(tmp_path):
     for half in folded.crease:
         assert f"{half.bend} {half.fold_angle_deg:.2f} deg" in text
     area = shoelace(outline_of(doc)) - math.pi * m.relief_hole_diameter**2 / 4
-    mass = float(re.search(r"mass: ([-0-9.eE+]+)", text).group(1))
-    assert mass == pytest.approx(area * m.thickness * m.density, rel=1e-5)
+    # ("^ " is how DXF text writes a caret)
+    mass = float(re.search(r"mass: ([-0-9.eE+]+) kg \(density 7900 kg/m\^ 3\)", text).group(1))
+    # 7900 kg/m^3 x t (mm) x area (mm^2), with 1 mm^3 = 1e-9 m^3
+    assert mass == pytest.approx(area * m.thickness * 7900.0 * 1e-9, rel=1e-5)
     w, h = np.ptp(outline_of(doc), axis=0)
     assert f"flat size: {w:.3f} x {h:.3f} mm" in text
     assert "mass" not in "\n".join(flat_pattern(*_design("t1d", "bare")).notes)

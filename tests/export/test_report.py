@@ -1,4 +1,4 @@
-"""The JSON report: complete, JSON-clean, consistent with the fold, written atomically."""
+"""The JSON report: complete, JSON-clean, finite, consistent with the fold, written atomically."""
 
 from __future__ import annotations
 
@@ -7,6 +7,9 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial import ConvexHull
 
 from onefold_cad import (
     Design,
@@ -17,7 +20,15 @@ from onefold_cad import (
     Sheet,
     build_design,
 )
-from onefold_cad.export.report import design_report, report_json, write_report
+from onefold_cad.export.report import (
+    REPORT_VERSION,
+    _diameter,
+    _hull_2d,
+    check_finite,
+    design_report,
+    report_json,
+    write_report,
+)
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +37,7 @@ def steel():
         "steel",
         FrameCurve(32, 34, h_c=20, divisions=40),
         Sheet.rectangle(600, 400, 0.4),
-        material=Material(thickness=2.0, bend_radius=3.0, k_factor=0.4, density=7.85e-6),
+        material=Material(thickness=2.0, bend_radius=3.0, k_factor=0.4, density=7850.0),
     )
     folded = build_design(design)
     return design, folded, design_report(design, folded, files=["out/steel.step"])
@@ -44,33 +55,34 @@ def paper():
     return design, folded, design_report(design, folded)
 
 
-def test_report_is_strict_json_with_the_issue_s_keys(steel):
+def test_report_is_strict_json_with_the_documented_keys(steel):
     _, _, rep = steel
     again = json.loads(report_json(rep))
     assert again == rep
+    assert rep["report_version"] == REPORT_VERSION == 2
     for key in (
-        "inputs",
-        "apex_height",
-        "angle_condition_error_deg",
-        "gammas_deg",
-        "fold_angles_deg",
-        "bend",
-        "relief_hole_diameter",
-        "flat_size",
-        "flat_area",
-        "surface_area",
-        "resting",
-        "developability",
-        "crease",
-        "timings_s",
-        "files",
-    ):
+        "inputs", "sources", "direction_surface", "angle_condition_error_deg", "gammas_deg",
+        "fold_angles_deg", "bend", "relief_hole_diameter", "flat_size", "flat_area",
+        "surface_area", "mass", "resting", "developability", "crease", "warnings",
+        "timings_s", "files",
+    ):  # fmt: skip
         assert key in rep, key
+    assert "apex_height" not in rep  # moved under direction_surface, named for what it is
     assert set(rep["fold_angles_deg"]) == {"plus_x", "minus_x"}
     assert set(rep["timings_s"]) == {"direction_surface", "final_surface"}
     assert rep["files"] == ["steel.step"]
     assert rep["inputs"]["frame"]["alpha"] == 32.0
     assert rep["inputs"]["sheet"]["rectangle"]["apex_fraction"] == 0.4
+    assert rep["warnings"] == []
+
+
+def test_direction_surface_height_is_the_paper_s_h_at_frame_radius(steel):
+    design, folded, rep = steel
+    ds = rep["direction_surface"]
+    assert ds["apex_height"] == folded.solution.apex_height > 0
+    assert ds["frame_radius"] == design.frame.radius == 100.0
+    assert ds["apex"] == [0.0, 0.0, ds["apex_height"]]
+    assert "frame curve of radius R" in ds["meaning"]
 
 
 def test_fold_angles_and_bend_values_per_half(steel):
@@ -90,34 +102,44 @@ def test_fold_angles_and_bend_values_per_half(steel):
     assert abs(a - b) > 0.1
 
 
-def test_resting_form_stands_on_the_ground(steel):
+def test_resting_form_height_span_and_footprint(steel):
     _, folded, rep = steel
     rest = rep["resting"]
-    lo, hi = np.array(rest["bounding_box"]["min"]), np.array(rest["bounding_box"]["max"])
+    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
     size = folded.sheet.size
-    assert abs(lo[2]) < 1e-9 * size
-    assert rest["height"] == pytest.approx(hi[2] - lo[2])
-    assert rest["footprint"]["width"] == pytest.approx(hi[0] - lo[0])
-    assert 0 < rest["footprint"]["area"] <= rest["footprint"]["width"] * rest["footprint"]["depth"]
+    lo, hi = np.array(rest["bounding_box"]["min"]), np.array(rest["bounding_box"]["max"])
+    np.testing.assert_array_equal(lo, pts.min(axis=0))
+    np.testing.assert_array_equal(hi, pts.max(axis=0))
+    assert abs(lo[2]) < 1e-9 * size  # it stands on the ground
+    assert rest["height"] == hi[2] - lo[2]
+    assert (rest["footprint"]["width"], rest["footprint"]["depth"]) == tuple(hi[:2] - lo[:2])
+    # Footprint area: qhull (an independent hull) on the same ground points.
+    assert rest["footprint"]["area"] == pytest.approx(ConvexHull(pts[:, :2]).volume, rel=1e-12)
+    # Span: the largest horizontal distance between two points, by brute force.
+    xy = pts[:, :2]
+    brute = max(float(np.max(np.hypot(*(xy - p).T))) for p in xy)
+    assert rest["span"] == pytest.approx(brute, rel=1e-12)
     # The folded form is a rigid copy of the flat sheet: it fits in the sheet's disc about H.
     assert np.linalg.norm(hi - lo) <= 2 * size * (1 + 1e-9)
 
 
 def test_areas_sizes_and_mass(steel):
-    design, _, rep = steel
-    assert rep["sheet"]["size"] == pytest.approx([600, 400])
-    assert rep["sheet"]["area"] == pytest.approx(600 * 400)
-    # Developable: the folded surface keeps the sheet's area.
-    assert rep["surface_area"] == pytest.approx(600 * 400, rel=1e-3)
+    design, folded, rep = steel
+    assert rep["sheet"]["size"] == pytest.approx([600, 400], rel=1e-12)
+    assert rep["sheet"]["area"] == pytest.approx(600 * 400, rel=1e-12)
+    assert rep["surface_area"] == folded.metrics.area_3d
     hole = rep["relief_hole_diameter"]
-    assert hole == design.material.relief_hole_diameter > 0
+    assert hole == 2 * (2.0 + 3.0)  # the default: max(3 t, 2 (t + r)) = 10
     assert 0 < rep["solid_min_relief_hole"] < hole  # the default hole is wide enough
     # The cut part loses the bend deductions and the hole, so it is smaller.
-    assert rep["flat_area"] < 600 * 400 - math.pi * hole**2 / 4 + 1e-6
+    assert rep["flat_area"] < 600 * 400 - math.pi * hole**2 / 4
     assert rep["flat_size"][0] <= 600 + 1e-9 and rep["flat_size"][1] <= 400 + 1e-9
-    assert rep["mass"] == pytest.approx(7.85e-6 * 2.0 * rep["flat_area"])
-    dev = rep["developability"]
-    assert dev["area_rel_error"] < 1e-3 and dev["boundary_length_rel_error"] < 1e-3
+    # 7850 kg/m^3 x 2 mm x flat area (mm^2) x 1e-9 m^3 per mm^3.
+    assert rep["mass"] == {
+        "value": pytest.approx(7850.0 * 2.0 * rep["flat_area"] * 1e-9, rel=1e-14),
+        "unit": "kg",
+        "density": 7850.0,
+    }
 
 
 def test_paper_model_reports_its_gammas(paper, steel):
@@ -125,13 +147,58 @@ def test_paper_model_reports_its_gammas(paper, steel):
     gam = np.array(rep["gammas_deg"])
     assert gam.shape == (design.frame.divisions,)
     # The angle condition: one side's apex angles add up to 180 deg.
-    assert gam.sum() == pytest.approx(180.0, abs=1e-6)
-    assert rep["angle_condition_error_deg"] < 1e-6
+    assert abs(gam.sum() - 180.0) <= 1e-9
+    assert rep["angle_condition_error_deg"] <= 1e-9
     assert steel[2]["gammas_deg"] is None  # exact model: no fan
-    assert rep["apex_height"] == folded.solution.apex_height > 0
     assert rep["relief_hole_diameter"] == 0.0
     assert rep["solid_min_relief_hole"] is None  # paper model: no solid
     assert rep["mass"] is None
+
+
+def test_a_flat_pattern_past_the_bend_limits_is_a_warning():
+    """Past the bend model's limits the report keeps the geometry, describes the
+    uncompensated blank (what --compensation none would write) and the
+    warning names the limit (issue 11 item 4)."""
+    design = Design(
+        "corner",
+        FrameCurve(60, 70),
+        Sheet.rectangle(40, 100, 0.5),
+        material=Material(thickness=3.57, bend_radius=6.0),
+    )
+    folded = build_design(design)
+    rep = design_report(design, folded)
+    assert rep["flat_pattern"]["compensation"] == "none"
+    assert rep["flat_pattern"]["shift"] == 0.0 and rep["flat_pattern"]["bend_problems"]
+    # the uncompensated blank is the designed sheet less the relief hole
+    hole = rep["flat_pattern"]["hole_diameter"]
+    assert abs(rep["flat_area"] - (40 * 100 - math.pi * hole**2 / 4)) <= 1e-9 * 4000
+    assert rep["direction_surface"]["apex_height"] > 0 and rep["resting"]["height"] > 0
+    bends = [w for w in rep["warnings"] if w.startswith("bend_radius: ")]
+    assert len(bends) == 1 and "build refuses the DXF" in bends[0]
+    json.loads(report_json(rep))
+
+
+def test_given_warnings_sources_and_timings_are_reported(paper):
+    design, folded, _ = paper
+    rep = design_report(
+        design,
+        folded,
+        sources={"material.thickness": "--thickness"},
+        timings={"step": 1.5},
+        warnings=["stability: example"],
+    )
+    assert rep["sources"] == {"material.thickness": "--thickness"}
+    assert rep["timings_s"]["step"] == 1.5
+    assert rep["warnings"] == ["stability: example"]
+
+
+def test_check_finite_names_the_key():
+    rep = {"name": "x", "a": {"b": [1.0, 2.0, {"c": float("nan")}]}}
+    with pytest.raises(ExportError, match=r"a\.b\[2\]\.c = nan"):
+        check_finite(rep)
+    with pytest.raises(ExportError, match=r"resting\.height = inf"):
+        report_json({"name": "x", "resting": {"height": float("inf")}})
+    check_finite({"name": "x", "ok": [1.0, None, "text", {"n": 3}]})
 
 
 def test_write_report_atomically(tmp_path, paper):
@@ -142,9 +209,32 @@ def test_write_report_atomically(tmp_path, paper):
 
 
 def test_write_report_leaves_nothing_on_failure(tmp_path, paper):
-    bad = dict(paper[2], apex_height=float("nan"))
-    with pytest.raises(ExportError):
+    bad = dict(paper[2], surface_area=float("nan"))
+    with pytest.raises(ExportError, match="surface_area = nan"):
         write_report(tmp_path / "bad.json", bad)
     with pytest.raises(ExportError):
         write_report(tmp_path / "missing-dir" / "r.json", paper[2])
     assert list(tmp_path.iterdir()) == []
+
+
+# -- the footprint's hull and span ------------------------------------------------------
+def test_hull_of_a_square_with_inner_and_edge_points():
+    pts = np.array([[0, 0], [2, 0], [2, 2], [0, 2], [1, 1], [1, 0], [0.5, 1.5]], dtype=float)
+    assert _hull_2d(pts) == [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]
+    assert _diameter(_hull_2d(pts)) == pytest.approx(math.sqrt(8), rel=1e-15)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3)), min_size=1, max_size=60))
+def test_hull_area_and_diameter_match_brute_force(points):
+    xy = np.array(points, dtype=float)
+    hull = _hull_2d(xy)
+    brute = max(float(np.max(np.hypot(*(xy - p).T))) for p in xy)
+    assert _diameter(hull) == pytest.approx(brute, rel=1e-12, abs=1e-12)
+    if len(hull) >= 3:
+        h = np.array(hull)
+        cross = (np.roll(h, -1, axis=0) - h)[:, None, :]
+        # every point lies on the inner side of every hull edge (counter-clockwise)
+        rel = xy[None, :, :] - h[:, None, :]
+        side = cross[..., 0] * rel[..., 1] - cross[..., 1] * rel[..., 0]
+        assert np.all(side >= -1e-9 * 1e3 * 1e3)
