@@ -379,8 +379,12 @@ def cmd_build(ns: argparse.Namespace) -> int:
             if n == 1:
                 raise
             raise _prefixed(exc, d.name) from None
-        if "dxf" in formats or "svg" in formats:
+        if any(WRITERS[f].needs_flat_pattern for f in formats):
             progress.line(i, n, d.name, f"flat pattern {time.perf_counter() - t0:.2f} s")
+            from onefold_cad.export.bend_sheet import bend_table
+
+            for text in bend_table(ctx.pattern).splitlines():
+                progress.line(i, n, d.name, text)
         notes = tuple(design_warnings(d, folded))
         for w in notes:
             warn(f"{d.name}: {w}")

@@ -29,6 +29,7 @@ __all__ = [
     "Design",
     "Mass",
     "build_design",
+    "default_body",
     "design_mass",
     "fabrication_warnings",
     "relief_hole_diameter",
@@ -223,6 +224,15 @@ def fabrication_warnings(design: Design) -> list[str]:
             "computed with it as given"
         )
     return out
+
+
+def default_body(design: Design) -> str:
+    """The STEP body ``build`` writes by default: 'solid' for an exact-model
+    design with thickness and a relief hole (the default hole when thickness
+    > 0), else 'shell' (the reference surface)."""
+    m = design.material
+    exact = design.model.value == "exact"
+    return "solid" if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else "shell"
 
 
 def build_design(design: Design) -> FoldedSheet:

@@ -281,6 +281,6 @@ def write_design(
 
 
 def _default_body(design: Design) -> str:
-    from onefold_cad.export.step import default_body
+    from onefold_cad.design import default_body
 
     return default_body(design)
