@@ -228,7 +228,7 @@ class PaperFan(DirectionSurface):
         error: the arithmetic's, and that of the points' and the apex's own
         placement (each to ~4 rounding errors of its coordinates, measured from
         the nearer end of the arc, so an end point to one of L). A crude bound
-        on the latter is used when it proves ``|S - pi| <= target``."""
+        on the latter is used when it proves ``|S - pi| <= target / 10``."""
         if self._apex_state is None:
             raise RuntimeError("apex height not set")
         res, arithmetic, hu, nrm = self._apex_state
@@ -236,7 +236,7 @@ class PaperFan(DirectionSurface):
         g = self.geometry
         size = 4.0 * (2.0 + abs(g.hc) + g.sin_alpha) + 2.0 * hu
         crude = EPS * 2.0 * size * len(nrm) / float(nrm.min())
-        if abs(res) + arithmetic + crude <= target:
+        if abs(res) + arithmetic + crude <= 0.1 * target:
             return res, arithmetic + crude
         return res, arithmetic + EPS * self._placement(nrm, hu)
 
