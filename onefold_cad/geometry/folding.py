@@ -247,20 +247,6 @@ class FoldedSheet:
         return np.concatenate(verts), np.concatenate(faces).astype(np.int64)
 
 
-def _merge(fan: Array, vertices: Array, tol: float = 1e-12) -> Array:
-    """The sorted union of two angle lists (radians), leaving out every angle
-    closer than ``tol`` to the one before it; the largest angle is kept."""
-    t = np.concatenate((fan, vertices))
-    t.sort(kind="stable")  # two sorted runs: a merge
-    keep = np.empty(len(t), dtype=bool)
-    keep[0] = True
-    np.greater(t[1:] - t[:-1], tol, out=keep[1:])
-    last = t[-1]
-    t = t[keep]
-    t[-1] = max(t[-1], last)
-    return t
-
-
 def _ring(angles: tuple[Array, Array]) -> NDArray[np.int64]:
     """Indices of the ruling ends in boundary order (counter-clockwise from the +x
     crossing): the +y side's from +x to -x, then the -y side's back, without
@@ -321,6 +307,45 @@ def _measure(folded: FoldedSheet) -> Developability:
     )
 
 
+def _fan_rays(
+    surface: PaperFan, vertices: tuple[Array, Array], tol: float = 1e-12
+) -> tuple[Array, Array, Array]:
+    """Both sides' ruling angles and the +y side's directions of their rays:
+    the fan's division rays with every sheet vertex ray between them inserted
+    (a vertex closer than ``tol`` to a division uses the division). Returns
+    ``(upper angles, lower angles, (m, 3) directions)``, the lower side's after
+    the upper side's."""
+    assert surface.thetas is not None and surface.directions is not None
+    fan, dirs = surface.thetas, surface.directions
+    n1 = len(fan)
+    if fan[-1] > math.pi:
+        fan = np.minimum(fan, math.pi)  # theta_0 = 0: only the top can overshoot
+    out: list[Array] = []
+    pieces: list[Array] = []
+    for vert in vertices:
+        inner = vert[1:-1]
+        k_all = fan.searchsorted(inner).tolist()  # fan[k - 1] < v <= fan[k]
+        angles: list[Array] = []
+        start = 0
+        for v, k in zip(inner.tolist(), k_all, strict=True):
+            k = min(k, n1 - 1)
+            lo, hi = float(fan[k - 1]), float(fan[k])
+            if v - lo <= tol or abs(hi - v) <= tol:
+                continue
+            angles += [fan[start:k], np.array((v,))]
+            pieces += [dirs[start:k], np.array([surface._frame1(k - 1, v - lo)[0]])]
+            start = k
+        if start:
+            angles.append(fan[start:])
+            side = np.concatenate(angles)
+        else:
+            side = fan.copy()
+        pieces.append(dirs[start:])
+        side[-1] = max(float(side[-1]), float(vert[-1]))  # the -x crease at pi
+        out.append(side)
+    return out[0], out[1], np.concatenate(pieces)
+
+
 def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> FoldedSheet:
     """Fold ``sheet`` onto the solved direction-surface.
 
@@ -338,48 +363,49 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
     """
     t0 = time.perf_counter()
     surface = solution.surface
-    vert_up, vert_lo = sheet._side_angles
-    if isinstance(surface, PaperFan):
-        assert surface.thetas is not None
-        fan = np.minimum(surface.thetas, math.pi)  # theta_0 = 0: only the top can overshoot
-        up, lo = _merge(fan, vert_up), _merge(fan, vert_lo)
+    fan = isinstance(surface, PaperFan)
+    if fan:
+        assert isinstance(surface, PaperFan)
+        up, lo, u = _fan_rays(surface, sheet._side_angles)
+        g = surface.gammas
+        assert g is not None
+        crease_frames = (surface._frame1(0, 0.0), surface._frame1(len(g) - 1, float(g[-1])))
+        theta = np.concatenate((up, lo))
     else:
+        vert_up, vert_lo = sheet._side_angles
         up, lo = vert_up.copy(), vert_lo.copy()  # the sheet's are read-only
+        theta = np.concatenate((up, lo))
+        u = surface.directions_at(theta)
+        crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
     mu, m = len(up), len(up) + len(lo)
-    theta = np.concatenate((up, lo))
-    # the +y side's directions (rays on a paper fan's divisions are its
-    # direction-vectors); the crease halves need the in-surface direction too
-    u = surface.directions_at(theta)
-    crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
-    psi = theta.copy()
-    np.negative(psi[mu:], out=psi[mu:])  # the -y side's flat angles run clockwise
+    psi = theta
+    psi[mu:] *= -1.0  # the -y side's flat angles run clockwise
     rho, cos, sin = sheet._rays(psi)
+    theta = None
     flat_r = np.zeros((m, 2, 2))
     np.multiply(rho, cos, out=flat_r[:, 1, 0])
     np.multiply(rho, sin, out=flat_r[:, 1, 1])
-    apex = solution.apex
+    h = solution.apex_height
     rulings3 = np.empty((m, 2, 3))
-    rulings3[:, 0] = apex
+    rulings3[:, 0] = (0.0, 0.0, h)
     ends3 = rulings3[:, 1]
     np.multiply(rho[:, None], u, out=ends3)
-    np.negative(ends3[mu:, 1], out=ends3[mu:, 1])  # the -y side: the mirror image
-    ends3[:, 2] += apex[2]
+    ends3[mu:, 1] *= -1.0  # the -y side: the mirror image
+    ends3[:, 2] += h
     xp, xm = sheet.crease_lengths
     crease = (
         _crease_half("plus_x", xp, ends3[0], *crease_frames[0]),
         _crease_half("minus_x", xm, ends3[mu - 1], *crease_frames[1]),
     )
-    boundary: dict[str, Array] = {}
-    if isinstance(surface, PaperFan):
-        # the paper model's boundary is straight between the ruling ends: it is
-        # part of the fold, so fill the cached properties' slots with it now
-        # (the +y side's ends from +x to -x, then the -y side's back; see _ring)
-        ends2 = flat_r[:, 1]
-        boundary["boundary_flat"] = np.concatenate((ends2[:mu], ends2[m - 2 : mu : -1]))
-        boundary["boundary_3d"] = np.concatenate((ends3[:mu], ends3[m - 2 : mu : -1]))
     elapsed = time.perf_counter() - t0
     folded = FoldedSheet(
         solution, sheet, (up, lo), flat_r, rulings3, crease, elapsed, int(boundary_samples)
     )
-    folded.__dict__.update(boundary)
+    if fan:
+        # the paper model's boundary is straight between the ruling ends: it is
+        # part of the fold, so fill the cached properties' slots with it now
+        # (the +y side's ends from +x to -x, then the -y side's back; see _ring)
+        ends2 = flat_r[:, 1]
+        folded.__dict__["boundary_flat"] = np.concatenate((ends2[:mu], ends2[m - 2 : mu : -1]))
+        folded.__dict__["boundary_3d"] = np.concatenate((ends3[:mu], ends3[m - 2 : mu : -1]))
     return folded
