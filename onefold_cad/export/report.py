@@ -246,8 +246,13 @@ def design_report(
     Returns:
         A JSON-serialisable dict: ``inputs`` (the design as template data),
         ``sources``, ``direction_surface`` (``apex_height``: the paper's h
-        at ``frame_radius`` R, and ``apex``), ``angle_sum_deg``,
-        ``angle_condition_error_deg``, ``gammas_deg`` (paper model, else
+        at ``frame_radius`` R, ``apex``, ``apex_height_error`` (a bound on
+        its distance to the exact root), and the problem's conditioning:
+        ``ds_dh`` (dS/dh at the root, rad per length) and ``s_max_minus_pi``
+        (how far one side's angle sum rises above 180 deg, rad)),
+        ``angle_sum_deg``, ``angle_condition_error_deg`` (a verified bound on
+        |sum of the apex angles - 360 deg|, evaluated independently of the
+        search), ``gammas_deg`` (paper model, else
         null), ``fold_angles_deg`` and ``bend`` keyed ``plus_x``/``minus_x``,
         ``crease`` (per half: length, fold angle, bend direction, bend
         allowance, outside set-back and bend deduction),
@@ -287,6 +292,9 @@ def design_report(
             "frame_radius": float(design.frame.radius),
             "apex": _floats(sol.apex),
             "meaning": APEX_HEIGHT_MEANING,
+            "apex_height_error": float(sol.apex_height_error),
+            "ds_dh": float(sol.ds_dh),
+            "s_max_minus_pi": float(sol.s_max_minus_pi),
         },
         "angle_sum_deg": float(sol.angle_sum_deg),
         "angle_condition_error_deg": float(sol.angle_condition_error_deg),
