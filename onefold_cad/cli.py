@@ -31,7 +31,15 @@ from typing import TYPE_CHECKING, Any, NoReturn
 from onefold_cad import __version__
 from onefold_cad.errors import InvalidParameterError, OneFoldError
 from onefold_cad.export.writers import WRITERS
-from onefold_cad.flags import BODIES, DESIGN_FLAGS, Job, load_jobs, parse_choice, parse_int
+from onefold_cad.flags import (
+    BODIES,
+    DESIGN_FLAGS,
+    FLAG_OF,
+    Job,
+    load_jobs,
+    parse_choice,
+    parse_int,
+)
 from onefold_cad.summary import material_lines, summary
 from onefold_cad.templates import DEFAULT_TEMPLATE
 
@@ -376,16 +384,17 @@ def cmd_build(ns: argparse.Namespace) -> int:
         try:
             check_before_writing(ctx, formats)
         except OneFoldError as exc:
+            exc = _flag_named(exc, ns)
             if n == 1:
-                raise
+                raise exc from None
             raise _prefixed(exc, d.name) from None
         if any(WRITERS[f].needs_flat_pattern for f in formats):
             progress.line(i, n, d.name, f"flat pattern {time.perf_counter() - t0:.2f} s")
             from onefold_cad.export.bend_sheet import bend_table
 
-            for text in bend_table(ctx.pattern).splitlines():
+            for text in bend_table(ctx.pattern, rulings=False).splitlines():
                 progress.line(i, n, d.name, text)
-        notes = tuple(design_warnings(d, folded))
+        notes = tuple(design_warnings(d, folded, ns.compensation))
         for w in notes:
             warn(f"{d.name}: {w}")
         found.append(notes)
@@ -434,6 +443,21 @@ def _test_pause(point: str) -> None:
     from onefold_cad.export.atomic import _test_pause as pause
 
     pause(point)
+
+
+def _flag_named(exc: OneFoldError, ns: argparse.Namespace) -> OneFoldError:
+    """A writer's refusal of an input value (InvalidParameterError: ``kerf``)
+    named after the flag the user typed (``--kerf``), as the input checks name
+    it; else ``exc`` (a FabricationError names what to change, as the API and
+    the explorer spell it)."""
+    param = getattr(exc, "parameter", None)
+    if not isinstance(exc, InvalidParameterError):
+        return exc
+    flag = FLAG_OF.get(param) if isinstance(param, str) else None
+    prefix = f"{param}: "
+    if flag is None or getattr(ns, str(param), None) is None or not str(exc).startswith(prefix):
+        return exc
+    return type(exc)(flag, str(exc)[len(prefix) :])  # type: ignore[call-arg]
 
 
 def _prefixed(exc: OneFoldError, name: str) -> OneFoldError:

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 import re
+import threading
+import weakref
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -35,6 +37,7 @@ __all__ = [
     "relief_hole_diameter",
     "relief_hole_problem",
     "sheet_inradius",
+    "solid_min_relief_hole",
 ]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
@@ -130,24 +133,67 @@ def sheet_inradius(sheet: Sheet) -> float:
     return boundary_distance(sheet.vertices)
 
 
+#: min_relief_hole per fold and material: the fold's identity holds its results
+#: (freed with the fold), each a diameter or the InvalidParameterError it raised.
+_MIN_HOLES: weakref.WeakKeyDictionary[FoldedSheet, dict[Material, float | Exception]] = (
+    weakref.WeakKeyDictionary()
+)
+_MIN_HOLES_LOCK = threading.Lock()
+
+
+def solid_min_relief_hole(folded: FoldedSheet, material: Material) -> float:
+    """The smallest relief hole a STEP solid of ``material`` needs on ``folded``
+    (length): :func:`~onefold_cad.geometry.thick_sheet.min_relief_hole`,
+    computed once per fold and material (the report, the default hole and
+    the flat pattern all ask for it).
+
+    Raises:
+        InvalidParameterError: as ``min_relief_hole`` (e.g. a flat fold has
+            no mitre; 'model' for the paper model).
+    """
+    with _MIN_HOLES_LOCK:
+        known = _MIN_HOLES.setdefault(folded, {}).get(material)
+    if known is None:
+        try:
+            known = float(min_relief_hole(folded, material))
+        except InvalidParameterError as exc:
+            known = exc
+        with _MIN_HOLES_LOCK:
+            _MIN_HOLES.setdefault(folded, {})[material] = known
+    if isinstance(known, Exception):
+        raise known
+    return known
+
+
+def _solid_hole(design: Design, folded: FoldedSheet) -> float | None:
+    """1.1 x the smallest hole a solid needs, rounded up to two significant
+    digits in millimetres (so the physical hole does not depend on the
+    design's unit), in the design's unit; None when no solid is made (paper
+    model, t = 0) or the fold has no mitre."""
+    m = design.material
+    if m.thickness <= 0.0 or design.model.value != "exact":
+        return None
+    try:
+        need_mm = 1.1 * solid_min_relief_hole(folded, m) * design.units.mm
+    except InvalidParameterError:  # no mitre (a flat fold): the solid will say so
+        return None
+    step = 10.0 ** (math.floor(math.log10(need_mm)) - 1)
+    return math.ceil(need_mm / step - 1e-9) * step / design.units.mm
+
+
 def relief_hole_diameter(design: Design, folded: FoldedSheet) -> float:
     """The relief hole every export cuts (length): the material's when it is
     set; else none for a zero-thickness sheet, and otherwise the larger of
     max(3 t, 2 (t + r)) and, for the exact model, 1.1 x the smallest hole a
-    solid of that thickness needs (:func:`min_relief_hole`), rounded up to
-    two significant digits."""
+    solid of that thickness needs (:func:`solid_min_relief_hole`), rounded
+    up to two significant digits in millimetres whatever the design's unit
+    (13 mm, 0.51181... in)."""
     m = design.material
     default = m.relief_hole_diameter
-    if m.relief_hole is not None or m.thickness <= 0.0 or design.model.value != "exact":
+    if m.relief_hole is not None:
         return default
-    try:
-        need = 1.1 * min_relief_hole(folded, m)
-    except InvalidParameterError:  # no mitre (a flat fold): the solid will say so
-        return default
-    if need <= default:
-        return default
-    step = 10.0 ** (math.floor(math.log10(need)) - 1)
-    return max(default, math.ceil(need / step - 1e-9) * step)
+    solid = _solid_hole(design, folded)
+    return default if solid is None else max(default, solid)
 
 
 @dataclass(frozen=True)
@@ -183,36 +229,63 @@ def design_mass(design: Design, net_area: float) -> Mass | None:
     return Mass(kg if unit == "kg" else kg / KG_PER_LB, unit, m.density)
 
 
-def relief_hole_problem(design: Design) -> FabricationError | None:
-    """The refusal every writer of the cut part (DXF, STEP) gives when the relief
-    hole does not fit inside the sheet around H, or None when it fits.
+def relief_hole_problem(
+    design: Design, folded: FoldedSheet | None = None, blank: np.ndarray | None = None
+) -> FabricationError | None:
+    """The one check of the relief hole :func:`relief_hole_diameter` cuts
+    against the part around H: the refusal every writer of the cut part (DXF,
+    STEP, flat preview) gives when the hole does not fit, or None when it fits.
 
-    Named after the thickness when the hole is the default (it follows from
-    t and r), else after the relief hole."""
+    Args:
+        design: the design.
+        folded: ``build_design(design)`` (solved here when None).
+        blank: ``(n, 2)`` the compensated blank's outline (fold frame), when
+            checking the flat pattern's; None: the designed sheet.
+
+    Returns:
+        A FabricationError named after the relief hole when the user set it;
+        for the default hole, after what made it that large: ``thickness`` (3 t,
+        or the smallest hole a STEP solid of that thickness needs) or
+        ``bend_radius`` (2 (t + r) with r > t / 2).
+    """
     m, u = design.material, design.units.value
-    hole = m.relief_hole_diameter
-    inner = sheet_inradius(design.sheet)
+    folded = build_design(design) if folded is None else folded
+    hole = relief_hole_diameter(design, folded)
+    outline = design.sheet.vertices if blank is None else blank
+    inner = boundary_distance(outline)
     if not (hole > 0.0 and hole / 2.0 >= inner):
         return None
-    limit = f"{2.0 * inner:.6g} {u} (twice the distance from H to the nearest sheet edge)"
-    if m.relief_hole is None:
+    edge = "sheet edge" if blank is None else "edge of the compensated blank"
+    limit = f"{2.0 * inner:.6g} {u} (twice the distance from H to the nearest {edge})"
+    if m.relief_hole is not None:
+        return FabricationError("relief_hole", f"diameter {hole:g} {u} must be < {limit}")
+    t, r = m.thickness, m.bend_radius
+    if hole > m.relief_hole_diameter:  # raised for the STEP solid
+        need = solid_min_relief_hole(folded, m)
         return FabricationError(
             "thickness",
-            f"{m.thickness:g} {u} is too thick for this sheet: the default relief hole "
-            f"max(3 t, 2 (t + r)) = {hole:g} {u} must be < {limit}; set a relief hole, or a "
-            "smaller thickness or bend radius",
+            f"{t:g} {u} is too thick for this sheet: the default relief hole {hole:g} {u} "
+            f"(1.1 x the {need:.4g} {u} a STEP solid of this thickness needs, rounded up) must "
+            f"be < {limit}; set a smaller relief_hole (and --body shell), or a smaller thickness",
         )
-    return FabricationError("relief_hole", f"diameter {hole:g} {u} must be < {limit}")
+    by_radius = 2.0 * (t + r) > 3.0 * t  # r > t / 2: the radius made the hole this large
+    name, value, what = ("bend_radius", r, "large") if by_radius else ("thickness", t, "thick")
+    return FabricationError(
+        name,
+        f"{value:g} {u} is too {what} for this sheet: the default relief hole max(3 t, 2 (t + r)) "
+        f"= {hole:g} {u} must be < {limit}; set a relief_hole, or a smaller thickness or "
+        "bend_radius",
+    )
 
 
-def fabrication_warnings(design: Design) -> list[str]:
+def fabrication_warnings(design: Design, folded: FoldedSheet | None = None) -> list[str]:
     """What the design's own values tell about fabricating it, one line each:
     a relief hole that does not fit inside the sheet around H (the DXF and
     STEP writers refuse it: :func:`relief_hole_problem`) and a density no
     sheet material has. Empty when nothing is wrong. The geometry is solved
-    regardless."""
+    regardless (here, when ``folded`` is None)."""
     out = []
-    hole = relief_hole_problem(design)
+    hole = relief_hole_problem(design, folded)
     if hole is not None:
         out.append(f"{hole}; build refuses the DXF and STEP")
     m = design.material

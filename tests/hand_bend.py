@@ -101,3 +101,42 @@ def polygon_span_at(poly: np.ndarray, x: float) -> tuple[float, float]:
     u = (x - a[hit, 0]) / (b[hit, 0] - a[hit, 0])
     y = a[hit, 1] + u * (b[hit, 1] - a[hit, 1])
     return float(y.min()), float(y.max())
+
+
+# -- the frame curve and the fold angles, from the paper's construction ------------------
+def arc_point(alpha_deg: float, beta_deg: float, h_c: float, radius: float, phi: float):
+    """The frame curve's point at arc angle ``phi`` (radians, -alpha at the f-line's +x
+    end, 180 + alpha at its -x end): the circle of radius R about (-h_c, R sin alpha) in
+    the plane through the x axis tilted by beta, (x, d cos beta, d sin beta)."""
+    a, b = math.radians(alpha_deg), math.radians(beta_deg)
+    d = radius * (math.sin(a) + math.sin(phi))
+    return np.array([-h_c + radius * math.cos(phi), d * math.cos(b), d * math.sin(b)])
+
+
+def arc_tangent(alpha_deg: float, beta_deg: float, radius: float, phi: float):
+    """d(arc_point)/d(phi)."""
+    b = math.radians(beta_deg)
+    dd = radius * math.cos(phi)
+    return np.array([-radius * math.sin(phi), dd * math.cos(b), dd * math.sin(b)])
+
+
+def crease_angle(normal) -> float:
+    """The fold angle (deg) between a +y side's top normal and its mirror image in the
+    xz-plane (the -y side's): twice the normal's angle to that plane."""
+    n = np.asarray(normal, dtype=float)
+    return math.degrees(2.0 * math.atan2(abs(n[1]), math.hypot(n[0], n[2])))
+
+
+def fan_folds(points, apex) -> list[tuple[float, str]]:
+    """The paper fan's fold at each interior division ray k = 1 .. n-1 of the +y side:
+    (angle in deg, 'UP' or 'DOWN'), from the triangles (A, P_k-1, P_k) and (A, P_k,
+    P_k+1). A triangle's top normal is (P_k - A) x (P_k+1 - A) (the flat sheet's +x and
+    +y give +z); the fold is UP (a valley seen from the top) when P_k+1 lies on the top
+    side of the triangle before it."""
+    u = [np.asarray(p, dtype=float) - apex for p in points]
+    out = []
+    for k in range(1, len(u) - 1):
+        n0, n1 = np.cross(u[k - 1], u[k]), np.cross(u[k], u[k + 1])
+        angle = math.degrees(math.atan2(float(np.linalg.norm(np.cross(n0, n1))), float(n0 @ n1)))
+        out.append((angle, "UP" if float(u[k + 1] @ n0) > 0.0 else "DOWN"))
+    return out

@@ -264,8 +264,37 @@ def test_build_refuses_what_solve_warns_about(tmp_path):
     no_traceback(proc)
     errors = [ln for ln in proc.stderr.splitlines() if ln.startswith("onefold: error: ")]
     assert len(errors) == 1 and errors[0].startswith("onefold: error: bend_radius: ")
-    assert "compensation 'none'" in errors[0]
+    assert "--compensation none" in errors[0]
     assert not out.exists()
+
+
+#: The reviewers' asymmetric reproducer: the halves fold to 115 and 79 deg.
+ASYMMETRIC = ["--alpha", "5", "--beta", "60", "--hc", "-60", "--x-plus", "3000", "--x-minus",
+              "1000", "--y-plus", "2000", "--y-minus", "1500", "--thickness", "10",
+              "--bend-radius", "10"]  # fmt: skip
+
+
+def test_an_asymmetric_blank_past_the_width_limit_is_refused_unless_none(cli, tmp_path):
+    """The one rigid blank is 6.72 mm too wide across plus_x (bend sheet: width error
+    +6.7205), past 0.1 t = 1 mm: build refuses the flat pattern (exit 2, nothing
+    written), solve answers with the warning, --compensation none writes the designed
+    outline and says, in the warning, what it wrote."""
+    out = tmp_path / "out"
+    rc, _, err = cli("build", *ASYMMETRIC, "--formats", "dxf,bends,json", "-o", str(out), "-q")
+    assert rc == 2 and not out.exists()
+    (line,) = err.splitlines()
+    assert line.startswith("onefold: error: hc: plus_x (fold angle 115.27 deg")
+    assert "the blank is +6.72 mm too wide across it" in line and "limit +-1 mm" in line
+    rc, _, err = cli("solve", *ASYMMETRIC)
+    assert rc == 0 and "+6.72 mm too wide" in err and "build refuses the DXF, cut DXF" in err
+    rc, _, err = cli("build", *ASYMMETRIC, "--formats", "dxf,bends,json", "-o", str(out), "-q",
+                     "--compensation", "none")  # fmt: skip
+    assert rc == 0, err
+    (report,) = out.glob("*.json")
+    (w,) = json.loads(report.read_text())["warnings"]
+    assert w.endswith("; with --compensation none build writes the uncompensated blank (the "
+                      "designed outline; its notes say so) and the STEP as designed")  # fmt: skip
+    assert "refuses" not in w and err.strip().endswith(w)
 
 
 def test_density_in_kg_per_cubic_metre_and_mass_in_kg_or_lb(solve_json, cli):
@@ -439,6 +468,11 @@ BAD = [
     (["--name", "a b"], "--name", "letters"),
 ]
 
+#: The reviewers' relief-hole reproducer: the material's default 3 t = 30 mm fits the 150 mm
+#: square, the hole raised for the solid (190 mm) does not.
+SQUARE_150 = ("--alpha 45 --beta 85 --rectangle 150x150 --thickness 10 --bend-radius 0 "
+              "--compensation none --formats dxf").split()  # fmt: skip
+
 # Only build writes the blank and the solid, which refuse what the geometry allows.
 BUILD_ONLY = [
     (["--body", "mesh"], "body", "auto, solid, shell"),
@@ -448,6 +482,9 @@ BUILD_ONLY = [
     (["table1-row1", "--model", "exact", "--thickness", "150"], "thickness", "too thick"),
     (["paper-square", "--body", "solid", "--formats", "step"], "relief_hole", "got 0"),
     (["table1-row1", "--thickness", "3", "--body", "solid"], "model", "'exact'"),
+    # the hole every writer cuts (the default raised for the solid), checked once
+    (SQUARE_150, "thickness: 10 mm", "the default relief hole 190 mm"),
+    (["--kerf", "99999", "--formats", "dxf"], "--kerf: must be < 3045.43 mm", "got 99999 mm"),
 ]
 
 # build runs every case (it is the command that writes files); solve a sample of them.

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ from hypothesis import strategies as st
 
 from onefold_cad import (
     Design,
+    FabricationError,
     FrameCurve,
     Material,
     Model,
@@ -19,7 +21,15 @@ from onefold_cad import (
     Units,
     build_design,
 )
-from onefold_cad.design import KG_PER_LB, design_mass, fabrication_warnings
+from onefold_cad.design import (
+    KG_PER_LB,
+    design_mass,
+    fabrication_warnings,
+    relief_hole_diameter,
+    relief_hole_problem,
+)
+from onefold_cad.export.flat_pattern import flat_pattern
+from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import load_template
 
 # Millimetres per unit, from the definitions (1 in = 25.4 mm exactly, 1 ft = 12 in = 304.8 mm).
@@ -191,7 +201,7 @@ def test_no_mass_without_density_or_thickness():
 # -- fabrication problems are warnings, never refusals -----------------------------------
 def test_a_relief_hole_larger_than_the_sheet_is_a_warning_not_an_error():
     d = plate("mm", relief_hole=1e6)  # the design is made: the geometry is fine
-    (w,) = fabrication_warnings(d)
+    (w,) = fabrication_warnings(d, build_design(d))
     # H sits 0.4 along the diagonal of 200 x 300: its distance to the nearest edge
     # is 0.4 x 200 = 80 (the short side), so the hole must be < 160.
     assert w.startswith("relief_hole: diameter 1e+06 mm must be < 160 mm")
@@ -199,16 +209,108 @@ def test_a_relief_hole_larger_than_the_sheet_is_a_warning_not_an_error():
     assert build_design(d).solution.apex_height > 0
 
 
-def test_a_default_hole_too_large_for_the_sheet_names_the_thickness():
-    d = plate("mm", thickness=50.0, bend_radius=40.0)  # default hole 2 (t + r) = 180 >= 160
-    (w,) = fabrication_warnings(d)
-    assert w.startswith("thickness: 50 mm is too thick") and "= 180 mm must be < 160 mm" in w
+@pytest.mark.parametrize(
+    ("t", "r", "param", "words"),
+    [
+        (50.0, 40.0, "bend_radius", "40 mm is too large"),  # 2 (t + r) = 180 > 3 t = 150
+        (60.0, 0.0, "thickness", "60 mm is too thick"),  # 3 t = 180 > 2 (t + r) = 120
+    ],
+)
+def test_a_default_hole_too_large_for_the_sheet_names_what_made_it(t, r, param, words):
+    """The default hole max(3 t, 2 (t + r)) = 180 >= 160 (paper model: no solid raises
+    it): named after the term that made it that large."""
+    d = plate("mm", thickness=t, bend_radius=r).with_changes(model="paper")
+    (w,) = fabrication_warnings(d, build_design(d))
+    assert w.startswith(f"{param}: {words}") and "= 180 mm must be < 160 mm" in w
+    assert relief_hole_problem(d, build_design(d)).parameter == param
+
+
+def test_the_default_hole_raised_for_the_solid_is_the_one_checked():
+    """The reviewers' reproducer: a 150 mm square, t 10, r 0, alpha 45, beta 85. The
+    material's default, 3 t = 30 mm, fits; the hole every writer cuts is 1.1 x the
+    smallest a STEP solid needs, rounded up to two digits (by hand from that minimum),
+    which does not: one check, on that hole, naming the thickness."""
+    d = Design("sq", FrameCurve(45, 85), Sheet.rectangle(150.0, 150.0),
+               material=Material(thickness=10.0, bend_radius=0.0))  # fmt: skip
+    folded = build_design(d)
+    need = min_relief_hole(folded, d.material)
+    step = 10.0 ** (math.floor(math.log10(1.1 * need)) - 1)
+    hole = math.ceil(1.1 * need / step) * step
+    assert d.material.relief_hole_diameter == 30.0 < 150.0 < hole
+    assert relief_hole_diameter(d, folded) == pytest.approx(hole, rel=1e-12)
+    problem = relief_hole_problem(d, folded)
+    assert problem.parameter == "thickness"
+    assert f"the default relief hole {hole:g} mm (1.1 x the {need:.4g} mm a STEP solid" in str(
+        problem
+    )
+    assert "must be < 150 mm" in str(problem)
+    with pytest.raises(FabricationError) as info:  # the writers' refusal is that one
+        flat_pattern(d, folded, "none")
+    assert str(info.value) == str(problem)
+
+
+@pytest.mark.parametrize("unit", ["in", "ft"])
+def test_the_default_relief_hole_does_not_depend_on_the_unit(unit):
+    """alpha = beta = 60, t 3 mm, r 0 on the default sheet: 1.1 x the solid's minimum
+    is rounded up to two significant digits in millimetres, so the same design in
+    inches or feet cuts the same physical hole (13 mm; not 0.51 in = 12.954 mm, nor
+    0.042 ft = 12.80 mm)."""
+    base = load_template("patkau-one-fold")
+    mm = base.with_changes(
+        frame=base.frame.with_changes(alpha=60.0, beta=60.0),
+        material=base.material.with_changes(thickness=3.0, bend_radius=0.0),
+    )
+    folded = build_design(mm)
+    need = 1.1 * min_relief_hole(folded, mm.material)  # mm
+    by_hand = math.ceil(need / 10 ** (math.floor(math.log10(need)) - 1)) * 10 ** (
+        math.floor(math.log10(need)) - 1
+    )
+    assert relief_hole_diameter(mm, folded) == pytest.approx(by_hand, rel=1e-12)
+    other = mm.in_units(unit)
+    hole = relief_hole_diameter(other, build_design(other))
+    assert hole * MM_PER[unit] == pytest.approx(by_hand, rel=1e-12)
+
+
+def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeypatch):
+    """The default hole, the report's solid_min_relief_hole, the flat pattern and the
+    writers' relief-hole check all need min_relief_hole: computed once per fold and
+    material (a new fold or material computes it again; the fold's entry goes with it)."""
+    import gc
+
+    from onefold_cad import design as design_module
+    from onefold_cad.export.report import design_report
+
+    calls = []
+
+    def counted(folded, material):
+        calls.append(material)
+        return min_relief_hole(folded, material)
+
+    monkeypatch.setattr(design_module, "min_relief_hole", counted)
+    d = load_template("patkau-one-fold")
+    folded = build_design(d)
+    pattern = flat_pattern(d, folded)
+    report = design_report(d, folded, pattern=pattern)
+    relief_hole_diameter(d, folded)
+    assert len(calls) == 1
+    assert report["solid_min_relief_hole"] == min_relief_hole(folded, d.material)
+    thin = d.material.with_changes(thickness=1.0)
+    design_module.solid_min_relief_hole(folded, thin)
+    design_module.solid_min_relief_hole(folded, thin)
+    design_report(d, build_design(d))
+    assert len(calls) == 3
+    before = len(design_module._MIN_HOLES)
+    del folded, pattern
+    gc.collect()
+    assert len(design_module._MIN_HOLES) < before
 
 
 def test_an_implausible_density_is_a_warning():
-    (w,) = fabrication_warnings(plate("mm", thickness=1.0, density=8e-6))
+    d = plate("mm", thickness=1.0, density=8e-6)
+    (w,) = fabrication_warnings(d, build_design(d))
     assert w.startswith("density: 8e-06 kg/m^3") and "kg/m^3" in w
-    assert fabrication_warnings(plate("mm", thickness=1.0, density=7850.0)) == []
+    ok = plate("mm", thickness=1.0, density=7850.0)
+    assert fabrication_warnings(ok, build_design(ok)) == []
 
 
 @pytest.mark.parametrize(
@@ -216,7 +318,8 @@ def test_an_implausible_density_is_a_warning():
     ["patkau-one-fold", "broken-vault", "paper-square", "star-polygon", "table1-row4"],
 )
 def test_shipped_templates_have_no_fabrication_warning(name):
-    assert fabrication_warnings(load_template(name)) == []
+    d = load_template(name)
+    assert fabrication_warnings(d, build_design(d)) == []
 
 
 def test_units_factor_table():

@@ -234,7 +234,7 @@ def test_a_relief_hole_larger_than_the_sheet_is_a_design_with_a_warning():
     data["material"] = {"relief_hole": 50}
     d = design_from_data(data)
     assert d.material.relief_hole == 50
-    (w,) = fabrication_warnings(d)
+    (w,) = fabrication_warnings(d, build_design(d))
     # The square's vertices are 3 from H on the axes: its edges are 3 / sqrt(2) away.
     assert w.startswith(f"relief_hole: diameter 50 mm must be < {2 * 3 / math.sqrt(2):.6g} mm")
 

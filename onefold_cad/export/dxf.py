@@ -10,7 +10,11 @@ Layers (exact names, so a CAM setup maps them once):
   (application ``ONEFOLD``) holds the direction and angle.
 - ``APEX``: a cross and a small circle at H (always drawn).
 - ``BEND_ZONE``: for t > 0, each half's limit lines at +-BA/2.
-- ``RULINGS`` (optional): rulings as light etch lines.
+- the paper model's ruling folds (:attr:`FlatPattern.fold_rulings`: its fan's
+  triangles meet at an angle along them) on ``BEND_UP`` / ``BEND_DOWN`` like
+  the crease halves (DASHED, XDATA with their name, direction and angle).
+- ``RULINGS`` (optional): the rulings that are no folds as light etch lines
+  (the exact model's: the sheet curves smoothly along them).
 - ``NOTES``: design name, units, material, what UP and DOWN mean, the
   compensation used, the bend sheet (:mod:`onefold_cad.export.bend_sheet`),
   size, area, mass, and each half's direction and angle next to it.
@@ -137,7 +141,8 @@ def draw_flat_pattern(
             for a new one.
         dxfversion: 'R2000' (default), 'R12' for old CAM, or a later version;
             ignored when ``doc`` is given.
-        rulings: draw the RULINGS layer.
+        rulings: draw the RULINGS layer (the etch lines; the paper model's
+            ruling folds are bends and always drawn).
 
     Returns:
         The document (audited: no errors).
@@ -176,6 +181,13 @@ def draw_flat_pattern(
             tuple(pos.tolist()), align=ezdxf.enums.TextEntityAlignment.BOTTOM_CENTER
         )
 
+    for f in pattern.fold_rulings:
+        line = msp.add_line(
+            tuple(f.start.tolist()),
+            tuple(f.end.tolist()),
+            dxfattribs={"layer": f.layer, "linetype": "DASHED"},
+        )
+        line.set_xdata(_APPID, [(1000, f.name), (1000, f.bend), (1040, f.angle_deg)])
     _apex_mark(msp, pattern)
     if rulings:
         for a, b in pattern.rulings:

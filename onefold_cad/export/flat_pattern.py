@@ -37,7 +37,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, design_mass, relief_hole_diameter
+from onefold_cad.design import Design, design_mass, relief_hole_diameter, relief_hole_problem
 from onefold_cad.errors import FabricationError, InvalidParameterError, InvalidSheetError
 from onefold_cad.geometry.bend import (
     BendProblem,
@@ -45,15 +45,22 @@ from onefold_cad.geometry.bend import (
     BlankMove,
     Compensation,
     bend_error,
+    bend_model,
     blank_move,
     check_bends,
     crease_bends,
 )
+from onefold_cad.geometry.fan_folds import ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, Units
-from onefold_cad.geometry.sheet import _check_simple, boundary_distance
+from onefold_cad.geometry.sheet import boundary_distance
 
-__all__ = ["FoldHalf", "FlatPattern", "flat_pattern", "polygon_area", "polygon_perimeter"]
+try:  # the sheet's own simplicity check (public under this name once the sheet module has it)
+    from onefold_cad.geometry.sheet import check_simple  # type: ignore[attr-defined]
+except ImportError:
+    from onefold_cad.geometry.sheet import _check_simple as check_simple
+
+__all__ = ["FoldHalf", "FoldRuling", "FlatPattern", "flat_pattern", "polygon_area"]
 
 Array = NDArray[np.float64]
 
@@ -105,6 +112,37 @@ class FoldHalf:
 
 
 @dataclass(frozen=True)
+class FoldRuling:
+    """A ruling of the paper model's fan along which two planar triangles meet
+    at an angle: a fold like the crease halves, drawn and listed like them
+    (:func:`~onefold_cad.geometry.fan_folds.ruling_folds`). The blank does
+    not compensate it: its bend model's width error is 2 x shift.
+
+    Attributes:
+        name: '+y ruling k' or '-y ruling k' (k-th counter-clockwise from the
+            +x or the -x crease half).
+        start: ``(2,)`` where the line starts on the blank (sheet frame):
+            outside the relief hole and the crease's bend zones.
+        end: ``(2,)`` where it meets the outline (sheet frame).
+        angle_deg: its fold angle from flat (deg).
+        bend: 'UP' or 'DOWN', seen from the drawing's (top, +z) side.
+        values: its bend model (SB, BA, BD, shift).
+    """
+
+    name: str
+    start: Array
+    end: Array
+    angle_deg: float
+    bend: str
+    values: BendValues
+
+    @property
+    def layer(self) -> str:
+        """'BEND_UP' or 'BEND_DOWN'."""
+        return f"BEND_{self.bend}"
+
+
+@dataclass(frozen=True)
 class FlatPattern:
     """The flat pattern of one design, in the sheet's own frame.
 
@@ -120,7 +158,11 @@ class FlatPattern:
         cut_hole_diameter: the hole's cutting path diameter (hole - kerf).
         halves: the fold halves ('plus_x', 'minus_x').
         rulings: ``(m, 2, 2)`` ruling segments for etching (off the fold
-            line, outside the bend zones and the hole).
+            line, outside the bend zones and the hole): every ruling of the
+            exact model (the sheet bends smoothly along them) and the paper
+            model's rulings that are no folds (inside one planar triangle).
+        fold_rulings: the paper model's ruling folds (empty for the exact
+            model), counter-clockwise from the +x crease half.
         fold_direction: ``(2,)`` unit vector of the fold line (H -> +x half).
         move: what the blank does about the bends (compensation, the shift
             per side, the width error across each half).
@@ -141,6 +183,7 @@ class FlatPattern:
     cut_hole_diameter: float
     halves: tuple[FoldHalf, FoldHalf]
     rulings: Array
+    fold_rulings: tuple[FoldRuling, ...]
     fold_direction: Array
     move: BlankMove
     problems: tuple[BendProblem, ...]
@@ -185,11 +228,6 @@ def polygon_area(p: Array) -> float:
     """Signed shoelace area of a closed polygon ``(n, 2)`` (CCW > 0)."""
     q = np.roll(p, -1, axis=0)
     return 0.5 * float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
-
-
-def polygon_perimeter(p: Array) -> float:
-    """Perimeter of a closed polygon ``(n, 2)``."""
-    return float(np.sum(np.hypot(*(np.roll(p, -1, axis=0) - p).T)))
 
 
 def _at_height(a: Array, b: Array, c: float) -> Array:
@@ -241,11 +279,12 @@ def _compensate(
     )
 
 
-def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> Array:
+def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> tuple[Array, list[int]]:
     """Ruling segments (fold frame) moved with their side, clipped to the
-    flat flanges (|y| >= c) and outside the hole (|p| >= hole_r)."""
-    out = []
-    for e in ends:
+    flat flanges (|y| >= c) and outside the hole (|p| >= hole_r), and the
+    index in ``ends`` of each (a ruling left with nothing is dropped)."""
+    out, kept = [], []
+    for i, e in enumerate(ends):
         s = 1.0 if e[1] > 0.0 else -1.0
         p0, p1 = np.array([0.0, -s * shift]), e - np.array([0.0, s * shift])
         d = p1 - p0
@@ -259,13 +298,14 @@ def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> Arra
                 lo = max(lo, (-b + math.sqrt(disc)) / (2.0 * a))
         if lo < 1.0 - 1e-9:
             out.append([p0 + max(lo, 0.0) * d, p1])
-    return np.array(out, dtype=float).reshape(-1, 2, 2)
+            kept.append(i)
+    return np.array(out, dtype=float).reshape(-1, 2, 2), kept
 
 
 def _require_simple(polygon: Array, param: str, what: str) -> None:
     """FabricationError naming ``param`` unless ``polygon`` is simple."""
     try:
-        _check_simple(polygon, param)
+        check_simple(polygon, param)
     except InvalidSheetError as exc:
         raise FabricationError(param, f"{what} ({exc})") from None
 
@@ -285,12 +325,13 @@ def flat_pattern(
 
     Raises:
         InvalidParameterError: 'folded' not from this design's sheet;
-            'compensation' not 'sharp' or 'none'; 'relief_hole' when the hole
-            does not fit in the outline; 'kerf' when the kerf is too large for
-            the sheet or hole.
-        FabricationError: a limit of the sharp-crease compensation is passed
-            (the message names the crease half, its fold angle, the numbers
-            and what to change).
+            'compensation' not 'sharp' or 'none'; 'kerf' when the kerf is too
+            large for the blank or the hole.
+        FabricationError: the relief hole does not fit the sheet or the
+            compensated blank (:func:`~onefold_cad.design.relief_hole_problem`,
+            the writers' one check); a limit of the sharp-crease compensation
+            is passed (the message names the crease half, its fold angle, the
+            numbers and what to change).
     """
     if folded.sheet is not design.sheet:
         raise InvalidParameterError("folded", "must be build_design(design) of this design")
@@ -300,6 +341,10 @@ def flat_pattern(
     k = sheet.minus_x_index
     tol = 1e-12 * sheet.size
     t = mat.thickness
+    u = design.units.value
+    hole_problem = relief_hole_problem(design, folded)
+    if hole_problem is not None:
+        raise hole_problem
     bends = crease_bends(folded, mat)
     problems = check_bends(design, folded)
     error = bend_error(problems)
@@ -327,22 +372,22 @@ def flat_pattern(
     zones = [z if z.size and abs(z[0, 0, 1]) > tol else np.zeros((0, 2, 2)) for z in zones]
 
     origin = np.zeros(2)
+    if sharp:  # the hole fits the designed sheet (above); the compensated blank is narrower
+        hole_problem = relief_hole_problem(design, folded, blank=outline)
+        if hole_problem is not None:
+            raise hole_problem
     inner = boundary_distance(outline, origin)
     hole = relief_hole_diameter(design, folded)
-    if hole > 0.0 and hole / 2.0 >= inner:
-        raise InvalidParameterError(
-            "relief_hole",
-            f"diameter must be < {2.0 * inner:.6g} (twice the distance from H to the nearest "
-            f"edge of the flat pattern), got {hole:g}",
-        )
     kerf = mat.kerf
     if kerf > 0.0 and kerf / 2.0 >= inner:
         raise InvalidParameterError(
-            "kerf", f"must be < {2.0 * inner:.6g} (the flat pattern's inradius about H x 2)"
+            "kerf",
+            f"must be < {2.0 * inner:.6g} {u} (twice the distance from H to the nearest edge "
+            f"of the blank), got {kerf:g} {u}",
         )
     if hole > 0.0 and kerf >= hole:
         raise InvalidParameterError(
-            "kerf", f"must be < the relief hole's diameter {hole:g}, got {kerf:g}"
+            "kerf", f"must be < the relief hole's diameter {hole:g} {u}, got {kerf:g} {u}"
         )
     place = sheet.to_sheet
     outline_s = place.apply(outline)
@@ -351,7 +396,7 @@ def flat_pattern(
 
         cut = np.array([(p.x, p.y) for p in offset_vertices_2d(outline_s, -kerf / 2.0, True)])
         try:
-            _check_simple(cut, "kerf")
+            check_simple(cut, "kerf")
         except InvalidSheetError as exc:
             raise InvalidParameterError(
                 "kerf", f"the kerf offset self-intersects ({exc})"
@@ -375,7 +420,25 @@ def flat_pattern(
         )
     ends = folded.rulings_flat[:, 1]
     ends = ends[np.abs(ends[:, 1]) > 1e-9 * sheet.size]
-    rul = _ruling_segments(ends, shift, max(c_plus, c_minus), max(hole - kerf, 0.0) / 2.0)
+    folds = ruling_folds(folded)
+    fold_ends = np.array([f.end_flat for f in folds]).reshape(-1, 2)
+    if len(folds):  # the rulings that are folds are drawn as bends, not etched
+        gap = np.linalg.norm(ends[:, None, :] - fold_ends[None, :, :], axis=2)
+        ends = ends[~np.any(gap <= 1e-12 * sheet.size, axis=1)]
+    c_max, hole_r = max(c_plus, c_minus), max(hole - kerf, 0.0) / 2.0
+    rul, _ = _ruling_segments(ends, shift, c_max, hole_r)
+    fold_segments, drawn = _ruling_segments(fold_ends, shift, c_max, hole_r)
+    fold_rulings = tuple(
+        FoldRuling(
+            f.name,
+            place.apply(seg[0]),
+            place.apply(seg[1]),
+            f.angle_deg,
+            f.bend,
+            bend_model(f.angle_deg, f.bend, mat, half=f.name),
+        )
+        for f, seg in zip((folds[i] for i in drawn), fold_segments, strict=True)
+    )
     pattern = FlatPattern(
         name=design.name,
         units=design.units,
@@ -386,6 +449,7 @@ def flat_pattern(
         cut_hole_diameter=hole - kerf if hole > 0.0 else 0.0,
         halves=(halves[0], halves[1]),
         rulings=place.apply(rul.reshape(-1, 2)).reshape(-1, 2, 2),
+        fold_rulings=fold_rulings,
         fold_direction=place.apply_direction(np.array([1.0, 0.0])),
         move=move,
         problems=problems,
@@ -415,6 +479,12 @@ def _notes(p: FlatPattern, design: Design) -> tuple[str, ...]:
     for half in p.halves:
         side = "+x" if half.name == "plus_x" else "-x"
         lines.append(f"fold half {side}: {half.label} (layer {half.layer})")
+    if p.fold_rulings:
+        lines.append(
+            f"ruling folds: {len(p.fold_rulings)} rulings of the paper model's fan are folds "
+            "(planar triangles meeting at an angle), drawn on BEND_UP/BEND_DOWN and listed in "
+            "the bend sheet; the blank does not compensate them (width error 2 x shift each)"
+        )
     if p.thickness <= 0.0:
         lines.append("thickness compensation: none (t = 0, sharp crease)")
     elif p.compensation == "none":

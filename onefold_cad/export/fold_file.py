@@ -16,7 +16,8 @@ Edges: ``B`` on the outline; the two crease halves ``V`` or ``M`` from their
 bend direction (:attr:`CreaseHalf.bend` 'UP' rotates both sides towards the
 top side, +z: a valley seen from +z); the rulings ``V``/``M`` by the sign of
 their own small dihedral angle, or ``F`` where they run inside a planar
-triangle of the fan (the rulings through polygon vertices). ``edges_foldAngle``
+triangle of the fan (the rulings through polygon vertices); both from
+:mod:`onefold_cad.geometry.fan_folds`, as the DXF's ruling folds. ``edges_foldAngle``
 is in degrees, valley positive, mountain negative, 0 for ``F`` and ``B``
 (the spec's convention).
 
@@ -50,7 +51,6 @@ so a reader can convert). Our extra values carry the ``onefold:`` prefix.
 from __future__ import annotations
 
 import json
-import math
 import os
 from pathlib import Path
 from typing import Any
@@ -62,6 +62,7 @@ from onefold_cad.design import Design, relief_hole_diameter
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.cone import PaperFan
+from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.params import Model
 from onefold_cad.geometry.solver import solve
@@ -71,8 +72,6 @@ __all__ = ["FOLD_SPEC", "fold_data", "fold_fan", "write_fold"]
 #: The FOLD spec version written.
 FOLD_SPEC = 1.2
 Array = NDArray[np.float64]
-#: Rays closer than this (radians) are one ruling (as in folding.fold's merge).
-_SAME_RAY = 1e-12
 
 
 def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
@@ -97,43 +96,6 @@ def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
         ) from None
 
 
-def _ring_angles(fan: FoldedSheet) -> tuple[Array, int]:
-    """The flat angles theta (radians) of the ruling ends in boundary order
-    (counter-clockwise from the +x crease end: the +y side's, then the -y
-    side's back) and the ring index of the -x crease end."""
-    up, lo = fan.ruling_angles
-    return np.concatenate((up, lo[-2:0:-1])), len(up) - 1
-
-
-def _is_division(theta: Array, fan: FoldedSheet) -> NDArray[np.bool_]:
-    """Whether each ruling angle is one of the fan's division rays (a fold
-    between two planar triangles) rather than a ray inside one triangle."""
-    surface = fan.solution.surface
-    assert isinstance(surface, PaperFan) and surface.thetas is not None
-    divisions = np.minimum(surface.thetas, math.pi)
-    k = np.clip(divisions.searchsorted(theta), 1, len(divisions) - 1)
-    near = np.minimum(np.abs(divisions[k] - theta), np.abs(divisions[k - 1] - theta))
-    return near <= _SAME_RAY
-
-
-def _signed_fold_angles(apex: Array, ring: Array) -> Array:
-    """Fold angle (deg, valley positive) along each ruling apex -> ring[i] of
-    the closed fan of triangles (apex, ring[i], ring[i + 1]).
-
-    The triangle (apex, ring[i], ring[i + 1]) lies left of the ruling i, seen
-    from its top side, and (apex, ring[i - 1], ring[i]) right of it; a valley
-    turns their top normals towards each other, so (n_left x n_right) points
-    against the ruling's direction."""
-    rel = ring - apex
-    normals = np.cross(rel, np.roll(rel, -1, axis=0))
-    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-    left, right = normals, np.roll(normals, 1, axis=0)
-    axis = rel / np.linalg.norm(rel, axis=1, keepdims=True)
-    sin = -np.einsum("ij,ij->i", np.cross(left, right), axis)
-    cos = np.einsum("ij,ij->i", left, right)
-    return np.degrees(np.arctan2(sin, cos))
-
-
 def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     """The FOLD 1.2 document of ``design`` as a JSON-ready dict.
 
@@ -149,7 +111,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         vertex 1 + i, edge n + i the outline from vertex 1 + i to the next.
     """
     fan = fold_fan(design, folded)
-    theta, minus_x = _ring_angles(fan)
+    theta, minus_x = ring_angles(fan)
     flat = np.vstack([np.zeros((1, 2)), fan.boundary_flat])
     pts3 = np.vstack([fan.apex[None, :], fan.boundary_3d])
     n = len(theta)
@@ -158,8 +120,8 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         [int(v), int(ring[(i + 1) % n])] for i, v in enumerate(ring)
     ]
 
-    angle = _signed_fold_angles(fan.apex, fan.boundary_3d)
-    division = _is_division(theta, fan)
+    angle = signed_fold_angles(fan.apex, fan.boundary_3d)
+    division = on_division_rays(theta, fan)
     assignment = np.where(angle > 0.0, "V", np.where(angle < 0.0, "M", "F")).astype(object)
     kind = np.full(n, "ruling", dtype=object)
     flat_ray = ~division

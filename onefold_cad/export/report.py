@@ -23,12 +23,17 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, design_mass, fabrication_warnings, relief_hole_diameter
+from onefold_cad.design import (
+    Design,
+    design_mass,
+    fabrication_warnings,
+    relief_hole_diameter,
+    solid_min_relief_hole,
+)
 from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.geometry.bend import bend_error, check_bends, crease_bends
+from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import design_to_data
 
 if TYPE_CHECKING:
@@ -153,24 +158,28 @@ def _solid_min_hole(design: Design, folded: FoldedSheet, warnings: list[str]) ->
     if design.model.value != "exact" or design.material.thickness <= 0.0:
         return None
     try:
-        return float(min_relief_hole(folded, design.material))
+        return solid_min_relief_hole(folded, design.material)
     except InvalidParameterError as exc:  # e.g. a flat fold has no mitre
         warnings.append(str(exc))
         return None
 
 
-def _flat_pattern(design: Design, folded: FoldedSheet, warnings: list[str]) -> FlatPattern | None:
+def _flat_pattern(
+    design: Design, folded: FoldedSheet, warnings: list[str], compensation: Compensation
+) -> FlatPattern | None:
     """The flat pattern, or None with the writer's refusal as a warning."""
     from onefold_cad.export.flat_pattern import flat_pattern
 
     try:
         try:
-            return flat_pattern(design, folded)
-        except FabricationError:  # past the bend model's limits: design_warnings names them
+            return flat_pattern(design, folded, compensation)
+        except FabricationError as exc:  # past the bend model's limits: design_warnings names them
+            bends = bend_error(check_bends(design, folded))
+            if bends is None or str(exc) != str(bends):
+                raise  # not a bend limit (a relief hole that does not fit, ...)
             return flat_pattern(design, folded, "none")
     except OneFoldError as exc:  # the writer's parameter checks (hole, kerf)
-        param = getattr(exc, "parameter", None)
-        if not any(param and w.startswith(f"{param}:") for w in warnings):  # said already
+        if not any(str(exc) in w for w in warnings):  # said already
             warnings.append(f"{exc} (flat pattern; build refuses the DXF)")
         return None
 
@@ -199,21 +208,38 @@ def _pattern_keys(design: Design, fp: FlatPattern | None) -> dict[str, Any]:
     }
 
 
-def design_warnings(design: Design, folded: FoldedSheet) -> list[str]:
+def design_warnings(
+    design: Design, folded: FoldedSheet, compensation: Compensation | str = Compensation.SHARP
+) -> list[str]:
     """What ``solve`` and ``build`` warn about before any writer runs, one
     line each: the solver's own warnings (when it gives any),
     :func:`~onefold_cad.design.fabrication_warnings` and the bend model's
-    limits (:func:`~onefold_cad.geometry.bend.check_bends`)."""
-    error = bend_error(check_bends(design, folded))
-    bends = (
-        []
-        if error is None
-        else [
-            f"{error}; build refuses the DXF and STEP solid "
-            "(--compensation none writes the uncompensated blank)"
-        ]
-    )
-    return [*getattr(folded.solution, "warnings", ()), *fabrication_warnings(design), *bends]
+    limits (:func:`~onefold_cad.geometry.bend.check_bends`), worded for what
+    ``build`` does with ``compensation`` ('sharp': refuses the flat pattern's
+    files, and the STEP solid unless only the blank's width is off; 'none':
+    writes the uncompensated blank)."""
+    comp = Compensation.parse(compensation)
+    problems = check_bends(design, folded)
+    error = bend_error(problems)
+    bends = []
+    if error is not None and comp is Compensation.NONE:
+        bends.append(
+            f"{error}; with --compensation none build writes the uncompensated blank (the "
+            "designed outline; its notes say so) and the STEP as designed"
+        )
+    elif error is not None:
+        solid = any(q.kind != "width" for q in problems)  # the solid is the designed part
+        refused = "the DXF, cut DXF, bend sheet and flat preview" + (
+            " and a STEP solid" if solid else ""
+        )
+        bends.append(
+            f"{error}; build refuses {refused} (--compensation none writes the uncompensated blank)"
+        )
+    return [
+        *getattr(folded.solution, "warnings", ()),
+        *fabrication_warnings(design, folded),
+        *bends,
+    ]
 
 
 def design_report(
@@ -225,6 +251,7 @@ def design_report(
     sources: Mapping[str, str] | None = None,
     timings: Mapping[str, float] | None = None,
     warnings: Iterable[str] = (),
+    compensation: Compensation | str = Compensation.SHARP,
 ) -> dict[str, Any]:
     """Everything a fabricator or a test needs to know about one fold.
 
@@ -242,6 +269,9 @@ def design_report(
             ``inherited from template NAME`` or ``default``).
         timings: further stage times (s) to report, e.g. ``{"step": 2.1}``.
         warnings: warnings found elsewhere, added before the report's own.
+        compensation: the flat pattern's ('sharp' or 'none', as ``build
+            --compensation``); past the bend model's limits a 'sharp' report
+            gives the uncompensated pattern's numbers, with the warning.
 
     Returns:
         A JSON-serialisable dict: ``inputs`` (the design as template data),
@@ -269,8 +299,9 @@ def design_report(
         and ``files``.
     """
     sol, sheet, m = folded.solution, folded.sheet, folded.metrics
-    notes = [*warnings, *design_warnings(design, folded)]
-    fp = _flat_pattern(design, folded, notes) if pattern is None else pattern
+    comp = Compensation.parse(compensation)
+    notes = [*warnings, *design_warnings(design, folded, comp)]
+    fp = _flat_pattern(design, folded, notes, comp) if pattern is None else pattern
     own = sheet.to_sheet.apply(sheet.vertices)
     flat_size = own.max(axis=0) - own.min(axis=0)
     gammas = sol.gammas_deg

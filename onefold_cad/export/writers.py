@@ -180,6 +180,7 @@ def _json(ctx: BuildContext, path: Path) -> Any:
         sources=ctx.sources,
         timings=ctx.timings,
         warnings=ctx.warnings,
+        compensation=ctx.compensation,
     )
     return write_report(path, report)
 
@@ -234,7 +235,7 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
     if any(WRITERS[n].cuts_sheet for n in formats):
         from onefold_cad.design import relief_hole_problem
 
-        problem = relief_hole_problem(ctx.design)
+        problem = relief_hole_problem(ctx.design, ctx.folded)
         if problem is not None:
             raise problem
     if any(WRITERS[n].needs_flat_pattern for n in formats):
@@ -246,13 +247,15 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
 def _check_solid_bends(ctx: BuildContext) -> None:
     """The STEP solid stands for the bent part only inside the bend model's
     limits (:func:`~onefold_cad.geometry.bend.check_bends`): past them it is
-    refused like the DXF (a shell, the designed surface, is always written)."""
+    refused like the DXF (a shell, the designed surface, is always written).
+    The blank's width limit is not the solid's: the solid is the designed part."""
     body = ctx.body or _default_body(ctx.design)
     if body != "solid":
         return
     from onefold_cad.geometry.bend import bend_error, check_bends
 
-    error = bend_error(check_bends(ctx.design, ctx.folded))
+    problems = check_bends(ctx.design, ctx.folded)
+    error = bend_error(tuple(q for q in problems if q.kind != "width"))
     if error is not None:
         raise error
 

@@ -37,6 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.errors import FabricationError, InvalidParameterError
+from onefold_cad.geometry.fan_folds import RulingFold, ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.thick_sheet import sheet_offsets
@@ -46,6 +47,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MAX_SETBACK_FRACTION",
+    "MAX_WIDTH_ERROR_FRACTION",
     "BendProblem",
     "BendReference",
     "BendValues",
@@ -64,6 +66,14 @@ Array = NDArray[np.float64]
 #: The largest set-back, as a fraction of the flange beside the crease half,
 #: for which the sharp-crease compensation is accepted (see docs/fabrication.md).
 MAX_SETBACK_FRACTION = 0.1
+
+#: The largest width error of the blank across a bend, as a fraction of the
+#: thickness t: the blank is refused when it is more than 0.1 t wider or
+#: narrower across a bend than the bend model asks. The bend model itself is
+#: no better: the K-factor of one material and tooling is known to about
+#: +-0.05, which moves BA = psi (r + K t) by psi x 0.05 t, 0.08 t at a 90 deg
+#: fold (see docs/fabrication.md).
+MAX_WIDTH_ERROR_FRACTION = 0.1
 
 _DIRECTIONS = ("UP", "DOWN")
 
@@ -144,13 +154,6 @@ class BendValues:
     def inside_face(self) -> str:
         """'top' or 'bottom': the flat sheet's face that ends inside the bend."""
         return "top" if self.direction == "UP" else "bottom"
-
-    @property
-    def in_words(self) -> str:
-        """The direction in plain words."""
-        if self.direction == "UP":
-            return "UP: top face inside (the sides rise towards the viewer of the drawing)"
-        return "DOWN: bottom face inside (the sides drop away from the viewer of the drawing)"
 
 
 def reference_fraction(material: Material, direction: str) -> float:
@@ -244,10 +247,13 @@ class BendProblem:
     """One limit of the sharp-crease compensation passed.
 
     Attributes:
-        half: the crease half ('plus_x' or 'minus_x').
+        half: the crease half ('plus_x' or 'minus_x'), or the paper model's
+            ruling fold ('+y ruling 3', see :class:`RulingFold`).
         angle_deg: its fold angle (deg).
         kind: 'setback' (large beside the flanges), 'corner' (a sheet corner
-            in the bend zone) or 'edge' (a sheet edge across the bend zone).
+            in the bend zone), 'edge' (a sheet edge across the bend zone) or
+            'width' (the blank's width across the bend off by more than
+            MAX_WIDTH_ERROR_FRACTION x t).
         parameter: what to change, as the CLI spells it.
         message: one line: the half, its angle, the numbers, what to change.
     """
@@ -299,7 +305,52 @@ def _radius_hint(target: float, b: BendValues) -> str:
             hints.append(f"alpha/beta giving a fold angle <= {psi_max:.4g} deg")
     if not hints:
         hints.append("a smaller bend_radius or thickness, or other alpha/beta")
-    return "use " + ", or ".join(hints) + ", or compensation 'none'"
+    return "use " + ", or ".join(hints) + ", or --compensation none"
+
+
+def _width_hint(
+    bends: tuple[BendValues, BendValues], h: int, tol: float, mat: Material
+) -> tuple[str, str]:
+    """What brings the width error across half ``h`` within +-``tol`` (length):
+    the parameter to name and the hint. The error, shift_h - shift_other, is
+    linear in the bend radius r (read off the bend model at r = 0 and 1)."""
+    b, o = bends[h], bends[1 - h]
+
+    def width(r: float) -> float:
+        m = mat.with_changes(bend_radius=r)
+        return (
+            bend_model(b.angle_deg, b.direction, m).shift
+            - bend_model(o.angle_deg, o.direction, m).shift
+        )
+
+    rest = width(0.0)
+    slope = width(1.0) - rest
+    hints = ["h_c nearer 0 (at h_c = 0 both halves fold alike)"]
+    parameter = "hc"
+    if slope != 0.0:
+        lo, hi = sorted(((-tol - rest) / slope, (tol - rest) / slope))
+        lo = max(lo, 0.0)
+        if hi >= lo and b.radius > hi:
+            hints.insert(0, f"bend_radius <= {hi:.4g}")
+            parameter = "bend_radius"
+        elif hi >= lo and b.radius < lo:
+            hints.insert(0, f"bend_radius >= {lo:.4g}")
+            parameter = "bend_radius"
+    return parameter, "use " + ", or ".join(hints) + ", or --compensation none"
+
+
+def _ruling_widths(
+    folded: FoldedSheet, mat: Material, tol: float
+) -> list[tuple[float, RulingFold, BendValues]]:
+    """The paper model's ruling folds whose width error 2 x shift (they are
+    not compensated) is larger than ``tol``: (error, fold, bend model), the
+    largest first."""
+    out = []
+    for f in ruling_folds(folded):
+        b = bend_model(f.angle_deg, f.bend, mat, half=f.name)
+        if abs(2.0 * b.shift) > tol:
+            out.append((2.0 * b.shift, f, b))
+    return sorted(out, key=lambda x: -abs(x[0]))
 
 
 def _line_at_h(a: Array, b: Array) -> float:
@@ -328,6 +379,10 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
        and those leave the zone on their own half's side of H. (When the mean
        shift puts a crease end itself outside its half's zone, the blank's
        bridge starts right there; the width error says by how much.)
+    4. width: the blank's width error across each bend, 2 (own shift - d)
+       across a crease half and 2 shift across a paper-model ruling fold
+       (:func:`~onefold_cad.geometry.fan_folds.ruling_folds`, not
+       compensated), is at most MAX_WIDTH_ERROR_FRACTION x t either way.
 
     Returns:
         The problems found (empty: the compensated blank is valid), each with
@@ -346,13 +401,16 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
     chains = _chains(sheet.vertices, sheet.minus_x_index)
     problems: list[BendProblem] = []
 
-    def add(b: BendValues, kind: str, text: str, target: float) -> None:
+    def add(
+        b: BendValues, kind: str, text: str, target: float, hint: tuple[str, str] | None = None
+    ) -> None:
         head = (
             f"{b.half} (fold angle {b.angle_deg:.2f} deg, {b.direction}, {b.reference} reference, "
             f"bend_radius {b.radius:g} {u}, thickness {b.thickness:g} {u})"
         )
-        line = f"{head}: {text}; {_radius_hint(target, b)}"
-        problems.append(BendProblem(b.half, b.angle_deg, kind, "bend_radius", line))
+        parameter, advice = hint or ("bend_radius", _radius_hint(target, b))
+        line = f"{head}: {text}; {advice}"
+        problems.append(BendProblem(b.half, b.angle_deg, kind, parameter, line))
 
     for h, b in enumerate(bends):
         span = (0.0, ends[0]) if h == 0 else (-ends[1], 0.0)
@@ -420,7 +478,39 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
                 f"d + BA/2 = {d + c[h]:.4g} {u}; SB = {b.setback:.4g} {u})",
                 dist - (d - b.shift),
             )
-    order = {"setback": 0, "corner": 1, "edge": 2}
+    tol = MAX_WIDTH_ERROR_FRACTION * mat.thickness
+    errors = blank_move(bends).errors
+    if max(abs(e) for e in errors) > tol:
+        h = 0 if errors[0] > 0.0 else 1  # the half the blank is too wide across
+        b, o = bends[h], bends[1 - h]
+        add(
+            b,
+            "width",
+            f"the blank is {errors[h]:+.4g} {u} too wide across it and {errors[1 - h]:+.4g} {u} "
+            f"across {o.half} (fold angle {o.angle_deg:.2f} deg): one rigid blank moves each side "
+            f"by the mean d = {d:.4g} {u} of the halves' shifts {b.shift:.4g} and "
+            f"{o.shift:.4g} {u} (limit +-{tol:.4g} {u}, {MAX_WIDTH_ERROR_FRACTION:.0%} of t)",
+            0.0,
+            _width_hint(bends, h, tol, mat),
+        )
+    rulings = _ruling_widths(folded, mat, tol)
+    if rulings:
+        err, _, b = rulings[0]
+        more = f"; {len(rulings) - 1} more ruling folds past the limit" if len(rulings) > 1 else ""
+        add(
+            b,
+            "width",
+            f"the paper model's ruling folds are not compensated: across this one the blank is "
+            f"{err:+.4g} {u} off the bend model's width (2 x its shift; limit +-{tol:.4g} {u}, "
+            f"{MAX_WIDTH_ERROR_FRACTION:.0%} of t){more}",
+            0.0,
+            (
+                "divisions",
+                "use more divisions (each ruling then folds less), the exact model (smooth, "
+                "no ruling folds), or --compensation none",
+            ),
+        )
+    order = {"setback": 0, "corner": 1, "edge": 2, "width": 3}
     return tuple(sorted(problems, key=lambda q: order[q.kind]))
 
 

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import csv
+import math
 
 import numpy as np
 import pytest
 
 from onefold_cad import Design, ExportError, FrameCurve, Material, Sheet, build_design
-from onefold_cad.export.bend_sheet import BendRow, bend_table, write_bend_csv
+from onefold_cad.export.bend_sheet import BendRow, bend_rows, bend_table, write_bend_csv
 from onefold_cad.export.flat_pattern import flat_pattern
-from tests.hand_bend import hand_bend
+from tests.hand_bend import arc_point, fan_folds, hand_bend
 
 TEXT_FIELDS = ("half", "direction", "inside_face", "reference", "compensation", "material", "units")
 MAT = Material(thickness=2.0, bend_radius=3.0, k_factor=0.44, relief_hole=10.0,
@@ -88,3 +89,34 @@ def test_from_a_design_atomic_and_nothing_on_failure(tmp_path, asym):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
     none = write_bend_csv(design, tmp_path / "n.csv", folded, compensation="none").read_text()
     assert ",none," in none and float(none.splitlines()[1].split(",")[18]) == 0.0  # shift_used
+
+
+def test_the_paper_fans_ruling_folds_are_rows_too():
+    """A 2-division paper fan: one ruling fold per side (the middle division ray), a
+    real fold of the two planar triangles. Each gets a row after the crease halves: its
+    angle and direction by hand (from the frame curve and the apex), the hand bend
+    model, shift_used 0 and width error 2 x shift (the blank does not compensate it);
+    build's printed table sums them up in one line."""
+    frame = FrameCurve(5.0, 10.0, 0.5 * 100.0 * math.cos(math.radians(5.0)), 100.0, 2)
+    mat = Material(thickness=1.0, bend_radius=0.0, k_factor=0.33, name="paper")
+    design = Design("fan", frame, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
+                    material=mat)  # fmt: skip
+    folded = build_design(design)
+    pattern = flat_pattern(design, folded)
+    a = math.radians(frame.alpha)
+    pts = [arc_point(frame.alpha, frame.beta, frame.h_c, frame.radius, p)
+           for p in (-a, math.pi / 2, math.pi + a)]  # fmt: skip
+    ((angle, direction),) = fan_folds(pts, folded.apex)
+    hb = hand_bend(angle, direction, "MID", 1.0, 0.0, 0.33)
+    rows = bend_rows(pattern)
+    assert [r.half for r in rows] == ["plus_x", "minus_x", "+y ruling 1", "-y ruling 1"]
+    for r in rows[2:]:
+        assert (r.direction, r.compensation, r.shift_used) == (direction, "none", 0.0)
+        assert r.fold_angle_deg == pytest.approx(angle, abs=1e-9)
+        assert r.setback == pytest.approx(hb["sb"], rel=1e-9)
+        assert r.allowance == pytest.approx(hb["ba"], rel=1e-9)
+        assert r.width_error == pytest.approx(2 * hb["shift"], rel=1e-9)
+    short = bend_table(pattern, rulings=False).splitlines()
+    assert not any(ln.startswith("+y ruling") for ln in short)
+    assert short[-1].startswith(f"2 ruling folds (paper model): {angle:.2f} to {angle:.2f} deg")
+    assert any(ln.startswith("+y ruling 1: ") for ln in bend_table(pattern).splitlines())

@@ -30,7 +30,7 @@ from onefold_cad.export.dxf import LAYERS, draw_flat_pattern, export_design_dxf
 from onefold_cad.export.dxf_preview import render_preview
 from onefold_cad.export.flat_pattern import flat_pattern
 from onefold_cad.geometry.bend import check_bends
-from tests.hand_bend import hand_bend
+from tests.hand_bend import fan_folds, hand_bend
 
 STAR = [(220, 0), (70, 45), (90, 190), (-30, 80), (-150, 150), (-110, 15), (-200, -50),
         (-45, -60), (30, -170), (75, -35)]  # fmt: skip
@@ -46,7 +46,8 @@ SHAPES = {
 MATERIALS = {
     "bare": Material(),
     "kerf": Material(kerf=0.5),
-    "thick": Material(thickness=2.0, bend_radius=3.0, k_factor=0.44, density=7900.0, name="S235"),
+    # r 2.5: t1d's asymmetric halves keep the blank within the width limit (r <= 2.67)
+    "thick": Material(thickness=2.0, bend_radius=2.5, k_factor=0.44, density=7900.0, name="S235"),
     "thick_kerf": Material(thickness=1.5, bend_radius=1.0, k_factor=0.33, kerf=0.4),
     "thick_inside": Material(
         thickness=2.5, bend_radius=0.0, k_factor=0.5, sheet_surface="INSIDE", relief_hole=12.0
@@ -177,7 +178,7 @@ def test_fold_halves_meet_at_apex_and_end_on_outline(tmp_path, shape, mat):
     for cross in entities(doc, "APEX", "LINE"):
         assert np.allclose(seg(cross).mean(axis=0), apex, atol=1e-9 * design.sheet.size)
     lines = entities(doc, "BEND_UP", "LINE") + entities(doc, "BEND_DOWN", "LINE")
-    assert len(lines) == 2
+    assert len(lines) == 2  # the exact model: the crease halves alone
     cut = outline_of(doc)
     nominal = cut if design.material.kerf == 0 else outline_of(
         write_read(tmp_path, design.with_changes(
@@ -322,7 +323,7 @@ def test_notes_content_and_mass(tmp_path):
     text = "\n".join(t.dxf.text for t in entities(doc, "NOTES", "TEXT"))
     m = design.material
     for needle in ("t1d_thick", "units: mm", "S235", "thickness t = 2 mm",
-                   "bend radius r = 3 mm", "K-factor = 0.44", "flat size", "area"):  # fmt: skip
+                   "bend radius r = 2.5 mm", "K-factor = 0.44", "flat size", "area"):  # fmt: skip
         assert needle in text
     for half in folded.crease:
         assert f"{half.bend} {half.fold_angle_deg:.2f} deg" in text
@@ -337,11 +338,14 @@ def test_notes_content_and_mass(tmp_path):
 
 
 def test_paper_model_rulings_inside_and_optional(tmp_path):
+    """The paper model's rulings that are no folds (the rays through the star's corners,
+    inside one planar triangle of the fan) are etch lines, inside the blank, off the bend
+    zones and the hole, and optional."""
     design, folded = _design("star", "thick", model=Model.PAPER)
     doc = write_read(tmp_path, design, folded)
     outline = outline_of(doc)
     rulings = [seg(e) for e in entities(doc, "RULINGS")]
-    assert len(rulings) > 50  # the paper model's fan
+    assert len(rulings) == sum(1 for x, y in STAR if y != 0)  # one per corner off the x axis
     c = max(bend(h, design.material)["ba"] for h in folded.crease) / 2
     hole_r = design.material.relief_hole_diameter / 2
     for r in rulings:
@@ -350,6 +354,66 @@ def test_paper_model_rulings_inside_and_optional(tmp_path):
             assert abs(x[1]) >= c - 1e-9 and np.linalg.norm(x) >= hole_r - 1e-9
     doc2 = write_read(tmp_path, design.with_changes(name="norul"), folded=None, rulings=False)
     assert not entities(doc2, "RULINGS")
+    assert len(entities(doc2, "BEND_UP") + entities(doc2, "BEND_DOWN")) > 2  # folds stay
+
+
+def _fan_by_hand(frame: FrameCurve) -> tuple[np.ndarray, float]:
+    """The paper fan's division points P_i (from the frame curve's definition) and its
+    apex height (the angle condition, solved here)."""
+    alpha, beta = math.radians(frame.alpha), math.radians(frame.beta)
+    n = frame.divisions
+    phi = -alpha + np.arange(n + 1) * (math.pi + 2 * alpha) / n
+    x = -frame.h_c + frame.radius * np.cos(phi)
+    dd = frame.radius * (math.sin(alpha) + np.sin(phi))
+    pts = np.stack([x, dd * math.cos(beta), dd * math.sin(beta)], axis=1)
+    return pts, _apex_height_by_hand(pts)
+
+
+def _fold_lines(doc) -> dict[str, tuple[str, str, float, np.ndarray]]:
+    """name -> (layer, direction, angle, segment) of every line on BEND_UP/BEND_DOWN."""
+    out = {}
+    for line in entities(doc, "BEND_UP", "LINE") + entities(doc, "BEND_DOWN", "LINE"):
+        xd = line.get_xdata("ONEFOLD")
+        out[xd[0].value] = (line.dxf.layer, xd[1].value, xd[2].value, seg(line))
+    return out
+
+
+def test_paper_fan_rulings_are_bends_with_their_fold_angles(tmp_path):
+    """The paper model's fan: two planar triangles meet along each division ray at an
+    angle, a real fold. Each is drawn on BEND_UP/BEND_DOWN (DASHED, XDATA), with its fold
+    angle and direction derived here from the frame curve and the hand-solved apex
+    (fold angle between consecutive triangles' top normals, UP when the next triangle
+    turns towards the top side), to 1e-9 deg; in the blank each line runs along its flat
+    ray, at the flat angle theta_k = the sum of the fan's apex angles up to it. The
+    -y side is the mirror image: '-y ruling k' (k-th from the -x crease) is ray n - k."""
+    design, folded = _design("star", "thick", model=Model.PAPER)
+    pts, h = _fan_by_hand(design.frame)
+    folds = fan_folds(pts, np.array([0.0, 0.0, h]))
+    u = pts - [0.0, 0.0, h]
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    theta = np.concatenate([[0.0], np.cumsum(np.arccos((u[:-1] * u[1:]).sum(axis=1)))])
+    doc = write_read(tmp_path, design, folded)
+    lines = _fold_lines(doc)
+    n = design.frame.divisions
+    assert len(lines) == 2 + 2 * (n - 1)
+    for k in range(1, n):
+        angle, direction = folds[k - 1]
+        for name, ray, sign in ((f"+y ruling {k}", k, 1.0), (f"-y ruling {n - k}", k, -1.0)):
+            layer, xd_dir, xd_angle, (a, b) = lines[name]
+            assert (layer, xd_dir) == (f"BEND_{direction}", direction)
+            assert xd_angle == pytest.approx(angle, abs=1e-9)
+            d = b - a  # the star is drawn in the fold frame
+            assert math.atan2(sign * d[1], d[0]) == pytest.approx(theta[ray], abs=1e-9)
+    notes = [t.dxf.text for t in entities(doc, "NOTES", "TEXT")]
+    assert any(t.startswith(f"ruling folds: {2 * (n - 1)} rulings") for t in notes)
+    assert any(t.startswith(f"+y ruling 1: {folds[0][1]} {folds[0][0]:.2f};") for t in notes)
+
+
+def test_exact_model_rulings_stay_etch_lines(tmp_path):
+    design, folded = _design("star", "thick")
+    doc = write_read(tmp_path, design, folded)
+    assert set(_fold_lines(doc)) == {"plus_x", "minus_x"}
+    assert len(entities(doc, "RULINGS")) == sum(1 for x, y in STAR if y != 0)
 
 
 def _apex_height_by_hand(points: np.ndarray) -> float:
@@ -368,7 +432,7 @@ def _apex_height_by_hand(points: np.ndarray) -> float:
     return brentq(excess, hs[top], 1e4, xtol=1e-14, rtol=1e-15)
 
 
-def test_down_half_by_hand_layer_and_shift(tmp_path):
+def test_down_half_by_hand_layer_width_refusal_and_uncompensated_blank(tmp_path):
     """A DOWN crease half, derived by hand (paper model, alpha 8.3, beta 85, 4 divisions,
     H at 0.8 of the half chord towards +x; the sheet's apex sits near its +x end).
 
@@ -386,6 +450,11 @@ def test_down_half_by_hand_layer_and_shift(tmp_path):
     z_1 = d_1 sin 85 = 79.54; so b h + a (z_1 - h) = 1574 - 23.31 h, positive only for
     h < 67.5. The angle condition puts the apex at h = 86.6 (solved below, by hand), so
     plus_x bends DOWN; its fold angle is the angle between the two top normals.
+
+    minus_x folds UP to 167 deg: the one rigid blank cannot follow both halves' shifts,
+    so the compensated DXF is refused naming the width error (by hand: shift+ - shift-,
+    each side moved by their mean); --compensation none writes the designed outline,
+    with the DOWN half and the fan's DOWN ruling folds on BEND_DOWN.
     """
     frame = FrameCurve(8.3, 85.0, 0.8 * 100.0 * math.cos(math.radians(8.3)), 100.0, 4)
     alpha, beta = math.radians(8.3), math.radians(85.0)
@@ -407,18 +476,32 @@ def test_down_half_by_hand_layer_and_shift(tmp_path):
     assert folded.solution.apex_height == pytest.approx(h, rel=1e-9)
     plus = folded.crease[0]
     assert plus.bend == "DOWN" and plus.fold_angle_deg == pytest.approx(psi, abs=1e-9)
-    doc = write_read(tmp_path, design, folded)
-    down = entities(doc, "BEND_DOWN", "LINE")
-    assert len(down) == 1 and down[0].get_xdata("ONEFOLD")[0].value == "plus_x"
-    assert down[0].dxf.linetype == "DASHED"
     # INSIDE reference in a DOWN bend is its outside face (s = 1); minus_x is UP (s = 0)
     hb = [hand_bend(hh.fold_angle_deg, hh.bend, "INSIDE", 1.0, 1.0, 0.44) for hh in folded.crease]
     assert hb[0]["s"] == 1.0 and hb[1]["s"] == 0.0
     shift = (hb[0]["shift"] + hb[1]["shift"]) / 2
-    out = outline_of(doc)
-    for corner in ((0.0, 300.0), (0.0, -280.0)):  # moved by the shift towards the fold line
-        moved = np.array(corner) - np.sign(corner[1]) * np.array([0.0, shift])
-        assert np.min(np.linalg.norm(out - moved, axis=1)) < 1e-9 * 340
+    width = hb[1]["shift"] - hb[0]["shift"]  # across minus_x, the blank moved by the mean
+    target = tmp_path / "down.dxf"
+    with pytest.raises(FabricationError) as info:
+        export_design_dxf(design, target, folded)
+    assert f"{width:+.4g} mm too wide" in str(info.value) and f"d = {shift:.4g} mm" in str(
+        info.value
+    )
+    assert not target.exists()
+    doc = write_read(tmp_path, design, folded, compensation="none")
+    assert np.allclose(outline_of(doc), [(60, 0), (0, 300), (-340, 0), (0, -280)], atol=1e-9)
+    fan = fan_folds(pts, np.array([0.0, 0.0, h]))  # rays 1, 2, 3 of the +y side
+    expected = {"plus_x": psi} | {
+        name: a
+        for k, (a, direction) in enumerate(fan, 1)
+        if direction == "DOWN"
+        for name in (f"+y ruling {k}", f"-y ruling {4 - k}")
+    }
+    down = {e.get_xdata("ONEFOLD")[0].value: e for e in entities(doc, "BEND_DOWN", "LINE")}
+    assert set(down) == set(expected)
+    for name, e in down.items():
+        assert e.dxf.linetype == "DASHED"
+        assert e.get_xdata("ONEFOLD")[2].value == pytest.approx(expected[name], abs=1e-9)
 
 
 def test_drawing_into_an_existing_doc():
@@ -499,7 +582,11 @@ def test_bad_material_is_named(param, changes):
     [
         ("kerf", "t1a", Material(kerf=500.0)),
         ("kerf", "t1a", Material(thickness=1, relief_hole=4.0, kerf=4.0)),
+        # fits the sheet (< 424.26), not the compensated blank (sides moved 2.9 mm)
         ("relief_hole", "t1a", Material(thickness=4, bend_radius=6, relief_hole=420.0)),
+        ("relief_hole", "t1a", Material(relief_hole=425.0)),  # not even the sheet
+        ("thickness", "t1a", Material(thickness=150.0)),  # default hole 3 t = 450
+        ("bend_radius", "t1a", Material(thickness=10.0, bend_radius=210.0)),  # 2 (t + r) = 440
         ("bend_radius", "t1d", Material(thickness=60, bend_radius=60, relief_hole=0)),
         ("bend_radius", "star", Material(thickness=10, bend_radius=10, relief_hole=0)),
     ],
@@ -509,7 +596,7 @@ def test_bad_fabrication_input_leaves_no_file(tmp_path, param, shape, material):
     design = Design("bad", FrameCurve(*frame), sheet(), material=material)
     target = tmp_path / "bad.dxf"
     target.write_text("previous")
-    error = FabricationError if param == "bend_radius" else InvalidParameterError
+    error = InvalidParameterError if param == "kerf" else FabricationError
     with pytest.raises(error) as info:
         export_design_dxf(design, target)
     assert info.value.parameter == param
@@ -554,7 +641,7 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
     try:
         pattern = flat_pattern(design, folded)
     except FabricationError as exc:  # the bend model's limits, and only those
-        assert t > 0 and check_bends(design, folded) and exc.parameter == "bend_radius"
+        assert t > 0 and check_bends(design, folded) and exc.parameter in ("bend_radius", "hc")
         return
     except InvalidParameterError as exc:  # the kerf's documented refusal
         assert exc.parameter == "kerf"

@@ -26,9 +26,11 @@ from onefold_cad.export.report import (
     _hull_2d,
     check_finite,
     design_report,
+    design_warnings,
     report_json,
     write_report,
 )
+from onefold_cad.geometry.bend import bend_error, check_bends
 
 
 @pytest.fixture(scope="module")
@@ -176,6 +178,44 @@ def test_a_flat_pattern_past_the_bend_limits_is_a_warning():
     bends = [w for w in rep["warnings"] if w.startswith("bend_radius: ")]
     assert len(bends) == 1 and "build refuses the DXF" in bends[0]
     json.loads(report_json(rep))
+
+
+def _corner_design() -> tuple[Design, object]:
+    design = Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
+                    material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
+    return design, build_design(design)
+
+
+def test_the_bend_warning_says_what_build_does_with_the_compensation():
+    """'sharp' (solve, and build by default): the flat pattern's files and a STEP solid
+    are refused. 'none': build writes the uncompensated blank and the STEP; the warning
+    says so and refuses nothing. The limit's own line is the same."""
+    design, folded = _corner_design()
+    error = str(bend_error(check_bends(design, folded)))
+    (sharp,) = design_warnings(design, folded)
+    (none,) = design_warnings(design, folded, "none")
+    assert sharp == (
+        f"{error}; build refuses the DXF, cut DXF, bend sheet and flat preview and a STEP "
+        "solid (--compensation none writes the uncompensated blank)"
+    )
+    assert none == (
+        f"{error}; with --compensation none build writes the uncompensated blank (the "
+        "designed outline; its notes say so) and the STEP as designed"
+    )
+    rep = design_report(design, folded, compensation="none")
+    assert rep["warnings"] == [none] and rep["flat_pattern"]["compensation"] == "none"
+
+
+def test_a_width_problem_alone_does_not_refuse_the_solid():
+    """The blank's width limit is the flat pattern's: the STEP solid is the designed
+    part, so the warning does not list it."""
+    design = Design("asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
+                    material=Material(thickness=10.0, bend_radius=10.0))  # fmt: skip
+    folded = build_design(design)
+    assert {p.kind for p in check_bends(design, folded)} == {"width"}
+    (w,) = design_warnings(design, folded)
+    assert w.endswith("build refuses the DXF, cut DXF, bend sheet and flat preview "
+                      "(--compensation none writes the uncompensated blank)")  # fmt: skip
 
 
 def test_given_warnings_sources_and_timings_are_reported(paper):

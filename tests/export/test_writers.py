@@ -97,3 +97,18 @@ def test_a_registered_writer_is_written_timed_and_listed_in_the_report(tmp_path,
     rep = json.loads((tmp_path / "1" / "w.json").read_text())
     assert rep["files"] == ["w-bends.csv", "w.json"]
     assert set(rep["timings_s"]) >= {"csv"}
+
+
+def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
+    """An asymmetric fold whose one rigid blank is off by more than 0.1 t across its
+    halves: the flat pattern's writers refuse; the STEP solid (the designed part, no
+    blank) does not."""
+    d = Design(
+        "asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
+        material=Material(thickness=10.0, bend_radius=10.0),
+    )  # fmt: skip
+    ctx = BuildContext(d, build_design(d), body="solid")
+    for fmt in ("dxf", "cut", "bends", "svg"):
+        with pytest.raises(FabricationError, match="^hc: plus_x .* too wide across it"):
+            check_before_writing(ctx, (fmt,))
+    check_before_writing(ctx, ("step", "json"))

@@ -19,13 +19,22 @@ from onefold_cad import (
 )
 from onefold_cad.geometry.bend import (
     MAX_SETBACK_FRACTION,
+    MAX_WIDTH_ERROR_FRACTION,
     BendReference,
     bend_model,
     blank_move,
     check_bends,
     crease_bends,
 )
-from tests.hand_bend import FACES, S_TABLE, hand_bend
+from tests.hand_bend import (
+    FACES,
+    S_TABLE,
+    arc_point,
+    arc_tangent,
+    crease_angle,
+    fan_folds,
+    hand_bend,
+)
 
 SURFACES = ("INSIDE", "MID", "OUTSIDE")
 #: paper model, alpha 8.3, beta 85, H at 0.8 of the half chord: plus_x DOWN (71.5 deg),
@@ -98,12 +107,31 @@ def _finite_difference_frames(folded, x: float) -> tuple[np.ndarray, ...]:
     return into_up, into_lo, normals[0], normals[1]
 
 
+def _crease_normals_by_hand(design, apex) -> list[np.ndarray]:
+    """The +y side's top normal along each crease half, from the frame curve: the exact
+    cone's tangent plane along the ruling to the arc's end, spanned by P - A and the
+    arc's tangent P'; the paper fan's first (last) triangle (A, P_0, P_1) ((A, P_n-1,
+    P_n)). Orientation does not matter for the fold angle."""
+    f = design.frame
+    ends = (-math.radians(f.alpha), math.pi + math.radians(f.alpha))
+    point = lambda phi: arc_point(f.alpha, f.beta, f.h_c, f.radius, phi)  # noqa: E731
+    if design.model.value == "exact":
+        return [np.cross(point(p) - apex, arc_tangent(f.alpha, f.beta, f.radius, p)) for p in ends]
+    step = (ends[1] - ends[0]) / f.divisions
+    return [
+        np.cross(point(ends[0]) - apex, point(ends[0] + step) - apex),
+        np.cross(point(ends[1] - step) - apex, point(ends[1]) - apex),
+    ]
+
+
 @pytest.mark.parametrize("case", ["up", "down"])
 @pytest.mark.parametrize("surface", SURFACES)
 def test_reference_place_from_the_folded_geometry(case, surface):
     """Which face is inside each bend, read off the folded surface itself: the top
     face is inside when its normal points into the V the two sides make. That face's
-    offset from the reference surface (FACES) is s t."""
+    offset from the reference surface (FACES) is s t. The fold angle, twice the angle
+    between the +y side's top normal along the crease and the plane of symmetry, from
+    the frame curve by hand, to 1e-9 deg."""
     if case == "up":
         design = Design("u", FrameCurve(30, 30, 0, 100, 90), Sheet.rectangle(3048, 7315.2, 0.5))
     else:
@@ -119,8 +147,9 @@ def test_reference_place_from_the_folded_geometry(case, surface):
         assert half.bend == ("UP" if top_inside else "DOWN") == b.direction
         lo_off, hi_off = FACES[surface]
         assert b.s == (hi_off if top_inside else -lo_off)
-        cos = float(n_up @ n_lo) / (np.linalg.norm(n_up) * np.linalg.norm(n_lo))
-        assert math.degrees(math.acos(cos)) == pytest.approx(half.fold_angle_deg, abs=1e-3)
+    by_hand = [crease_angle(n) for n in _crease_normals_by_hand(design, folded.apex)]
+    for half, psi in zip(folded.crease, by_hand, strict=True):
+        assert half.fold_angle_deg == pytest.approx(psi, abs=1e-9)
     if case == "down":
         assert [h.bend for h in folded.crease] == ["DOWN", "UP"]
 
@@ -206,6 +235,12 @@ def _down_material_hand(surface: str, t: float, r: float, k: float) -> tuple[obj
     return folded, plus, minus
 
 
+def _geometric(problems: tuple) -> list:
+    """The problems but the width ones (DOWN_FRAME's halves fold to 71 and 167 deg: the
+    one rigid blank is far off the bend model across them; tested on their own below)."""
+    return [p for p in problems if p.kind != "width"]
+
+
 @pytest.mark.parametrize("eps", [-0.01, 0.01])
 def test_edge_limit_an_edge_passing_over_h_inside_the_wider_zone(eps):
     """Asymmetric fold (BA+ < BA-): both corners next to H clear their own half's zone,
@@ -225,9 +260,9 @@ def test_edge_limit_an_edge_passing_over_h_inside_the_wider_zone(eps):
            (-2000, 0), (-1000, -300), (1000, -300)]  # fmt: skip
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("e", DOWN_FRAME, Sheet.polygon(pts), model="paper", material=mat)
-    problems = check_bends(design, build_design(design))
+    problems = _geometric(check_bends(design, build_design(design)))
     if eps > 0:
-        assert problems == ()
+        assert problems == []
     else:
         assert [(p.half, p.kind) for p in problems] == [("minus_x", "edge")]
         assert "passes" in problems[0].message and "from H" in problems[0].message
@@ -248,17 +283,18 @@ def test_edge_limit_a_half_whose_sheet_is_narrower_than_its_zone_up_to_h():
     pts = [(60, 0), (x_j, corner_y), (-1000, 200), (-1200, 0), (0, -300)]
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface="OUTSIDE", relief_hole=0)
     design = Design("n", DOWN_FRAME, Sheet.polygon(pts), model="paper", material=mat)
-    problems = check_bends(design, build_design(design))
+    problems = _geometric(check_bends(design, build_design(design)))
     assert [(p.half, p.kind) for p in problems] == [("plus_x", "edge")]
     assert "narrower than its bend zone" in problems[0].message
 
 
-def test_mean_shift_past_a_crease_end_zone_is_no_limit():
+def test_mean_shift_past_a_crease_end_zone_is_no_geometric_limit_but_a_width_error():
     """INSIDE reference, r = 0, K = 1: minus_x bends UP (s = 0), so its set-back is 0
     and its shift -BA-/2; plus_x bends DOWN (s = 1) with a small shift. Their mean d
     lifts plus_x's crease end -d > BA+/2 from the fold line, out of its own zone: the
-    blank bridges from the crease end itself (tests/export/test_flat_pattern.py), the
-    width error reports the mismatch, and no limit is passed."""
+    blank would bridge from the crease end itself (tests/export/test_flat_pattern.py)
+    and no set-back, corner or edge limit is passed; but the halves' shifts differ by
+    far more than 0.1 t, which the width limit refuses, with the hand numbers."""
     t, r, k = 1.0, 0.0, 1.0
     _, plus, minus = _down_material_hand("INSIDE", t, r, k)
     d = (plus["shift"] + minus["shift"]) / 2
@@ -266,7 +302,102 @@ def test_mean_shift_past_a_crease_end_zone_is_no_limit():
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface="INSIDE", relief_hole=0)
     design = Design("m", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    assert check_bends(design, build_design(design)) == ()
+    problems = check_bends(design, build_design(design))
+    crease = [p for p in problems if p.half in ("plus_x", "minus_x")]
+    width = plus["shift"] - minus["shift"]  # across plus_x: 2 (shift+ - d)
+    assert width > MAX_WIDTH_ERROR_FRACTION * t  # the blank is too wide across plus_x
+    assert [(p.half, p.kind) for p in crease] == [("plus_x", "width")]
+    assert f"the blank is {width:+.4g} mm too wide across it and {-width:+.4g} mm" in (
+        crease[0].message
+    )
+    assert {p.kind for p in problems} == {"width"}  # (the rest: the fan's ruling folds)
+
+
+def _t1d(r: float, t: float = 2.0, k: float = 0.44) -> tuple[Design, object]:
+    """Table 1 row 4 (H_c 68: an asymmetric fold, both halves UP), exact model, MID."""
+    mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
+    design = Design("t1d", FrameCurve(32, 34, 68, 100, 90), Sheet.quadrilateral(103, 201, 300, 96),
+                    material=mat)  # fmt: skip
+    return design, build_design(design)
+
+
+@pytest.mark.parametrize("factor", [1.0 - 1e-6, 1.0 + 1e-6])
+def test_width_limit_is_a_tenth_of_the_thickness(factor):
+    """Across each half the one rigid blank is shift_own - shift_other wider than the
+    bend model asks (each side moves by the mean). By hand that difference is linear in
+    r: the radius that makes it exactly 0.1 t (x factor) is refused just past it."""
+    t = 2.0
+    design, folded = _t1d(0.0, t)
+    psi = [h.fold_angle_deg for h in folded.crease]
+    assert psi[1] > psi[0]  # minus_x folds more: its shift is larger
+
+    def width(r: float) -> float:  # across minus_x, by hand
+        hp, hm = (hand_bend(p, "UP", "MID", t, r, 0.44) for p in psi)
+        return hm["shift"] - hp["shift"]
+
+    slope = width(1.0) - width(0.0)
+    r_edge = (MAX_WIDTH_ERROR_FRACTION * t - width(0.0)) / slope
+    assert r_edge > 0.0 and slope > 0.0
+    r = factor * r_edge
+    design, folded = _t1d(r, t)
+    problems = check_bends(design, folded)
+    if factor < 1.0:
+        assert problems == ()
+        return
+    (p,) = problems
+    assert (p.half, p.kind, p.parameter) == ("minus_x", "width", "bend_radius")
+    assert f"{width(r):+.4g} mm too wide across it" in p.message
+    assert f"limit +-{MAX_WIDTH_ERROR_FRACTION * t:.4g} mm" in p.message
+    assert f"bend_radius <= {r_edge:.4g}" in p.message and "--compensation none" in p.message
+
+
+def test_width_limit_names_hc_when_no_bend_radius_helps():
+    """The reviewers' reproducer (alpha 5, beta 60, h_c -60, t 10, r 10): the halves fold
+    to 115 and 79 deg; by hand the width error across plus_x is +6.72 mm, and already
+    at r = 0 it is over 0.1 t, growing with r: only a smaller |h_c| (or no
+    compensation) helps."""
+    t = 10.0
+    mat = Material(thickness=t, bend_radius=10.0, k_factor=0.44, relief_hole=0)
+    design = Design("asym", FrameCurve(5, 60, -60, 100, 90),
+                    Sheet.quadrilateral(3000, 1000, 2000, 1500), material=mat)  # fmt: skip
+    folded = build_design(design)
+    psi = [h.fold_angle_deg for h in folded.crease]
+
+    def width(r: float) -> float:  # across plus_x, by hand
+        hp, hm = (hand_bend(p, "UP", "MID", t, r, 0.44) for p in psi)
+        return hp["shift"] - hm["shift"]
+
+    assert width(10.0) == pytest.approx(6.72, abs=5e-3)
+    assert width(0.0) > MAX_WIDTH_ERROR_FRACTION * t and width(1.0) > width(0.0)
+    (p,) = check_bends(design, folded)
+    assert (p.half, p.kind, p.parameter) == ("plus_x", "width", "hc")
+    assert f"the blank is {width(10.0):+.4g} mm too wide across it" in p.message
+    assert "h_c nearer 0" in p.message and "bend_radius <=" not in p.message
+
+
+def test_ruling_folds_of_the_paper_fan_have_the_width_limit_too():
+    """The paper model's fan folds along its division rays, and the blank does not
+    compensate those folds: across each the blank is 2 x its shift too wide. DOWN_FRAME's
+    4-division fan, t 1, r 1, K 0.44, MID: its ruling folds by hand (from the frame curve
+    and the apex), the largest width error first, and how many more pass the limit."""
+    t, r, k = 1.0, 1.0, 0.44
+    mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
+    design = Design("fan", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
+                    material=mat)  # fmt: skip
+    folded = build_design(design)
+    f = DOWN_FRAME
+    a = math.radians(f.alpha)
+    phi = -a + np.arange(5) * (math.pi + 2 * a) / 4
+    pts = [arc_point(f.alpha, f.beta, f.h_c, f.radius, p) for p in phi]
+    folds = fan_folds(pts, folded.apex)  # the +y side's; the -y side is its mirror image
+    widths = [2 * hand_bend(ang, bend, "MID", t, r, k)["shift"] for ang, bend in folds]
+    over = [(abs(w), w, i) for i, w in enumerate(widths) if abs(w) > MAX_WIDTH_ERROR_FRACTION * t]
+    _, worst, i = max(over)
+    (p,) = [q for q in check_bends(design, folded) if "ruling" in q.half]
+    assert (p.half, p.kind, p.parameter) == (f"+y ruling {i + 1}", "width", "divisions")
+    assert f"the blank is {worst:+.4g} mm off" in p.message
+    assert f"fold angle {folds[i][0]:.2f} deg, {folds[i][1]}" in p.message
+    assert f"; {2 * len(over) - 1} more ruling folds past the limit" in p.message
 
 
 def test_blank_move_is_the_mean_and_its_errors():
