@@ -254,7 +254,34 @@ def test_solve_always_answers_build_refuses():
     assert w.startswith("bend_radius: ") and "build refuses the DXF" in w
     assert proc.stderr.splitlines() == [f"onefold: warning: {w}"]
     text = run("solve", *args)
-    assert text.returncode == 0 and "(uncompensated: see the warnings" in text.stdout
+    assert text.returncode == 0
+    why = "(uncompensated: past the bend model's limits, see the warnings; build refuses the DXF)"
+    assert why in text.stdout
+
+
+def test_a_zero_thickness_flat_pattern_is_not_called_a_refusal(tmp_path, cli):
+    """star-polygon has t = 0: its blank is the designed outline because there is
+    nothing to compensate, with no warning, and build writes its DXF."""
+    rc, out, err = cli("solve", "star-polygon")
+    assert rc == 0 and err == ""
+    (line,) = [ln for ln in out.splitlines() if "flat pattern size" in ln]
+    assert line.endswith("(t = 0: nothing to compensate)")
+    assert "refuses" not in out and "warnings" not in out
+    rc, out, err = cli("build", "star-polygon", "--formats", "dxf", "-o", str(tmp_path), "-q")
+    assert rc == 0 and err == ""
+    assert (tmp_path / "star-polygon.dxf").is_file()
+
+
+def test_a_blank_left_uncompensated_on_request_says_so():
+    from onefold_cad.export.flat_pattern import flat_pattern
+    from onefold_cad.summary import summary
+
+    design = load_template("paper-square")  # t = 0.1 mm, within the bend model's limits
+    folded = build_design(design)
+    report = design_report(design, folded, pattern=flat_pattern(design, folded, "none"))
+    assert report["flat_pattern"]["bend_problems"] == [] and report["warnings"] == []
+    (line,) = [ln for ln in summary(report).splitlines() if "flat pattern size" in ln]
+    assert line.endswith("(uncompensated, as asked)")
 
 
 def test_build_refuses_what_solve_warns_about(tmp_path):
