@@ -23,7 +23,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, design_mass, fabrication_warnings, relief_hole_diameter
+from onefold_cad.design import (
+    Design,
+    design_mass,
+    fabrication_warnings,
+    relief_hole_diameter,
+    relief_hole_problem,
+)
 from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.bend import bend_error, check_bends, crease_bends
@@ -170,7 +176,10 @@ def _flat_pattern(design: Design, folded: FoldedSheet, warnings: list[str]) -> F
             return flat_pattern(design, folded, "none")
     except OneFoldError as exc:  # the writer's parameter checks (hole, kerf)
         param = getattr(exc, "parameter", None)
-        if not any(param and w.startswith(f"{param}:") for w in warnings):  # said already
+        said = any(param and w.startswith(f"{param}:") for w in warnings) or (
+            param == "relief_hole" and relief_hole_problem(design) is not None
+        )  # the hole that does not fit, named after the thickness when it is the default
+        if not said:
             warnings.append(f"{exc} (flat pattern; build refuses the DXF)")
         return None
 

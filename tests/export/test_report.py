@@ -178,6 +178,23 @@ def test_a_flat_pattern_past_the_bend_limits_is_a_warning():
     json.loads(report_json(rep))
 
 
+def test_a_default_relief_hole_that_does_not_fit_is_one_warning():
+    """t = 1100 on a 3000 mm square with H at its centre: the default hole
+    max(3 t, 2 (t + r)) = 3300 exceeds 2 x 1500, the sheet's width about H. One
+    warning says so (named after the thickness), not a second one from the
+    flat pattern's own check of the same hole."""
+    design = Design(
+        "thick",
+        FrameCurve(3, 3),
+        Sheet.rectangle(3000, 3000, 0.5),
+        material=Material(thickness=1100.0, bend_radius=0.0),
+    )
+    rep = design_report(design, build_design(design))
+    holes = [w for w in rep["warnings"] if "relief hole" in w or "relief_hole" in w]
+    assert len(holes) == 1 and holes[0].startswith("thickness: "), rep["warnings"]
+    assert "3300 mm must be < 3000 mm" in holes[0]
+
+
 def test_given_warnings_sources_and_timings_are_reported(paper):
     design, folded, _ = paper
     rep = design_report(
