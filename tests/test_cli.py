@@ -284,6 +284,21 @@ def test_a_blank_left_uncompensated_on_request_says_so():
     assert line.endswith("(uncompensated, as asked)")
 
 
+def test_a_flags_only_build_s_files_claim_no_inherited_gauge_or_description(tmp_path, cli):
+    args = ["--rectangle", "1000x400", "--alpha", "30", "--beta", "30", "--thickness", "1"]
+    rc, out, err = cli("build", *args, "--formats", "dxf,bends,json", "-o", str(tmp_path), "-q")
+    assert rc == 0, err
+    stem = "onefold-alpha30-beta30-1000x400-t1"
+    marked = "304 stainless steel (from template patkau-one-fold), t from flags"
+    for suffix in (".dxf", "-bends.csv", ".json"):
+        text = (tmp_path / f"{stem}{suffix}").read_text(encoding="utf-8")
+        assert "gauge" not in text and "Patkau Architects'" not in text, suffix
+        assert marked in text, suffix
+    rep = json.loads((tmp_path / f"{stem}.json").read_text(encoding="utf-8"))
+    assert rep["inputs"]["material"]["thickness"] == 1.0
+    assert rep["description"].startswith("from flags --alpha 30 --beta 30 --rectangle 1000x400")
+
+
 def test_build_refuses_what_solve_warns_about(tmp_path):
     out = tmp_path / "out"
     proc = run("build", "--rectangle", "40x100", "--alpha", "60", "--beta", "70", "-o", str(out))
