@@ -122,11 +122,14 @@ def test_a_named_template_changed_by_flags_says_so_in_its_description():
 @pytest.mark.parametrize(
     ("refs", "given", "name"),
     [
-        ([], {"thickness": 1.0}, "304 stainless steel (from template patkau-one-fold), t from flags"),
+        ([], {"thickness": 1.0},
+         "304 stainless steel (from template patkau-one-fold), t from flags"),
         ([], {"thickness": 1.0, "bend_radius": 2.0},
          "304 stainless steel (from template patkau-one-fold), t and r from flags"),
-        (["broken-vault"], {"bend_radius": 0.1}, "mild steel (from template broken-vault), r from flags"),
-        (["paper-square"], {"thickness": 0.2}, "office paper (from template paper-square), t from flags"),
+        (["broken-vault"], {"bend_radius": 0.1},
+         "mild steel (from template broken-vault), r from flags"),
+        (["paper-square"], {"thickness": 0.2},
+         "office paper (from template paper-square), t from flags"),
     ],
 )  # fmt: skip
 def test_a_material_whose_t_or_r_a_flag_changed_claims_no_gauge(refs, given, name):
