@@ -89,8 +89,8 @@ class Writer:
         suffix: what follows the design name in the file name.
         stage: the progress label.
         write: ``write(context, path)`` writes the file at ``path``.
-        cuts_sheet: the file describes the part to make (STEP, DXF, flat
-            preview): refuse (before anything is written) a relief hole that
+        cuts_sheet: the file describes the part to make (STEP, DXF, FOLD,
+            flat preview): refuse (before anything is written) a relief hole that
             does not fit the sheet.
         needs_flat_pattern: refuse (before anything is written) when the
             flat pattern cannot be made.
@@ -188,7 +188,7 @@ register(Writer("step", ".step", "STEP", _step, cuts_sheet=True))
 register(Writer("dxf", ".dxf", "DXF", _dxf, cuts_sheet=True, needs_flat_pattern=True))
 register(Writer("cut", "-cut.dxf", "cut DXF", _cut, cuts_sheet=True, needs_flat_pattern=True))
 register(Writer("bends", "-bends.csv", "bend sheet", _bends, needs_flat_pattern=True))
-register(Writer("fold", ".fold", "FOLD", _fold))
+register(Writer("fold", ".fold", "FOLD", _fold, cuts_sheet=True))
 register(Writer("glb", ".glb", "GLB", _glb))
 register(Writer("png", "-3d.png", "3D preview", _png))
 register(Writer("svg", "-flat.svg", "flat preview", _svg, cuts_sheet=True, needs_flat_pattern=True))

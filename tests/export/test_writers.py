@@ -56,7 +56,7 @@ def test_bad_formats_name_the_flag_and_the_allowed_ones(text, words):
 
 def test_a_relief_hole_that_does_not_fit_is_refused_by_the_cut_part_s_writers_only():
     ctx = context(relief_hole=500.0)  # the sheet's inradius about H is well below 250
-    for fmt in ("step", "dxf", "svg"):
+    for fmt in ("step", "dxf", "cut", "fold", "svg"):  # FOLD cuts the hole too
         with pytest.raises(FabricationError) as exc:
             check_before_writing(ctx, (fmt,))
         assert exc.value.parameter == "relief_hole"
