@@ -101,6 +101,17 @@ def test_help_has_a_clean_usage_line(cmd, usage):
             assert flag in proc.stdout
 
 
+def test_build_help_names_every_file_it_writes_and_its_format():
+    text = run("build", "--help").stdout
+    files = text[text.index("files (--formats") :].splitlines()[1:]
+    formats = ("step", "dxf", "cut", "bends", "fold", "glb", "json", "png", "svg")
+    assert len(files) == len(SUFFIXES) == len(formats)  # one line each
+    for suffix in SUFFIXES:  # the files a build writes (see the build tests)
+        (line,) = [ln for ln in files if f" NAME{suffix} " in ln]
+        fmt = line.split()[0]
+        assert fmt in formats and len(line.split(f"NAME{suffix}", 1)[1].strip()) > 20
+
+
 def test_no_arguments_prints_the_help():
     proc = run()
     assert proc.returncode == 0 and proc.stdout.startswith("usage: onefold")
