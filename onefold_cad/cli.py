@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 from onefold_cad import __version__
 from onefold_cad.errors import InvalidParameterError, OneFoldError
-from onefold_cad.export.writers import WRITERS, files_help
+from onefold_cad.export.writers import COMPENSATIONS, WRITERS, files_help
 from onefold_cad.flags import BODIES, DESIGN_FLAGS, Job, load_jobs, parse_choice, parse_int
 from onefold_cad.summary import material_lines, summary
 from onefold_cad.templates import DEFAULT_TEMPLATE
@@ -161,7 +161,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "reference surface) or 'auto' (solid with thickness and a relief hole, else shell)",
     )  # fmt: skip
     out.add_argument(
-        "--compensation", type=parse_choice(("sharp", "none")), default="sharp",
+        "--compensation", type=parse_choice(COMPENSATIONS), default=COMPENSATIONS[0],
         metavar="sharp|none", help="flat pattern: bend compensation of the sharp-crease "
         "model (default), or none (the designed sheet uncompensated, said in the notes)",
     )  # fmt: skip

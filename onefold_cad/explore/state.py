@@ -48,12 +48,6 @@ def _controls(exc: OneFoldError) -> tuple[str, ...]:
     return (name,) if name in PAGE_FLAGS else ()
 
 
-def _warning_text(w: object) -> str:
-    if isinstance(w, dict):
-        return str(w.get("message", w))
-    return str(w)
-
-
 def _add(messages: list[dict[str, Any]], m: dict[str, Any]) -> None:
     """Append ``m`` unless it repeats a message already there: the same text,
     or that text with a tail (the report's warning of a refusal already shown
@@ -67,7 +61,7 @@ def problem_state(problem: ParameterProblem) -> dict[str, Any]:
     return {"ok": False, "messages": [message("error", problem.message, problem.controls)]}
 
 
-def _numbers(design: Design, folded: Any, report: dict[str, Any] | None) -> dict[str, Any]:
+def _numbers(folded: Any, report: dict[str, Any] | None) -> dict[str, Any]:
     """The numbers the page prints (design units, degrees); None where unknown."""
     if report is not None:
         r = report["resting"]
@@ -170,11 +164,11 @@ def design_state(design: Design) -> dict[str, Any]:
         _add(messages, message("error", str(exc), _controls(exc)))
     if report is not None:
         for w in report.get("warnings", []):
-            _add(messages, message("warning", _warning_text(w)))
+            _add(messages, message("warning", w))
 
     state.update(
         ok=True,
-        numbers={"units": design.units.value, **_numbers(design, folded, report)},
+        numbers={"units": design.units.value, **_numbers(folded, report)},
         form={
             "positions": _b64(pts, "<f4"),
             "indices": _b64(faces, "<u2" if small else "<u4"),

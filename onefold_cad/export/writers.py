@@ -38,7 +38,10 @@ __all__ = [
     "write_design",
 ]
 
-#: ``--compensation`` values: the sharp-crease bend compensation, or none.
+#: ``--compensation`` values, the default first: the sharp-crease bend
+#: compensation, or none (the values of
+#: :class:`onefold_cad.geometry.bend.Compensation`, spelled out here so that
+#: the command's parser needs no numpy).
 COMPENSATIONS = ("sharp", "none")
 
 

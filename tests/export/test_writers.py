@@ -97,3 +97,12 @@ def test_a_registered_writer_is_written_timed_and_listed_in_the_report(tmp_path,
     rep = json.loads((tmp_path / "1" / "w.json").read_text())
     assert rep["files"] == ["w-bends.csv", "w.json"]
     assert set(rep["timings_s"]) >= {"csv"}
+
+
+def test_the_compensations_the_command_offers_are_the_bend_model_s():
+    from onefold_cad.cli import main
+    from onefold_cad.geometry.bend import Compensation
+
+    assert writers.COMPENSATIONS == tuple(c.value for c in Compensation)
+    assert writers.COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default
+    assert main(["build", "--compensation", "bent", "--formats", "json"]) == 2
