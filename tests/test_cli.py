@@ -349,12 +349,12 @@ def test_negative_values_after_flags(solve_json, cli):
 def test_a_non_finite_report_is_an_error_naming_the_key(monkeypatch, capfd):
     import onefold_cad.export.report as report
 
-    real = report._resting
+    real = report.resting_numbers
 
     def broken(folded):
         return {**real(folded), "height": float("nan")}
 
-    monkeypatch.setattr(report, "_resting", broken)
+    monkeypatch.setattr(report, "resting_numbers", broken)
     for extra in ([], ["--json"]):
         assert main(["solve", "table1-row1", *extra]) == 2
         out, err = capfd.readouterr()

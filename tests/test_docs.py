@@ -142,6 +142,14 @@ def test_the_files_build_writes_are_all_listed_with_their_format(page):
         assert any(f"`NAME{suffix}`" in r and f"`{name}`" in r for r in rows), (name, suffix)
 
 
+@pytest.mark.parametrize("name", ["readme-folded.png", "readme-flat.png"])
+def test_readme_pictures_are_at_least_800_px_wide(name):
+    from PIL import Image
+
+    with Image.open(DOCS / "images" / name) as img:
+        assert img.width >= 800
+
+
 def test_readme_python_examples_run(tmp_path):
     """The README's Python blocks, run in order as one script, write what they say."""
     readme = (DOCS.parent / "README.md").read_text()

@@ -47,6 +47,7 @@ __all__ = [
     "design_report",
     "design_warnings",
     "report_json",
+    "resting_numbers",
     "write_report",
 ]
 
@@ -149,7 +150,10 @@ def _box(folded: FoldedSheet, pts: NDArray[np.float64]) -> tuple[NDArray[np.floa
     return lo, hi
 
 
-def _resting(folded: FoldedSheet) -> dict[str, Any]:
+def resting_numbers(folded: FoldedSheet) -> dict[str, Any]:
+    """The report's ``resting`` section: the form standing on the ground (its
+    bounding box, height and footprint from :func:`_box`, span and hull area,
+    apex, tilt, stability). The 3D preview's caption reads it too."""
     pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
     lo, hi = _box(folded, pts)
     size = hi - lo
@@ -344,7 +348,7 @@ def design_report(
             "vertices": _floats(sheet.vertices),
         },
         "surface_area": float(m.area_3d),
-        "resting": _resting(folded),
+        "resting": resting_numbers(folded),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
             "max_boundary_segment_error": float(m.max_boundary_segment_error),
