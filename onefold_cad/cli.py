@@ -22,6 +22,7 @@ import os
 import re
 import signal
 import sys
+import textwrap
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
@@ -30,7 +31,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 from onefold_cad import __version__
 from onefold_cad.errors import InvalidParameterError, OneFoldError
-from onefold_cad.export.writers import WRITERS
+from onefold_cad.export.writers import COMPENSATIONS, WRITERS, files_help
 from onefold_cad.flags import (
     BODIES,
     DESIGN_FLAGS,
@@ -87,6 +88,16 @@ def _formatter(prog: str) -> argparse.HelpFormatter:
     return argparse.HelpFormatter(prog, max_help_position=30, width=100)
 
 
+def _fill(text: str) -> str:
+    """``text`` wrapped for a raw help description (100 columns, words whole)."""
+    return textwrap.fill(text, 100, break_on_hyphens=False)
+
+
+def _raw_formatter(prog: str) -> argparse.HelpFormatter:
+    """Like :func:`_formatter`, the description and epilog kept as written."""
+    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=30, width=100)
+
+
 def _add_design_flags(p: argparse.ArgumentParser) -> None:
     # A value may start with a minus sign ('--polygon -1,0;...', '--hc -5'):
     # argparse reads '-<digit>...' as a value, not as an option.
@@ -113,7 +124,10 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     top = _Parser(
         prog=PROG,
         usage=f"{PROG} [-h] [--version] COMMAND [ARGS]",
-        description="Design One-Fold curved-origami forms and write STEP, DXF, JSON and previews.",
+        description=_fill(
+            "Design One-Fold curved-origami forms and write the files to make them: STEP, "
+            "DXF (annotated and cut-only), bend sheet, FOLD, GLB, JSON report and previews."
+        ),
         epilog="commands:\n"
         "  build      write the files of one or more designs (all or nothing)\n"
         "  solve      solve a design and print the result (writes nothing)\n"
@@ -128,11 +142,14 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     build = _Parser(
         prog=f"{PROG} build",
         usage=f"{PROG} build [TEMPLATE ...] [options]",
-        description="Write NAME.step, NAME.dxf, NAME.json, NAME-3d.png and NAME-flat.svg "
-        "(or the --formats chosen) for each template: all files of all designs, or none. "
-        "Flags change every template given; without a template they change the default "
-        f"one ({DEFAULT_TEMPLATE}).",
-        formatter_class=_formatter,
+        description=_fill(
+            "Write the files below for each template's design (every one, or those "
+            "--formats names): all files of all designs, or none. Flags change every "
+            "template given; without a template they change the default one "
+            f"({DEFAULT_TEMPLATE})."
+        ),
+        epilog=f"files (--formats NAME,NAME,...; default: all):\n{files_help()}",
+        formatter_class=_raw_formatter,
         allow_abbrev=False,
     )
     build.add_argument(
@@ -144,7 +161,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
                      help="output folder (default: out)")  # fmt: skip
     out.add_argument(
         "--formats", metavar="LIST", help="comma-separated formats to write (default: all): "
-        f"{', '.join(WRITERS)}"
+        f"{', '.join(WRITERS)} (see the files below)"
     )  # fmt: skip
     out.add_argument(
         "--body", type=parse_choice(BODIES), default="auto", metavar="auto|solid|shell",
@@ -152,7 +169,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "reference surface) or 'auto' (solid with thickness and a relief hole, else shell)",
     )  # fmt: skip
     out.add_argument(
-        "--compensation", type=parse_choice(("sharp", "none")), default="sharp",
+        "--compensation", type=parse_choice(COMPENSATIONS), default=COMPENSATIONS[0],
         metavar="sharp|none", help="flat pattern: bend compensation of the sharp-crease "
         "model (default), or none (the designed sheet uncompensated, said in the notes)",
     )  # fmt: skip

@@ -24,7 +24,17 @@ from onefold_cad.templates import DEFAULT_TEMPLATE
 if TYPE_CHECKING:
     from onefold_cad.design import Design
 
-__all__ = ["DESIGN_FLAGS", "Flag", "Job", "Overrides", "derived_name", "load_jobs"]
+__all__ = [
+    "DESIGN_FLAGS",
+    "Flag",
+    "Job",
+    "Overrides",
+    "changed_flags",
+    "derived_name",
+    "flags_text",
+    "load_jobs",
+    "mark_changes",
+]
 
 MODELS = ("exact", "paper")
 UNITS = ("mm", "in", "ft")
@@ -287,6 +297,95 @@ def derived_name(base: str, flags: dict[str, Any]) -> str:
     return name
 
 
+def _at(data: Any, key: str) -> Any:
+    """The value at dotted ``key`` of template data (``material.thickness``), or
+    :data:`_MISSING`."""
+    for part in key.split("."):
+        if not isinstance(data, dict) or part not in data:
+            return _MISSING
+        data = data[part]
+    return data
+
+
+_MISSING = object()
+
+
+def changed_flags(before: dict[str, Any], after: dict[str, Any], names: dict[str, str]) -> set[str]:
+    """The flags (``--alpha``) of ``names`` (key -> flag, from
+    :meth:`Overrides.apply`) that changed a value of ``before`` into ``after``
+    (a flag repeating the template's value changes nothing). ``before`` is
+    the template's data with its defaults filled in (``design_to_data``), so
+    that ``--hc 0`` on a template without ``h_c`` changes nothing."""
+    return {
+        flag for key, flag in names.items() if key != "name" and _at(before, key) != _at(after, key)
+    }
+
+
+def flags_text(flags: dict[str, Any]) -> str:
+    """The design flags given (not None) with their values, as typed
+    (``--rectangle 1000x400 --alpha 30``), in the order of :data:`DESIGN_FLAGS`."""
+    parts = []
+    for f in DESIGN_FLAGS:
+        v = flags.get(f.dest)
+        if v is None:
+            continue
+        if f.dest == "polygon":
+            text = f"({len(_parse_polygon(v))} vertices)"
+        elif isinstance(v, float):
+            text = f"{v:g}"
+        else:
+            text = str(v).strip()
+        parts.append(f"{f.flag} {text}")
+    return " ".join(parts)
+
+
+def mark_changes(
+    data: dict[str, Any],
+    flags: dict[str, Any],
+    changed: set[str],
+    template: str,
+    implicit: bool,
+    by: str = "flags",
+) -> dict[str, Any]:
+    """Template data with flags applied, its description and material name
+    made true again.
+
+    Args:
+        data: the template's data with the flags applied.
+        flags: the design flags that define the design (dest -> value; None
+            for a flag not given), listed in the description.
+        changed: the flags that changed a value (:func:`changed_flags`).
+        template: the template's name.
+        implicit: no template was named (the default one was used).
+        by: who set the values ('flags', 'the page').
+
+    * Description: without a template the default template's is not
+      inherited: ``from flags --rectangle 1000x400 --alpha 30 (other values:
+      template patkau-one-fold)``. With one, its description is kept and
+      followed by ``(changed by --alpha 40)``. No flag: unchanged.
+    * Material name: when the thickness or bend radius changed, the inherited
+      name no longer names the gauge it was. Its first part (up to the first
+      comma: the material, by the templates' convention ``MATERIAL, GAUGE``)
+      is kept and marked: ``304 stainless steel (from template
+      patkau-one-fold), t and r from flags``.
+    """
+    text = flags_text(flags)
+    if not text:
+        return data
+    out = copy.deepcopy(data)
+    if implicit:
+        out["description"] = f"from {by} {text} (other values: template {template})"
+    else:
+        base = str(data.get("description", "")).strip() or f"template {template}"
+        out["description"] = f"{base} (changed by {text})"
+    mat = out.get("material")
+    own = [s for s, flag in (("t", "--thickness"), ("r", "--bend-radius")) if flag in changed]
+    if own and isinstance(mat, dict) and str(mat.get("name", "")).strip():
+        kind = str(mat["name"]).split(",", 1)[0].strip()
+        mat["name"] = f"{kind} (from template {template}), {' and '.join(own)} from {by}"
+    return out
+
+
 @dataclass(frozen=True)
 class Job:
     """One design to solve or build, and where its values came from.
@@ -354,10 +453,12 @@ def load_jobs(refs: Sequence[str], flags: dict[str, Any], name: str | None = Non
                 stem = derived_name("onefold", given) if given else template
             else:
                 stem = derived_name(template, given)
-            data, names = Overrides(**flags, name=stem).apply(data)
+            changed, names = Overrides(**flags, name=stem).apply(data)
             if name is None:
                 names.pop("name")
-            design = design_from_data(data, key_names=names)
+            which = changed_flags(design_to_data(design_from_data(data)), changed, names)
+            changed = mark_changes(changed, given, which, template, implicit)
+            design = design_from_data(changed, key_names=names)
         except InvalidParameterError as exc:
             if exc.parameter.startswith("--"):
                 raise

@@ -46,6 +46,23 @@ def material_lines(report: dict[str, Any]) -> list[str]:
     ]
 
 
+def _compensation_note(report: dict[str, Any]) -> str:
+    """Why the flat pattern is not compensated, if it is not: past the bend
+    model's limits (``flat_pattern.bend_problems``: build refuses the DXF), a
+    zero-thickness sheet (nothing to compensate), or asked for."""
+    fp = report["flat_pattern"]
+    if fp["compensation"] != "none":
+        return ""
+    if fp["bend_problems"]:
+        return (
+            " (uncompensated: past the bend model's limits, see the warnings; "
+            "build refuses the DXF)"
+        )
+    if report["inputs"]["material"]["thickness"] <= 0.0:
+        return " (t = 0: nothing to compensate)"
+    return " (uncompensated, as asked)"
+
+
 def summary(report: dict[str, Any]) -> str:
     """The human-readable result of ``onefold solve``."""
     u = report["units"]
@@ -84,11 +101,10 @@ def summary(report: dict[str, Any]) -> str:
         )
     )
     if report["flat_size"] is not None:
-        uncompensated = report["flat_pattern"]["compensation"] == "none"
         lines.append(
             f"  flat pattern size        {report['flat_size'][0]:.6g} x "
             f"{report['flat_size'][1]:.6g} {u}, net area {report['flat_area']:.6g} {u}^2"
-            + (" (uncompensated: see the warnings; build refuses the DXF)" if uncompensated else "")
+            + _compensation_note(report)
         )
     else:
         lines.append("  flat pattern             none (see the warnings; build refuses the DXF)")

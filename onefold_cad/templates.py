@@ -21,7 +21,8 @@ A template names every input of a :class:`~onefold_cad.design.Design`::
     y_minus = 300.0
 
     [material]                      # all optional
-    name = "paper"
+    name = "office paper, 80 g/m^2" # MATERIAL, GAUGE (the gauge is dropped when
+                                    # a flag changes t or r; see docs/cli.md)
     thickness = 0.1                 # design unit, like every length here
     density = 800.0                 # kg/m^3, whatever the design unit
 

@@ -101,6 +101,17 @@ def test_help_has_a_clean_usage_line(cmd, usage):
             assert flag in proc.stdout
 
 
+def test_build_help_names_every_file_it_writes_and_its_format():
+    text = run("build", "--help").stdout
+    files = text[text.index("files (--formats") :].splitlines()[1:]
+    formats = ("step", "dxf", "cut", "bends", "fold", "glb", "json", "png", "svg")
+    assert len(files) == len(SUFFIXES) == len(formats)  # one line each
+    for suffix in SUFFIXES:  # the files a build writes (see the build tests)
+        (line,) = [ln for ln in files if f" NAME{suffix} " in ln]
+        fmt = line.split()[0]
+        assert fmt in formats and len(line.split(f"NAME{suffix}", 1)[1].strip()) > 20
+
+
 def test_no_arguments_prints_the_help():
     proc = run()
     assert proc.returncode == 0 and proc.stdout.startswith("usage: onefold")
@@ -254,7 +265,49 @@ def test_solve_always_answers_build_refuses():
     assert w.startswith("bend_radius: ") and "build refuses the DXF" in w
     assert proc.stderr.splitlines() == [f"onefold: warning: {w}"]
     text = run("solve", *args)
-    assert text.returncode == 0 and "(uncompensated: see the warnings" in text.stdout
+    assert text.returncode == 0
+    why = "(uncompensated: past the bend model's limits, see the warnings; build refuses the DXF)"
+    assert why in text.stdout
+
+
+def test_a_zero_thickness_flat_pattern_is_not_called_a_refusal(tmp_path, cli):
+    """star-polygon has t = 0: its blank is the designed outline because there is
+    nothing to compensate, with no warning, and build writes its DXF."""
+    rc, out, err = cli("solve", "star-polygon")
+    assert rc == 0 and err == ""
+    (line,) = [ln for ln in out.splitlines() if "flat pattern size" in ln]
+    assert line.endswith("(t = 0: nothing to compensate)")
+    assert "refuses" not in out and "warnings" not in out
+    rc, out, err = cli("build", "star-polygon", "--formats", "dxf", "-o", str(tmp_path), "-q")
+    assert rc == 0 and err == ""
+    assert (tmp_path / "star-polygon.dxf").is_file()
+
+
+def test_a_blank_left_uncompensated_on_request_says_so():
+    from onefold_cad.export.flat_pattern import flat_pattern
+    from onefold_cad.summary import summary
+
+    design = load_template("paper-square")  # t = 0.1 mm, within the bend model's limits
+    folded = build_design(design)
+    report = design_report(design, folded, pattern=flat_pattern(design, folded, "none"))
+    assert report["flat_pattern"]["bend_problems"] == [] and report["warnings"] == []
+    (line,) = [ln for ln in summary(report).splitlines() if "flat pattern size" in ln]
+    assert line.endswith("(uncompensated, as asked)")
+
+
+def test_a_flags_only_build_s_files_claim_no_inherited_gauge_or_description(tmp_path, cli):
+    args = ["--rectangle", "1000x400", "--alpha", "30", "--beta", "30", "--thickness", "1"]
+    rc, out, err = cli("build", *args, "--formats", "dxf,bends,json", "-o", str(tmp_path), "-q")
+    assert rc == 0, err
+    stem = "onefold-alpha30-beta30-1000x400-t1"
+    marked = "304 stainless steel (from template patkau-one-fold), t from flags"
+    for suffix in (".dxf", "-bends.csv", ".json"):
+        text = (tmp_path / f"{stem}{suffix}").read_text(encoding="utf-8")
+        assert "gauge" not in text and "Patkau Architects'" not in text, suffix
+        assert marked in text, suffix
+    rep = json.loads((tmp_path / f"{stem}.json").read_text(encoding="utf-8"))
+    assert rep["inputs"]["material"]["thickness"] == 1.0
+    assert rep["description"].startswith("from flags --alpha 30 --beta 30 --rectangle 1000x400")
 
 
 def test_build_refuses_what_solve_warns_about(tmp_path):
@@ -325,12 +378,12 @@ def test_negative_values_after_flags(solve_json, cli):
 def test_a_non_finite_report_is_an_error_naming_the_key(monkeypatch, capfd):
     import onefold_cad.export.report as report
 
-    real = report._resting
+    real = report.resting_numbers
 
     def broken(folded):
         return {**real(folded), "height": float("nan")}
 
-    monkeypatch.setattr(report, "_resting", broken)
+    monkeypatch.setattr(report, "resting_numbers", broken)
     for extra in ([], ["--json"]):
         assert main(["solve", "table1-row1", *extra]) == 2
         out, err = capfd.readouterr()

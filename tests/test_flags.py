@@ -99,3 +99,51 @@ def test_flags_are_read_in_the_unit_the_template_is_converted_to():
     assert d.material.thickness == pytest.approx(0.1 / 25.4, rel=1e-15)  # the template's, converted
     assert d.sheet.inputs["width"] == pytest.approx(200 / 25.4, rel=1e-15)
     assert job.sources["units"] == "--units"
+
+
+def test_a_flags_only_design_does_not_inherit_the_default_template_s_description():
+    (job,) = load_jobs([], flags(rectangle="1000x400", alpha=30.0, beta=30.0))
+    text = job.design.description
+    default = load_jobs([], NO_FLAGS)[0].design.description
+    assert default.startswith("Patkau Architects' One-Fold: 10 x 24 ft")  # the template's own
+    assert "Patkau" not in text and "10 x 24 ft" not in text
+    for flag in ("--rectangle 1000x400", "--alpha 30", "--beta 30"):
+        assert flag in text
+    assert "template patkau-one-fold" in text  # where the other values came from
+
+
+def test_a_named_template_changed_by_flags_says_so_in_its_description():
+    (plain,) = load_jobs(["table1-row1"], NO_FLAGS)
+    (job,) = load_jobs(["table1-row1"], flags(alpha=40.0))
+    assert job.design.description.startswith(plain.design.description)
+    assert job.design.description.endswith("(changed by --alpha 40)")
+
+
+@pytest.mark.parametrize(
+    ("refs", "given", "name"),
+    [
+        ([], {"thickness": 1.0},
+         "304 stainless steel (from template patkau-one-fold), t from flags"),
+        ([], {"thickness": 1.0, "bend_radius": 2.0},
+         "304 stainless steel (from template patkau-one-fold), t and r from flags"),
+        (["broken-vault"], {"bend_radius": 0.1},
+         "mild steel (from template broken-vault), r from flags"),
+        (["paper-square"], {"thickness": 0.2},
+         "office paper (from template paper-square), t from flags"),
+    ],
+)  # fmt: skip
+def test_a_material_whose_t_or_r_a_flag_changed_claims_no_gauge(refs, given, name):
+    (job,) = load_jobs(refs, flags(**given))
+    assert job.design.material.name == name
+    assert "gauge" not in name and "g/m^2" not in name
+
+
+def test_a_flag_repeating_the_template_s_thickness_keeps_the_material_name():
+    (job,) = load_jobs([], flags(thickness=3.57, k_factor=0.4))
+    assert job.design.material.name == "304 stainless steel, 10 gauge (assumed)"
+
+
+def test_a_converted_thickness_is_not_a_changed_one():
+    (job,) = load_jobs(["broken-vault"], flags(units="mm"))
+    assert job.design.material.name == "mild steel, 18 gauge"
+    assert job.design.material.thickness == pytest.approx(0.0478 * 25.4, rel=1e-15)

@@ -164,7 +164,7 @@ def design_from_params(
     Raises:
         ParameterProblem: a value the CLI would refuse, with its message.
     """
-    from onefold_cad.flags import Overrides
+    from onefold_cad.flags import FLAG_OF, Overrides, changed_flags, mark_changes
 
     key = params.get("template", default)
     if key not in templates:
@@ -174,7 +174,13 @@ def design_from_params(
         )
     flags = _cli_flags(params)
     try:
-        data, names = Overrides(**flags).apply(dict(templates[key]))
+        template = dict(templates[key])
+        data, names = Overrides(**flags).apply(template)
+        # the page sends every control: only those that changed a value describe the design
+        changed = changed_flags(design_to_data(design_from_data(template)), data, names)
+        given = {k: v for k, v in flags.items() if FLAG_OF[k] in changed}
+        name = str(template.get("name", key))
+        data = mark_changes(data, given, changed, name, implicit=False, by="the page")
         return design_from_data(data, key_names=names)
     except InvalidParameterError as exc:
         raise ParameterProblem(" ".join(str(exc).split()), _controls_of(exc.parameter)) from None

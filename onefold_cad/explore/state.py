@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, build_design, relief_hole_problem
 from onefold_cad.errors import OneFoldError
 from onefold_cad.explore.flat_svg import flat_pattern_svg
 from onefold_cad.explore.params import PAGE_FLAGS, ParameterProblem, page_values
@@ -48,15 +48,11 @@ def _controls(exc: OneFoldError) -> tuple[str, ...]:
     return (name,) if name in PAGE_FLAGS else ()
 
 
-def _warning_text(w: object) -> str:
-    if isinstance(w, dict):
-        return str(w.get("message", w))
-    return str(w)
-
-
 def _add(messages: list[dict[str, Any]], m: dict[str, Any]) -> None:
-    """Append ``m`` unless a message with the same text is there already."""
-    if not any(old["text"] == m["text"] for old in messages):
+    """Append ``m`` unless it repeats a message already there: the same text,
+    or that text with a tail (the report's warning of a refusal already shown
+    as the error: ``...; build refuses the DXF ...``, ``... (flat pattern; ...)``)."""
+    if not any(m["text"].startswith(old["text"]) for old in messages):
         messages.append(m)
 
 
@@ -65,7 +61,7 @@ def problem_state(problem: ParameterProblem) -> dict[str, Any]:
     return {"ok": False, "messages": [message("error", problem.message, problem.controls)]}
 
 
-def _numbers(design: Design, folded: Any, report: dict[str, Any] | None) -> dict[str, Any]:
+def _numbers(folded: Any, report: dict[str, Any] | None) -> dict[str, Any]:
     """The numbers the page prints (design units, degrees); None where unknown."""
     if report is not None:
         r = report["resting"]
@@ -78,6 +74,7 @@ def _numbers(design: Design, folded: Any, report: dict[str, Any] | None) -> dict
             "angle_condition_error_deg": report["angle_condition_error_deg"],
             "height": r["height"],
             "span": r["span"],
+            "width": r["footprint"]["width"],
             "depth": r["footprint"]["depth"],
             "footprint_area": r["footprint"]["area"],
             "tilt_deg": r["tilt_deg"],
@@ -95,6 +92,7 @@ def _numbers(design: Design, folded: Any, report: dict[str, Any] | None) -> dict
         "angle_condition_error_deg": float(sol.angle_condition_error_deg),
         "height": None,
         "span": None,
+        "width": None,
         "depth": None,
         "footprint_area": None,
         "tilt_deg": None,
@@ -149,11 +147,16 @@ def design_state(design: Design) -> dict[str, Any]:
     ]
 
     small = len(pts) < 2**16
+    # the flat pattern's refusal, as `onefold build` words it (the relief hole first)
     pattern = None
-    try:
-        pattern = flat_pattern(design, folded)
-    except OneFoldError as exc:
-        messages.append(message("error", str(exc), _controls(exc)))
+    refusal: OneFoldError | None = relief_hole_problem(design)
+    if refusal is None:
+        try:
+            pattern = flat_pattern(design, folded)
+        except OneFoldError as exc:
+            refusal = exc
+    if refusal is not None:
+        messages.append(message("error", str(refusal), _controls(refusal)))
     report = None
     try:
         report = design_report(design, folded, pattern=pattern)
@@ -161,11 +164,11 @@ def design_state(design: Design) -> dict[str, Any]:
         _add(messages, message("error", str(exc), _controls(exc)))
     if report is not None:
         for w in report.get("warnings", []):
-            _add(messages, message("warning", _warning_text(w)))
+            _add(messages, message("warning", w))
 
     state.update(
         ok=True,
-        numbers={"units": design.units.value, **_numbers(design, folded, report)},
+        numbers={"units": design.units.value, **_numbers(folded, report)},
         form={
             "positions": _b64(pts, "<f4"),
             "indices": _b64(faces, "<u2" if small else "<u4"),

@@ -35,7 +35,7 @@ from ezdxf.document import Drawing
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.export.atomic import atomic_output
 
-__all__ = ["CUT_STROKE", "STROKE", "render_preview", "svg_size"]
+__all__ = ["CUT_STROKE", "STROKE", "render_preview"]
 
 #: Stroke width of the CUT layer, relative to the drawing's larger side.
 CUT_STROKE = 0.003
@@ -108,19 +108,6 @@ def _svg(doc: Drawing, out: Path) -> None:
     import xml.etree.ElementTree as ET
 
     out.write_text(ET.tostring(root, encoding="unicode", xml_declaration=True), encoding="utf-8")
-
-
-def svg_size(path: str | os.PathLike[str]) -> tuple[float, float, str]:
-    """Width, height and unit of an SVG file's root element (e.g. (185.0, 150.2, 'in'))."""
-    import re
-    import xml.etree.ElementTree as ET
-
-    root = ET.parse(path).getroot()
-    w = re.fullmatch(r"([0-9.eE+-]+)([a-z]*)", root.get("width", ""))
-    h = re.fullmatch(r"([0-9.eE+-]+)([a-z]*)", root.get("height", ""))
-    if not w or not h or w.group(2) != h.group(2):
-        raise ValueError(f"{path}: no width and height in one unit")
-    return float(w.group(1)), float(h.group(1)), w.group(2)
 
 
 def _png(doc: Drawing, out: Path, dpi: int, width_px: int | None) -> None:

@@ -12,7 +12,12 @@ Spec: edemaine/fold, doc/spec.md (version 1.2). The file holds two frames:
 The mesh is a fan about H: one vertex at H, one at every ruling's end on the
 outline, one triangle between each two neighbouring rulings (counter-clockwise
 in the crease pattern, so every face's normal is the sheet's top, +z, side).
-Edges: ``B`` on the outline; the two crease halves ``V`` or ``M`` from their
+With a relief hole (:func:`onefold_cad.design.relief_hole_diameter` > 0) the
+hole is cut: H is gone, and each ruling starts where it crosses the hole's
+circle, so the hole's boundary is the polygon of those points (inscribed in
+the circle) and each triangle of the fan becomes a quad, split into two
+triangles by a diagonal that lies in the fan triangle's plane (``F``).
+Edges: ``B`` on the outline and the hole; the two crease halves ``V`` or ``M`` from their
 bend direction (:attr:`CreaseHalf.bend` 'UP' rotates both sides towards the
 top side, +z: a valley seen from +z); the rulings ``V``/``M`` by the sign of
 their own small dihedral angle, or ``F`` where they run inside a planar
@@ -38,10 +43,10 @@ O(1 / divisions^2), and the file records the largest distance between the two
 So the folded frame is exact to itself: every edge keeps its flat length and
 every dihedral angle equals its ``edges_foldAngle``, to rounding.
 
-The relief hole is not cut: the FOLD file describes the folded reference
-surface, whose rulings all meet at H (origami tools expect that vertex); the
-hole is a fabrication detail of the DXF and STEP, recorded here as
-``onefold:relief_hole_diameter``.
+The relief hole is cut as the polygon of its crossings with the rulings, so
+every edge of it is a chord of a flat triangle and the file stays exact to
+itself; ``onefold:relief_hole_diameter`` records the circle's diameter and
+``onefold:relief_hole_cut`` whether there is one.
 
 Units: ``frame_unit`` is the design's unit ('mm' and 'in' are the spec's own
 values; 'ft' is a custom value the spec allows, with ``onefold:mm_per_unit``
@@ -51,6 +56,7 @@ so a reader can convert). Our extra values carry the ``onefold:`` prefix.
 from __future__ import annotations
 
 import json
+import math
 import os
 from pathlib import Path
 from typing import Any
@@ -58,8 +64,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, relief_hole_diameter
-from onefold_cad.errors import InvalidParameterError, NoSolutionError
+from onefold_cad.design import (
+    Design,
+    relief_hole_diameter,
+    relief_hole_problem,
+    sheet_inradius,
+)
+from onefold_cad.errors import FabricationError, InvalidParameterError, NoSolutionError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.cone import PaperFan
 from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
@@ -67,11 +78,15 @@ from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.params import Model
 from onefold_cad.geometry.solver import solve
 
-__all__ = ["FOLD_SPEC", "fold_data", "fold_fan", "write_fold"]
+__all__ = ["FOLD_SPEC", "RESOLUTION", "fold_data", "fold_fan", "write_fold"]
 
 #: The FOLD spec version written.
 FOLD_SPEC = 1.2
 Array = NDArray[np.float64]
+#: The shortest edge a cut relief hole may add, relative to the sheet's size
+#: (:attr:`Sheet.size`): shorter ones would leave faces of no area once the
+#: coordinates are rounded (about 1e-16 of the size).
+RESOLUTION = 1e-12
 
 
 def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
@@ -96,6 +111,97 @@ def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
         ) from None
 
 
+def _disc(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
+    """Edges, faces and the (assignment, kind) of each group of ``n`` edges after
+    the rulings, of the fan without a hole: vertex 0 is H, vertex 1 + i the
+    i-th ruling's end; edge i the ruling, edge n + i the outline after it."""
+    ring = [1 + i for i in range(n)]
+    edges = [[0, v] for v in ring] + [[ring[i], ring[(i + 1) % n]] for i in range(n)]
+    faces = [[0, ring[i], ring[(i + 1) % n]] for i in range(n)]
+    return edges, faces, [("B", "outline")]
+
+
+def _annulus(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
+    """Edges, faces and edge groups (see :func:`_disc`) of the fan with the
+    relief hole cut: vertex i is the hole's vertex on ruling i, vertex n + i
+    the ruling's end on the outline. Edge i is the ruling (hole to outline),
+    n + i the outline after it, 2n + i the hole's edge after it, 3n + i the
+    diagonal that splits the quad between rulings i and i + 1 (flat: both of
+    its triangles lie in the fan's triangle between the two rulings). Faces
+    counter-clockwise in the crease pattern."""
+    nxt = [(i + 1) % n for i in range(n)]
+    edges = (
+        [[i, n + i] for i in range(n)]
+        + [[n + i, n + nxt[i]] for i in range(n)]
+        + [[i, nxt[i]] for i in range(n)]
+        + [[i, n + nxt[i]] for i in range(n)]
+    )
+    faces = [f for i in range(n) for f in ([i, n + i, n + nxt[i]], [i, n + nxt[i], nxt[i]])]
+    return edges, faces, [("B", "outline"), ("B", "hole"), ("F", "diagonal")]
+
+
+def _with_hole(design: Design, fan: FoldedSheet, hole: float) -> tuple[Array, Array]:
+    """The vertices of the fan with the relief hole cut, flat (fold frame) and
+    folded: the hole's vertices where the rulings cross the hole's circle
+    (radius ``hole / 2`` about H; at that distance from the apex along each
+    folded ruling), then the ruling ends on the outline.
+
+    Raises:
+        FabricationError: ('relief_hole' or 'thickness') the hole does not
+            fit inside the sheet around H; ('relief_hole') it would add an
+            edge shorter than :data:`RESOLUTION` x the sheet's size.
+    """
+    radius = hole / 2.0
+    inner = sheet_inradius(design.sheet)
+    if radius >= inner:
+        u = design.units.value
+        raise relief_hole_problem(design) or FabricationError(
+            "relief_hole",
+            f"diameter {hole:g} {u} must be < {2.0 * inner:.6g} {u} (twice the distance from "
+            "H to the nearest sheet edge)",
+        )
+    ends2, ends3 = fan.boundary_flat, fan.boundary_3d
+    length = np.linalg.norm(ends2, axis=1)
+    dir2 = ends2 / length[:, None]
+    rel3 = ends3 - fan.apex
+    dir3 = rel3 / np.linalg.norm(rel3, axis=1, keepdims=True)
+    unit_chords = np.linalg.norm(np.roll(dir2, -1, axis=0) - dir2, axis=1)
+    _check_resolution(design, hole, float(unit_chords.min()), length - radius)
+    flat = np.vstack([radius * dir2, ends2])
+    pts3 = np.vstack([fan.apex + radius * dir3, ends3])
+    return flat, pts3
+
+
+def _check_resolution(design: Design, hole: float, unit_chord: float, rest: Array) -> None:
+    """Refuse a hole whose new edges the file cannot hold: every edge of the
+    hole's polygon (the shortest is ``unit_chord`` x the radius) and every
+    ruling's part outside the hole (``rest``) must be at least
+    :data:`RESOLUTION` x the sheet's size long, or faces beside them collapse
+    when the coordinates are rounded."""
+    tau = RESOLUTION * design.sheet.size
+    u = design.units.value
+    chord = unit_chord * hole / 2.0
+    if chord < tau:
+        need = 2.0 * tau / unit_chord
+        step = 10.0 ** (math.floor(math.log10(need)) - 2)
+        need = math.ceil(need / step) * step  # 3 digits, rounded up
+        raise FabricationError(
+            "relief_hole",
+            f"diameter {hole:.6g} {u} is too small for the FOLD file: the hole's edge "
+            f"between two rulings would be {chord:.3g} {u} long, under its resolution "
+            f"{tau:.3g} {u} ({RESOLUTION:g} of the sheet's size); use at least {need:.3g} {u}, "
+            "or no relief hole (0)",
+        )
+    if rest.min() < tau:
+        most = 2.0 * (rest.min() + hole / 2.0 - 2.0 * tau)
+        raise FabricationError(
+            "relief_hole",
+            f"diameter {hole:.17g} {u} is too large for the FOLD file: a ruling would keep "
+            f"{rest.min():.3g} {u} outside the hole, under its resolution {tau:.3g} {u} "
+            f"({RESOLUTION:g} of the sheet's size); use at most {most:.17g} {u}",
+        )
+
+
 def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     """The FOLD 1.2 document of ``design`` as a JSON-ready dict.
 
@@ -106,19 +212,29 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     Returns:
         The key frame (crease pattern, 2D, the sheet's own frame) with the
         folded form as ``file_frames[0]`` (3D, standing on z = 0); lengths in
-        ``design.units``. Vertex 0 is H; vertex 1 + i is the i-th ruling end
-        counter-clockwise from the +x crease end. Edge i is the ruling to
-        vertex 1 + i, edge n + i the outline from vertex 1 + i to the next.
+        ``design.units``. With n rulings, counted counter-clockwise from the
+        +x crease end: without a relief hole vertex 0 is H and vertex 1 + i
+        the i-th ruling's end, edge i the ruling, edge n + i the outline after
+        it (a disc: V - E + F = 1); with one, vertex i is the hole's vertex on
+        ruling i and vertex n + i the ruling's end, edges i, n + i, 2n + i,
+        3n + i the ruling, the outline, the hole's edge and the quad's
+        diagonal after it (an annulus: V - E + F = 0).
+
+    Raises:
+        FabricationError: the relief hole does not fit inside the sheet.
+        InvalidParameterError: ('divisions') see :func:`fold_fan`.
     """
     fan = fold_fan(design, folded)
     theta, minus_x = ring_angles(fan)
-    flat = np.vstack([np.zeros((1, 2)), fan.boundary_flat])
-    pts3 = np.vstack([fan.apex[None, :], fan.boundary_3d])
     n = len(theta)
-    ring = np.arange(1, n + 1)
-    edges = [[0, int(v)] for v in ring] + [
-        [int(v), int(ring[(i + 1) % n])] for i, v in enumerate(ring)
-    ]
+    hole = relief_hole_diameter(design, folded)
+    if hole > 0.0:
+        flat, pts3 = _with_hole(design, fan, hole)
+        edges, faces, extra = _annulus(n)
+    else:
+        flat = np.vstack([np.zeros((1, 2)), fan.boundary_flat])
+        pts3 = np.vstack([fan.apex[None, :], fan.boundary_3d])
+        edges, faces, extra = _disc(n)
 
     angle = signed_fold_angles(fan.apex, fan.boundary_3d)
     division = on_division_rays(theta, fan)
@@ -157,8 +273,8 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
             {"name": c.name, "length": c.length, "fold_angle_deg": c.fold_angle_deg, "bend": c.bend}
             for c in fan.crease
         ],
-        "onefold:relief_hole_diameter": relief_hole_diameter(design, folded),
-        "onefold:relief_hole_cut": False,
+        "onefold:relief_hole_diameter": hole,
+        "onefold:relief_hole_cut": hole > 0.0,
         "onefold:resting_tilt_deg": fan.resting.tilt_deg,
     }
     if fan is not folded:
@@ -198,10 +314,10 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "frame_unit": units,
         "vertices_coords": design.sheet.to_sheet.apply(flat).tolist(),
         "edges_vertices": edges,
-        "edges_assignment": list(assignment) + ["B"] * n,
-        "edges_foldAngle": [float(a) for a in angle] + [0.0] * n,
-        "edges_onefold:kind": list(kind) + ["outline"] * n,
-        "faces_vertices": [[0, int(ring[i]), int(ring[(i + 1) % n])] for i in range(n)],
+        "edges_assignment": list(assignment) + [a for a, _ in extra for _ in range(n)],
+        "edges_foldAngle": [float(a) for a in angle] + [0.0] * (len(edges) - n),
+        "edges_onefold:kind": list(kind) + [k for _, k in extra for _ in range(n)],
+        "faces_vertices": faces,
         **extras,
         "file_frames": [folded_frame],
     }
@@ -222,6 +338,7 @@ def write_fold(design: Design, folded: FoldedSheet, path: str | os.PathLike[str]
 
     Raises:
         ExportError: the file could not be written.
+        FabricationError: the relief hole does not fit inside the sheet.
         InvalidParameterError: ('divisions') the exact model's fan
             approximation has no apex (:func:`fold_fan`).
     """

@@ -97,13 +97,15 @@ def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArra
 
 def _caption(folded: FoldedSheet, units: str) -> str:
     """The lines written under the view: fold angles, size, stability. The
-    size is the extent of the resting form's outline and apex (as in the
-    report): height above the ground, footprint along x and y."""
+    size is the report's (:func:`onefold_cad.export.report.resting_numbers`):
+    the resting form's height and its footprint along x and y."""
+    from onefold_cad.export.report import resting_numbers
+
     u = f" {units}" if units else ""
     rest = folded.resting
-    pts = rest.apply(np.vstack([folded.boundary_3d, folded.apex]))
-    width, depth, _ = np.ptp(pts, axis=0)
-    height = float(pts[:, 2].max())
+    numbers = resting_numbers(folded)
+    height = numbers["height"]
+    width, depth = numbers["footprint"]["width"], numbers["footprint"]["depth"]
     folds = ", ".join(
         f"{c.name.replace('_', ' ')} {c.fold_angle_deg:.1f}\N{DEGREE SIGN} {c.bend}"
         for c in folded.crease

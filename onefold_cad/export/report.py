@@ -33,6 +33,7 @@ from onefold_cad.design import (
 from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
+from onefold_cad.geometry.cone import PaperFan
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.templates import design_to_data
 
@@ -45,6 +46,7 @@ __all__ = [
     "design_report",
     "design_warnings",
     "report_json",
+    "resting_numbers",
     "write_report",
 ]
 
@@ -118,9 +120,41 @@ def _footprint(xy: NDArray[np.float64]) -> tuple[float, float]:
     return area, _diameter(hull)
 
 
-def _resting(folded: FoldedSheet) -> dict[str, Any]:
-    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
+#: Points per sampling interval on each side of an extreme of the exact
+#: model's sampled boundary, where :func:`_box` looks for the true extreme.
+_REFINE = 200
+
+
+def _box(folded: FoldedSheet, pts: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """The bounding box (lo, hi) of the resting form whose boundary samples and
+    apex are ``pts`` (resting placement). The form is the cone from the apex
+    over its boundary, so its box is the box of the boundary and the apex. The
+    paper model's boundary is straight between its samples: their box is
+    exact. The exact model's boundary curves between its samples (a straight
+    flat edge on the cone): each extreme is refined on the flat segments
+    beside the sample that holds it, ``_REFINE`` points each, folded with
+    :meth:`FoldedSheet.map_points`."""
     lo, hi = pts.min(axis=0), pts.max(axis=0)
+    if isinstance(folded.solution.surface, PaperFan):
+        return lo, hi
+    flat = folded.boundary_flat  # closed, vertices included: neighbours share an edge
+    n = len(flat)
+    t = np.linspace(0.0, 1.0, _REFINE + 1)[1:, None]
+    for axis in range(3):
+        for i in (int(np.argmin(pts[:n, axis])), int(np.argmax(pts[:n, axis]))):
+            a = flat[i]
+            seg = np.vstack([a + (flat[(i + k) % n] - a) * t for k in (-1, 1)])
+            q = folded.resting.apply(folded.map_points(seg))[:, axis]
+            lo[axis], hi[axis] = min(lo[axis], q.min()), max(hi[axis], q.max())
+    return lo, hi
+
+
+def resting_numbers(folded: FoldedSheet) -> dict[str, Any]:
+    """The report's ``resting`` section: the form standing on the ground (its
+    bounding box, height and footprint from :func:`_box`, span and hull area,
+    apex, tilt, stability). The 3D preview's caption reads it too."""
+    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
+    lo, hi = _box(folded, pts)
     size = hi - lo
     area, span = _footprint(pts[:, :2])
     return {
@@ -344,7 +378,7 @@ def design_report(
             "vertices": _floats(sheet.vertices),
         },
         "surface_area": float(m.area_3d),
-        "resting": _resting(folded),
+        "resting": resting_numbers(folded),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
             "max_boundary_segment_error": float(m.max_boundary_segment_error),

@@ -32,12 +32,16 @@ __all__ = [
     "WRITERS",
     "BuildContext",
     "Writer",
+    "files_help",
     "parse_formats",
     "register",
     "write_design",
 ]
 
-#: ``--compensation`` values: the sharp-crease bend compensation, or none.
+#: ``--compensation`` values, the default first: the sharp-crease bend
+#: compensation, or none (the values of
+#: :class:`onefold_cad.geometry.bend.Compensation`, spelled out here so that
+#: the command's parser needs no numpy).
 COMPENSATIONS = ("sharp", "none")
 
 
@@ -89,11 +93,12 @@ class Writer:
         suffix: what follows the design name in the file name.
         stage: the progress label.
         write: ``write(context, path)`` writes the file at ``path``.
-        cuts_sheet: the file describes the part to make (STEP, DXF, flat
-            preview): refuse (before anything is written) a relief hole that
+        cuts_sheet: the file describes the part to make (STEP, DXF, FOLD,
+            flat preview): refuse (before anything is written) a relief hole that
             does not fit the sheet.
         needs_flat_pattern: refuse (before anything is written) when the
             flat pattern cannot be made.
+        what: what the file is for, one line (``onefold build --help``).
     """
 
     name: str
@@ -102,6 +107,7 @@ class Writer:
     write: Callable[[BuildContext, Path], Any]
     cuts_sheet: bool = False
     needs_flat_pattern: bool = False
+    what: str = ""
 
 
 #: name -> writer, in writing order (the report, 'json', is always written last).
@@ -185,15 +191,105 @@ def _json(ctx: BuildContext, path: Path) -> Any:
     return write_report(path, report)
 
 
-register(Writer("step", ".step", "STEP", _step, cuts_sheet=True))
-register(Writer("dxf", ".dxf", "DXF", _dxf, cuts_sheet=True, needs_flat_pattern=True))
-register(Writer("cut", "-cut.dxf", "cut DXF", _cut, cuts_sheet=True, needs_flat_pattern=True))
-register(Writer("bends", "-bends.csv", "bend sheet", _bends, needs_flat_pattern=True))
-register(Writer("fold", ".fold", "FOLD", _fold))
-register(Writer("glb", ".glb", "GLB", _glb))
-register(Writer("png", "-3d.png", "3D preview", _png))
-register(Writer("svg", "-flat.svg", "flat preview", _svg, cuts_sheet=True, needs_flat_pattern=True))
-register(Writer("json", ".json", "report", _json))
+register(
+    Writer(
+        "step",
+        ".step",
+        "STEP",
+        _step,
+        cuts_sheet=True,
+        what="the folded part for CAD: the sheet's solid, or its surface (--body)",
+    )
+)
+register(
+    Writer(
+        "dxf",
+        ".dxf",
+        "DXF",
+        _dxf,
+        cuts_sheet=True,
+        needs_flat_pattern=True,
+        what="the flat pattern with bend lines (angle, direction), zones and notes",
+    )
+)
+register(
+    Writer(
+        "cut",
+        "-cut.dxf",
+        "cut DXF",
+        _cut,
+        cuts_sheet=True,
+        needs_flat_pattern=True,
+        what="the blank alone for the laser: outline and relief hole, layer CUT",
+    )
+)
+register(
+    Writer(
+        "bends",
+        "-bends.csv",
+        "bend sheet",
+        _bends,
+        needs_flat_pattern=True,
+        what="the bend sheet for the press brake: angle, direction, BA, BD per bend",
+    )
+)
+register(
+    Writer(
+        "fold",
+        ".fold",
+        "FOLD",
+        _fold,
+        cuts_sheet=True,
+        what="crease pattern and folded form for origami tools (Origami Simulator)",
+    )
+)
+register(
+    Writer(
+        "glb",
+        ".glb",
+        "GLB",
+        _glb,
+        what="the folded form for web viewers and Blender (glTF, metres, y up)",
+    )
+)
+register(
+    Writer(
+        "png",
+        "-3d.png",
+        "3D preview",
+        _png,
+        what="a picture of the form as it stands, with a legend",
+    )
+)
+register(
+    Writer(
+        "svg",
+        "-flat.svg",
+        "flat preview",
+        _svg,
+        cuts_sheet=True,
+        needs_flat_pattern=True,
+        what="a picture of the flat pattern at true size",
+    )
+)
+register(
+    Writer(
+        "json",
+        ".json",
+        "report",
+        _json,
+        what="the report: material and sources, angles, bends, sizes, mass, warnings",
+    )
+)
+
+
+def files_help() -> str:
+    """The files ``build`` writes, one line each: the ``--formats`` name, the
+    file name and what it is for (from :data:`WRITERS`)."""
+    width = max(len(f"NAME{w.suffix}") for w in WRITERS.values())
+    return "\n".join(
+        f"  {w.name:<6} NAME{w.suffix:<{width - 4}}  {w.what}" for w in WRITERS.values()
+    )
 
 
 def parse_formats(text: str | None) -> tuple[str, ...]:

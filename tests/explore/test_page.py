@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 from collections.abc import Iterator
 from urllib.parse import urlencode
 
@@ -125,4 +126,19 @@ def test_the_dxf_link_downloads_the_current_flat_pattern(tab, tmp_path):
     doc = ezdxf.readfile(path)
     assert not doc.audit().has_errors
     assert len(doc.modelspace().query('LWPOLYLINE[layer=="CUT"]')) == 1
+    assert tab.errors == []
+
+
+def test_the_form_s_size_reads_as_onefold_solve_prints_it(tab, capfd):
+    """Height, span and footprint (width x depth, not span x depth) of the default
+    design: the page's text is the command's."""
+    capfd.readouterr()
+    assert main(["solve"]) == 0
+    text = capfd.readouterr().out
+    m = re.search(r"height (\S+) mm, span (\S+) mm, footprint (\S+) x (\S+) mm", text)
+    height, span, width, depth = m.groups()
+    assert width != span  # the two differ for this design: a mix-up would show
+    assert tab.text("#form-height") == f"{height} mm"
+    assert tab.text("#form-span") == f"{span} mm"
+    assert tab.text("#form-footprint").startswith(f"{width} × {depth} mm, hull area ")
     assert tab.errors == []

@@ -101,6 +101,14 @@ def test_the_page_values_of_every_template_give_back_the_same_design(templates, 
     assert page["sheet_kind"] == design.sheet.kind
 
 
+def test_a_thickness_changed_on_the_page_unclaims_the_template_s_gauge(templates):
+    data, key = templates
+    page = page_values(design_from_params({}, data, key))["values"]
+    d = design_from_params({**page, "thickness": "2", "alpha": "41"}, data, key)
+    assert d.material.name == "304 stainless steel (from template patkau-one-fold), t from the page"
+    assert d.description.endswith("(changed by --alpha 41 --thickness 2)")  # only what changed
+
+
 def test_the_hc_limit_is_r_cos_alpha(templates):
     data, key = templates
     d = design_from_params({"alpha": "60", "radius": "50"}, data, key)

@@ -76,6 +76,7 @@ def test_the_numbers_are_the_reports(templates):
     assert n["apex_height"] == r["direction_surface"]["apex_height"]
     assert n["height"] == r["resting"]["height"]
     assert n["span"] == r["resting"]["span"]
+    assert n["width"] == r["resting"]["footprint"]["width"]
     assert n["depth"] == r["resting"]["footprint"]["depth"]
     assert n["flat_size"] == r["flat_size"]
 
@@ -106,3 +107,40 @@ def test_a_design_the_flat_pattern_refuses_keeps_its_form_and_gets_the_builds_me
     ]
     assert state["form"]["vertex_count"] > 0
     assert state["numbers"]["fold_angles"]["plus_x"]["deg"] > 0.0
+
+
+@pytest.mark.parametrize(
+    ("name", "flags", "material", "params"),
+    [  # bend zones reaching the corners (page controls)
+        ("paper-square", ["--thickness", "5", "--bend-radius", "150"], {},
+         {"thickness": "5", "bend_radius": "150"}),
+        ("paper-square", ["--relief-hole", "300"], {"relief_hole": 300.0}, {}),
+        ("paper-square", ["--relief-hole", "3", "--kerf", "5"],
+         {"relief_hole": 3.0, "kerf": 5.0}, {}),
+        # the default hole max(3 t, 2 (t + r)) wider than the 3048 mm sheet: named after t
+        ("patkau-one-fold", ["--thickness", "1100"], {}, {"thickness": "1100"}),
+    ],
+    ids=["bend-limits", "relief-hole", "kerf", "default-hole"],
+)  # fmt: skip
+def test_a_refused_flat_pattern_is_one_message_the_builds(
+    capfd, tmp_path, name, flags, material, params
+):
+    """The refusal `onefold build` prints is shown once: as the error, not again as
+    the report's warning with a tail (`...; build refuses the DXF ...`)."""
+    capfd.readouterr()
+    assert main(["build", name, *flags, "-o", str(tmp_path), "-q"]) == 2
+    err = capfd.readouterr().err.strip().splitlines()[-1].removeprefix("onefold: error: ")
+    # the command names a value given by a flag after the flag (--kerf); the page,
+    # where the value came from the template, after the parameter (kerf)
+    err = err.removeprefix("--")
+    data, key = load_templates(name)
+    template = dict(data[key])
+    template["material"] = {**template["material"], **material}
+    state = design_state(design_from_params(params, {key: template}, key))
+    texts = [m["text"] for m in state["messages"]]
+    assert [m["text"] for m in state["messages"] if m["level"] == "error"] == [err]
+    core = err.split(" (", 1)[0]  # the problem, without its numbers' explanation
+    assert sum(core in t for t in texts) == 1, texts
+    # nor in other words: no other message about the same parameter or the hole
+    others = [t.split(":", 1)[0] for t in texts if t != err]
+    assert not {err.split(":", 1)[0], "relief_hole"} & set(others), texts

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -16,6 +17,7 @@ from hypothesis import strategies as st
 from onefold_cad import (
     Design,
     ExportError,
+    FabricationError,
     FrameCurve,
     InvalidParameterError,
     Material,
@@ -25,6 +27,7 @@ from onefold_cad import (
     build_design,
     solve,
 )
+from onefold_cad.design import sheet_inradius
 from onefold_cad.export.fold_file import fold_data, write_fold
 from onefold_cad.templates import load_template
 
@@ -119,6 +122,42 @@ def _check_exact_to_itself(f: SimpleNamespace) -> None:
     assert np.all(f.angle[flat_edges] == 0.0)
 
 
+def _kinds(f: SimpleNamespace, *kinds: str) -> np.ndarray:
+    """The edges (k, 2) whose ``edges_onefold:kind`` is one of ``kinds``."""
+    mask = np.isin(np.array(f.doc["edges_onefold:kind"]), kinds)
+    return f.edges[mask]
+
+
+def _apex_flat(design: Design) -> np.ndarray:
+    """H in the sheet's own frame (the crease pattern's coordinates)."""
+    return design.sheet.to_sheet.apply([[0.0, 0.0]])[0]
+
+
+def _cycle(edges: np.ndarray) -> list[int]:
+    """The vertices of the closed chain ``edges`` in order (each vertex in two edges)."""
+    nbr: dict[int, list[int]] = {}
+    for a, b in edges.tolist():
+        nbr.setdefault(a, []).append(b)
+        nbr.setdefault(b, []).append(a)
+    assert all(len(v) == 2 for v in nbr.values()), "not a simple closed chain"
+    start = edges[0, 0]
+    order, prev, cur = [int(start)], None, int(start)
+    while True:
+        a, b = nbr[cur]
+        nxt = b if a == prev else a
+        if nxt == start:
+            break
+        order.append(nxt)
+        prev, cur = cur, nxt
+    assert len(order) == len(nbr), "more than one closed chain"
+    return order
+
+
+def _shoelace(p: np.ndarray) -> float:
+    x, y = p.T
+    return 0.5 * abs(float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)))
+
+
 def _quad(model: str = "paper", **frame) -> Design:
     args = {"alpha": 50.0, "beta": 45.0, "h_c": 0.0, "radius": 100.0, "divisions": 90} | frame
     return Design("quad", FrameCurve(**args), Sheet.quadrilateral(300, 300, 300, 300), model=model)
@@ -175,30 +214,34 @@ def test_faces_are_counter_clockwise_triangles_tiling_the_sheet(written):
         a, b, c = p[face]
         areas.append(0.5 * ((b - a)[0] * (c - a)[1] - (b - a)[1] * (c - a)[0]))
     assert min(areas) > 0.0
-    assert sum(areas) == pytest.approx(design.sheet.area, rel=1e-12)
-    # a disc: every edge of the faces is listed once, the border ones have one face
+    cut = f.doc["onefold:relief_hole_cut"]
+    hole = _kinds(f, "hole")
+    assert cut == (f.doc["onefold:relief_hole_diameter"] > 0.0) == (len(hole) > 0)
+    # the sheet less the hole: the polygon of the hole's edges, inside its circle
+    hole_area = _shoelace(p[_cycle(hole)]) if cut else 0.0
+    radius = f.doc["onefold:relief_hole_diameter"] / 2.0
+    assert hole_area <= math.pi * radius**2
+    assert sum(areas) == pytest.approx(design.sheet.area - hole_area, rel=1e-12)
+    # every edge of the faces is listed once, the border ones have one face
     listed = {tuple(sorted(e)) for e in f.edges.tolist()}
     assert len(listed) == len(f.edges)
     assert listed == {tuple(sorted(h)) for h in f.half}
     for (a, b), kind in zip(f.edges.tolist(), f.assignment, strict=True):
         faces = int((a, b) in f.half) + int((b, a) in f.half)
         assert faces == (1 if kind == "B" else 2)
-    assert len(p) - len(f.edges) + len(f.faces) == 1  # Euler characteristic of a disc
+    # Euler characteristic: a disc (1), or an annulus (0) with the relief hole cut
+    assert len(p) - len(f.edges) + len(f.faces) == (0 if cut else 1)
 
 
 def test_crease_pattern_is_the_sheet_in_its_own_frame(written):
     design, _, f = written
     sheet = design.sheet
     corners = sheet.to_sheet.apply(sheet.vertices)
-    outline = sorted(
-        {
-            v
-            for (a, b), k in zip(f.edges.tolist(), f.assignment, strict=True)
-            if k == "B"
-            for v in (a, b)
-        }
-    )
-    ring = f.v2[outline]
+    outline = _kinds(f, "outline")
+    assert {
+        f.assignment[i] for i in np.flatnonzero(np.isin(f.doc["edges_onefold:kind"], "outline"))
+    } == {"B"}
+    ring = f.v2[_cycle(outline)]
     # every corner of the sheet is a vertex of the outline ...
     gap = np.min(np.linalg.norm(corners[:, None] - ring[None], axis=2), axis=1)
     assert gap.max() <= 1e-12 * sheet.size
@@ -210,10 +253,16 @@ def test_crease_pattern_is_the_sheet_in_its_own_frame(written):
     )
     dist = np.linalg.norm(ring[:, None] - (a + t[..., None] * ab), axis=2).min(axis=1)
     assert dist.max() <= 1e-12 * sheet.size
-    # vertex 0, where every ruling meets, is H
-    np.testing.assert_allclose(
-        f.v2[0], sheet.to_sheet.apply([[0.0, 0.0]])[0], atol=1e-12 * sheet.size
-    )
+    # every ruling (and crease half) lies on a ray from H ...
+    h = _apex_flat(design)
+    rulings = _kinds(f, "ruling", "flat_ruling", "crease_plus_x", "crease_minus_x")
+    a, b = f.v2[rulings[:, 0]] - h, f.v2[rulings[:, 1]] - h
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    assert np.abs(cross).max() <= 1e-12 * sheet.size**2
+    assert np.all(np.einsum("ij,ij->i", a, b) >= 0.0)  # on the same side of H
+    if not f.doc["onefold:relief_hole_cut"]:  # ... and starts at vertex 0, H itself
+        np.testing.assert_allclose(f.v2[0], h, atol=1e-12 * sheet.size)
+        assert set(rulings[:, 0].tolist()) == {0}
 
 
 def test_folded_frame_is_exact_to_itself(written):
@@ -311,12 +360,65 @@ def test_frame_unit_is_the_designs(units):
     assert doc["onefold:mm_per_unit"] == {"mm": 1.0, "in": 25.4, "ft": 304.8}[units.value]
 
 
-def test_relief_hole_is_recorded_not_cut():
-    design = _quad("paper").with_changes(material=Material(thickness=1.0, relief_hole=8.0))
-    doc = fold_data(design, build_design(design))
-    assert doc["onefold:relief_hole_diameter"] == 8.0 and doc["onefold:relief_hole_cut"] is False
-    # the rulings still meet at H, vertex 0
-    assert sum(1 for e in doc["edges_vertices"] if 0 in e) == len(doc["faces_vertices"])
+@pytest.mark.parametrize("model", ["paper", "exact"])
+def test_the_relief_hole_is_cut_where_the_rulings_cross_its_circle(model):
+    """A hole of diameter 8 about H: its boundary is a closed chain of B edges
+    whose vertices are 4 from H on the crease pattern, each the start of one
+    ruling; folded, the rulings' lines still meet in one point (the apex) and
+    the hole's vertices are 4 from it."""
+    design = _quad(model, divisions=24).with_changes(
+        material=Material(thickness=1.0, relief_hole=8.0)
+    )
+    f = _parse(fold_data(design, build_design(design)))
+    assert f.doc["onefold:relief_hole_diameter"] == 8.0 and f.doc["onefold:relief_hole_cut"]
+    hole = _kinds(f, "hole")
+    ring = _cycle(hole)
+    assert {
+        f.assignment[i] for i in np.flatnonzero(np.isin(f.doc["edges_onefold:kind"], "hole"))
+    } == {"B"}
+    h = _apex_flat(design)
+    np.testing.assert_allclose(np.linalg.norm(f.v2[ring] - h, axis=1), 4.0, rtol=1e-12)
+    rulings = _kinds(f, "ruling", "flat_ruling", "crease_plus_x", "crease_minus_x")
+    assert sorted(rulings[:, 0].tolist()) == sorted(ring)  # one ruling from each
+    assert len(ring) == len(_kinds(f, "outline")) == len(rulings)
+    # no vertex at H any more
+    assert np.linalg.norm(f.v2 - h, axis=1).min() == pytest.approx(4.0, rel=1e-12)
+    # folded: the point nearest to every ruling's line (least squares) is on all of them
+    p, q = f.v3[rulings[:, 0]], f.v3[rulings[:, 1]]
+    d = (q - p) / np.linalg.norm(q - p, axis=1, keepdims=True)
+    proj = np.eye(3)[None] - d[:, :, None] * d[:, None, :]
+    apex = np.linalg.solve(proj.sum(axis=0), np.einsum("kij,kj->i", proj, p))
+    off = np.linalg.norm(np.einsum("kij,kj->ki", proj, apex - p), axis=1)
+    assert off.max() <= 1e-9 * 300
+    np.testing.assert_allclose(np.linalg.norm(f.v3[ring] - apex, axis=1), 4.0, rtol=1e-9)
+    _check_exact_to_itself(f)
+
+
+STAR = [(300, 0), (80, 80), (0, 300), (-80, 80), (-300, 0), (-80, -80), (0, -300), (80, -80)]
+
+
+@pytest.mark.parametrize(
+    ("diameter", "words"), [(1e-20, "too small"), (160 * math.sqrt(2) - 1e-10, "too large")]
+)
+def test_a_relief_hole_the_file_cannot_resolve_is_refused_naming_it(diameter, words):
+    """A hole's new edges must be at least 1e-12 of the sheet's size (300 here).
+    A 1e-20 hole's polygon edges are about 1e-22 long. The star's nearest points
+    to H are its inner vertices, 80 sqrt(2) away, each the end of a ruling: a
+    hole 1e-10 narrower than 160 sqrt(2) fits the sheet but leaves 5e-11 of
+    those rulings outside it."""
+    sheet = Sheet.polygon(STAR)
+    design = Design("star", FrameCurve(50, 45), sheet, "paper", Material(relief_hole=diameter))
+    with pytest.raises(FabricationError) as err:
+        fold_data(design, build_design(design))
+    assert err.value.parameter == "relief_hole" and words in str(err.value)
+
+
+def test_a_relief_hole_wider_than_the_sheet_is_refused_naming_it(tmp_path):
+    design = _quad("paper").with_changes(material=Material(relief_hole=600.0))
+    with pytest.raises(FabricationError) as err:
+        write_fold(design, build_design(design), tmp_path / "x.fold")
+    assert err.value.parameter == "relief_hole"
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_exact_model_with_one_division_is_refused_naming_divisions(tmp_path):
@@ -348,16 +450,22 @@ _DEG = st.floats(1e-6, 90.0 - 1e-6)
     divisions=st.integers(2, 200),
     model=st.sampled_from(["paper", "exact"]),
     quad=st.tuples(*[st.floats(1.0, 1000.0)] * 4),
+    hole=st.floats(0.0, 1.0, exclude_max=True),
 )
 def test_fold_file_is_exact_to_itself_over_the_whole_frame_range(
-    alpha, beta, frac, divisions, model, quad
+    alpha, beta, frac, divisions, model, quad, hole
 ):
+    """Every frame angle, apex position, division count and sheet, without a
+    relief hole (hole = 0) or with one of any diameter the sheet allows
+    (hole x twice the distance from H to the nearest edge)."""
     half = 100.0 * math.cos(math.radians(alpha))
     h_c = frac * half
     if abs(h_c) >= half:  # frac * half rounded onto the end of the f-line
         h_c = math.copysign(math.nextafter(half, 0.0), frac)
     frame = FrameCurve(alpha, beta, h_c, 100.0, divisions)
-    design = Design("h", frame, Sheet.quadrilateral(*quad), model=model)
+    sheet = Sheet.quadrilateral(*quad)
+    material = Material(relief_hole=hole * 2.0 * sheet_inradius(sheet))
+    design = Design("h", frame, sheet, model=model, material=material)
     try:
         folded = build_design(design)
     except NoSolutionError:  # the core's answer for this frame: nothing to write
@@ -369,5 +477,19 @@ def test_fold_file_is_exact_to_itself_over_the_whole_frame_range(
             fold_data(design, folded)
         assert err.value.parameter == "divisions"
         return
-    doc = json.loads(json.dumps(fold_data(design, folded)))
-    _check_exact_to_itself(_parse(doc))
+    try:
+        doc = fold_data(design, folded)
+    except FabricationError as exc:  # a hole whose edges the file cannot hold ...
+        assert hole > 0.0 and exc.parameter == "relief_hole"
+        # ... says which diameter it can, and that one is written exactly
+        m = re.search(r"use at (least|most) (\S+) ", str(exc))
+        assert m, str(exc)
+        better = float(m.group(2)) * (1.1 if m.group(1) == "least" else 1.0)
+        if better >= 2.0 * sheet_inradius(sheet):
+            return
+        design = design.with_changes(material=Material(relief_hole=better))
+        folded = build_design(design)
+        doc = fold_data(design, folded)
+    f = _parse(json.loads(json.dumps(doc)))
+    _check_exact_to_itself(f)
+    assert len(f.v2) - len(f.edges) + len(f.faces) == (0 if doc["onefold:relief_hole_cut"] else 1)

@@ -150,7 +150,7 @@ def test_caption_gives_fold_angles_height_and_footprint(folded):
     pts, _ = folded.sheet.sample_boundary(folded.sheet.perimeter / 20000)
     form = folded.resting.apply(np.vstack([folded.map_points(pts), folded.apex]))
     ext = np.ptp(form, axis=0)
-    height = f"height {form[:, 2].max():.4g} mm"
+    height = f"height {ext[2]:.4g} mm"  # the form's extent, as `onefold solve` prints it
     footprint = f"footprint {ext[0]:.4g} x {ext[1]:.4g} mm"
     assert height in text and footprint in text
     assert "stands stably" in text

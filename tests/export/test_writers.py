@@ -56,7 +56,7 @@ def test_bad_formats_name_the_flag_and_the_allowed_ones(text, words):
 
 def test_a_relief_hole_that_does_not_fit_is_refused_by_the_cut_part_s_writers_only():
     ctx = context(relief_hole=500.0)  # the sheet's inradius about H is well below 250
-    for fmt in ("step", "dxf", "svg"):
+    for fmt in ("step", "dxf", "cut", "fold", "svg"):  # FOLD cuts the hole too
         with pytest.raises(FabricationError) as exc:
             check_before_writing(ctx, (fmt,))
         assert exc.value.parameter == "relief_hole"
@@ -112,3 +112,12 @@ def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
         with pytest.raises(FabricationError, match="^hc: plus_x .* too wide across it"):
             check_before_writing(ctx, (fmt,))
     check_before_writing(ctx, ("step", "json"))
+
+
+def test_the_compensations_the_command_offers_are_the_bend_model_s():
+    from onefold_cad.cli import main
+    from onefold_cad.geometry.bend import Compensation
+
+    assert writers.COMPENSATIONS == tuple(c.value for c in Compensation)
+    assert writers.COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default
+    assert main(["build", "--compensation", "bent", "--formats", "json"]) == 2

@@ -207,7 +207,7 @@ function fmt(x, digits = 5) {
   return x === null || x === undefined ? '–' : String(Number(Number(x).toPrecision(digits)));
 }
 function len(x) {
-  return x === null || x === undefined ? '–' : `${fmt(x)} ${units}`;
+  return x === null || x === undefined ? '–' : `${fmt(x, 6)} ${units}`;
 }
 
 function showNumbers(n) {
@@ -217,8 +217,9 @@ function showNumbers(n) {
   $('apex-height').textContent = len(n.apex_height);
   $('form-height').textContent = len(n.height);
   $('form-span').textContent = len(n.span);
-  $('form-footprint').textContent = n.span === null ? '–'
-    : `${fmt(n.span)} × ${fmt(n.depth)} ${units}, hull area ${fmt(n.footprint_area)} ${units}²`
+  // the footprint as `onefold solve` prints it: width x depth (x, y), 6 significant digits
+  $('form-footprint').textContent = n.width === null ? '–'
+    : `${fmt(n.width, 6)} × ${fmt(n.depth, 6)} ${units}, hull area ${fmt(n.footprint_area)} ${units}²`
       + (n.stable === false ? ' (no stable resting face)' : '');
   $('flat-size').textContent = n.flat_size ? `${fmt(n.flat_size[0])} × ${fmt(n.flat_size[1])} ${units}` : '–';
   $('relief-hole').textContent = n.relief_hole ? `Ø ${len(n.relief_hole)}` : (n.relief_hole === 0 ? 'none' : '–');
