@@ -15,7 +15,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 from onefold_cad.design import Design, relief_hole_diameter
 from onefold_cad.errors import ExportError
@@ -23,6 +22,7 @@ from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import bend_values
+from onefold_cad.geometry.placement import rest_form
 from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import design_to_data
 
@@ -36,31 +36,12 @@ def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def _footprint_area(xy: np.ndarray) -> float:
-    """Area of the convex hull of ground-projected points ``(k, 2)``."""
-    try:
-        return float(ConvexHull(xy).volume)
-    except QhullError:
-        return 0.0
-
-
-def _resting(folded: FoldedSheet) -> dict[str, Any]:
-    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    size = hi - lo
-    return {
-        "bounding_box": {"min": _floats(lo), "max": _floats(hi)},
-        "height": float(size[2]),
-        "footprint": {
-            "width": float(size[0]),
-            "depth": float(size[1]),
-            "area": _footprint_area(pts[:, :2]),
-        },
-        "apex": _floats(pts[-1]),
-        "tilt_deg": float(folded.resting.tilt_deg),
-        "stable": bool(folded.resting.stable),
-        "touching_points": int(len(folded.resting.touching)),
-    }
+def _resting(design: Design, folded: FoldedSheet) -> dict[str, Any]:
+    """How the body the STEP holds stands (:func:`rest_form`)."""
+    m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
+    exact = design.model.value == "exact"  # the rule of export.step.default_body
+    body = "solid" if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else "shell"
+    return rest_form(folded, m, body).to_data(folded.apex)
 
 
 def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
@@ -113,8 +94,10 @@ def design_report(
         ``flat_pattern`` (its compensation shift and residual), ``sheet`` (the
         designed sheet: size in its own frame, area, perimeter, vertices),
         ``surface_area`` (measured on the folded surface), ``mass`` (if a
-        density and thickness are given), ``resting`` (bounding box,
-        height, footprint of the form standing on the ground),
+        density and thickness are given), ``resting`` (the STEP's body
+        standing on the ground: bounding box, height, footprint, centre of
+        mass, contacts, support polygon, tipping margin and its warnings;
+        :meth:`RestingPlacement.to_data`),
         ``developability`` (measured errors), ``timings_s``
         (``direction_surface``, ``final_surface``) and ``files``.
     """
@@ -165,7 +148,7 @@ def design_report(
         },
         "surface_area": float(m.area_3d),
         "mass": mass,
-        "resting": _resting(folded),
+        "resting": _resting(design, folded),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
             "max_boundary_segment_error": float(m.max_boundary_segment_error),
