@@ -528,6 +528,83 @@ def templates_cmd() -> None:
         typer.echo(f"{t.name:<{width}}  {t.description}")
 
 
+@app.command()
+def fit(
+    template: Annotated[
+        str,
+        typer.Argument(
+            metavar="TEMPLATE", help="Template file or shipped template name: sheet and material."
+        ),
+    ],
+    height: Annotated[
+        float, typer.Option(help="Height of the form as it rests on the ground, > 0.")
+    ],
+    span: Annotated[
+        float,
+        typer.Option(help="Footprint width of the resting form (along its x axis), > 0."),
+    ],
+    depth: Annotated[
+        float | None,
+        typer.Option(help="Footprint depth of the resting form (along its y axis), > 0."),
+    ] = None,
+    min_tipping_margin: Annotated[
+        float | None,
+        typer.Option(
+            "--min-tipping-margin", metavar="DEG", help="Smallest tipping margin allowed, deg."
+        ),
+    ] = None,
+    json_: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    outdir: Annotated[
+        Path | None,
+        typer.Option("-o", "--outdir", help="Build the found design into this folder."),
+    ] = None,
+) -> None:
+    """Find alpha, beta and h_c whose resting form has the target height and span.
+
+    The template's sheet, material and model are kept; lengths are in its
+    unit. Each target is met within 0.5 %; a target out of reach is an error
+    that gives the ranges the template's sheet can reach.
+    """
+    import contextlib
+    import json
+
+    from onefold_cad.fit import fit_design
+
+    (design,) = load_designs([template], Overrides())
+    result = fit_design(design, height, span, depth, min_tipping_margin)
+    f = result.design.frame
+    if outdir is not None:  # the build's list of files goes to stderr under --json
+        with contextlib.redirect_stdout(sys.stderr) if json_ else contextlib.nullcontext():
+            build(templates=[template], outdir=outdir, alpha=f.alpha, beta=f.beta, hc=f.h_c)
+    u = design.units.value
+    data = {
+        "name": design.name,
+        "units": u,
+        "frame": {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c},
+        "body": result.body,
+        "achieved": {
+            "height": result.height,
+            "span": result.span,
+            "depth": result.depth,
+            "tipping_margin_deg": result.tipping_margin_deg,
+        },
+        "targets": result.targets,
+        "relative_errors": result.errors,
+        "evaluations": result.evaluations,
+    }
+    if json_:
+        typer.echo(json.dumps(data, indent=2, allow_nan=False))
+        return
+    typer.echo(
+        f"{design.name}: alpha {f.alpha:.6g} deg, beta {f.beta:.6g} deg, h_c {f.h_c:.6g} {u}"
+    )
+    for key, got in (("height", result.height), ("span", result.span), ("depth", result.depth)):
+        want = result.targets.get(key)
+        aim = f" (target {want:.6g}, {100 * abs(got - want) / want:.2g} %)" if want else ""
+        typer.echo(f"  {key:<15} {got:.6g} {u}{aim}")
+    typer.echo(f"  tipping margin  {result.tipping_margin_deg:.3g} deg ({result.body})")
+
+
 def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)

@@ -194,9 +194,10 @@ class _ArcFrames:
         self.apex = folded.apex
 
     def frames(self, phi: Array, curvature: bool = False) -> tuple[Array, ...]:
-        """u, e, n ``(k, 3)`` at arc parameters ``phi`` (and, if asked, the
-        geodesic curvature k = det(v, v', v'') |v|^3 / |v x v'|^3 of u, with
-        v = P - A: the k of ``r - s k``)."""
+        """u, e, n ``(k, 3)`` at arc parameters ``phi``; and, if asked, the
+        geodesic curvature k = det(v, v', v'') |v|^3 / |v x v'|^3 of u (the k
+        of ``r - s k``) and its speed |du/dphi| = |v x v'| / |v|^2 ``(k,)``,
+        with v = P - A."""
         v = arc_points(self.frame, phi) - self.apex
         dv = arc_tangents(self.frame, phi)
         w = np.sqrt(np.einsum("ij,ij->i", v, v))
@@ -214,8 +215,25 @@ class _ArcFrames:
         )
         vxdv = cross3(v, dv)
         det = np.einsum("ij,ij->i", vxdv, ddv)
-        k = det * w**3 / np.sqrt(np.einsum("ij,ij->i", vxdv, vxdv)) ** 3
-        return u, e, n, k
+        cross = np.sqrt(np.einsum("ij,ij->i", vxdv, vxdv))
+        k = det * w**3 / cross**3
+        return u, e, n, k, cross / w**2
+
+
+class _Crease:
+    """A SideMap whose crease frames are computed once (the mitre asks often)."""
+
+    def __init__(self, side: SideMap) -> None:
+        self.side = side
+        self.lower = side.lower
+        self.total = side.total
+        self._frames = {end: side.crease_frame(end) for end in (0, 1)}
+
+    def crease_frame(self, end: int) -> tuple[Array, Array, Array]:
+        return self._frames[end]
+
+    def edge_radius(self, theta: Array) -> Array:
+        return self.side.edge_radius(theta)
 
 
 class Body:
@@ -331,7 +349,7 @@ class Body:
             self.pieces.append(Piece(f"edge {k}", grid, fn, steps[k]))
         if self.kind == "solid":
             for lower in (False, True):
-                side = SideMap(folded, lower=lower)
+                side = _Crease(SideMap(folded, lower=lower))
                 for end in (0, 1):
                     verts, wall = self._block(side, end)
                     fixed += list(verts)
@@ -368,7 +386,7 @@ class Body:
 
         return points
 
-    def _block(self, side: SideMap, end: int) -> tuple[Array, Piece]:
+    def _block(self, side: _Crease, end: int) -> tuple[Array, Piece]:
         """The mitre block past crease half ``end`` of one side: the vertices
         of its polytope outside the hole's disk ``(m, 3)``, and the hole's wall
         as a piece over the distance d past the crease."""
@@ -466,41 +484,46 @@ class Body:
         hole is left out; for the exact model the solid's mitre blocks count."""
         total = 0.0
         moment = np.zeros(3)
-        sheet = self.folded.sheet
+        folded = self.folded
+        cone = folded.solution.surface
         for lower in (False, True):
             mirror = _MIRROR if lower else np.ones(3)
-            up, lo = sheet._side_angles
-            breaks = np.asarray(lo if lower else up, dtype=float)
+            up, lo = folded.sheet._side_angles
+            breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
             if self.thickness > 0.0:  # the cut at the crease: graded towards both ends
-                grade = 0.5 ** np.arange(1, 48)
+                grade = 0.5 ** np.arange(3, 31)
                 near = breaks[1] * grade
                 far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
                 breaks = np.unique(np.concatenate([breaks, near, far]))
-            theta, weights = _sector_rule(breaks)
-            vals = weights @ self._slab_moments(theta, lower)
+            if self.exact:
+                # the rule runs in the arc's phi (no inversion at every node):
+                # dtheta = |du/dphi| dphi, theta being u's arc length
+                assert isinstance(cone, ExactCone)
+                phi, weights = _sector_rule(cone.phi_of_theta(breaks))
+                theta = np.clip(cone.theta_of_phi(phi), breaks[0], breaks[-1])
+                u, _, n, k, speed = _ArcFrames(folded).frames(phi, curvature=True)
+                weights = weights * speed
+            else:  # planar triangles: no curvature within them
+                theta, weights = _sector_rule(breaks)
+                u, e = cone.frames(theta)
+                n, k = cross3(u, e), np.zeros(len(theta))
+            vals = weights @ self._slab_moments(theta, lower, u, n, k)
             total += vals[0]
             moment += vals[1:] * mirror
             if self.thickness > 0.0 and self.exact:
-                side = SideMap(self.folded, lower=lower)
+                side = _Crease(SideMap(folded, lower=lower))
                 for end in (0, 1):
                     vol, mom = self._block_moments(side, end)
                     total += vol
                     moment += mom * mirror
         return total, moment / total
 
-    def _slab_moments(self, theta: Array, lower: bool) -> Array:
-        """Per flat angle ``(k,)``: the section's measure and first moment
-        ``(k, 4)`` (per radian), in the +y side's coordinates."""
+    def _slab_moments(self, theta: Array, lower: bool, u: Array, n: Array, k: Array) -> Array:
+        """Per flat angle ``(k,)`` (ruling direction u, top normal n and
+        curvature k there): the section's measure and first moment ``(k, 4)``
+        (per radian), in the +y side's coordinates."""
         rho = self.hole
-        cone = self.folded.solution.surface
-        theta = np.clip(theta, 0.0, cone.total_angle)
         r_out = self.folded.sheet.ray_lengths(-theta if lower else theta)
-        if self.exact:
-            assert isinstance(cone, ExactCone)
-            u, _, n, k = _ArcFrames(self.folded).frames(cone.phi_of_theta(theta), curvature=True)
-        else:  # planar triangles: no curvature within them
-            u, e = cone.frames(theta)
-            n, k = cross3(u, e), np.zeros(len(theta))
         if self.thickness <= 0.0:
             i0 = 0.5 * (r_out**2 - rho**2)
             i1 = (r_out**3 - rho**3) / 3.0
@@ -532,7 +555,7 @@ class Body:
                 out[:, 1:] += ww[:, None] * first
         return out
 
-    def _block_moments(self, side: SideMap, end: int) -> tuple[float, Array]:
+    def _block_moments(self, side: _Crease, end: int) -> tuple[float, Array]:
         """Volume and first moment ``(3,)`` of the kept part of the mitre block
         past crease half ``end`` (+y side's coordinates): x integrated exactly,
         Gauss-Legendre in d and s."""
@@ -583,20 +606,23 @@ _PANELS = 8
 
 
 def _sector_rule(breaks: Array) -> tuple[Array, Array]:
-    """Nodes and weights of a composite Gauss-Legendre rule over the sectors
-    between consecutive ``breaks`` (the edge radius is smooth within each).
+    """Nodes and weights of a composite 16-point Gauss-Legendre rule over the
+    sectors between consecutive ``breaks`` (the edge radius is smooth within
+    each): up to 8 panels per sector, in proportion to its width.
 
-    For a thick sheet the breaks are also graded towards the crease (halving
-    the distance 47 times): the cut at the fold's plane of symmetry leaves
-    only r > C / theta of the concave side there, a feature on every scale
-    from the hole's radius to the sheet's edge."""
+    For a thick sheet the caller also grades the breaks towards the crease
+    (halving the distance 28 times): the cut at the fold's plane of symmetry
+    leaves only r > C / theta of the concave side there, a feature on every
+    scale from the hole's radius to the sheet's edge."""
     lo, hi = breaks[:-1], breaks[1:]
     keep = hi > lo
     lo, hi = lo[keep], hi[keep]
-    frac = np.arange(_PANELS + 1) / _PANELS
-    edges = lo[:, None] + (hi - lo)[:, None] * frac  # (sectors, panels + 1)
-    a, b = edges[:, :-1].ravel(), edges[:, 1:].ravel()
-    half = 0.5 * (b - a)
+    panels = np.clip(np.ceil(_PANELS * (hi - lo) / np.max(hi - lo)), 1, _PANELS).astype(int)
+    owner = np.repeat(np.arange(len(lo)), panels)
+    step = ((hi - lo) / panels)[owner]
+    first = np.concatenate([[0], np.cumsum(panels)[:-1]])
+    a = lo[owner] + (np.arange(len(owner)) - first[owner]) * step
+    half = 0.5 * step
     nodes = ((a + half)[:, None] + half[:, None] * _GL_NODES).ravel()
     weights = (half[:, None] * _GL_WEIGHTS).ravel()
     return nodes, weights

@@ -42,12 +42,21 @@ def test_shell_mass_is_the_area_and_its_centroid(folded) -> None:
     assert np.linalg.norm(com - rich) <= 1e-6 * folded.sheet.size
 
 
-def test_arc_frame_curvature_is_the_solid_s(folded) -> None:
-    # the analytic geodesic curvature of the body against thick_sheet's
-    # finite-difference one (the solid's source)
+def test_arc_frames_are_the_cone_s(folded) -> None:
+    # the body's frames, straight from the arc, against the cone's and the
+    # solid's: directions and normals (SideMap), the geodesic curvature
+    # (thick_sheet's finite differences) and dtheta/dphi (central differences
+    # of the cone's own theta(phi))
     from onefold_cad.geometry.body import _ArcFrames
 
-    side = SideMap(folded)
+    cone, side = folded.solution.surface, SideMap(folded)
     theta = np.linspace(0.05, side.total - 0.05, 41)
-    *_, k = _ArcFrames(folded).frames(folded.solution.surface.phi_of_theta(theta), curvature=True)
+    phi = cone.phi_of_theta(theta)
+    u, e, n, k, speed = _ArcFrames(folded).frames(phi, curvature=True)
+    su, se, sn = side.frames(theta)
+    for mine, theirs in ((u, su), (e, se), (n, sn)):
+        np.testing.assert_allclose(mine, theirs, atol=1e-12)
     np.testing.assert_allclose(k, side.curvature(theta), rtol=1e-6, atol=1e-9)
+    h = 1e-5
+    slope = (cone.theta_of_phi(phi + h) - cone.theta_of_phi(phi - h)) / (2 * h)
+    np.testing.assert_allclose(speed, slope, rtol=1e-9)
