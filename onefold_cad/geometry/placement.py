@@ -209,17 +209,38 @@ def _nearest_on_polygon(corners: Array) -> tuple[int, int, float]:
     return best
 
 
+def _roll_twice(points: Array, com: Array, g: Array, tol: float) -> tuple[Array, NDArray[np.int64]]:
+    """:func:`_roll`, and if that goes on for long (rolling along a curved edge
+    goes sample by sample) on every 16th point from where it got, then on all
+    again; a form that balances falls to the side nearer the fold frame's
+    upright."""
+
+    def roll(pts: Array, g: Array, steps: int) -> tuple[Array, NDArray[np.int64], bool]:
+        g, on, state = _roll(pts, com, g, tol, steps=steps)
+        if state == "balanced":
+            ways = [_roll(pts, com, g, tol, push, steps) for push in (1.0, -1.0)]
+            g, on, state = ways[1] if ways[1][0][2] > ways[0][0][2] + 1e-12 else ways[0]
+        return g, on, state == "rests"
+
+    g, on, done = roll(points, g, 200)
+    if not done and len(points) > 256:
+        g, _, _ = roll(points[::16], g, 4000)
+    if not done:
+        g, on, _ = roll(points, g, 4000)
+    return g, on
+
+
 def _roll(
-    points: Array, com: Array, g: Array, tol: float, push: float = 0.0
-) -> tuple[Array, NDArray[np.int64], bool]:
+    points: Array, com: Array, g: Array, tol: float, push: float = 0.0, steps: int = 4000
+) -> tuple[Array, NDArray[np.int64], str]:
     """Tip the point set about its lowest points until the centre of mass
     ``com`` lies over their hull. ``g`` is the ground's upward normal in the
     body's frame. Returns the final normal, the indices of the contacts, and
-    whether the set came to balance exactly above an edge or a point (an
-    unstable equilibrium, as symmetric forms meet it: a ``push`` of +1 or -1
-    then tips it to one side or the other)."""
+    how it ended: 'rests', 'balanced' (exactly above an edge or a point: an
+    unstable equilibrium, as symmetric forms meet it; a ``push`` of +1 or -1
+    then tips it to one side or the other) or 'rolling' (after ``steps``)."""
     on = np.zeros(0, dtype=np.int64)
-    for _ in range(4 * len(points) + 10):
+    for _ in range(steps):
         h = points @ g
         on = np.flatnonzero(h <= h.min() + tol)
         e1, e2 = _basis(g)
@@ -228,7 +249,7 @@ def _roll(
         hull = convex_hull_2d(q, tol)
         corners = q[hull]
         if len(hull) >= 3 and float(edge_distances([0.0, 0.0], corners).min()) > tol:
-            return g, on, False  # the centre of mass is over the support polygon
+            return g, on, "rests"  # the centre of mass is over the support polygon
         i, j, _ = _nearest_on_polygon(corners)
         p0 = points[on[hull[i]]]
         w = com - p0
@@ -240,7 +261,7 @@ def _roll(
         wn = float(np.linalg.norm(w))
         if wn <= tol:  # balanced exactly above a contact or an edge
             if push == 0.0:
-                return g, on, True
+                return g, on, "balanced"
             axis = points[on[hull[j]]] - p0 if i != j else e1
             w = push * cross3(g, axis)
             push, wn = 0.0, float(np.linalg.norm(w))
@@ -249,11 +270,11 @@ def _roll(
         b = (points - p0) @ w
         toward = b > tol
         if not np.any(toward):
-            return g, on, False
+            return g, on, "rests"
         phi = float(np.min(np.arctan2(a[toward], b[toward])))
         g = math.cos(phi) * g - math.sin(phi) * w
         g /= np.linalg.norm(g)
-    return g, on, False
+    return g, on, "rolling"
 
 
 @dataclass
@@ -421,7 +442,8 @@ def _rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[A
         f0 = residual(g)
         if abs(f0[0]) <= 1e-3 * tol and abs(f0[1]) <= 1e-6 * body.size:
             q1, q2 = (_locate(body, f, g) for f in pair)
-            along = float((com - q1) @ (q2 - q1)) / float((q2 - q1) @ (q2 - q1))
+            span2 = float((q2 - q1) @ (q2 - q1))
+            along = float((com - q1) @ (q2 - q1)) / span2 if span2 > tol * tol else -1.0
             return (g, True) if 0.0 < along < 1.0 else (start, False)
         e1, e2 = _basis(g)
         jac = np.empty((2, 2))
@@ -432,8 +454,13 @@ def _rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[A
             step = np.linalg.solve(jac, -f0)
         except np.linalg.LinAlgError:
             return start, False
+        length = float(np.linalg.norm(step))
+        if length > 0.02:  # stay near the samples' rest (the residual jumps elsewhere)
+            step *= 0.02 / length
         g = g + step[0] * e1 + step[1] * e2
         g /= np.linalg.norm(g)
+        if float(np.linalg.norm(g - start)) > 0.1:
+            return start, False
     return start, False
 
 
@@ -528,10 +555,7 @@ def rest_form(
     g = np.array([0.0, 0.0, 1.0])
     lows: list[tuple[int, float, Array]] = []
     for _ in range(8):
-        g, on, balanced = _roll(samples.points, com, g, tol)
-        if balanced:  # it falls to one side: the one nearer the fold frame's upright
-            ways = [_roll(samples.points, com, g, tol, push) for push in (1.0, -1.0)]
-            g, on, _ = ways[1] if ways[1][0][2] > ways[0][0][2] + 1e-12 else ways[0]
+        g, on = _roll_twice(samples.points, com, g, tol)
         g, plane, rocks = _settle(form, _features(form, samples, on), com, g)
         lows = _extent(form, samples, g, band)
         level = float(lows[0][2] @ g)
