@@ -34,7 +34,9 @@ from onefold_cad.templates import find_template, load_template
 from .conftest import sheets
 
 SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-OPEN_ANGLE = st.floats(0.0, 90.0, exclude_min=True, exclude_max=True, allow_subnormal=False)
+# (0, 90) deg open, from 1e-9 deg: closer to 0 or 90 double precision cannot
+# solve the frame (issue 12; today's solver even divides by zero at 1e-156)
+OPEN_ANGLE = st.floats(1e-9, 90.0 - 1e-9)
 
 
 @st.composite
