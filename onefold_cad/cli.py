@@ -39,6 +39,7 @@ from onefold_cad.flags import (
     Job,
     load_jobs,
     parse_choice,
+    parse_float,
     parse_int,
 )
 from onefold_cad.summary import material_lines, summary
@@ -132,7 +133,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  build      write the files of one or more designs (all or nothing)\n"
         "  solve      solve a design and print the result (writes nothing)\n"
         "  templates  list the shipped templates\n"
-        "  explore    explore a design in the browser (sliders, 3D form, flat pattern)\n\n"
+        "  explore    explore a design in the browser (sliders, 3D form, flat pattern)\n"
+        "  fit        find the frame whose resting form has a target height and span\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
@@ -221,7 +223,66 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
                          help="port on 127.0.0.1 (0: any free port; default 8765)")  # fmt: skip
     explore.add_argument("--no-browser", action="store_true",
                          help="only print the address; do not open a browser")  # fmt: skip
-    return {"": top, "build": build, "solve": solve, "templates": templates, "explore": explore}
+    fit = _Parser(
+        prog=f"{PROG} fit",
+        usage=f"{PROG} fit TEMPLATE --height H --span S [--depth D] [--min-tipping-margin DEG] "
+        "[--json] [-o DIR]",
+        description="Find alpha, beta and h_c whose resting form has the target height and "
+        "span (footprint width), and depth if given, each within 0.5 %. The template's sheet, "
+        "material and model are kept; lengths are in its unit. A target out of reach is an "
+        "error that gives the ranges the template's sheet can reach.",
+        formatter_class=_formatter,
+        allow_abbrev=False,
+    )
+    fit.add_argument(
+        "template",
+        metavar="TEMPLATE",
+        help="template file or shipped template name: sheet and material",
+    )
+    fit.add_argument(
+        "--height",
+        type=parse_float,
+        required=True,
+        metavar="H",
+        help="height of the form as it rests on the ground, > 0",
+    )
+    fit.add_argument(
+        "--span",
+        type=parse_float,
+        required=True,
+        metavar="S",
+        help="footprint width of the resting form (along the fold line), > 0",
+    )
+    fit.add_argument(
+        "--depth",
+        type=parse_float,
+        metavar="D",
+        help="footprint depth of the resting form (across it), > 0",
+    )
+    fit.add_argument(
+        "--min-tipping-margin",
+        type=parse_float,
+        metavar="DEG",
+        help="smallest tipping margin allowed (deg)",
+    )
+    fit.add_argument("--json", action="store_true", help="print the result as JSON")
+    fit.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        metavar="DIR",
+        help="also build the found design into this folder (as NAME-fit)",
+    )
+    fit.add_argument("-q", "--quiet", action="store_true",
+                     help="no progress lines on stderr when building (-o)")  # fmt: skip
+    return {
+        "": top,
+        "build": build,
+        "solve": solve,
+        "templates": templates,
+        "explore": explore,
+        "fit": fit,
+    }
 
 
 def help_text(command: str = "") -> str:
@@ -517,11 +578,59 @@ def cmd_explore(ns: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_fit(ns: argparse.Namespace) -> int:
+    """Inverse design: the frame whose resting form has the target size."""
+    import json
+
+    from onefold_cad.fit import fit_design
+
+    (job,) = load_jobs([ns.template], {})
+    design = job.design
+    result = fit_design(design, ns.height, ns.span, ns.depth, ns.min_tipping_margin)
+    f = result.design.frame
+    if ns.outdir is not None:  # the build's list of files goes to stderr under --json
+        frame = ["--alpha", repr(f.alpha), "--beta", repr(f.beta), "--hc", repr(f.h_c)]
+        # named after the template and the fit, not after the flags' values
+        name = ["--name", f"{design.name}-fit"]
+        argv = [ns.template, "-o", str(ns.outdir), *frame, *name, *(["-q"] if ns.quiet else [])]
+        with contextlib.redirect_stdout(sys.stderr) if ns.json else contextlib.nullcontext():
+            status = cmd_build(build_parser()["build"].parse_intermixed_args(argv))
+        if status:
+            return status
+    u = design.units.value
+    data = {
+        "name": design.name,
+        "units": u,
+        "frame": {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c},
+        "body": result.body,
+        "achieved": {
+            "height": result.height,
+            "span": result.span,
+            "depth": result.depth,
+            "tipping_margin_deg": result.tipping_margin_deg,
+        },
+        "targets": result.targets,
+        "relative_errors": result.errors,
+        "evaluations": result.evaluations,
+    }
+    if ns.json:
+        print(json.dumps(data, indent=2, allow_nan=False))
+        return 0
+    print(f"{design.name}: alpha {f.alpha:.6g} deg, beta {f.beta:.6g} deg, h_c {f.h_c:.6g} {u}")
+    for key, got in (("height", result.height), ("span", result.span), ("depth", result.depth)):
+        want = result.targets.get(key)
+        aim = f" (target {want:.6g}, {100 * abs(got - want) / want:.2g} %)" if want else ""
+        print(f"  {key:<15} {got:.6g} {u}{aim}")
+    print(f"  tipping margin  {result.tipping_margin_deg:.3g} deg ({result.body})")
+    return 0
+
+
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "build": cmd_build,
     "solve": cmd_solve,
     "templates": cmd_templates,
     "explore": cmd_explore,
+    "fit": cmd_fit,
 }
 
 
@@ -569,9 +678,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             if not args or args[0] not in COMMANDS:
                 if args and not args[0].startswith("-"):
                     raise UsageError(f"unknown command {args[0]!r} (choose from build, "
-                                     "solve, templates, explore)")  # fmt: skip
+                                     "solve, templates, explore, fit)")  # fmt: skip
                 parsers[""].parse_args(args or ["--help"])  # --help, --version or an error
-                raise UsageError("a command is needed: build, solve, templates or explore")
+                raise UsageError("a command is needed: build, solve, templates, explore or fit")
             ns = parsers[args[0]].parse_intermixed_args(args[1:])
             return COMMANDS[args[0]](ns)
     except SystemExit as exc:  # --help, --version

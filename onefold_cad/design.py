@@ -18,10 +18,11 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.errors import FabricationError, InvalidParameterError
+from onefold_cad.errors import FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.params import FrameCurve, Model
+from onefold_cad.geometry.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.sheet import Sheet, boundary_distance
 from onefold_cad.geometry.solver import solve
 from onefold_cad.geometry.thick_sheet import min_relief_hole
@@ -36,6 +37,7 @@ __all__ = [
     "fabrication_warnings",
     "relief_hole_diameter",
     "relief_hole_problem",
+    "resting_placement",
     "sheet_inradius",
     "solid_min_relief_hole",
 ]
@@ -133,12 +135,31 @@ def sheet_inradius(sheet: Sheet) -> float:
     return boundary_distance(sheet.vertices)
 
 
-#: min_relief_hole per fold and material: the fold's identity holds its results
-#: (freed with the fold), each a diameter or the InvalidParameterError it raised.
-_MIN_HOLES: weakref.WeakKeyDictionary[FoldedSheet, dict[Material, float | Exception]] = (
-    weakref.WeakKeyDictionary()
-)
-_MIN_HOLES_LOCK = threading.Lock()
+#: Results computed once per fold: the fold's identity holds them (freed with
+#: the fold), keyed by what else they depend on; each a value or the
+#: OneFoldError it raised.
+_PER_FOLD: weakref.WeakKeyDictionary[FoldedSheet, dict[Any, Any]] = weakref.WeakKeyDictionary()
+_PER_FOLD_LOCK = threading.Lock()
+
+
+def _once_per_fold(folded: FoldedSheet, key: Any, compute: Any) -> Any:
+    """``compute()`` the first time ``(folded, key)`` is asked for, then its result
+    (or the OneFoldError it raised) again."""
+    with _PER_FOLD_LOCK:
+        known = _PER_FOLD.setdefault(folded, {}).get(key, _MISSING)
+    if known is _MISSING:
+        try:
+            known = compute()
+        except OneFoldError as exc:
+            known = exc
+        with _PER_FOLD_LOCK:
+            _PER_FOLD.setdefault(folded, {})[key] = known
+    if isinstance(known, Exception):
+        raise known
+    return known
+
+
+_MISSING = object()
 
 
 def solid_min_relief_hole(folded: FoldedSheet, material: Material) -> float:
@@ -151,18 +172,29 @@ def solid_min_relief_hole(folded: FoldedSheet, material: Material) -> float:
         InvalidParameterError: as ``min_relief_hole`` (e.g. a flat fold has
             no mitre; 'model' for the paper model).
     """
-    with _MIN_HOLES_LOCK:
-        known = _MIN_HOLES.setdefault(folded, {}).get(material)
-    if known is None:
-        try:
-            known = float(min_relief_hole(folded, material))
-        except InvalidParameterError as exc:
-            known = exc
-        with _MIN_HOLES_LOCK:
-            _MIN_HOLES.setdefault(folded, {})[material] = known
-    if isinstance(known, Exception):
-        raise known
-    return known
+    return _once_per_fold(
+        folded, ("min_hole", material), lambda: float(min_relief_hole(folded, material))
+    )
+
+
+def resting_placement(
+    design: Design, folded: FoldedSheet, body: str | None = None
+) -> RestingPlacement:
+    """How the body the STEP holds (``body``, default :func:`default_body`)
+    stands on the ground: :func:`~onefold_cad.geometry.placement.rest_form`
+    with the material's relief hole resolved (:func:`relief_hole_diameter`),
+    computed once per fold, material and body. The report, the STEP, the GLB
+    and the previews all place the form with it.
+
+    A relief hole that does not fit the sheet (:func:`relief_hole_problem`,
+    which every writer of the part refuses and ``solve`` warns about) leaves
+    no part to stand: the form is then placed as the sheet without a hole, on
+    its reference surface."""
+    body = default_body(design) if body is None else body
+    m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
+    if relief_hole_problem(design, folded) is not None:
+        m, body = m.with_changes(relief_hole=0.0), "shell"
+    return _once_per_fold(folded, ("rest", m, body), lambda: rest_form(folded, m, body))
 
 
 def _solid_hole(design: Design, folded: FoldedSheet) -> float | None:

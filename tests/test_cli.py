@@ -227,8 +227,9 @@ def test_flag_values_are_read_in_the_chosen_unit(solve_json, cli):
 def test_apex_height_is_the_direction_surface_s_not_the_form_s(solve_json, cli):
     """Issue 13: the paper's h is 102.5 for a 1 x 2 mm sheet and for a 2 km one
     (it depends on R = 100 only); the form's height scales with the sheet."""
-    small = solve_json("--rectangle", "1x2")
-    large = solve_json("--rectangle", "1000000x2000000")
+    # zero thickness: the resting form is then the sheet's alone and scales with it
+    small = solve_json("--rectangle", "1x2", "--thickness", "0")
+    large = solve_json("--rectangle", "1000000x2000000", "--thickness", "0")
     h = small["direction_surface"]["apex_height"]
     assert h == pytest.approx(large["direction_surface"]["apex_height"], rel=1e-12)
     assert round(h, 1) == 102.5 and small["direction_surface"]["frame_radius"] == 100.0
@@ -380,8 +381,8 @@ def test_a_non_finite_report_is_an_error_naming_the_key(monkeypatch, capfd):
 
     real = report.resting_numbers
 
-    def broken(folded):
-        return {**real(folded), "height": float("nan")}
+    def broken(design, folded):
+        return {**real(design, folded), "height": float("nan")}
 
     monkeypatch.setattr(report, "resting_numbers", broken)
     for extra in ([], ["--json"]):
@@ -592,7 +593,7 @@ def test_unknown_command_and_main_exit_codes(capfd):
     assert main(["frobnicate"]) == 2
     assert capfd.readouterr().err == (
         "onefold: error: unknown command 'frobnicate' "
-        "(choose from build, solve, templates, explore)\n"
+        "(choose from build, solve, templates, explore, fit)\n"
     )
     assert main(["templates"]) == 0
     assert main(["solve", "--beta", "90"]) == 2

@@ -299,10 +299,10 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
     design_module.solid_min_relief_hole(folded, thin)
     design_report(d, build_design(d))
     assert len(calls) == 3
-    before = len(design_module._MIN_HOLES)
+    before = len(design_module._PER_FOLD)
     del folded, pattern
     gc.collect()
-    assert len(design_module._MIN_HOLES) < before
+    assert len(design_module._PER_FOLD) < before
 
 
 def test_an_implausible_density_is_a_warning():

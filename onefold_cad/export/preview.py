@@ -24,7 +24,8 @@ from numpy.typing import NDArray
 
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.geometry.folding import FoldedSheet, _fan_area_and_centroid
+from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = ["render_folded_preview", "resting_mesh", "support_and_centre"]
 
@@ -41,45 +42,40 @@ _ANGULAR, _RADIAL = 90, 6
 
 
 def resting_mesh(
-    folded: FoldedSheet, angular: int = 120, radial: int = 16
+    folded: FoldedSheet,
+    angular: int = 120,
+    radial: int = 16,
+    placement: RestingPlacement | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """The form's triangle mesh moved into its resting placement.
+
+    Args:
+        folded: the folded sheet.
+        angular, radial: the mesh density (see :meth:`FoldedSheet.mesh`).
+        placement: how the form stands (default ``folded.resting``, the bare
+            surface; :func:`onefold_cad.design.resting_placement` for the
+            body the STEP holds).
 
     Returns:
         ``(vertices (k, 3), faces (m, 3))``: vertices in the design unit, the
         ground at z = 0; faces oriented so their normal is the top side's.
     """
+    rest = folded.resting if placement is None else placement
     verts, faces = folded.mesh(angular=angular, radial=radial)
-    return folded.resting.apply(verts), faces
+    return rest.apply(verts), faces
 
 
-def support_and_centre(folded: FoldedSheet) -> tuple[Array, Array]:
-    """The support polygon and the centre of mass of the resting form.
+def support_and_centre(placement: RestingPlacement) -> tuple[Array, Array]:
+    """The support polygon and the centre of mass of a resting form, in 3D.
 
     Returns:
-        ``(polygon (k, 3), centre (3,))``: the convex hull, counter-clockwise
-        on the ground, of the points that touch it (one or two points when
-        they do not span an area), and the area centroid of the surface, all
-        in the resting placement (design unit).
-
-    Today both come from ``folded.resting.touching`` and the area centroid the
-    resting placement is computed with; they are to be read from the resting
-    placement itself (``support_polygon``, ``centre_of_mass``) once it
-    reports them.
+        ``(polygon (k, 3), centre (3,))``: the placement's support polygon on
+        the ground (z = 0), counter-clockwise (one or two points when the
+        form rests on a point or rocks on an edge), and its centre of mass
+        (the sheet with its thickness), in the resting frame (design unit).
     """
-    from scipy.spatial import ConvexHull, QhullError
-
-    rest = folded.resting
-    points = rest.apply(np.vstack([folded.boundary_3d, folded.apex]))
-    touching = points[rest.touching]
-    _, centroid = _fan_area_and_centroid(folded.apex, folded.boundary_3d)
-    centre = rest.apply(centroid[None, :])[0]
-    try:
-        hull = touching[ConvexHull(touching[:, :2]).vertices]  # 2D hulls are CCW
-    except (QhullError, ValueError):  # fewer than three points, or on one line
-        order = np.lexsort((touching[:, 1], touching[:, 0]))
-        hull = touching[order[[0, -1]]] if len(touching) > 1 else touching
-    return hull, centre
+    poly = np.asarray(placement.support_polygon, dtype=float).reshape(-1, 2)
+    return np.column_stack([poly, np.zeros(len(poly))]), np.asarray(placement.centre_of_mass)
 
 
 def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -95,26 +91,24 @@ def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArra
     return np.concatenate([rgb, np.ones((len(rgb), 1))], axis=1)
 
 
-def _caption(folded: FoldedSheet, units: str) -> str:
-    """The lines written under the view: fold angles, size, stability. The
-    size is the report's (:func:`onefold_cad.export.report.resting_numbers`):
-    the resting form's height and its footprint along x and y."""
-    from onefold_cad.export.report import resting_numbers
-
+def _caption(folded: FoldedSheet, rest: RestingPlacement, units: str) -> str:
+    """The lines written under the view: fold angles, size, stability, read
+    from the placement (the report's ``resting`` section says the same)."""
     u = f" {units}" if units else ""
-    rest = folded.resting
-    numbers = resting_numbers(folded)
-    height = numbers["height"]
-    width, depth = numbers["footprint"]["width"], numbers["footprint"]["depth"]
     folds = ", ".join(
         f"{c.name.replace('_', ' ')} {c.fold_angle_deg:.1f}\N{DEGREE SIGN} {c.bend}"
         for c in folded.crease
     )
+    margin = rest.tipping_margin_deg
+    stands = (
+        f"stands with a tipping margin of {margin:.1f}\N{DEGREE SIGN}"
+        if rest.stable
+        else "does NOT stand stably (no tipping margin)"
+    )
     return (
         f"fold angles: {folds} (UP: the top faces end inside)\n"
-        f"height {height:.4g}{u}, footprint {width:.4g} x {depth:.4g}{u} (x by y)\n"
-        f"stands {'stably' if rest.stable else 'UNSTABLY'}, tilted "
-        f"{rest.tilt_deg:.1f}\N{DEGREE SIGN} from the fold frame"
+        f"height {rest.height:.4g}{u}, footprint {rest.width:.4g} x {rest.depth:.4g}{u} (x by y)\n"
+        f"the {rest.body} {stands}; tilted {rest.tilt_deg:.1f}\N{DEGREE SIGN} from the fold frame"
     )
 
 
@@ -122,6 +116,7 @@ def render_folded_preview(
     folded: FoldedSheet,
     path: str | os.PathLike[str],
     *,
+    placement: RestingPlacement | None = None,
     title: str = "",
     units: str = "",
     size_px: tuple[int, int] = (900, 700),
@@ -136,6 +131,9 @@ def render_folded_preview(
     Args:
         folded: the folded sheet.
         path: the PNG file to write.
+        placement: how the form stands (default ``folded.resting``;
+            ``build`` passes :func:`onefold_cad.design.resting_placement`,
+            the placement of the STEP's body).
         title: a caption (e.g. the design name).
         units: the length unit for the axis labels and the caption.
         size_px: image width and height in pixels.
@@ -155,13 +153,13 @@ def render_folded_preview(
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
     out = Path(path)
-    rest = folded.resting
-    verts, faces = resting_mesh(folded, angular=_ANGULAR, radial=_RADIAL)
+    rest = folded.resting if placement is None else placement
+    verts, faces = resting_mesh(folded, angular=_ANGULAR, radial=_RADIAL, placement=rest)
     tri = verts[faces]
     e, a = np.radians(elev), np.radians(azim)
     view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
     apex = rest.apply(folded.apex[None, :])[0]
-    support, centre = support_and_centre(folded)
+    support, centre = support_and_centre(rest)
 
     dpi = 100
     fig = Figure(figsize=(size_px[0] / dpi, size_px[1] / dpi), dpi=dpi)
@@ -228,7 +226,7 @@ def render_folded_preview(
         Line2D([], [], color=_COM, marker="o", ls=":", label="centre of mass"),
     ]
     fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
-    fig.text(0.015, 0.015, _caption(folded, units), fontsize=8.5, va="bottom")
+    fig.text(0.015, 0.015, _caption(folded, rest, units), fontsize=8.5, va="bottom")
 
     try:
         out.parent.mkdir(parents=True, exist_ok=True)

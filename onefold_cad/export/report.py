@@ -21,19 +21,18 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from onefold_cad.design import (
     Design,
     design_mass,
     fabrication_warnings,
     relief_hole_diameter,
+    resting_placement,
     solid_min_relief_hole,
 )
 from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
-from onefold_cad.geometry.cone import PaperFan
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.templates import design_to_data
 
@@ -68,105 +67,17 @@ def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def _hull_2d(xy: NDArray[np.float64]) -> list[tuple[float, float]]:
-    """The convex hull of points ``(k, 2)``: its vertices counter-clockwise
-    (Andrew's monotone chain; collinear points dropped)."""
-    pts = [(float(x), float(y)) for x, y in np.unique(np.asarray(xy, dtype=float), axis=0)]
-    if len(pts) < 3:
-        return pts
-
-    def chain(seq: list[tuple[float, float]]) -> list[tuple[float, float]]:
-        out: list[tuple[float, float]] = []
-        for px, py in seq:
-            while len(out) >= 2:
-                (ax, ay), (bx, by) = out[-2], out[-1]
-                if (bx - ax) * (py - ay) - (by - ay) * (px - ax) > 0.0:
-                    break
-                out.pop()
-            out.append((px, py))
-        return out
-
-    return chain(pts)[:-1] + chain(pts[::-1])[:-1]
-
-
-def _diameter(hull: list[tuple[float, float]]) -> float:
-    """The largest distance between two vertices of a convex polygon given
-    counter-clockwise (rotating calipers over its antipodal pairs)."""
-    n = len(hull)
-    if n < 3:
-        return math.dist(hull[0], hull[-1]) if n else 0.0
-
-    def area2(i: int, j: int, k: int) -> float:
-        (ax, ay), (bx, by), (cx, cy) = hull[i], hull[j], hull[k]
-        return abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
-
-    best, j = 0.0, 1
-    for i in range(n):
-        i1 = (i + 1) % n
-        while area2(i, i1, (j + 1) % n) > area2(i, i1, j):
-            j = (j + 1) % n
-        best = max(best, math.dist(hull[i], hull[j]), math.dist(hull[i1], hull[j]))
-    return best
-
-
-def _footprint(xy: NDArray[np.float64]) -> tuple[float, float]:
-    """Area of the convex hull of ground points ``(k, 2)`` and the span: the
-    largest distance between two of them (the hull's diameter)."""
-    hull = _hull_2d(xy)
-    if len(hull) < 3:
-        return 0.0, _diameter(hull)
-    x, y = np.array(hull).T
-    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-    return area, _diameter(hull)
-
-
-#: Points per sampling interval on each side of an extreme of the exact
-#: model's sampled boundary, where :func:`_box` looks for the true extreme.
-_REFINE = 200
-
-
-def _box(folded: FoldedSheet, pts: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
-    """The bounding box (lo, hi) of the resting form whose boundary samples and
-    apex are ``pts`` (resting placement). The form is the cone from the apex
-    over its boundary, so its box is the box of the boundary and the apex. The
-    paper model's boundary is straight between its samples: their box is
-    exact. The exact model's boundary curves between its samples (a straight
-    flat edge on the cone): each extreme is refined on the flat segments
-    beside the sample that holds it, ``_REFINE`` points each, folded with
-    :meth:`FoldedSheet.map_points`."""
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    if isinstance(folded.solution.surface, PaperFan):
-        return lo, hi
-    flat = folded.boundary_flat  # closed, vertices included: neighbours share an edge
-    n = len(flat)
-    t = np.linspace(0.0, 1.0, _REFINE + 1)[1:, None]
-    for axis in range(3):
-        for i in (int(np.argmin(pts[:n, axis])), int(np.argmax(pts[:n, axis]))):
-            a = flat[i]
-            seg = np.vstack([a + (flat[(i + k) % n] - a) * t for k in (-1, 1)])
-            q = folded.resting.apply(folded.map_points(seg))[:, axis]
-            lo[axis], hi[axis] = min(lo[axis], q.min()), max(hi[axis], q.max())
-    return lo, hi
-
-
-def resting_numbers(folded: FoldedSheet) -> dict[str, Any]:
-    """The report's ``resting`` section: the form standing on the ground (its
-    bounding box, height and footprint from :func:`_box`, span and hull area,
-    apex, tilt, stability). The 3D preview's caption reads it too."""
-    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
-    lo, hi = _box(folded, pts)
-    size = hi - lo
-    area, span = _footprint(pts[:, :2])
-    return {
-        "bounding_box": {"min": _floats(lo), "max": _floats(hi)},
-        "height": float(size[2]),
-        "span": span,
-        "footprint": {"width": float(size[0]), "depth": float(size[1]), "area": area},
-        "apex": _floats(pts[-1]),
-        "tilt_deg": float(folded.resting.tilt_deg),
-        "stable": bool(folded.resting.stable),
-        "touching_points": int(len(folded.resting.touching)),
-    }
+def resting_numbers(design: Design, folded: FoldedSheet) -> dict[str, Any]:
+    """The report's ``resting`` section: how the body the STEP holds stands on
+    the ground (:func:`~onefold_cad.design.resting_placement`): its exact
+    bounding box, height, footprint (width along the resting frame's x axis,
+    the fold line's direction, depth across it, and the area of its shadow),
+    ``span`` (the footprint's width: what ``onefold fit --span`` aims at),
+    apex, tilt, centre of mass, contacts, support polygon, tipping margin and
+    edge, and the stability warnings. The 3D preview's caption reads it too."""
+    data = resting_placement(design, folded).to_data(folded.apex)
+    data["span"] = data["footprint"]["width"]
+    return data
 
 
 def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
@@ -378,7 +289,7 @@ def design_report(
             "vertices": _floats(sheet.vertices),
         },
         "surface_area": float(m.area_3d),
-        "resting": resting_numbers(folded),
+        "resting": resting_numbers(design, folded),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
             "max_boundary_segment_error": float(m.max_boundary_segment_error),

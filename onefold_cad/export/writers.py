@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from onefold_cad.design import Design
     from onefold_cad.export.flat_pattern import FlatPattern
     from onefold_cad.geometry.folding import FoldedSheet
+    from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = [
     "COMPENSATIONS",
@@ -75,6 +76,13 @@ class BuildContext:
         from onefold_cad.export.flat_pattern import flat_pattern
 
         return flat_pattern(self.design, self.folded, self.compensation)
+
+    @property
+    def placement(self) -> RestingPlacement:
+        """How the STEP's body stands (:func:`onefold_cad.design.resting_placement`)."""
+        from onefold_cad.design import resting_placement
+
+        return resting_placement(self.design, self.folded, self.body)
 
     @cached_property
     def drawing(self) -> Any:
@@ -162,7 +170,9 @@ def _png(ctx: BuildContext, path: Path) -> Any:
     from onefold_cad.export import preview
 
     d = ctx.design
-    return preview.render_folded_preview(ctx.folded, path, title=d.name, units=d.units.value)
+    return preview.render_folded_preview(
+        ctx.folded, path, placement=ctx.placement, title=d.name, units=d.units.value
+    )
 
 
 def _svg(ctx: BuildContext, path: Path) -> Any:

@@ -130,14 +130,16 @@ def test_the_dxf_link_downloads_the_current_flat_pattern(tab, tmp_path):
 
 
 def test_the_form_s_size_reads_as_onefold_solve_prints_it(tab, capfd):
-    """Height, span and footprint (width x depth, not span x depth) of the default
-    design: the page's text is the command's."""
+    """Height, span and footprint (width x depth) of the default design: the
+    page's text is the command's. The span is the footprint's width along the
+    fold line (what `onefold fit --span` aims at); depth differs from it here,
+    so a mix-up of the two would show."""
     capfd.readouterr()
     assert main(["solve"]) == 0
     text = capfd.readouterr().out
     m = re.search(r"height (\S+) mm, span (\S+) mm, footprint (\S+) x (\S+) mm", text)
     height, span, width, depth = m.groups()
-    assert width != span  # the two differ for this design: a mix-up would show
+    assert width == span != depth
     assert tab.text("#form-height") == f"{height} mm"
     assert tab.text("#form-span") == f"{span} mm"
     assert tab.text("#form-footprint").startswith(f"{width} × {depth} mm, hull area ")

@@ -235,7 +235,7 @@ def test_blank_corners_where_the_bend_model_puts_them(
     design = Design("rnd", frame, Sheet.polygon(pts), material=mat)
     try:
         folded = build_design(design)
-    except NoSolutionError:
+    except (NoSolutionError, InvalidParameterError):  # e.g. H on the f-line's end to 40 digits
         assume(False)
     assert all(math.isfinite(h.fold_angle_deg) for h in folded.crease)
     v = np.asarray(design.sheet.vertices)

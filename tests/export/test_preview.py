@@ -86,7 +86,7 @@ def test_mesh_faces_turn_their_normal_to_the_top_side(folded):
 
 
 def test_support_polygon_lies_on_the_ground_around_the_centre_of_mass(folded):
-    poly, centre = support_and_centre(folded)
+    poly, centre = support_and_centre(folded.resting)
     size = folded.sheet.size
     assert len(poly) >= 3
     np.testing.assert_allclose(poly[:, 2], 0.0, atol=1e-9 * size)
@@ -111,7 +111,7 @@ def test_centre_of_mass_is_the_area_centroid_of_the_folded_surface(folded):
     tri = verts[faces]
     area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     expected = (area[:, None] * tri.mean(axis=1)).sum(axis=0) / area.sum()
-    _, centre = support_and_centre(folded)
+    _, centre = support_and_centre(folded.resting)
     np.testing.assert_allclose(centre, expected, atol=1e-5 * folded.sheet.size)
 
 
@@ -144,7 +144,7 @@ def test_caption_gives_fold_angles_height_and_footprint(folded):
     the resting form's outline sampled finely and its apex."""
     from onefold_cad.export.preview import _caption
 
-    text = _caption(folded, "mm")
+    text = _caption(folded, folded.resting, "mm")
     for half in folded.crease:
         assert f"{half.fold_angle_deg:.1f}\N{DEGREE SIGN} {half.bend}" in text
     pts, _ = folded.sheet.sample_boundary(folded.sheet.perimeter / 20000)
@@ -153,7 +153,8 @@ def test_caption_gives_fold_angles_height_and_footprint(folded):
     height = f"height {ext[2]:.4g} mm"  # the form's extent, as `onefold solve` prints it
     footprint = f"footprint {ext[0]:.4g} x {ext[1]:.4g} mm"
     assert height in text and footprint in text
-    assert "stands stably" in text
+    margin = folded.resting.tipping_margin_deg
+    assert margin > 5.0 and f"tipping margin of {margin:.1f}\N{DEGREE SIGN}" in text
 
 
 # -- the flat SVG: real units, true size, strokes that read -----------------------

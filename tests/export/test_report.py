@@ -7,8 +7,6 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
 from scipy.spatial import ConvexHull
 
 from onefold_cad import (
@@ -20,10 +18,9 @@ from onefold_cad import (
     Sheet,
     build_design,
 )
+from onefold_cad.design import resting_placement
 from onefold_cad.export.report import (
     REPORT_VERSION,
-    _diameter,
-    _hull_2d,
     check_finite,
     design_report,
     design_warnings,
@@ -104,32 +101,44 @@ def test_fold_angles_and_bend_values_per_half(steel):
     assert abs(a - b) > 0.1
 
 
-def _dense_resting_form(folded, per_edge: int) -> np.ndarray:
+def _dense_resting_form(design, folded, per_edge: int) -> np.ndarray:
     """The resting form's outline and apex, sampled here: ``per_edge`` points
     on each edge of the flat sheet and the rulings' ends (where the paper
     model's folded outline has its kinks), folded by the fold map, then moved
-    by the resting placement's rotation R and translation T (p' = R p + T)."""
+    by the design's resting placement (p' = R p + T)."""
     v = folded.sheet.vertices
     t = np.arange(per_edge)[:, None] / per_edge
     edges = [a + (b - a) * t for a, b in zip(v, np.roll(v, -1, axis=0), strict=True)]
     flat = np.vstack([*edges, folded.rulings_flat[:, 1]])
     pts = np.vstack([folded.map_points(flat), folded.apex])
-    rot, move = folded.resting.rotation, folded.resting.translation
+    place = resting_placement(design, folded)
+    rot, move = place.rotation, place.translation
     np.testing.assert_allclose(rot @ rot.T, np.eye(3), atol=1e-15)  # a rotation ...
     assert np.linalg.det(rot) == pytest.approx(1.0, abs=1e-15)  # ... not a reflection
     return np.einsum("ij,kj->ki", rot, pts) + move
 
 
-@pytest.mark.parametrize("case", ["steel", "paper"])
-def test_resting_form_box_height_and_footprint_from_a_dense_outline(case, request):
-    """The exact model's outline curves between the report's boundary samples;
-    sampled here 50 000 points per sheet edge (spacing about 1/100 of the
-    report's), its box agrees to 1e-9 of the sheet's size. The paper model's
-    outline is straight between ruling ends, so the dense box is the same."""
-    _, folded, rep = request.getfixturevalue(case)
+def test_resting_section_is_the_placement_the_step_is_written_in(steel):
+    design, folded, rep = steel
     rest = rep["resting"]
+    place = resting_placement(design, folded)
+    assert rest["body"] == place.body == "solid"  # exact model with a thickness
+    assert rest["span"] == rest["footprint"]["width"] == place.width
+    assert rest["height"] == place.height > 0
+    assert rest["apex"] == pytest.approx(place.apply(folded.apex[None, :])[0].tolist())
+    # The centre of mass lies over the support polygon when the margin is positive.
+    assert rest["stable"] == (rest["tipping_margin_deg"] > 0)
+
+
+def test_shell_resting_box_height_and_footprint_from_a_dense_outline(paper):
+    """A zero-thickness paper-model sheet stands as its reference surface. Its
+    outline is straight between ruling ends, sampled here 50 000 points per
+    sheet edge: its box agrees with the report's to 1e-9 of the sheet's size."""
+    design, folded, rep = paper
+    rest = rep["resting"]
+    assert rest["body"] == "shell"
     size = folded.sheet.size
-    dense = _dense_resting_form(folded, 50_000)
+    dense = _dense_resting_form(design, folded, 50_000)
     lo, hi = np.array(rest["bounding_box"]["min"]), np.array(rest["bounding_box"]["max"])
     np.testing.assert_allclose(lo, dense.min(axis=0), rtol=0, atol=1e-9 * size)
     np.testing.assert_allclose(hi, dense.max(axis=0), rtol=0, atol=1e-9 * size)
@@ -138,22 +147,8 @@ def test_resting_form_box_height_and_footprint_from_a_dense_outline(case, reques
     assert rest["height"] == pytest.approx(height, rel=0, abs=1e-9 * size)
     assert rest["footprint"]["width"] == pytest.approx(width, rel=0, abs=1e-9 * size)
     assert rest["footprint"]["depth"] == pytest.approx(depth, rel=0, abs=1e-9 * size)
-
-
-def test_resting_form_span_and_footprint_area(steel):
-    _, folded, rep = steel
-    rest = rep["resting"]
-    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
-    size = folded.sheet.size
-    lo, hi = np.array(rest["bounding_box"]["min"]), np.array(rest["bounding_box"]["max"])
-    # Footprint area: qhull (an independent hull) on the same ground points.
-    assert rest["footprint"]["area"] == pytest.approx(ConvexHull(pts[:, :2]).volume, rel=1e-12)
-    # Span: the largest horizontal distance between two points, by brute force.
-    xy = pts[:, :2]
-    brute = max(float(np.max(np.hypot(*(xy - p).T))) for p in xy)
-    assert rest["span"] == pytest.approx(brute, rel=1e-12)
-    # The folded form is a rigid copy of the flat sheet: it fits in the sheet's disc about H.
-    assert np.linalg.norm(hi - lo) <= 2 * size * (1 + 1e-9)
+    # Footprint area: qhull (an independent hull) on the dense ground points.
+    assert rest["footprint"]["area"] == pytest.approx(ConvexHull(dense[:, :2]).volume, rel=1e-9)
 
 
 def test_areas_sizes_and_mass(steel):
@@ -303,26 +298,3 @@ def test_write_report_leaves_nothing_on_failure(tmp_path, paper):
     with pytest.raises(ExportError):
         write_report(tmp_path / "missing-dir" / "r.json", paper[2])
     assert list(tmp_path.iterdir()) == []
-
-
-# -- the footprint's hull and span ------------------------------------------------------
-def test_hull_of_a_square_with_inner_and_edge_points():
-    pts = np.array([[0, 0], [2, 0], [2, 2], [0, 2], [1, 1], [1, 0], [0.5, 1.5]], dtype=float)
-    assert _hull_2d(pts) == [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]
-    assert _diameter(_hull_2d(pts)) == pytest.approx(math.sqrt(8), rel=1e-15)
-
-
-@settings(max_examples=60, deadline=None)
-@given(st.lists(st.tuples(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3)), min_size=1, max_size=60))
-def test_hull_area_and_diameter_match_brute_force(points):
-    xy = np.array(points, dtype=float)
-    hull = _hull_2d(xy)
-    brute = max(float(np.max(np.hypot(*(xy - p).T))) for p in xy)
-    assert _diameter(hull) == pytest.approx(brute, rel=1e-12, abs=1e-12)
-    if len(hull) >= 3:
-        h = np.array(hull)
-        cross = (np.roll(h, -1, axis=0) - h)[:, None, :]
-        # every point lies on the inner side of every hull edge (counter-clockwise)
-        rel = xy[None, :, :] - h[:, None, :]
-        side = cross[..., 0] * rel[..., 1] - cross[..., 1] * rel[..., 0]
-        assert np.all(side >= -1e-9 * 1e3 * 1e3)
