@@ -77,19 +77,19 @@ class Search:
     Attributes:
         surface: the direction-surface searched.
         bound: the rounding bound of its fast evaluation (radians).
+        values: every evaluated height -> F there, in the order evaluated.
         lo, flo: the largest height with F > 0 and F there (0, 0 when none).
         hi, fhi: the smallest height above lo with F < 0 (inf, -pi when none).
         exact: a height where F is zero within its error, if one was met.
         evals: how many heights were evaluated.
     """
 
-    __slots__ = ("surface", "bound", "hs", "fs", "lo", "flo", "hi", "fhi", "exact", "evals")
+    __slots__ = ("surface", "bound", "values", "lo", "flo", "hi", "fhi", "exact", "evals")
 
     def __init__(self, surface: DirectionSurface) -> None:
         self.surface = surface
         self.bound = surface.excess_bound()
-        self.hs: list[float] = []
-        self.fs: list[float] = []
+        self.values: dict[float, float] = {}
         self.lo, self.flo = 0.0, 0.0
         self.hi, self.fhi = math.inf, -math.pi
         self.exact: float | None = None
@@ -104,27 +104,30 @@ class Search:
             fs = self.surface.excesses(np.array(heights)).tolist()
         self.evals += n
         small = 4.0 * self.bound
-        lo, hi = self.lo, self.hi
+        lo, flo, hi, fhi = self.lo, self.flo, self.hi, self.fhi
         moved = False
-        for i in range(n):
+        for i, h in enumerate(heights):
             f = fs[i]
             if not (f > small or f < -small):
-                f = fs[i] = self._near_zero(heights[i], f, fs)
-            h = heights[i]
+                f = fs[i] = self._near_zero(h, f, fs)
             if f > 0.0:
                 if h > lo:
-                    lo, self.flo = h, f
+                    lo, flo = h, f
                     moved = moved or h >= hi
             elif lo < h < hi:
-                hi, self.fhi = h, f
-        self.lo, self.hi = lo, hi
-        self.hs += heights
-        self.fs += fs
+                hi, fhi = h, f
+        values = self.values
+        values.update(zip(heights, fs, strict=True))
         if moved:  # a positive value above the old upper bound: the larger root
-            self.hi, self.fhi = math.inf, -math.pi
-            for h, f in zip(self.hs, self.fs, strict=True):
-                if f <= 0.0 and self.lo < h < self.hi:
-                    self.hi, self.fhi = h, f
+            hi, fhi = math.inf, -math.pi
+            for h, f in values.items():
+                if f <= 0.0 and lo < h < hi:
+                    hi, fhi = h, f
+        if self.exact is not None and self.exact < lo:
+            # S above 180 deg higher up: a zero within rounding below that is
+            # on the rising branch (near the trivial root h = 0), not the root
+            self.exact = None
+        self.lo, self.flo, self.hi, self.fhi = lo, flo, hi, fhi
         return fs
 
     def _near_zero(self, h: float, f: float, probe: list[float]) -> float:
@@ -147,15 +150,16 @@ class Search:
 
     def probe_value(self, h: float) -> float:
         """F at an evaluated height."""
-        return self.fs[self.hs.index(h)] if h in self.hs else math.inf
+        return self.values.get(h, math.inf)
 
     def around(self) -> tuple[list[float], list[float]]:
         """The two evaluated heights nearest below the root and above it:
         ``(F values, heights)``."""
-        pairs = sorted(zip(self.hs, self.fs, strict=True))
-        k = pairs.index((self.lo, self.flo))
-        pick = pairs[max(k - 1, 0) : k + 3]
-        return [f for _, f in pick], [h for h, _ in pick]
+        hs = sorted(self.values)
+        k = hs.index(self.lo)
+        pick = hs[max(k - 1, 0) : k + 3]
+        values = self.values
+        return [values[h] for h in pick], pick
 
 
 def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, float]:
@@ -171,7 +175,7 @@ def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, floa
         if s.exact is not None or (s.lo > 0.0 and s.hi < math.inf):
             break
         if s.lo == 0.0:  # the root lies below every height tried
-            top = min(s.hs)
+            top = min(s.values)
             if top < _H_MIN:
                 raise SearchFailed("no height with S above 180 deg")
             s.probe([max(top * span ** (-j / 8.0), 0.5 * _H_MIN) for j in range(1, 9)])
