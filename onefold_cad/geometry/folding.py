@@ -28,6 +28,7 @@ __all__ = ["CreaseHalf", "Developability", "FoldedSheet", "fold"]
 
 Array = NDArray[np.float64]
 _MIRROR = np.array([1.0, -1.0, 1.0])
+_TWO_PI = np.array(2.0 * math.pi)  # a 0-d array: cheaper than a float in a ufunc call
 _RESTING_POINTS = 4000  # boundary points that may become ground contacts
 
 
@@ -373,9 +374,12 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
         u = surface.directions_at(theta)
         crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
     m = len(theta)
-    psi = theta.copy()
-    psi[mu:] *= -1.0  # the -y side's flat angles run clockwise
-    rho, cos, sin = sheet._rays(psi)
+    # the flat polar angles in [0, 2 pi): the -y side's run clockwise from +x
+    ang = np.empty(m)
+    ang[:mu] = theta[:mu]
+    np.subtract(_TWO_PI, theta[mu:], out=ang[mu:])
+    ang[mu] = 0.0
+    rho, cos, sin = sheet._rays_at(ang)
     flat_r = np.zeros((m, 2, 2))
     np.multiply(rho, cos, out=flat_r[:, 1, 0])
     np.multiply(rho, sin, out=flat_r[:, 1, 1])
