@@ -77,6 +77,7 @@ class PaperFan(DirectionSurface):
         yb *= np.array(-sb)
         rows[5].fill(1.0)
         self._quad = quad
+        self._cs = np.array(((cb,), (sb,)))  # to place the points in space at once
         self._plane: tuple[Array, Array, Array, tuple[float, float]] | None = None
         self.directions: Array | None = None
         self.gammas: Array | None = None
@@ -200,12 +201,9 @@ class PaperFan(DirectionSurface):
         # the vectors a_i = P_i - A, one row per coordinate (3, n + 1)
         v = np.empty((3, n + 1))
         v[0] = self._x
-        np.multiply(self._d, np.array(g.cos_beta), out=v[1])
-        z = np.multiply(self._d, np.array(g.sin_beta), out=v[2])
-        z -= np.array(hu)
-        sq = v * v
-        nrm = np.add(sq[0], sq[1])
-        nrm += sq[2]
+        np.multiply(self._d, self._cs, out=v[1:])  # d cos(beta), d sin(beta)
+        v[2] -= np.array(hu)
+        nrm = np.add.reduce(v * v, axis=0)  # one call for the three rows
         np.sqrt(nrm, out=nrm)
         if n > _KAHAN_MAX:
             # from the 3D chords: |a_i x e_i| and a_i . a_i+1, relative accuracy
@@ -222,20 +220,20 @@ class PaperFan(DirectionSurface):
         else:
             v /= nrm
             # Kahan: gamma = 2 atan2(|u_i+1 - u_i|, |u_i+1 + u_i|), each to ~6
-            # rounding errors (absolute). The three rows are differenced as one
-            # flat array: the entries that straddle two rows (i = n) are unused.
+            # rounding errors (absolute). Both chords of all three rows come
+            # from one flat difference and one flat sum (w[:, r, i] is row r's
+            # u_i+1 -+ u_i; the entries i = n straddle two rows and are unused,
+            # the last one is set to keep the squares finite), squared and
+            # summed over the rows in two calls.
             flat = v.reshape(-1)
-            du = flat[1:] - flat[:-1]
-            su = flat[1:] + flat[:-1]
-            du *= du
-            su *= su
-            chord = du[:n] + du[n + 1 : 2 * n + 1]
-            chord += du[2 * n + 2 :]
-            np.sqrt(chord, out=chord)
-            span = su[:n] + su[n + 1 : 2 * n + 1]
-            span += su[2 * n + 2 :]
-            np.sqrt(span, out=span)
-            gammas = np.arctan2(chord, span, out=chord)
+            w = np.empty((2, 3 * n + 3))
+            np.subtract(flat[1:], flat[:-1], out=w[0, :-1])
+            np.add(flat[1:], flat[:-1], out=w[1, :-1])
+            w[:, -1] = 0.0
+            w *= w
+            lens = np.add.reduce(w.reshape(2, 3, n + 1), axis=1)
+            np.sqrt(lens, out=lens)
+            gammas = np.arctan2(lens[0, :n], lens[1, :n])
             gammas += gammas
             arithmetic = EPS * (6.0 * n + 8.0 * math.pi)
         self.directions = v.T  # (n + 1, 3), a view
