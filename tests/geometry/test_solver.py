@@ -293,6 +293,9 @@ def _check_refusal(err: Exception, frame: FrameCurve, model: str) -> None:
 @example(alpha=5e-324, beta=45.0, place=0.0, radius=1.0, n=2)
 @example(alpha=45.0, beta=5e-324, place=0.0, radius=1.0, n=2)
 @example(alpha=1.0, beta=0.0078125, place=1 - 1e-12, radius=1.0, n=2)  # a rising-branch zero
+# a zero within rounding on the rising branch (S - pi ~ 1e-19 at h ~ 1e-8 R) was
+# once taken for the root, far below it
+@example(alpha=32.0, beta=2.6005526626793146e-52, place=0.75, radius=1.0, n=15)
 def test_paper_model_meets_the_angle_condition_or_says_why(
     alpha: float, beta: float, place: float, radius: float, n: int
 ) -> None:
