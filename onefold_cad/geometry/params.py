@@ -98,8 +98,15 @@ class FrameCurve:
         set_(self, "radius", length("radius", self.radius))
         set_(self, "h_c", finite("h_c", self.h_c))
         set_(self, "divisions", _divisions(self.divisions))
-        half = self.half_chord
-        if not abs(self.h_c) < half:
+        # H strictly inside the f-line, decided on the end distances the solver
+        # folds with, R cos(alpha) -+ h_c, each to a rounding error of itself
+        # (40 digits near an end): a double cos(alpha) is off by up to 8 % within
+        # 1e-14 deg of 90, which let through h_c the solver then refused.
+        from onefold_cad.geometry.frame import arc_geometry  # (it imports this module)
+
+        g = arc_geometry(self)
+        if not min(g.l_plus, g.l_minus) > 0.0:
+            half = 0.5 * (g.l_plus + g.l_minus) * self.radius
             raise InvalidParameterError(
                 "h_c",
                 f"H must lie strictly inside the f-line: |h_c| < radius*cos(alpha) = "
@@ -108,8 +115,11 @@ class FrameCurve:
 
     @property
     def half_chord(self) -> float:
-        """Half the f-line length, R cos(alpha) (length)."""
-        return self.radius * math.cos(math.radians(self.alpha))
+        """Half the f-line length, R cos(alpha) (length), to a relative rounding
+        error: above 45 deg as sin(90 - alpha), the difference being exact."""
+        a = self.alpha
+        c = math.cos(math.radians(a)) if a <= 45.0 else math.sin(math.radians(90.0 - a))
+        return self.radius * c
 
     @property
     def paper_lower_bound(self) -> float:

@@ -431,14 +431,16 @@ def test_single_triangle_fan_has_no_apex() -> None:
 
 
 def test_h_beyond_the_end_within_rounding_is_refused() -> None:
-    # R cos(alpha) rounds up to h_c here, so the frame validates, but H lies
-    # outside the f-line when evaluated exactly
-    frame = FrameCurve(
-        89.99999999865996, 28.975181070567338, 2.6338377953762623e-12, 0.11261377671321579, 90
-    )
-    assert end_gap(frame) < 0
-    with pytest.raises(InvalidParameterError, match="h_c"):
-        solve(frame, "paper")
+    # R cos(alpha) in doubles rounds up to h_c here, but H lies outside the
+    # f-line when evaluated exactly: the frame itself is refused, naming h_c
+    # (FrameCurve decides on the solver's exact end distances)
+    args = (89.99999999865996, 28.975181070567338, 2.6338377953762623e-12, 0.11261377671321579)
+    with mp.workdps(50):
+        gap = mp.cos(mp.mpf(args[0]) * mp.pi / 180) - mp.mpf(args[2]) / mp.mpf(args[3])
+    assert gap < 0
+    assert args[2] < args[3] * math.cos(math.radians(args[0]))  # the double check passes
+    with pytest.raises(InvalidParameterError, match="^h_c: H must lie strictly inside"):
+        FrameCurve(*args, 90)
 
 
 @pytest.mark.parametrize("model", ["paper", "exact"])
