@@ -105,9 +105,10 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
     Flag("beta", "--beta", parse_float, "tilt beta of the arc's plane, deg in (0, 90)", _FRAME,
          "DEG"),
     Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint", _FRAME, "LENGTH"),
-    Flag("radius", "--radius", parse_float, "frame-curve radius R > 0", _FRAME, "LENGTH"),
-    Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, >= 1",
-         _FRAME, "N"),
+    Flag("radius", "--radius", parse_float, "frame-curve radius R > 0, from 1e-6 to 1e6 times "
+         "the sheet's size", _FRAME, "LENGTH"),
+    Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, in "
+         "[1, 10000]", _FRAME, "N"),
     Flag("x_plus", "--x-plus", parse_float, "quadrilateral: distance from H to the +x vertex",
          _SHEET, "LENGTH"),
     Flag("x_minus", "--x-minus", parse_float, "quadrilateral: distance from H to the -x vertex",
