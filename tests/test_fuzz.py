@@ -86,6 +86,96 @@ def test_the_checks_can_fail(fuzz: ModuleType) -> None:
         fuzz.check_solution(p, Off, mp_sample=False)
 
 
+def test_the_solvers_claimed_angle_error_is_checked(fuzz: ModuleType) -> None:
+    # h moved so that |sum - 360| is about 3e-10 deg: inside the 1e-9 deg spec,
+    # so the angle condition holds, but far above a claimed error of 0.
+    import math
+
+    from onefold_cad import build_design
+
+    p = {
+        "model": "paper",
+        "alpha": 50.0,
+        "beta": 45.0,
+        "h_c": 0.0,
+        "radius": 100.0,
+        "divisions": 30,
+        "sheet": {
+            "quadrilateral": dict.fromkeys(("x_plus", "x_minus", "y_plus", "y_minus"), 300.0)
+        },
+        "thickness": 0.0,
+        "bend_radius": 0.0,
+    }
+    sol = build_design(fuzz.make_design(p)).solution
+    shift = math.radians(3e-10) / 2.0 / abs(sol.ds_dh)
+
+    class Claims0:
+        apex_height = sol.apex_height + shift
+        angle_condition_error_deg = 0.0
+
+    class ClaimsEnough:
+        apex_height = sol.apex_height + shift
+        angle_condition_error_deg = 6e-10
+
+    fuzz.check_solution(p, ClaimsEnough, mp_sample=False)
+    with pytest.raises(fuzz.Wrong, match="claimed error"):
+        fuzz.check_solution(p, Claims0, mp_sample=False)
+
+
+def test_the_solvers_claimed_apex_height_error_is_checked(fuzz: ModuleType) -> None:
+    # h = 50 and the 20-digit root 1e-12 above it, |dS/dh| = 0.01 independently
+    h, root, slope = 50.0, 50.0 + 1e-12, 0.01
+
+    class Claims:
+        def __init__(self, error: float, ds_dh: float) -> None:
+            self.apex_height_error, self.ds_dh = error, ds_dh
+
+    fuzz.check_h_error(Claims(2e-12, -0.01), h, root, slope, {})
+    with pytest.raises(fuzz.Wrong, match="claimed h error"):
+        fuzz.check_h_error(Claims(1e-15, -0.01), h, root, slope, {})
+    # a solver slope twice the true one halves its bound: the verified part
+    # e = (0.6e-12 - 4 eps h) * 0.02 is honest (|S(h) - pi| = 1e-14 < e), so the
+    # check passes with the independent slope, and records the slope's deviation
+    info: dict = {}
+    eps_h = 4.0 * 2.220446049250313e-16 * h
+    fuzz.check_h_error(Claims(0.6e-12 + eps_h, -0.02), h, root, slope, info)
+    assert info["ds_dh_deviation"] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> None:
+    import dataclasses
+
+    import numpy as np
+
+    from onefold_cad import build_design
+    from onefold_cad.design import resting_placement
+
+    p = {
+        "model": "exact",
+        "alpha": 35.0,
+        "beta": 40.0,
+        "h_c": 7.0,
+        "radius": 100.0,
+        "divisions": 90,
+        "sheet": {
+            "quadrilateral": {"x_plus": 180.0, "x_minus": 150.0, "y_plus": 120.0, "y_minus": 160.0}
+        },
+        "thickness": 0.0,
+        "bend_radius": 0.0,
+    }
+    design = fuzz.make_design(p)
+    folded = build_design(design)
+    rest = resting_placement(design, folded)
+    rng = np.random.default_rng(5)
+    fuzz.check_resting(rest, design, folded, rng)
+    sunk = dataclasses.replace(rest, translation=rest.translation - [0.0, 0.0, 1e-3])
+    with pytest.raises(fuzz.Wrong, match="below the ground"):
+        fuzz.check_resting(sunk, design, folded, rng)
+    mirrored = dataclasses.replace(rest, rotation=np.diag([1.0, 1.0, -1.0]) @ rest.rotation)
+    with pytest.raises(fuzz.Wrong, match="proper rotation"):
+        fuzz.check_resting(mirrored, design, folded, rng)
+
+
 def test_reproducer_command_gives_the_same_apex(fuzz: ModuleType, capsys) -> None:
     import json
     import shlex
@@ -108,4 +198,5 @@ def test_reproducer_command_gives_the_same_apex(fuzz: ModuleType, capsys) -> Non
     assert argv[:2] == ["onefold", "solve"]
     assert main(argv[1:]) == 0
     report = json.loads(capsys.readouterr().out)
-    assert report["apex_height"] == build_design(fuzz.make_design(p)).solution.apex_height
+    solved = build_design(fuzz.make_design(p)).solution
+    assert report["direction_surface"]["apex_height"] == solved.apex_height
