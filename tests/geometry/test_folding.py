@@ -5,28 +5,37 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve, NoSolutionError, Sheet, fold, solve
+from tests.angles import cos_deg, refused_below_bound
 
 from .conftest import frames, sheets
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-# (0, 90) deg open, from 1e-9 deg: closer to 0 or 90 double precision cannot
-# solve the frame (issue 12; today's solver even divides by zero at 1e-156)
-OPEN_ANGLE = st.floats(1e-9, 90.0 - 1e-9)
+# alpha, beta from 0 (open; below the angle bound a frame is refused,
+# tests/angles.py) up to 90 - 1e-9 deg as before: nearer 90 FoldedSheet.unfold
+# and the exact metrics lose accuracy (beta = 90 - 3e-14 deg: unfold 4e-3 of
+# the sheet off, area 7e-10, a boundary segment 2e-9 off), and unfold is off
+# by 1e-6 of the sheet already at 90 - 1e-9 (left to the core's owners).
+ANGLE = st.floats(0.0, 90.0 - 1e-9, exclude_min=True)
 
 
 @st.composite
 def open_frames(draw: st.DrawFn) -> FrameCurve:
     """Frame curves over the whole admissible range: alpha, beta in (0, 90)
     deg, H anywhere strictly inside the f-line, 1 to 400 divisions."""
-    alpha, beta = draw(OPEN_ANGLE), draw(OPEN_ANGLE)
+    alpha, beta = draw(ANGLE), draw(ANGLE)
     radius = draw(st.floats(1.0, 1000.0))
     frac = draw(st.floats(-0.999, 0.999))
     n = draw(st.integers(1, 400))
-    return FrameCurve(alpha, beta, frac * radius * math.cos(math.radians(alpha)), radius, n)
+
+    def make() -> FrameCurve:
+        return FrameCurve(alpha, beta, frac * radius * cos_deg(alpha), radius, n)
+
+    assume(not refused_below_bound(alpha, beta, make))  # the refusal is that draw's answer
+    return make()
 
 
 def _fold(frame: FrameCurve, sheet: Sheet, model: str):

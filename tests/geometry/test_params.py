@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import (
@@ -21,6 +21,7 @@ from onefold_cad import (
     bend_values,
     build_design,
 )
+from onefold_cad.design import relief_hole_problem
 from onefold_cad.geometry.params import MAX_DESIGN_DIVISIONS, MAX_DIVISIONS, MIN_ANGLE_DEG
 from onefold_cad.geometry.validate import (
     MAX_LENGTH,
@@ -28,7 +29,7 @@ from onefold_cad.geometry.validate import (
     MIN_LENGTH,
     MIN_SHEET_TO_RADIUS,
 )
-from onefold_cad.design import relief_hole_problem
+from tests.angles import OPEN_ANGLE, cos_deg, frame_unless_on_end, refused_below_bound
 
 NAN, INF = math.nan, math.inf
 UP, DOWN = math.inf, -math.inf
@@ -233,6 +234,17 @@ def test_divisions_cap_boundary() -> None:
         Design("x", FrameCurve(50, 45, divisions=MAX_DESIGN_DIVISIONS + 1), sheet)
 
 
+def test_cli_help_states_the_caps_the_design_enforces() -> None:
+    # the flags' help is written out (the CLI does not import the core to start);
+    # it must name the bounds Design and check_magnitudes enforce
+    from onefold_cad.flags import DESIGN_FLAGS
+
+    helps = {f.dest: f.help for f in DESIGN_FLAGS}
+    assert f"[1, {MAX_DESIGN_DIVISIONS}]" in helps["divisions"]
+    assert (MIN_SHEET_TO_RADIUS, MAX_SHEET_TO_RADIUS) == (1e-6, 1e6)
+    assert "from 1e-6 to 1e6 times the sheet's size" in helps["radius"]
+
+
 def test_the_fan_at_the_cap_is_within_5e_8_R_of_the_arc() -> None:
     # the cap's reason, derived independently: the largest chord-to-arc gap of
     # 10 000 equal divisions of an arc of at most 360 deg
@@ -298,19 +310,23 @@ def test_material_magnitude_boundary(key: str) -> None:
 def in_bounds_designs(draw: st.DrawFn) -> Design:
     """Designs over the whole allowed magnitude range: R in [1e-30, 1e30], the
     sheet from 1e-6 to 1e6 R (inside the absolute bounds), H anywhere inside
-    the f-line, both models; alpha and beta over the fuzz's range [1e-4, 89.99]
-    (beyond it the solver's own conditioning decides, see docs/reliability.md)."""
+    the f-line, both models; alpha and beta anywhere in (0, 90) deg from the
+    angle bound MIN_ANGLE_DEG up (below it: refused, tests/angles.py)."""
     radius = 10.0 ** draw(st.floats(-30.0, 30.0))
     lo = max(math.log10(MIN_SHEET_TO_RADIUS), math.log10(5.0 * MIN_LENGTH / radius))
     hi = min(math.log10(MAX_SHEET_TO_RADIUS), math.log10(MAX_LENGTH / radius))
     size = radius * 10.0 ** draw(st.floats(lo + 1e-9, hi - 1e-9))  # the edges: tests above
-    alpha = draw(st.floats(1e-4, 89.99))
-    beta = draw(st.floats(1e-4, 89.99))
+    alpha, beta = draw(OPEN_ANGLE), draw(OPEN_ANGLE)
     frac = draw(st.floats(-1.0, 1.0, exclude_min=True, exclude_max=True))
-    h_c = frac * radius * math.cos(math.radians(alpha))
     model = draw(st.sampled_from(["paper", "exact"]))
     sides = [size] + [size * draw(st.floats(0.2, 1.0)) for _ in range(3)]  # the size is `size`
-    frame = FrameCurve(alpha, beta, h_c, radius, draw(st.integers(1, 400)))
+    n = draw(st.integers(1, 400))
+    assume(not refused_below_bound(alpha, beta, lambda: FrameCurve(alpha, beta, 0.0, radius, n)))
+    half = radius * cos_deg(alpha)
+    h_c = frac * half
+    frame = frame_unless_on_end(lambda: FrameCurve(alpha, beta, h_c, radius, n), h_c, half)
+    assume(frame is not None)  # H on an end of the f-line by rounding: refused
+    assert frame is not None
     sheet = Sheet.quadrilateral(*sides)
     return Design("x", frame, sheet, model=model)
 

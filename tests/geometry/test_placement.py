@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
@@ -30,23 +30,32 @@ from onefold_cad.geometry.placement import (
     stability_warnings,
 )
 from onefold_cad.templates import find_template, load_template
+from tests.angles import cos_deg, refused_below_bound
 
 from .conftest import sheets
 
 SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-# (0, 90) deg open, from 1e-9 deg: closer to 0 or 90 double precision cannot
-# solve the frame (issue 12; today's solver even divides by zero at 1e-156)
-OPEN_ANGLE = st.floats(1e-9, 90.0 - 1e-9)
+# alpha, beta from 0 (open; below the angle bound a frame is refused,
+# tests/angles.py) up to 90 - 1e-9 deg as before: nearer 90 FoldedSheet.unfold
+# and the exact metrics lose accuracy (beta = 90 - 3e-14 deg: unfold 4e-3 of
+# the sheet off, area 7e-10, a boundary segment 2e-9 off), and unfold is off
+# by 1e-6 of the sheet already at 90 - 1e-9 (left to the core's owners).
+ANGLE = st.floats(0.0, 90.0 - 1e-9, exclude_min=True)
 
 
 @st.composite
 def frames(draw: st.DrawFn) -> FrameCurve:
     """Frame curves over the whole admissible range: alpha, beta in (0, 90)
     deg, H anywhere strictly inside the f-line."""
-    alpha, beta = draw(OPEN_ANGLE), draw(OPEN_ANGLE)
+    alpha, beta = draw(ANGLE), draw(ANGLE)
     radius = draw(st.floats(1.0, 1000.0))
     frac = draw(st.floats(-0.999, 0.999))
-    return FrameCurve(alpha, beta, frac * radius * math.cos(math.radians(alpha)), radius, 90)
+
+    def make() -> FrameCurve:
+        return FrameCurve(alpha, beta, frac * radius * cos_deg(alpha), radius, 90)
+
+    assume(not refused_below_bound(alpha, beta, make))  # the refusal is that draw's answer
+    return make()
 
 
 def _fold(frame: FrameCurve, sheet: Sheet, model: str):
