@@ -25,7 +25,7 @@ from functools import partial
 
 import numpy as np
 from numpy.typing import NDArray
-from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRep import BRep_Builder
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeEdge,
@@ -455,12 +455,9 @@ def _sectors(thetas: Array) -> Array:
     return out
 
 
-def _xyz_of(v: TopoDS_Vertex) -> Array:
-    return np.array(_xyz(BRep_Tool.Pnt_s(v)))
-
-
-#: Points closer than this (length) are one vertex: 10 x OCC's precision
-#: (Precision::Confusion, 1e-7), below which it cannot make an edge.
+#: Ruling ends closer than 3 x NEAR (length) are one ruling: NEAR is 10 x
+#: OCC's precision (Precision::Confusion, 1e-7), below which it cannot make
+#: an edge.
 NEAR = 1e-6
 
 
@@ -472,9 +469,9 @@ def _distinct(points: Array) -> NDArray[np.bool_]:
     keep[0] = True
     last = 0
     for k in range(1, len(points) - 1):
-        if np.linalg.norm(points[k] - points[last]) > NEAR:
+        if np.linalg.norm(points[k] - points[last]) > 3.0 * NEAR:
             keep[k], last = True, k
-    if len(points) > 2 and np.linalg.norm(points[-1] - points[last]) <= NEAR and last > 0:
+    if len(points) > 2 and np.linalg.norm(points[-1] - points[last]) <= 3.0 * NEAR and last > 0:
         keep[last] = False
     keep[-1] = True
     return keep
@@ -500,10 +497,7 @@ def fan_shell(
         return v
 
     def line(v0: TopoDS_Vertex, v1: TopoDS_Vertex) -> TopoDS_Edge:
-        e = BRepBuilderAPI_MakeEdge(v0, v1).Edge()
-        if hole_radius > 0.0:  # its hole vertex may be a merged one (see NEAR)
-            b.UpdateEdge(e, NEAR)
-        return e
+        return BRepBuilderAPI_MakeEdge(v0, v1).Edge()
 
     sides = []
     for side, angles in enumerate(folded.ruling_angles):
@@ -519,7 +513,7 @@ def fan_shell(
     apex_v = vertex(apex) if hole_radius <= 0.0 else None
     crease_ends = [vertex(sides[0][0][i]) for i in (0, -1)]
     crease_inner = [
-        apex_v if apex_v is not None else vertex(apex + hole_radius * sides[0][1][i], NEAR)
+        apex_v if apex_v is not None else vertex(apex + hole_radius * sides[0][1][i])
         for i in (0, -1)
     ]
     crease_rulings = [line(crease_inner[i], crease_ends[i]) for i in (0, 1)]
@@ -530,16 +524,20 @@ def fan_shell(
         ends = [crease_ends[0]] + [vertex(p) for p in outer[1:-1]] + [crease_ends[1]]
         if apex_v is not None:
             inner = [apex_v] * n
-        else:  # hole points closer than OCC's precision are one vertex
-            inner = [crease_inner[0]]
-            for k in range(1, n - 1):
-                near = np.linalg.norm(hole_radius * (unit[k] - unit[k - 1])) <= NEAR
-                hole_pt = apex + hole_radius * unit[k]
-                inner.append(inner[-1] if near else vertex(hole_pt, NEAR))
-            last_near = np.linalg.norm(hole_radius * (unit[-1] - unit[-2])) <= NEAR
-            if last_near and n > 2:
-                inner[-1] = crease_inner[1]
-            inner.append(crease_inner[1])
+        else:
+            chord = float(np.min(np.linalg.norm(np.diff(unit, axis=0), axis=1))) * hole_radius
+            if chord <= 3.0 * NEAR:
+                raise ExportError(
+                    f"the relief hole (diameter {2 * hole_radius:.3g}) is too small for "
+                    f"{n - 1} triangles: its arcs between rulings come down to {chord:.2g}, "
+                    f"below what the CAD kernel resolves ({3 * NEAR:g}); fewer divisions or a "
+                    "larger hole (or none) would do"
+                )
+            inner = (
+                [crease_inner[0]]
+                + [vertex(apex + hole_radius * u) for u in unit[1:-1]]
+                + [crease_inner[1]]
+            )
         rulings = (
             [crease_rulings[0]]
             + [line(inner[k], ends[k]) for k in range(1, n - 1)]
@@ -549,10 +547,8 @@ def fan_shell(
             if check is not None and k % 256 == 255:
                 check()
             p, q = outer[k], outer[k + 1]
-            arc_edge = apex_v is None and not inner[k].IsSame(inner[k + 1])
-            # the plane through the face's corners (a merged hole vertex lies a
-            # hair off the plane through the apex)
-            origin = apex if apex_v is not None or arc_edge else _xyz_of(inner[k])
+            arc_edge = apex_v is None
+            origin = apex
             normal = np.cross(p - origin, q - origin)
             if side == 1:
                 normal = -normal
@@ -562,9 +558,7 @@ def fan_shell(
                 axis = np.cross(p - apex, q - apex)
                 circle = gp_Circ(gp_Ax2(_pnt(apex), gp_Dir(*axis), gp_Dir(*unit[k])), hole_radius)
                 arc = GC_MakeArcOfCircle(circle, _pnt(hp), _pnt(hq), True).Value()
-                hole_edge = BRepBuilderAPI_MakeEdge(arc, inner[k], inner[k + 1]).Edge()
-                b.UpdateEdge(hole_edge, NEAR)
-                edges.append(hole_edge.Reversed())
+                edges.append(BRepBuilderAPI_MakeEdge(arc, inner[k], inner[k + 1]).Edge().Reversed())
             if side == 1:  # the mirror image: the same loop, the other way round
                 edges = [e.Reversed() for e in reversed(edges)]
             wire = TopoDS_Wire()

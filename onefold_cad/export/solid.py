@@ -43,7 +43,7 @@ from OCP.Geom import Geom_BSplineCurve, Geom_Line
 from OCP.Geom2d import Geom2d_Line
 from OCP.GeomFill import GeomFill_Generator
 from OCP.gp import gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
-from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
+from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds, ShapeAnalysis_ShapeTolerance
 from OCP.ShapeFix import ShapeFix_Solid
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SHELL, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
@@ -451,6 +451,12 @@ def thick_solid(
     for group in planar.values():
         faces.append(builder.planar(group))
     shell = _sew(faces, builder.sew_tol, budget, slab)
+    stretched = ShapeAnalysis_ShapeTolerance().Tolerance(shell, 1, TopAbs_EDGE)
+    if stretched > max(tol, 1e-7):
+        raise ExportError(
+            f"sewing the thick sheet's faces stretched an edge's tolerance to {stretched:.2g} "
+            f"(the curves are within {tol:.2g}): a face is thinner than the kernel resolves"
+        )
     solid = BRepBuilderAPI_MakeSolid(shell).Solid()
     fix = ShapeFix_Solid(solid)
     fix.Perform()

@@ -124,6 +124,9 @@ SOLID_VOLUME_TOLERANCE = 1e-4
 #: with a clear error (the solid takes well under 1 s, a shell of 3000
 #: divisions about 2 s).
 KERNEL_BUDGET = 60.0
+#: The smallest relief hole (diameter, design unit) the CAD kernel resolves:
+#: 1000 x its precision (Precision::Confusion, 1e-7).
+MIN_HOLE = 1e-4
 #: Where a part is written: as it stands on the ground, or in the fold frame.
 PLACEMENTS = ("rest", "frame")
 
@@ -170,6 +173,11 @@ def build_shell(
     if not 0.0 <= relief_hole < limit:
         raise InvalidParameterError(
             "relief_hole", f"diameter must be in [0, {limit:.6g}) (length), got {relief_hole:g}"
+        )
+    if 0.0 < relief_hole < MIN_HOLE:
+        raise ExportError(
+            f"a relief hole of diameter {relief_hole:.3g} is below what the CAD kernel "
+            f"resolves ({MIN_HOLE:g}): use none (--relief-hole 0) or one of at least {MIN_HOLE:g}"
         )
     tol = BOUNDARY_TOLERANCE * folded.sheet.size
     if kind == "ruled":
@@ -260,9 +268,11 @@ def build_solid(
     _mitre_limits(folded, material)
     size = folded.sheet.size
     tol = min(SOLID_TOLERANCE * size, SOLID_THICKNESS_TOLERANCE * t)
-    hint = f"a larger relief_hole than {hole:g} (up to {limit:.6g}) or a thinner sheet may help"
-    clock = KernelBudget(budget, f"a thinner sheet or a larger relief hole may help ({hint})")
     slab = Slab(folded, material, hole)
+    hint = _near_symmetric(slab) or (
+        f"a larger relief_hole than {hole:g} (up to {limit:.6g}) or a thinner sheet may help"
+    )
+    clock = KernelBudget(budget, f"a thinner sheet or a larger relief hole may help ({hint})")
     try:
         solid, deviation = thick_solid(slab, tol, clock)
     except ExportError as err:
@@ -290,9 +300,9 @@ def build_solid(
 #: The smallest mitre (length past or into the crease, design unit) the CAD
 #: kernel resolves: 100 x its precision (Precision::Confusion, 1e-7) ...
 MIN_MITRE = 1e-5
-#: ... and relative to the sheet's size (below, sewing the mitre's faces of
-#: micrometres against edges of metres fails).
-MIN_MITRE_REL = 5e-7
+#: ... and relative to the crease half's length (thinner, the mitre's faces
+#: are slivers OCC cannot classify: 1.4 micrometres by 2.3 m fails).
+MIN_MITRE_REL = 1e-6
 #: The mitre may reach at most this fraction of a crease half's length into
 #: the sheet: beyond it the fold's two sides come within the sheet's
 #: thickness of each other over much of the crease (folds near 180 deg).
@@ -305,10 +315,10 @@ def _mitre_limits(folded: FoldedSheet, material: Material) -> None:
     half, its fold angle and what to change."""
     t = material.thickness
     side = SideMap(folded)
-    least = max(MIN_MITRE, MIN_MITRE_REL * folded.sheet.size)
     for half, (depth, reach) in zip(
         folded.crease, mitre_reach(side, sheet_offsets(material)), strict=True
     ):
+        least = max(MIN_MITRE, MIN_MITRE_REL * half.length)
         if 0.0 < max(depth, reach) < least:
             raise ExportError(
                 f"no solid of thickness {t:g}: the fold along {half.name} is nearly flat "
@@ -324,6 +334,24 @@ def _mitre_limits(folded: FoldedSheet, material: Material) -> None:
                 f"({half.length:.3g}); a thinner sheet or a smaller fold angle (alpha, beta), "
                 "or the shell (--body shell)"
             )
+
+
+def _near_symmetric(slab: Slab) -> str:
+    """Advice for a sheet whose edges at a crease half's end are mirror images
+    of each other to within a hair but not exactly: there the two sides'
+    mitre sections differ by a sliver below the CAD kernel's resolution.
+    '' when that is not the case."""
+    size = slab.sides[0].sheet.size
+    for end, name in ((0, "plus_x"), (1, "minus_x")):
+        t = np.linspace(0.0, 0.05, 11)
+        t = t if end == 0 else slab.total - t
+        gap = float(np.max(np.abs(slab.outer_radius(0, t) - slab.outer_radius(1, t))))
+        if 0.0 < gap < 1e-5 * size:
+            return (
+                f"the sheet's edges at the {name} end are symmetric about the crease to within "
+                f"{gap:.2g} but not exactly: make them exactly symmetric (or differ more)"
+            )
+    return ""
 
 
 def default_body(design: Design) -> str:
@@ -439,8 +467,9 @@ def export_design_step(
 
     The file is in the design's unit (mm, inch or foot), the product is named
     after the design, and the header timestamp is :data:`STEP_TIMESTAMP`, so
-    the same design gives the same bytes. Nothing is left at ``path`` (or
-    beside it) when building or writing fails.
+    the same design gives the same bytes. It is read back before it is moved
+    into place and refused (ExportError) unless it is one valid shape. Nothing
+    is left at ``path`` (or beside it) when building or writing fails.
 
     Returns:
         The path written.
@@ -455,7 +484,24 @@ def export_design_step(
             raise ExportError(f"writing STEP failed ({err.__class__.__name__}: {err})") from None
         if not ok:
             raise ExportError("writing STEP failed")
+        _check_reads_back(tmp, part)
     return target
+
+
+def _check_reads_back(path: Path, part: bd.Shape) -> None:
+    """Refuse a STEP file that does not read back as one valid shape with the
+    part's faces (the file holds coordinates to a finite precision: a face
+    far thinner than the sheet may not survive it)."""
+    try:
+        shape = bd.import_step(path)
+        ok = shape.is_valid and len(shape.faces()) == len(part.faces())
+    except Exception:  # OCC's Standard_Failure family
+        ok = False
+    if not ok:
+        raise ExportError(
+            "the written STEP file does not read back as a valid shape (a face thinner than "
+            "the file's precision); a larger relief hole or another thickness may help"
+        )
 
 
 def read_step(path: str | os.PathLike[str]) -> bd.Shape:

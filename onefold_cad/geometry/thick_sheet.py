@@ -161,7 +161,9 @@ def mitre_depth(side: SideMap, s_range: tuple[float, float]) -> float:
         into = e[1] if end == 0 else -e[1]  # y of the direction into this side's sheet
         if into <= 1e-9:
             raise InvalidParameterError(
-                "alpha", "the fold is flat or folded through: the crease has no mitre"
+                "alpha",
+                "the fold is flat or folded through: the crease has no mitre for a solid; "
+                "write the shell (--body shell)",
             )
         depth = max(depth, max(s * n[1] for s in s_range) / into)
     return depth + margin
@@ -180,7 +182,9 @@ def mitre_reach(side: SideMap, s_range: tuple[float, float]) -> tuple[tuple[floa
         into = e[1] if end == 0 else -e[1]
         if into <= 1e-9:
             raise InvalidParameterError(
-                "alpha", "the fold is flat or folded through: the crease has no mitre"
+                "alpha",
+                "the fold is flat or folded through: the crease has no mitre for a solid; "
+                "write the shell (--body shell)",
             )
         depth = max(0.0, max(s * n[1] for s in s_range) / into)
         reach = max(0.0, max(-s * n[1] for s in s_range) / into)
@@ -385,7 +389,9 @@ class Slab:
             into = e[1] if end == 0 else -e[1]
             if into <= 1e-9:
                 raise InvalidParameterError(
-                    "alpha", "the fold is flat or folded through: the crease has no mitre"
+                    "alpha",
+                    "the fold is flat or folded through: the crease has no mitre for a solid; "
+                    "write the shell (--body shell)",
                 )
             depth = max(0.0, max(s * n[1] for s in self.s_range) / into)
             if depth >= self.hole:
@@ -454,7 +460,9 @@ class Slab:
         ends and both crease halves: the curves are built between them."""
         out = _unique(np.array([self.domain[0], 0.0, self.total, self.domain[1]]))
         if which == "out":
-            out = _merge(out, self.sides[side].vertex_angles, 0.0, self.total)
+            # a vertex on a crease ruling (angle 0 or pi; the cone's total angle
+            # is pi only up to the solver's residual) is the crease's end
+            out = _merge(out, self.sides[side].vertex_angles, 0.0, self.total, _CREASE_GAP)
         return out
 
     def points(self, side: int, theta: Array, r: Array, s: float | Array) -> Array:
@@ -729,13 +737,19 @@ def _unique(t: Array, tol: float = _ROOT_GAP) -> Array:
     return t[np.concatenate([[True], np.diff(t) > tol])]
 
 
-def _merge(base: Array, extra: Array, lo: float = -np.inf, hi: float = np.inf) -> Array:
-    """The sorted union of ``base`` and the values of ``extra`` in (lo, hi)
-    that are not within ``_ROOT_GAP`` of a value already in it (``base``'s
-    values win: they are the exact kinks)."""
+#: Sheet vertices closer than this (radians) to a crease ruling lie on it.
+_CREASE_GAP = 1e-7
+
+
+def _merge(
+    base: Array, extra: Array, lo: float = -np.inf, hi: float = np.inf, end_gap: float = _ROOT_GAP
+) -> Array:
+    """The sorted union of ``base`` and the values of ``extra`` more than
+    ``end_gap`` inside (lo, hi) that are not within ``_ROOT_GAP`` of a value
+    already in it (``base``'s values win: they are the exact kinks)."""
     out = np.sort(base)
     for t in np.sort(np.asarray(extra, dtype=float)):
-        if lo + _ROOT_GAP < t < hi - _ROOT_GAP and np.min(np.abs(out - t)) > _ROOT_GAP:
+        if lo + end_gap < t < hi - end_gap and np.min(np.abs(out - t)) > _ROOT_GAP:
             out = np.sort(np.append(out, t))
     return out
 

@@ -338,6 +338,41 @@ def test_fan_shell_shares_its_topology(hole):
     )
 
 
+def _tiny_sharp_fan(scale: float) -> Design:
+    """A fan of 385 divisions folded almost flat onto itself (beta near 90
+    deg) on a sheet ``scale`` x a couple of millimetres: neighbouring ruling
+    ends and hole points come within micrometres (from the STEP corpus)."""
+    sheet = Sheet.quadrilateral(
+        1.278336 * scale, 1.568703 * scale, 1.781668 * scale, 0.869489 * scale
+    )
+    frame = FrameCurve(6.734977187126817, 89.98568127260206, 26.219145054933023, 100, 385)
+    return Design("tiny", frame, sheet, model="paper")
+
+
+def test_fan_merges_ruling_ends_closer_than_the_kernel_resolves():
+    """Ruling ends closer than 3 x NEAR (OCC cannot make an edge that short)
+    are one ruling; the outline then moves by less than that per merge."""
+    from onefold_cad.export.brep import NEAR
+
+    design = _tiny_sharp_fan(0.01)
+    folded = build_design(design)
+    triangles = sum(len(a) - 1 for a in folded.ruling_angles)
+    shell = build_shell(folded)
+    assert shell.is_valid
+    assert len(shell.faces()) < triangles  # some rulings merged
+    merged = triangles - len(shell.faces())
+    assert _free_length(shell) == pytest.approx(design.sheet.perimeter, abs=2 * 3 * NEAR * merged)
+
+
+def test_relief_hole_below_the_kernel_resolution_is_refused_with_what_to_change():
+    folded = build_design(_tiny_sharp_fan(1.0))
+    assert build_shell(folded).is_valid  # without a hole it is fine
+    with pytest.raises(ExportError, match=r"too small for 386 triangles.*fewer divisions"):
+        build_shell(folded, relief_hole=0.014)
+    with pytest.raises(ExportError, match=r"below what the CAD kernel resolves.*--relief-hole 0"):
+        build_shell(build_design(CASES["table1-0"][0]), relief_hole=5e-5)
+
+
 def test_kernel_time_budget_is_an_export_error_naming_what_to_reduce():
     paper = Design("fan", FrameCurve(50, 45, 0, 100, 3000), Sheet.quadrilateral(300, 300, 300, 300))
     folded = build_design(paper.with_changes(model="paper"))
