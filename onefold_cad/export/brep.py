@@ -455,23 +455,25 @@ def _sectors(thetas: Array) -> Array:
     return out
 
 
-#: Ruling ends closer than 3 x NEAR (length) are one ruling: NEAR is 10 x
-#: OCC's precision (Precision::Confusion, 1e-7), below which it cannot make
-#: an edge.
+#: OCC's precision (Precision::Confusion): points closer are one point.
+PRECISION = 1e-7
+#: Ruling ends closer than 3 x NEAR (length) are one ruling (OCC cannot make
+#: an edge much shorter than 10 x its precision).
 NEAR = 1e-6
 
 
-def _distinct(points: Array) -> NDArray[np.bool_]:
-    """Which of the ruling ends ``points`` ``(n, 3)`` to keep so that no two
-    kept neighbours lie within :data:`NEAR` (the first and last, on the
-    crease, always kept)."""
+def _distinct(points: Array, gap: float) -> NDArray[np.bool_]:
+    """Which of the rulings to keep so that no two kept neighbours' points
+    ``(n, 3)`` lie within ``gap`` (the first and last, on the crease, always
+    kept): a ruling closer than that to the last one kept is left out, and
+    the two triangles beside it become one."""
     keep = np.zeros(len(points), dtype=bool)
     keep[0] = True
     last = 0
     for k in range(1, len(points) - 1):
-        if np.linalg.norm(points[k] - points[last]) > 3.0 * NEAR:
+        if np.linalg.norm(points[k] - points[last]) > gap:
             keep[k], last = True, k
-    if len(points) > 2 and np.linalg.norm(points[-1] - points[last]) <= 3.0 * NEAR and last > 0:
+    if len(points) > 2 and np.linalg.norm(points[-1] - points[last]) <= gap and last > 0:
         keep[last] = False
     keep[-1] = True
     return keep
@@ -507,7 +509,9 @@ def fan_shell(
         rho = folded.sheet.ray_lengths(sgn * thetas)
         outer = folded.map_points(dirs * rho[:, None])
         unit = folded.map_points(dirs) - apex
-        keep = _distinct(outer)
+        keep = _distinct(outer, 3.0 * NEAR)
+        if hole_radius > 0.0:  # and the hole's points (arcs need a few x OCC's precision)
+            keep &= _distinct(apex + hole_radius * unit, 4.0 * PRECISION)
         sides.append((outer[keep], unit[keep]))
     # the crease rulings (first and last of each side) are shared by both sides
     apex_v = vertex(apex) if hole_radius <= 0.0 else None
@@ -525,14 +529,6 @@ def fan_shell(
         if apex_v is not None:
             inner = [apex_v] * n
         else:
-            chord = float(np.min(np.linalg.norm(np.diff(unit, axis=0), axis=1))) * hole_radius
-            if chord <= 3.0 * NEAR:
-                raise ExportError(
-                    f"the relief hole (diameter {2 * hole_radius:.3g}) is too small for "
-                    f"{n - 1} triangles: its arcs between rulings come down to {chord:.2g}, "
-                    f"below what the CAD kernel resolves ({3 * NEAR:g}); fewer divisions or a "
-                    "larger hole (or none) would do"
-                )
             inner = (
                 [crease_inner[0]]
                 + [vertex(apex + hole_radius * u) for u in unit[1:-1]]
