@@ -3,21 +3,25 @@
 The boundary comes from :class:`onefold_cad.geometry.thick_sheet.Slab`: each
 side is ``F(theta, r, s) = A + r u(theta) + s n(theta)`` over the sheet (r
 from the relief hole to the cut edge, s over the thickness), continued past
-each crease half by a flat mitre block and kept on its own side of the
-fold's plane of symmetry y = 0; the -y side is the mirror image of the same
-construction on the mirrored sheet. Every face is ruled (F is linear in r
-and in s), so each is built as the ruled surface between two B-spline curves
-parameterised by theta (:class:`~onefold_cad.geometry.thick_sheet.Patch`):
-its rulings join points of equal theta exactly, and the curves carry the
-interpolation error (refined until their deviation is below a tolerance).
-The mitre's faces past a crease half are planar and each becomes one planar
-face; where the two sides' sections of y = 0 differ (the sheet's edges at a
-crease end are not symmetric about it) the open outline left on y = 0 is
-closed by planar faces.
+each crease half by a flat mitre block, and kept on the inner side of its
+cutting planes (the fold's plane of symmetry y = 0; past each crease half
+also the mitre plane that keeps the two halves' blocks apart); the -y side
+is the mirror image of the same construction on the mirrored sheet. Every
+face is ruled (F and the planes are linear in r and in s), so each is built
+as the ruled surface between two B-spline curves parameterised by theta
+(:class:`~onefold_cad.geometry.thick_sheet.Patch`): its rulings join points
+of equal theta exactly, and the curves carry the interpolation error
+(refined until their deviation is below a tolerance). The sheet's faces past
+a crease half are planar and each becomes one planar face. The outlines
+left open on the cutting planes (where the two sides' sections of y = 0
+differ because the sheet's edges at a crease end are not symmetric about
+it, and where the mitre planes cut the blocks) are closed by planar faces
+on those planes.
 
 No boolean operation is involved: the faces are sewn once (curves that two
-faces share are the same B-spline, so a tight tolerance suffices) and made
-into a solid.
+faces share are the same B-spline, interpolating every point where another
+face ends on them, so a tolerance of 1e-9 of the sheet's size suffices) and
+made into a solid.
 
 Lengths are in the design unit; angles in radians.
 """
@@ -283,9 +287,10 @@ class _Builder:
         return out
 
     # -- faces ---------------------------------------------------------------
-    def ruled(self, p: Patch, rule_cuts: dict[float, list[float]]) -> TopoDS_Face:
-        """The ruled face of patch ``p``; ``rule_cuts`` maps an end angle to the
-        points (as fractions along the ruling) where a neighbour's edge ends."""
+    def ruled(self, p: Patch) -> TopoDS_Face:
+        """The ruled face of patch ``p``: its two curves (split where other
+        faces end on them) and the rulings at both ends (degenerate where the
+        curves meet)."""
         ka, ca = self._curve(p.low, p.side, p.t0, p.t1)
         kb, cb = self._curve(p.high, p.side, p.t0, p.t1)
         sa, sb = ca.Copy(), cb.Copy()
@@ -301,18 +306,16 @@ class _Builder:
         wire = TopoDS_Wire()
         self.b.MakeWire(wire)
         right = gp_Dir2d(1.0, 0.0)
-        up = gp_Dir2d(0.0, 1.0)
         for e, a, z in self._edges_along(ka, ca, p.t0, p.t1):
             self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(0.0, 0.0), right), face, self.tol)
             self.b.Range(e, face, a, z)
             self.b.Add(wire, e)
-        self._ruling(wire, face, surf, p.t1, ca, cb, rule_cuts.get(p.t1, []), reverse=False)
+        self._ruling(wire, face, surf, p.t1, ca, cb, reverse=False)
         for e, a, z in reversed(self._edges_along(kb, cb, p.t0, p.t1)):
             self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(0.0, 1.0), right), face, self.tol)
             self.b.Range(e, face, a, z)
             self.b.Add(wire, e.Reversed())
-        self._ruling(wire, face, surf, p.t0, ca, cb, rule_cuts.get(p.t0, []), reverse=True)
-        _ = up
+        self._ruling(wire, face, surf, p.t0, ca, cb, reverse=True)
         self.b.Add(face, wire)
         return face
 
@@ -324,39 +327,25 @@ class _Builder:
         t: float,
         ca: Geom_BSplineCurve,
         cb: Geom_BSplineCurve,
-        cuts: list[float],
         *,
         reverse: bool,
     ) -> None:
         """The ruling at ``t`` from curve a to curve b (degenerate where they
-        meet), split at the fractions ``cuts``, added to ``wire``."""
+        meet), added to ``wire`` (reversed at the patch's start)."""
         va, vb = self._point(ca, t), self._point(cb, t)
         up = gp_Dir2d(0.0, 1.0)
-        pieces: list[TopoDS_Edge] = []
+        e = TopoDS_Edge()
         if va.IsSame(vb):
-            e = TopoDS_Edge()
             self.b.MakeEdge(e)
             self.b.Degenerated(e, True)
-            self.b.Add(e, va.Oriented(TopAbs_FORWARD))
-            self.b.Add(e, va.Oriented(TopAbs_REVERSED))
-            self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(t, 0.0), up), face, self.tol)
-            self.b.Range(e, face, 0.0, 1.0)
-            pieces.append(e)
         else:
-            iso = surf.UIso(float(t))
-            fr = [0.0, *sorted(c for c in cuts if 0.0 < c < 1.0), 1.0]
-            ends = [va] + [self.verts.at(_pnt_xyz(iso.Value(c))) for c in fr[1:-1]] + [vb]
-            for k in range(len(fr) - 1):
-                e = TopoDS_Edge()
-                self.b.MakeEdge(e, iso, self.tol)
-                self.b.Add(e, ends[k].Oriented(TopAbs_FORWARD))
-                self.b.Add(e, ends[k + 1].Oriented(TopAbs_REVERSED))
-                self.b.Range(e, fr[k], fr[k + 1])
-                self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(t, 0.0), up), face, self.tol)
-                self.b.Range(e, face, fr[k], fr[k + 1])
-                pieces.append(e)
-        for e in reversed(pieces) if reverse else pieces:
-            self.b.Add(wire, e.Reversed() if reverse else e)
+            self.b.MakeEdge(e, surf.UIso(float(t)), self.tol)
+            self.b.Range(e, 0.0, 1.0)
+        self.b.Add(e, va.Oriented(TopAbs_FORWARD))
+        self.b.Add(e, vb.Oriented(TopAbs_REVERSED))
+        self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(t, 0.0), up), face, self.tol)
+        self.b.Range(e, face, 0.0, 1.0)
+        self.b.Add(wire, e.Reversed() if reverse else e)
 
     def _line(self, p: Array, q: Array) -> TopoDS_Edge:
         e = TopoDS_Edge()
@@ -392,10 +381,6 @@ class _Builder:
         if a0.Distance(b0) > self.verts.tol:
             edges.append(TopoDS.Edge(self._line(_pnt_xyz(a0), _pnt_xyz(b0)).Reversed()))
         return self._face_of(edges)
-
-    def polygon(self, corners: Array) -> TopoDS_Face:
-        n = len(corners)
-        return self._face_of([self._line(corners[k], corners[(k + 1) % n]) for k in range(n)])
 
     def _face_of(self, edges: list[TopoDS_Edge]) -> TopoDS_Face:
         mw = BRepBuilderAPI_MakeWire()
@@ -447,7 +432,7 @@ def thick_solid(
     faces: list[TopoDS_Face] = []
     for p in ruled:
         budget.check()
-        faces.append(builder.ruled(p, {}))
+        faces.append(builder.ruled(p))
     for group in planar.values():
         faces.append(builder.planar(group))
     shell = _sew(faces, builder.sew_tol, budget, slab)
