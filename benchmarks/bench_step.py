@@ -4,9 +4,10 @@ Three tables, all timed with :mod:`interleave` (cases run A B C, B C A, ...
 so that load on the shared machine hits them alike; medians with the 25th
 and 75th percentiles in brackets; CPU time of this process unless noted):
 
-1. per shipped exact template with thickness: the STEP solid
-   (:func:`build_solid`, with its validity and volume checks) and the
-   reference-surface shell (:func:`build_shell`), with their face counts;
+1. per shipped template: the reference-surface shell (:func:`build_shell`)
+   and, where the template's default body is the solid, the STEP solid
+   (:func:`build_solid`, with its validity and volume checks), with their
+   face counts;
 2. the paper model's fan shell (Table 1's square, with and without a relief
    hole) at 20, 90, 360, 1000 and 3000 divisions (validity check included);
 3. whole processes, wall and CPU time and peak memory, measured by the OS:
@@ -17,6 +18,7 @@ and 75th percentiles in brackets; CPU time of this process unless noted):
 Asserts nothing about timings. Run from the repository root::
 
     .venv/bin/python benchmarks/bench_step.py [--rounds 9] [--process-rounds 7]
+        [--parts templates shells processes] [--only TEMPLATE ...] [--divisions N ...]
 """
 
 from __future__ import annotations
@@ -41,20 +43,22 @@ from onefold_cad.templates import list_templates, load_template  # noqa: E402
 DIVISIONS = (20, 90, 360, 1000, 3000)
 
 
-def solids(rounds: int) -> None:
-    print("## STEP solid and shell per template (CPU s per build, median [q1, q3])\n")
+def templates(rounds: int, names: list[str] | None) -> None:
+    print("## STEP shell and solid per template (CPU s per build, median [q1, q3])\n")
     cases, faces = {}, {}
     for info in list_templates():
-        design = load_template(info.path)
-        if default_body(design) != "solid":
+        if names and info.name not in names:
             continue
+        design = load_template(info.path)
         folded = build_design(design)
         m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
-        solid = partial(build_solid, folded, m)
-        shell = partial(build_shell, folded, relief_hole=m.relief_hole_diameter)
-        cases[f"{info.name} solid"], cases[f"{info.name} shell"] = solid, shell
-        faces[f"{info.name} solid"] = len(solid().faces())
-        faces[f"{info.name} shell"] = len(shell().faces())
+        cases[f"{info.name} shell"] = partial(
+            build_shell, folded, relief_hole=m.relief_hole_diameter
+        )
+        if default_body(design) == "solid":
+            cases[f"{info.name} solid"] = partial(build_solid, folded, m)
+    for name, build in cases.items():
+        faces[name] = len(build().faces())
     stats = interleave(cases, rounds=rounds, batch_time=0.0)
     print("| template | body | faces | CPU s |")
     print("|---|---|---|---|")
@@ -126,15 +130,20 @@ def processes(rounds: int) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--rounds", type=int, default=9, help="interleaved rounds per case (9)")
+    ap.add_argument(
+        "--rounds", "--repeat", type=int, default=9, help="interleaved rounds per case (9)"
+    )
     ap.add_argument("--process-rounds", type=int, default=7, help="runs of each command (7)")
     ap.add_argument("--divisions", type=int, nargs="*", default=list(DIVISIONS))
-    ap.add_argument("--only", choices=["solids", "shells", "processes"], nargs="*")
+    ap.add_argument("--only", nargs="*", help="template names (table 1 only)")
+    ap.add_argument(
+        "--parts", choices=["templates", "shells", "processes"], nargs="*", help="tables to run"
+    )
     args = ap.parse_args(argv)
-    parts = args.only or ["solids", "shells", "processes"]
+    parts = args.parts or (["templates"] if args.only else ["templates", "shells", "processes"])
     print(f"machine: {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.1f} at start\n")
-    if "solids" in parts:
-        solids(args.rounds)
+    if "templates" in parts:
+        templates(args.rounds, args.only)
     if "shells" in parts:
         shells(args.rounds, tuple(args.divisions))
     if "processes" in parts:
