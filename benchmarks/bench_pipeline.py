@@ -1,15 +1,21 @@
-"""The whole pipeline per shipped template: solve + fold, STEP, DXF, previews.
+"""The whole pipeline per shipped template: solve + fold, flat pattern, each writer.
 
 Run from the repository root:
 
     .venv/bin/python benchmarks/bench_pipeline.py                # print the table
     .venv/bin/python benchmarks/bench_pipeline.py --write-docs   # also update docs/benchmarks.md
 
-Each stage is timed with time.perf_counter (best of ``--repeat`` runs; the
-file-writing stages write into a temporary folder) and shown with its ratio to
-the template's own ``solve + fold`` measured in the same run. A stage whose
-adapter is not installed is reported as missing, and a stage that raises a
-OneFoldError as FAILED with its message, never skipped silently.
+For each template the stages are timed in this process with
+:func:`interleave.interleave` (CPU time, the stages interleaved A B C ... with
+the order rotated every round, medians with the 25th and 75th percentiles).
+The writers are ``onefold build``'s own (:data:`onefold_cad.export.writers.WRITERS`),
+each called on a fresh fold and build context (so a writer pays for what it
+derives: the flat preview its flat pattern, the report the metrics and the
+resting placement) and writing into a temporary folder. The ratio is the median of the
+per-round ratios stage / ``solve + fold`` of the same template. Imports are
+warmed up before timing (whole processes, imports included, are
+``bench_cli.py``'s). A stage that raises a OneFoldError is shown as FAILED
+with its message, never skipped.
 """
 
 from __future__ import annotations
@@ -23,95 +29,86 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from bench_solver import DOCS, best_of, machine_info, replace_block  # noqa: E402
+from docs_block import machine_line, write_block  # noqa: E402
+from interleave import Stats, interleave, paired_ratio  # noqa: E402
 
 from onefold_cad import Design, OneFoldError, build_design  # noqa: E402
+from onefold_cad.export.writers import WRITERS, BuildContext  # noqa: E402
 from onefold_cad.templates import list_templates, load_template  # noqa: E402
 
-Stage = Callable[[Design, Any, Path], Any]
+CORE = "solve + fold"
 
 
-def _step(design: Design, folded: Any, out: Path) -> Any:
-    from onefold_cad.export.step import export_design_step
-
-    return export_design_step(design, out / f"{design.name}.step", folded=folded)
-
-
-def _dxf(design: Design, folded: Any, out: Path) -> Any:
-    from onefold_cad.export.dxf import export_design_dxf
-
-    return export_design_dxf(design, out / f"{design.name}.dxf", folded=folded)
-
-
-def _preview_3d(design: Design, folded: Any, out: Path) -> Any:
-    from onefold_cad.export.preview import render_folded_preview
-
-    return render_folded_preview(folded, out / f"{design.name}.png", title=design.name)
-
-
-def _preview_flat(design: Design, folded: Any, out: Path) -> Any:
-    from onefold_cad.export.dxf import draw_flat_pattern
-    from onefold_cad.export.dxf_preview import render_preview
+def stages(design: Design, out: Path) -> dict[str, Callable[[], Any]]:
+    """Stage name -> a call doing that stage once."""
     from onefold_cad.export.flat_pattern import flat_pattern
 
-    doc = draw_flat_pattern(flat_pattern(design, folded))
-    return render_preview(doc, out / f"{design.name}-flat.png")
+    folded = build_design(design)
+
+    def writer(name: str) -> Callable[[], Any]:
+        w = WRITERS[name]
+
+        def call() -> Any:
+            # a fresh fold: what FoldedSheet derives on first use (metrics, resting
+            # placement, the exact model's boundary) is paid by the stage using it
+            ctx = BuildContext(design, build_design(design))
+            ctx.files = [out / f"{design.name}{WRITERS[n].suffix}" for n in WRITERS]
+            return w.write(ctx, out / f"{design.name}{w.suffix}")
+
+        return call
+
+    return {
+        CORE: lambda: build_design(design),
+        "flat pattern": lambda: flat_pattern(design, folded),
+        **{name: writer(name) for name in WRITERS},
+    }
 
 
-STAGES: dict[str, Stage] = {
-    "STEP": _step,
-    "DXF": _dxf,
-    "preview 3D": _preview_3d,
-    "preview flat": _preview_flat,
-}
-
-
-def measure(design: Design, repeat: int, out: Path) -> dict[str, float | str]:
-    """Seconds per stage (or the reason it could not run), for one design."""
-    t_core, folded = best_of(lambda: build_design(design), repeat)
-    res: dict[str, float | str] = {"solve + fold": t_core}
-    for name, stage in STAGES.items():
+def measure(design: Design, rounds: int, out: Path) -> dict[str, Stats | str]:
+    """Stats per stage, or why a stage could not run."""
+    cases = stages(design, out)
+    res: dict[str, Stats | str] = {}
+    for name, fn in list(cases.items()):
         try:
-            t, _ = best_of(lambda s=stage: s(design, folded, out), repeat)
-        except (ImportError, AttributeError) as exc:
-            res[name] = f"missing ({exc.__class__.__name__}: {exc})"
-            continue
-        except OneFoldError as exc:  # recorded, so a failing adapter shows in the table
+            fn()
+        except OneFoldError as exc:
             res[name] = f"FAILED: {str(exc).replace('|', '/')}"
-            continue
-        res[name] = t
+            del cases[name]
+    timed = interleave(cases, rounds=rounds, batch_time=0.05)
+    for name in cases:
+        res[name] = timed[name]
+        if name != CORE:
+            res[f"{name} ratio"] = paired_ratio(timed, name, CORE)
     return res
 
 
-def render(results: dict[str, dict[str, float | str]], repeat: int) -> str:
-    info = machine_info()
-    cols = ["solve + fold", *STAGES]
+def render(results: dict[str, dict[str, Stats | str]], rounds: int) -> str:
+    cols = [CORE, "flat pattern", *WRITERS]
     lines = [
-        f"Machine: {info['cpu']}, {info['cores']} cores, {info['os']}; Python "
-        f"{info['python']}, numpy {info['numpy']}. Best of {repeat} runs. Each cell: "
-        "seconds (ratio to the same template's solve + fold).",
+        f"{machine_line()} CPU time in this process, {rounds} interleaved rounds per "
+        "template. Each cell: median [25th, 75th percentile] seconds, and the median ratio "
+        "to the template's solve + fold.",
         "",
-        "| template | " + " | ".join(cols) + " | total |",
-        "|---" * (len(cols) + 2) + "|",
+        "| template | " + " | ".join(cols) + " |",
+        "|---" * (len(cols) + 1) + "|",
     ]
     for name, res in results.items():
-        base = res["solve + fold"]
-        assert isinstance(base, float)
-        cells, total = [], 0.0
+        cells = []
         for c in cols:
-            v = res[c]
-            if isinstance(v, float):
-                total += v
-                cells.append(f"{v:.3g} ({v / base:.3g}x)")
+            v = res.get(c, "missing")
+            if isinstance(v, Stats):
+                ratio = res.get(f"{c} ratio")
+                extra = f" ({ratio.median:.3g}x)" if isinstance(ratio, Stats) else ""
+                cells.append(v.fmt() + extra)
             else:
-                cells.append(v)
-        lines.append(f"| {name} | " + " | ".join(cells) + f" | {total:.3g} |")
+                cells.append(str(v))
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--repeat", type=int, default=3, help="best of N runs (default 3)")
+    ap.add_argument("--rounds", type=int, default=5, help="interleaved rounds (default 5)")
     ap.add_argument("--only", nargs="*", help="template names (default: all shipped)")
     ap.add_argument("--write-docs", action="store_true", help="update docs/benchmarks.md")
     args = ap.parse_args(argv)
@@ -119,15 +116,15 @@ def main(argv: list[str] | None = None) -> int:
     results = {}
     with tempfile.TemporaryDirectory() as tmp:
         for info in infos:
-            results[info.name] = measure(load_template(info.path), args.repeat, Path(tmp))
+            results[info.name] = measure(load_template(info.path), args.rounds, Path(tmp))
             print(f"{info.name}: done", file=sys.stderr)
-    text = render(results, args.repeat)
+    text = render(results, args.rounds)
     print(text)
     if args.write_docs:
         cmd = "python benchmarks/bench_pipeline.py --write-docs" + (
-            f" --repeat {args.repeat}" if args.repeat != 3 else ""
+            f" --rounds {args.rounds}" if args.rounds != 5 else ""
         )
-        replace_block(DOCS, "bench_pipeline", text, cmd)
+        write_block("bench_pipeline", text, cmd)
     return 0
 
 

@@ -79,28 +79,34 @@ def bend_example_block() -> str:
     lines = [
         f"Template `{name}` (`onefold build {name}`): thickness t = {m.thickness:g} {u}, "
         f"inside bend radius r = {m.bend_radius:g} {u}, K-factor K = {m.k_factor:g}, "
-        f"model {design.model.value}.",
+        f"reference surface {m.sheet_surface.value}, model {design.model.value}.",
         "",
         "| crease half | length | fold angle psi | bend | BA = psi (r + K t) | "
-        "OSSB = (r + t) tan(psi/2) | BD = 2 OSSB - BA |",
-        "|---|---|---|---|---|---|---|",
+        "OSSB = (r + t) tan(psi/2) | BD = 2 SB - BA | SB = (r + s t) tan(psi/2) | "
+        "reference in the bend | shift = SB - BA/2 |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for c in folded.crease:
-        bv = bend_values(c.fold_angle_deg, m)
+        bv = bend_values(c.fold_angle_deg, m, c.bend)
         lines.append(
             f"| {c.name} | {c.length:.4g} {u} | {bv.angle_deg:.4f} deg | {c.bend} | "
-            f"{bv.allowance:.4f} {u} | {bv.outside_setback:.4f} {u} | {bv.deduction:.4f} {u} |"
+            f"{bv.allowance:.4f} {u} | {bv.outside_setback:.4f} {u} | {bv.deduction:.4f} {u} | "
+            f"{bv.setback:.4f} {u} | {bv.reference.value} (s = {bv.s:g}) | {bv.shift:.4f} {u} |"
         )
     c = folded.crease[0]
+    bv = bend_values(c.fold_angle_deg, m, c.bend)
     psi = math.radians(c.fold_angle_deg)
     lines += [
         "",
         f"Step by step for `{c.name}`: psi = {c.fold_angle_deg:.4f} deg = {psi:.6f} rad; "
         f"BA = {psi:.6f} x ({m.bend_radius:g} + {m.k_factor:g} x {m.thickness:g}) = "
-        f"{psi * (m.bend_radius + m.k_factor * m.thickness):.4f} {u}; "
-        f"OSSB = ({m.bend_radius:g} + {m.thickness:g}) x tan({c.fold_angle_deg / 2:.4f} deg) = "
-        f"{(m.bend_radius + m.thickness) * math.tan(psi / 2):.4f} {u}; "
-        f"BD = 2 OSSB - BA = {bend_values(c.fold_angle_deg, m).deduction:.4f} {u}. "
+        f"{psi * (m.bend_radius + m.k_factor * m.thickness):.4f} {u}; the {c.bend} bend puts the "
+        f"{m.sheet_surface.value} reference surface s = {bv.s:g} thicknesses from the inside "
+        f"face, so SB = ({m.bend_radius:g} + {bv.s:g} x {m.thickness:g}) x "
+        f"tan({c.fold_angle_deg / 2:.4f} deg) = "
+        f"{(m.bend_radius + bv.s * m.thickness) * math.tan(psi / 2):.4f} {u}; "
+        f"BD = 2 SB - BA = {bv.deduction:.4f} {u}; each side of the blank moves "
+        f"SB - BA/2 = {bv.shift:.4f} {u} towards the fold line. "
         f"Relief hole at the apex: {m.relief_hole_diameter:.4g} {u} diameter.",
         "",
     ]
@@ -146,33 +152,20 @@ def _sheet_inputs(sheet: Any) -> str:
 
 
 # -- CLI -------------------------------------------------------------------------------
-CLI_ENV = {"COLUMNS": "100", "NO_COLOR": "1", "TERM": "dumb"}
-
-
 def cli_help(args: list[str]) -> str:
-    """The output of ``onefold ARGS --help`` at 100 columns, trailing blanks removed."""
-    from typer.testing import CliRunner
+    """The output of ``onefold ARGS --help`` (100 columns), trailing blanks removed."""
+    from onefold_cad.cli import help_text
 
-    from onefold_cad.cli import app
-
-    res = CliRunner().invoke(app, [*args, "--help"], env=CLI_ENV)
-    if res.exit_code != 0:
-        raise RuntimeError(f"onefold {' '.join(args)} --help failed: {res.output}")
-    lines = [ln.rstrip() for ln in res.output.splitlines()]
-    while lines and not lines[0]:
-        lines.pop(0)
-    return "\n".join(lines).rstrip() + "\n"
+    lines = [ln.rstrip() for ln in help_text(args[0] if args else "").splitlines()]
+    return "\n".join(lines).strip("\n") + "\n"
 
 
 def cli_block() -> str:
     """The CLI reference: ``onefold --help`` and each command's ``--help``."""
-    import typer.main
+    from onefold_cad.cli import COMMANDS
 
-    from onefold_cad.cli import app
-
-    names = sorted(getattr(typer.main.get_command(app), "commands", {}))
     out = ["### `onefold`", "", "```text", cli_help([]).rstrip(), "```", ""]
-    for name in names:
+    for name in sorted(COMMANDS):
         out += [f"### `onefold {name}`", "", "```text", cli_help([name]).rstrip(), "```", ""]
     return "\n".join(out)
 

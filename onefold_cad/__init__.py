@@ -1,51 +1,85 @@
 """onefold_cad: the One-Fold curved-origami construction as fabrication files.
 
-The core (:mod:`onefold_cad.geometry`) is pure numpy/scipy; the adapters in
+The core (:mod:`onefold_cad.geometry`) is pure numpy; the adapters in
 :mod:`onefold_cad.export` turn its results into STEP (build123d), DXF (ezdxf),
 previews and JSON reports.
+
+The public names below are imported on first use (PEP 562), so importing a
+submodule such as :mod:`onefold_cad.cli` does not load the geometry core
+until a command needs it (``onefold --help`` starts in a few milliseconds).
 """
 
-from onefold_cad.design import Design, build_design
-from onefold_cad.errors import (
-    ExportError,
-    FabricationError,
-    InvalidParameterError,
-    InvalidSheetError,
-    NoSolutionError,
-    OneFoldError,
-)
-from onefold_cad.geometry.folding import CreaseHalf, Developability, FoldedSheet, fold
-from onefold_cad.geometry.material import BendValues, Material, SheetSurface, Units, bend_values
-from onefold_cad.geometry.params import FrameCurve, Model
-from onefold_cad.geometry.placement import RestingPlacement
-from onefold_cad.geometry.sheet import Placement2D, Sheet
-from onefold_cad.geometry.solver import Solution, solve
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "BendValues",
-    "CreaseHalf",
-    "Design",
-    "Developability",
-    "ExportError",
-    "FabricationError",
-    "FoldedSheet",
-    "FrameCurve",
-    "InvalidParameterError",
-    "InvalidSheetError",
-    "Material",
-    "Model",
-    "NoSolutionError",
-    "OneFoldError",
-    "Placement2D",
-    "RestingPlacement",
-    "Sheet",
-    "SheetSurface",
-    "Solution",
-    "Units",
-    "bend_values",
-    "build_design",
-    "fold",
-    "solve",
-]
+#: public name -> the module that defines it
+_EXPORTS: dict[str, str] = {
+    "Design": "onefold_cad.design",
+    "build_design": "onefold_cad.design",
+    "ExportError": "onefold_cad.errors",
+    "FabricationError": "onefold_cad.errors",
+    "InvalidParameterError": "onefold_cad.errors",
+    "InvalidSheetError": "onefold_cad.errors",
+    "NoSolutionError": "onefold_cad.errors",
+    "OneFoldError": "onefold_cad.errors",
+    "CreaseHalf": "onefold_cad.geometry.folding",
+    "Developability": "onefold_cad.geometry.folding",
+    "FoldedSheet": "onefold_cad.geometry.folding",
+    "fold": "onefold_cad.geometry.folding",
+    "BendValues": "onefold_cad.geometry.material",
+    "Material": "onefold_cad.geometry.material",
+    "SheetSurface": "onefold_cad.geometry.material",
+    "Units": "onefold_cad.geometry.material",
+    "bend_values": "onefold_cad.geometry.material",
+    "FrameCurve": "onefold_cad.geometry.params",
+    "Model": "onefold_cad.geometry.params",
+    "RestingPlacement": "onefold_cad.geometry.placement",
+    "Placement2D": "onefold_cad.geometry.sheet",
+    "Sheet": "onefold_cad.geometry.sheet",
+    "Solution": "onefold_cad.geometry.solver",
+    "solve": "onefold_cad.geometry.solver",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'onefold_cad' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_EXPORTS])
+
+
+if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
+    # ruff: noqa: F401
+    from onefold_cad.design import Design, build_design
+    from onefold_cad.errors import (
+        ExportError,
+        FabricationError,
+        InvalidParameterError,
+        InvalidSheetError,
+        NoSolutionError,
+        OneFoldError,
+    )
+    from onefold_cad.geometry.folding import CreaseHalf, Developability, FoldedSheet, fold
+    from onefold_cad.geometry.material import (
+        BendValues,
+        Material,
+        SheetSurface,
+        Units,
+        bend_values,
+    )
+    from onefold_cad.geometry.params import FrameCurve, Model
+    from onefold_cad.geometry.placement import RestingPlacement
+    from onefold_cad.geometry.sheet import Placement2D, Sheet
+    from onefold_cad.geometry.solver import Solution, solve

@@ -21,14 +21,20 @@ A template names every input of a :class:`~onefold_cad.design.Design`::
     y_minus = 300.0
 
     [material]                      # all optional
-    name = "paper"
-    thickness = 0.1
+    name = "office paper, 80 g/m^2" # MATERIAL, GAUGE (the gauge is dropped when
+                                    # a flag changes t or r; see docs/cli.md)
+    thickness = 0.1                 # design unit, like every length here
+    density = 800.0                 # kg/m^3, whatever the design unit
 
 ``[sheet]`` instead holds ``polygon = [[x, y], ...]`` (fold frame: fold line
 on the x axis, H at the origin) or a ``[sheet.rectangle]`` table with
 ``width``, ``height`` and ``apex_fraction``. Unknown keys and values of the
 wrong type raise :class:`~onefold_cad.errors.InvalidParameterError` naming
-the full key (``frame.alpah``). The shipped templates live in the repository's
+the full key (``frame.alpah``). Every length (frame radius and h_c, the sheet,
+thickness, bend radius, kerf, relief hole) is in the template's ``units``;
+the density is in kg/m^3 (a material property, the same whatever the length
+unit: 7850 for steel), and the mass is reported in kg for mm designs and in
+lb for inch and foot designs. The shipped templates live in the repository's
 ``templates/`` folder, installed to ``<prefix>/share/onefold_cad/templates``.
 """
 
@@ -40,13 +46,12 @@ import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.params import FrameCurve
-from onefold_cad.geometry.sheet import Sheet
+
+if TYPE_CHECKING:  # imported where used: listing templates needs no numpy
+    from onefold_cad.design import Design
 
 __all__ = [
     "DEFAULT_TEMPLATE",
@@ -58,6 +63,7 @@ __all__ = [
     "load_template",
     "read_template",
     "template_dirs",
+    "template_units",
 ]
 
 #: The template `make demo` builds and that `onefold solve` starts from without one.
@@ -166,7 +172,24 @@ def read_template(path: str | Path) -> dict[str, Any]:
 def load_template(path: str | Path) -> Design:
     """Read and validate the template at ``path`` (a file or a shipped name)."""
     p = find_template(path)
-    return design_from_data(read_template(p))
+    data = read_template(p)
+    template_units(data, p)
+    return design_from_data(data)
+
+
+def template_units(data: Mapping[str, Any], path: str | Path) -> str:
+    """The ``units`` a template file states (a template must state them).
+
+    Raises:
+        InvalidParameterError: ``units`` is missing (named with the file).
+    """
+    units = data.get("units")
+    if units is None:
+        raise InvalidParameterError(
+            f"{path}: units", 'missing: a template states its units, e.g. units = "mm" '
+            "(mm, in or ft)"
+        )  # fmt: skip
+    return str(units)
 
 
 # -- validating ------------------------------------------------------------------
@@ -248,6 +271,11 @@ def design_from_data(
         InvalidParameterError: an unknown key, a value of the wrong type or
             out of range; the message names the full key.
     """
+    from onefold_cad.design import Design
+    from onefold_cad.geometry.material import Material
+    from onefold_cad.geometry.params import FrameCurve
+    from onefold_cad.geometry.sheet import Sheet
+
     names = dict(key_names or {})
 
     def fail(key: str, exc: InvalidParameterError) -> InvalidParameterError:

@@ -3,21 +3,81 @@
     .venv/bin/python scripts/readme_images.py
 
 writes docs/images/readme-folded.png (the default template folded, standing on
-the ground) and docs/images/readme-flat.png (its flat pattern, from its DXF).
+the ground, with its legend) and docs/images/readme-flat.png (its flat
+pattern), both :data:`WIDTH_PX` pixels wide.
+
+The flat picture is the DXF as ``onefold build`` writes it, drawn by the flat
+preview's renderer, with its notes set beside the sheet instead of under it:
+the notes' long lines would otherwise set the picture's width and shrink the
+sheet and every letter (a 3 x 7 m sheet with one-line notes is unreadable
+below about 1500 px). The notes are the flat pattern's own lines
+(:attr:`FlatPattern.notes`, the DXF's NOTES), wrapped.
 """
 
 from __future__ import annotations
 
 import tempfile
+import textwrap
 from pathlib import Path
 
 from onefold_cad import build_design
-from onefold_cad.export.dxf import export_design_dxf
+from onefold_cad.export.dxf import draw_flat_pattern
 from onefold_cad.export.dxf_preview import render_preview
+from onefold_cad.export.flat_pattern import flat_pattern
 from onefold_cad.export.preview import render_folded_preview
 from onefold_cad.templates import DEFAULT_TEMPLATE, load_template
 
 IMAGES = Path(__file__).resolve().parent.parent / "docs" / "images"
+#: Width of both pictures (pixels): readable on a README page.
+WIDTH_PX = 1000
+#: The flat picture: height (px), the drawing's share of the width, the
+#: notes' font size (pt at 100 dpi: 11 pt is 15 px, 12 px when shown 800 px wide).
+FLAT_HEIGHT_PX = 1000
+DRAWING_SHARE = 0.4
+NOTES_PT = 11
+NOTES_WRAP = 62
+
+
+def flat_picture(design, folded, path: Path) -> Path:
+    """The flat pattern's DXF drawing (without its notes block) beside its
+    notes, wrapped, at a size that reads on a README page."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.image as mpimg
+    import matplotlib.pyplot as plt
+
+    pattern = flat_pattern(design, folded)
+    doc = draw_flat_pattern(pattern)
+    labels = {half.label for half in pattern.halves}  # the fold labels stay on the sheet
+    msp = doc.modelspace()
+    for text in msp.query('TEXT[layer=="NOTES"]'):
+        if text.dxf.text not in labels:
+            msp.delete_entity(text)
+    dpi = 100
+    with tempfile.TemporaryDirectory() as tmp:
+        drawing = render_preview(
+            doc, Path(tmp) / "drawing.png", dpi=dpi, width_px=int(WIDTH_PX * DRAWING_SHARE)
+        )
+        image = mpimg.imread(drawing)
+    fig = plt.figure(figsize=(WIDTH_PX / dpi, FLAT_HEIGHT_PX / dpi), dpi=dpi)
+    try:
+        left = fig.add_axes((0.0, 0.0, DRAWING_SHARE, 1.0))
+        left.imshow(image)
+        left.set_anchor("N")
+        left.axis("off")
+        right = fig.add_axes((DRAWING_SHARE + 0.02, 0.0, 0.98 - DRAWING_SHARE, 1.0))
+        right.axis("off")
+        lines = [
+            textwrap.fill(line, NOTES_WRAP, subsequent_indent="    ", break_on_hyphens=False)
+            for line in pattern.notes
+        ]
+        right.text(0.0, 0.985, "\n".join(lines), va="top", ha="left", fontsize=NOTES_PT,
+                   linespacing=1.35, family="DejaVu Sans")  # fmt: skip
+        fig.savefig(path, dpi=dpi, format="png")
+    finally:
+        plt.close(fig)
+    return path
 
 
 def main() -> None:
@@ -29,11 +89,9 @@ def main() -> None:
         IMAGES / "readme-folded.png",
         title=f"{design.name} (folded, resting on the ground)",
         units=design.units.value,
-        size_px=(800, 560),
+        size_px=(WIDTH_PX, 760),
     )
-    with tempfile.TemporaryDirectory() as tmp:
-        dxf = export_design_dxf(design, Path(tmp) / f"{design.name}.dxf", folded=folded)
-        render_preview(dxf, IMAGES / "readme-flat.png", dpi=60)
+    flat_picture(design, folded, IMAGES / "readme-flat.png")
     print(f"wrote {IMAGES / 'readme-folded.png'} and {IMAGES / 'readme-flat.png'}")
 
 

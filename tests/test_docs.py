@@ -126,6 +126,30 @@ def test_pdoc_builds_the_api_reference(reference, tmp_path):
     assert "angle_condition_error_deg" in solver  # the Solution docstring made it in
 
 
+FILES = {  # what `onefold build` writes, by --formats name
+    "step": ".step", "dxf": ".dxf", "cut": "-cut.dxf", "bends": "-bends.csv", "fold": ".fold",
+    "glb": ".glb", "json": ".json", "png": "-3d.png", "svg": "-flat.svg",
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("page", [DOCS.parent / "README.md", DOCS / "cli.md"], ids=str)
+def test_the_files_build_writes_are_all_listed_with_their_format(page):
+    from onefold_cad.export.writers import WRITERS
+
+    assert {n: w.suffix for n, w in WRITERS.items()} == FILES
+    rows = [ln for ln in page.read_text().splitlines() if ln.startswith("| `")]
+    for name, suffix in FILES.items():
+        assert any(f"`NAME{suffix}`" in r and f"`{name}`" in r for r in rows), (name, suffix)
+
+
+@pytest.mark.parametrize("name", ["readme-folded.png", "readme-flat.png"])
+def test_readme_pictures_are_at_least_800_px_wide(name):
+    from PIL import Image
+
+    with Image.open(DOCS / "images" / name) as img:
+        assert img.width >= 800
+
+
 def test_readme_python_examples_run(tmp_path):
     """The README's Python blocks, run in order as one script, write what they say."""
     readme = (DOCS.parent / "README.md").read_text()

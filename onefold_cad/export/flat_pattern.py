@@ -1,32 +1,29 @@
 """The flat pattern of a design: the 2D geometry a cutting table needs.
 
-Everything here is plain numpy (plus :func:`ezdxf.math.offset_vertices_2d`
-for the kerf's mitred offset); :mod:`onefold_cad.export.dxf` only draws it.
-Lengths are in the design's unit, angles in degrees, points in the sheet's
-own frame (for a rectangle: a corner at the origin, sides on the axes).
+Everything here is plain numpy (ezdxf's mitred offset is imported inside
+:func:`flat_pattern` only when a kerf is given); :mod:`onefold_cad.export.dxf`
+and :mod:`onefold_cad.export.cut_dxf` only draw it. Lengths are in the design's
+unit, angles in degrees, points in the sheet's own frame (for a rectangle: a
+corner at the origin, sides on the axes).
 
-Thickness compensation (t > 0). The designed surface has a sharp crease; the
-real sheet bends with inside radius r. For a bend of angle psi the material
-on each side of the fold line moves towards it by BD/2, measured
-perpendicular to the fold line (BD = 2 OSSB - BA, the bend deduction of
-:func:`onefold_cad.bend_values`), so that the flanges' mold lines of the
-formed part meet where the designed crease is. The fold line has two halves
-with their own angles psi+ and psi-. One rigid move per side keeps every
-straight edge straight, so both sides move by the **mean** deduction:
-``shift = (BD+ + BD-) / 4`` per side. The residual, the largest difference
-between the deduction applied across a half and that half's own BD, is
-``|BD+ - BD-| / 2`` (0 for symmetric designs); it is reported in
-:attr:`FlatPattern.residual` and in the notes. Inside the bend zone (within
-BA/2 of each half) the outline is bridged by a straight segment from the
-upper side's edge at +BA/2 to the lower side's edge at -BA/2; the fold half
-ends at that bridge. Every sheet corner off the fold line must lie farther
-than BD/2 + BA/2 from it (else 'thickness' is rejected). With t = 0 nothing is
-compensated (sharp crease), whatever the bend radius.
-
-OSSB = (r + t) tan(psi/2) is the outside set-back, so the compensation makes
-the outside mold lines meet on the designed crease; for a MID or INSIDE
-reference surface the set-back of that surface, (r + s t) tan(psi/2) with
-s = 1/2 or 0 (by bend direction), would be the refinement.
+Thickness compensation (t > 0, ``compensation='sharp'``). The designed surface
+has a sharp crease; the real sheet bends with inside radius r. The bend model
+(:mod:`onefold_cad.geometry.bend`, one source for every writer) gives each
+crease half its shift SB - BA/2: each side of the blank moves that far towards
+the fold line, perpendicular to it, so that the flat flanges land where the
+design puts them. The fold line has two halves with their own angles; one
+rigid move per side keeps every straight edge straight, so both sides move by
+the **mean** of the two shifts (:func:`~onefold_cad.geometry.bend.blank_move`);
+the blank's width error across each half, 2 (own shift - mean), is recorded
+(:attr:`FlatPattern.move`) and written in the notes (0 for symmetric designs).
+Inside each half's bend zone (within BA/2 of the fold line) the outline is
+bridged by a straight segment from the upper side's edge at +BA/2 to the lower
+side's edge at -BA/2 (from the moved crease end itself where the mean shift
+puts it outside that half's zone); the fold half ends at that bridge. Past the limits of
+:func:`~onefold_cad.geometry.bend.check_bends` the pattern is refused with
+:class:`~onefold_cad.errors.FabricationError`; ``compensation='none'`` then
+gives the uncompensated blank (the designed outline) and says so in the notes.
+With t = 0 nothing is compensated (a zero-thickness surface creased sharp).
 
 Kerf: the cut contours are offset by kerf/2, the outline outwards with
 mitred corners (each edge moves exactly kerf/2), the relief hole inwards.
@@ -35,19 +32,35 @@ mitred corners (each edge moves exactly kerf/2), the relief hole inwards.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
-from ezdxf.math import offset_vertices_2d
 from numpy.typing import NDArray
 
-from onefold_cad.design import Design, relief_hole_diameter
-from onefold_cad.errors import InvalidParameterError, InvalidSheetError
+from onefold_cad.design import Design, design_mass, relief_hole_diameter, relief_hole_problem
+from onefold_cad.errors import FabricationError, InvalidParameterError, InvalidSheetError
+from onefold_cad.geometry.bend import (
+    BendProblem,
+    BendValues,
+    BlankMove,
+    Compensation,
+    bend_error,
+    bend_model,
+    blank_move,
+    check_bends,
+    crease_bends,
+)
+from onefold_cad.geometry.fan_folds import ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import Units, bend_values
-from onefold_cad.geometry.sheet import _check_simple, boundary_distance
+from onefold_cad.geometry.material import Material, Units
+from onefold_cad.geometry.sheet import boundary_distance
 
-__all__ = ["FoldHalf", "FlatPattern", "flat_pattern", "polygon_area", "polygon_perimeter"]
+try:  # the sheet's own simplicity check (public under this name once the sheet module has it)
+    from onefold_cad.geometry.sheet import check_simple  # type: ignore[attr-defined]
+except ImportError:
+    from onefold_cad.geometry.sheet import _check_simple as check_simple
+
+__all__ = ["FoldHalf", "FoldRuling", "FlatPattern", "flat_pattern", "polygon_area"]
 
 Array = NDArray[np.float64]
 
@@ -62,10 +75,11 @@ class FoldHalf:
         end: ``(2,)`` where the half meets the outline (sheet frame).
         angle_deg: fold angle (deg), 0 = flat.
         bend: 'UP' or 'DOWN', seen from the drawing's (top, +z) side.
-        allowance: bend allowance BA (length); 0 when t = 0.
-        deduction: bend deduction BD (length); 0 when t = 0.
         zone: ``(k, 2, 2)`` bend-zone limit lines at +-BA/2 (k = 2, or 0 when
-            t = 0 or BA = 0), each ``(start, end)`` in the sheet frame.
+            nothing is compensated or BA = 0), each ``(start, end)`` in the
+            sheet frame.
+        values: the bend model of this half (reference surface, SB, BA, BD,
+            shift); all 0 when t = 0.
     """
 
     name: str
@@ -73,9 +87,8 @@ class FoldHalf:
     end: Array
     angle_deg: float
     bend: str
-    allowance: float
-    deduction: float
     zone: Array
+    values: BendValues
 
     @property
     def layer(self) -> str:
@@ -87,6 +100,47 @@ class FoldHalf:
         """Direction and angle, e.g. 'DOWN 125.23 deg'."""
         return f"{self.bend} {self.angle_deg:.2f} deg"
 
+    @property
+    def allowance(self) -> float:
+        """Bend allowance BA (length)."""
+        return self.values.allowance
+
+    @property
+    def deduction(self) -> float:
+        """Bend deduction BD = 2 SB - BA (length)."""
+        return self.values.deduction
+
+
+@dataclass(frozen=True)
+class FoldRuling:
+    """A ruling of the paper model's fan along which two planar triangles meet
+    at an angle: a fold like the crease halves, drawn and listed like them
+    (:func:`~onefold_cad.geometry.fan_folds.ruling_folds`). The blank does
+    not compensate it: its bend model's width error is 2 x shift.
+
+    Attributes:
+        name: '+y ruling k' or '-y ruling k' (k-th counter-clockwise from the
+            +x or the -x crease half).
+        start: ``(2,)`` where the line starts on the blank (sheet frame):
+            outside the relief hole and the crease's bend zones.
+        end: ``(2,)`` where it meets the outline (sheet frame).
+        angle_deg: its fold angle from flat (deg).
+        bend: 'UP' or 'DOWN', seen from the drawing's (top, +z) side.
+        values: its bend model (SB, BA, BD, shift).
+    """
+
+    name: str
+    start: Array
+    end: Array
+    angle_deg: float
+    bend: str
+    values: BendValues
+
+    @property
+    def layer(self) -> str:
+        """'BEND_UP' or 'BEND_DOWN'."""
+        return f"BEND_{self.bend}"
+
 
 @dataclass(frozen=True)
 class FlatPattern:
@@ -95,7 +149,8 @@ class FlatPattern:
     Attributes:
         name: the design's name.
         units: the design's length unit.
-        outline: ``(n, 2)`` the part's contour, CCW, thickness-compensated.
+        outline: ``(n, 2)`` the part's contour, CCW, thickness-compensated
+            (the designed outline when nothing is compensated).
         cut_outline: ``(n, 2)`` the cutting path: ``outline`` offset outwards
             by kerf/2 (equal to ``outline`` when kerf = 0).
         apex: ``(2,)`` H, the apex point (centre of the relief hole).
@@ -103,11 +158,17 @@ class FlatPattern:
         cut_hole_diameter: the hole's cutting path diameter (hole - kerf).
         halves: the fold halves ('plus_x', 'minus_x').
         rulings: ``(m, 2, 2)`` ruling segments for etching (off the fold
-            line, outside the bend zones and the hole).
+            line, outside the bend zones and the hole): every ruling of the
+            exact model (the sheet bends smoothly along them) and the paper
+            model's rulings that are no folds (inside one planar triangle).
+        fold_rulings: the paper model's ruling folds (empty for the exact
+            model), counter-clockwise from the +x crease half.
         fold_direction: ``(2,)`` unit vector of the fold line (H -> +x half).
-        shift: how far each side moved towards the fold line (length).
-        residual: ``|BD+ - BD-| / 2``, the compensation's largest error
-            across a fold half (length).
+        move: what the blank does about the bends (compensation, the shift
+            per side, the width error across each half).
+        problems: the limits of the sharp-crease compensation that the design
+            passes (empty unless ``compensation='none'`` was asked for).
+        material: the design's material.
         kerf: the kerf used (length).
         thickness: sheet thickness (length).
         notes: the text lines for the NOTES layer.
@@ -122,12 +183,29 @@ class FlatPattern:
     cut_hole_diameter: float
     halves: tuple[FoldHalf, FoldHalf]
     rulings: Array
+    fold_rulings: tuple[FoldRuling, ...]
     fold_direction: Array
-    shift: float
-    residual: float
+    move: BlankMove
+    problems: tuple[BendProblem, ...]
+    material: Material
     kerf: float
     thickness: float
     notes: tuple[str, ...]
+
+    @property
+    def compensation(self) -> str:
+        """'sharp' or 'none': how the blank accounts for the bends."""
+        return self.move.compensation.value
+
+    @property
+    def shift(self) -> float:
+        """How far each side moved towards the fold line (length)."""
+        return self.move.shift
+
+    @property
+    def residual(self) -> float:
+        """The compensation's largest error per side, max |own shift - shift| (length)."""
+        return self.move.residual
 
     @property
     def area(self) -> float:
@@ -152,40 +230,31 @@ def polygon_area(p: Array) -> float:
     return 0.5 * float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
 
 
-def polygon_perimeter(p: Array) -> float:
-    """Perimeter of a closed polygon ``(n, 2)``."""
-    return float(np.sum(np.hypot(*(np.roll(p, -1, axis=0) - p).T)))
+def _at_height(a: Array, b: Array, c: float) -> Array:
+    """The point of the line through ``a`` and ``b`` at height y = ``c`` (their
+    midpoint when the line is level)."""
+    if a[1] == b[1]:
+        return (a + b) / 2.0
+    s = (c - a[1]) / (b[1] - a[1])
+    return np.array([a[0] + s * (b[0] - a[0]), c])
 
 
 def _clip_chain(chain: Array, c_start: float, c_end: float) -> Array:
-    """Keep the part of a side's chain (y > 0 side) beyond the bend zones.
-
-    ``chain`` runs from one fold-line end to the other (both ends below the
-    limits); returns ``[crossing of y = c_start, vertices..., crossing of y = c_end]``.
-    """
+    """One side's chain (y > 0 side, moved towards the fold line), from one
+    fold-line end to the other, cut at the bend zones: ``[start, inner
+    vertices..., end]``, where start is the first edge's crossing of
+    y = ``c_start`` (or the moved crease end itself when it already lies outside
+    the zone) and end likewise with ``c_end``. :func:`check_bends` has made
+    sure that the inner vertices clear the zones."""
     y = chain[:, 1]
-    i = int(np.argmax(y > c_start))
-    j = len(y) - 1 - int(np.argmax(y[::-1] > c_end))
-    top = max(c_start, c_end)
-    if not (y[i] > c_start and y[j] > c_end) or i > j or np.any(y[i : j + 1] <= top):
-        raise InvalidParameterError(
-            "thickness",
-            "the thickness-compensated outline is invalid: a sheet corner lies within a bend "
-            f"zone (closer than BD/2 + BA/2 = {max(c_start, c_end) + abs(y[0]):.6g} to the fold "
-            "line); reduce thickness or bend_radius, or use a wider sheet",
-        )
-
-    def cross(a: Array, b: Array, c: float) -> Array:
-        s = (c - a[1]) / (b[1] - a[1])
-        return np.array([a[0] + s * (b[0] - a[0]), c])
-
-    return np.vstack(
-        [
-            cross(chain[i - 1], chain[i], c_start),
-            chain[i : j + 1],
-            cross(chain[j + 1], chain[j], c_end),
-        ]
-    )
+    if not (c_start < y[1] and c_end < y[-2]):
+        raise FabricationError(
+            "bend_radius", "the compensated outline is invalid: a corner next to a crease end "
+            "lies in its bend zone"
+        )  # fmt: skip
+    first = chain[0] if y[0] >= c_start else _at_height(chain[0], chain[1], c_start)
+    last = chain[-1] if y[-1] >= c_end else _at_height(chain[-1], chain[-2], c_end)
+    return np.vstack([first, chain[1:-1], last])
 
 
 def _dedupe(p: Array, tol: float) -> Array:
@@ -202,25 +271,20 @@ def _compensate(
     Upper runs from the +x bridge to the -x bridge, lower from -x to +x (CCW).
     """
     mirror = np.array([1.0, -1.0])
-    off_axis = np.abs(vertices[1:k, 1]).tolist() + np.abs(vertices[k + 1 :, 1]).tolist()
-    limit = shift + max(c_plus, c_minus)
-    if min(off_axis) <= limit:
-        raise InvalidParameterError(
-            "thickness",
-            "the thickness-compensated outline is invalid: a sheet corner lies "
-            f"{min(off_axis):.6g} from the fold line, inside a bend zone (BD/2 + BA/2 = "
-            f"{limit:.6g}); reduce thickness or bend_radius, or move the corner",
-        )
     upper = vertices[: k + 1] - np.array([0.0, shift])
     lower = np.vstack([vertices[k:], vertices[:1]]) * mirror - np.array([0.0, shift])
-    return _clip_chain(upper, c_plus, c_minus), _clip_chain(lower, c_minus, c_plus) * mirror
+    return (
+        _clip_chain(upper, c_plus, c_minus),
+        _clip_chain(lower, c_minus, c_plus) * mirror,
+    )
 
 
-def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> Array:
+def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> tuple[Array, list[int]]:
     """Ruling segments (fold frame) moved with their side, clipped to the
-    flat flanges (|y| >= c) and outside the hole (|p| >= hole_r)."""
-    out = []
-    for e in ends:
+    flat flanges (|y| >= c) and outside the hole (|p| >= hole_r), and the
+    index in ``ends`` of each (a ruling left with nothing is dropped)."""
+    out, kept = [], []
+    for i, e in enumerate(ends):
         s = 1.0 if e[1] > 0.0 else -1.0
         p0, p1 = np.array([0.0, -s * shift]), e - np.array([0.0, s * shift])
         d = p1 - p0
@@ -234,64 +298,73 @@ def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> Arra
                 lo = max(lo, (-b + math.sqrt(disc)) / (2.0 * a))
         if lo < 1.0 - 1e-9:
             out.append([p0 + max(lo, 0.0) * d, p1])
-    return np.array(out, dtype=float).reshape(-1, 2, 2)
+            kept.append(i)
+    return np.array(out, dtype=float).reshape(-1, 2, 2), kept
 
 
 def _require_simple(polygon: Array, param: str, what: str) -> None:
-    """InvalidParameterError naming ``param`` unless ``polygon`` is simple."""
+    """FabricationError naming ``param`` unless ``polygon`` is simple."""
     try:
-        _check_simple(polygon, param)
+        check_simple(polygon, param)
     except InvalidSheetError as exc:
-        raise InvalidParameterError(param, f"{what} ({exc})") from None
+        raise FabricationError(param, f"{what} ({exc})") from None
 
 
-def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
+def flat_pattern(
+    design: Design, folded: FoldedSheet, compensation: Compensation | str = "sharp"
+) -> FlatPattern:
     """Compute the flat pattern of ``design`` from its fold.
 
     Args:
         design: the design (sheet, material, units, name).
         folded: ``build_design(design)`` (fold angles and bend directions).
+        compensation: 'sharp' (default): each side moves by the bend model's
+            shift, refused past the limits of
+            :func:`~onefold_cad.geometry.bend.check_bends`; 'none': the
+            uncompensated blank (the designed outline), said so in the notes.
 
     Raises:
         InvalidParameterError: 'folded' not from this design's sheet;
-            'thickness' when the compensated outline becomes invalid;
-            'relief_hole' when the hole does not fit in the compensated
-            outline; 'kerf' when the kerf is too large for the sheet or hole.
+            'compensation' not 'sharp' or 'none'; 'kerf' when the kerf is too
+            large for the blank or the hole.
+        FabricationError: the relief hole does not fit the sheet or the
+            compensated blank (:func:`~onefold_cad.design.relief_hole_problem`,
+            the writers' one check); a limit of the sharp-crease compensation
+            is passed (the message names the crease half, its fold angle, the
+            numbers and what to change).
     """
     if folded.sheet is not design.sheet:
         raise InvalidParameterError("folded", "must be build_design(design) of this design")
+    comp = Compensation.parse(compensation)
     sheet, mat = design.sheet, design.material
     v = np.asarray(sheet.vertices, dtype=float)
     k = sheet.minus_x_index
     tol = 1e-12 * sheet.size
     t = mat.thickness
-    values = [bend_values(c.fold_angle_deg, mat) for c in folded.crease]
-    if t > 0.0:
-        ba = [b.allowance for b in values]
-        bd = [b.deduction for b in values]
-    else:
-        ba, bd = [0.0, 0.0], [0.0, 0.0]
-    shift = (bd[0] + bd[1]) / 4.0
-    residual = abs(bd[0] - bd[1]) / 2.0
-    c_plus, c_minus = ba[0] / 2.0, ba[1] / 2.0
+    u = design.units.value
+    hole_problem = relief_hole_problem(design, folded)
+    if hole_problem is not None:
+        raise hole_problem
+    bends = crease_bends(folded, mat)
+    problems = check_bends(design, folded)
+    error = bend_error(problems)
+    if error is not None and comp is Compensation.SHARP:
+        raise error
+    sharp = comp is Compensation.SHARP and t > 0.0
+    move = blank_move(bends, comp if t > 0.0 else Compensation.NONE)
+    shift = move.shift
+    c_plus, c_minus = (b.allowance / 2.0 for b in bends) if sharp else (0.0, 0.0)
 
-    if t > 0.0:
+    if sharp:
         up, lo = _compensate(v, k, shift, c_plus, c_minus)
         outline = _dedupe(np.vstack([up, lo]), tol)
-        up_first, up_last, lo_first, lo_last = up[0], up[-1], lo[0], lo[-1]
-        end_plus = np.array([(up_first[0] + lo_last[0]) / 2.0, 0.0])
-        end_minus = np.array([(up_last[0] + lo_first[0]) / 2.0, 0.0])
+        bridges = ((up[0], lo[-1], c_plus), (up[-1], lo[0], c_minus))  # from +y to -y
+        end_plus, end_minus = (_at_height(a, b, 0.0) for a, b, _ in bridges)
         zones = [
-            np.array([[[0.0, c_plus], up_first], [[0.0, -c_plus], lo_last]]),
-            np.array([[[0.0, c_minus], up_last], [[0.0, -c_minus], lo_first]]),
+            np.array([[[0.0, c], _at_height(a, b, c)], [[0.0, -c], _at_height(a, b, -c)]])
+            for a, b, c in bridges
         ]
-        if not (min(up_first[0], lo_last[0]) > 0.0 > max(up_last[0], lo_first[0])):
-            raise InvalidParameterError(
-                "thickness",
-                "the thickness-compensated outline is invalid: a bend zone's edge no longer "
-                "reaches past H; reduce thickness or bend_radius",
-            )
-        _require_simple(outline, "thickness", "the thickness-compensated outline is invalid")
+        _require_simple(outline, "bend_radius", "the compensated outline is invalid")
     else:
         outline = v.copy()
         end_plus, end_minus = v[0].copy(), v[k].copy()
@@ -299,35 +372,40 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
     zones = [z if z.size and abs(z[0, 0, 1]) > tol else np.zeros((0, 2, 2)) for z in zones]
 
     origin = np.zeros(2)
+    if sharp:  # the hole fits the designed sheet (above); the compensated blank is narrower
+        hole_problem = relief_hole_problem(design, folded, blank=outline)
+        if hole_problem is not None:
+            raise hole_problem
     inner = boundary_distance(outline, origin)
     hole = relief_hole_diameter(design, folded)
-    if hole > 0.0 and hole / 2.0 >= inner:
-        raise InvalidParameterError(
-            "relief_hole",
-            f"diameter must be < {2.0 * inner:.6g} (twice the distance from H to the nearest "
-            f"edge of the flat pattern), got {hole:g}",
-        )
     kerf = mat.kerf
     if kerf > 0.0 and kerf / 2.0 >= inner:
         raise InvalidParameterError(
-            "kerf", f"must be < {2.0 * inner:.6g} (the flat pattern's inradius about H x 2)"
+            "kerf",
+            f"must be < {2.0 * inner:.6g} {u} (twice the distance from H to the nearest edge "
+            f"of the blank), got {kerf:g} {u}",
         )
     if hole > 0.0 and kerf >= hole:
         raise InvalidParameterError(
-            "kerf", f"must be < the relief hole's diameter {hole:g}, got {kerf:g}"
+            "kerf", f"must be < the relief hole's diameter {hole:g} {u}, got {kerf:g} {u}"
         )
     place = sheet.to_sheet
     outline_s = place.apply(outline)
     if kerf > 0.0:
+        from ezdxf.math import offset_vertices_2d  # ezdxf only when a kerf is cut
+
         cut = np.array([(p.x, p.y) for p in offset_vertices_2d(outline_s, -kerf / 2.0, True)])
-        _require_simple(cut, "kerf", "the kerf offset self-intersects")
+        try:
+            check_simple(cut, "kerf")
+        except InvalidSheetError as exc:
+            raise InvalidParameterError(
+                "kerf", f"the kerf offset self-intersects ({exc})"
+            ) from None
     else:
         cut = outline_s.copy()
 
     halves = []
-    for crease, end, b, a, d, z in zip(
-        folded.crease, (end_plus, end_minus), values, ba, bd, zones, strict=True
-    ):
+    for crease, end, b, z in zip(folded.crease, (end_plus, end_minus), bends, zones, strict=True):
         zone = place.apply(z.reshape(-1, 2)).reshape(-1, 2, 2)
         halves.append(
             FoldHalf(
@@ -336,14 +414,31 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
                 place.apply(end),
                 b.angle_deg,
                 crease.bend,
-                a,
-                d,
                 zone,
+                b,
             )
         )
     ends = folded.rulings_flat[:, 1]
     ends = ends[np.abs(ends[:, 1]) > 1e-9 * sheet.size]
-    rul = _ruling_segments(ends, shift, max(c_plus, c_minus), max(hole - kerf, 0.0) / 2.0)
+    folds = ruling_folds(folded)
+    fold_ends = np.array([f.end_flat for f in folds]).reshape(-1, 2)
+    if len(folds):  # the rulings that are folds are drawn as bends, not etched
+        gap = np.linalg.norm(ends[:, None, :] - fold_ends[None, :, :], axis=2)
+        ends = ends[~np.any(gap <= 1e-12 * sheet.size, axis=1)]
+    c_max, hole_r = max(c_plus, c_minus), max(hole - kerf, 0.0) / 2.0
+    rul, _ = _ruling_segments(ends, shift, c_max, hole_r)
+    fold_segments, drawn = _ruling_segments(fold_ends, shift, c_max, hole_r)
+    fold_rulings = tuple(
+        FoldRuling(
+            f.name,
+            place.apply(seg[0]),
+            place.apply(seg[1]),
+            f.angle_deg,
+            f.bend,
+            bend_model(f.angle_deg, f.bend, mat, half=f.name),
+        )
+        for f, seg in zip((folds[i] for i in drawn), fold_segments, strict=True)
+    )
     pattern = FlatPattern(
         name=design.name,
         units=design.units,
@@ -354,19 +449,21 @@ def flat_pattern(design: Design, folded: FoldedSheet) -> FlatPattern:
         cut_hole_diameter=hole - kerf if hole > 0.0 else 0.0,
         halves=(halves[0], halves[1]),
         rulings=place.apply(rul.reshape(-1, 2)).reshape(-1, 2, 2),
+        fold_rulings=fold_rulings,
         fold_direction=place.apply_direction(np.array([1.0, 0.0])),
-        shift=shift,
-        residual=residual,
+        move=move,
+        problems=problems,
+        material=mat,
         kerf=kerf,
         thickness=t,
         notes=(),
     )
-    return _with_notes(pattern, design)
+    return replace(pattern, notes=_notes(pattern, design))
 
 
-def _with_notes(p: FlatPattern, design: Design) -> FlatPattern:
-    """``p`` with its NOTES text lines filled in."""
-    from dataclasses import replace
+def _notes(p: FlatPattern, design: Design) -> tuple[str, ...]:
+    """The NOTES text lines of ``p``."""
+    from onefold_cad.export.bend_sheet import bend_table
 
     mat, u = design.material, design.units.value
     w, h = p.size
@@ -376,23 +473,41 @@ def _with_notes(p: FlatPattern, design: Design) -> FlatPattern:
         f"material: {mat.name or 'unspecified'}",
         f"thickness t = {mat.thickness:g} {u}, bend radius r = {mat.bend_radius:g} {u}, "
         f"K-factor = {mat.k_factor:g}, reference surface {mat.sheet_surface.value}",
+        "UP = the flat sheet's top face (the face this drawing shows) ends inside the bend: "
+        "the sides rise towards you; DOWN = the bottom face ends inside: they drop away",
     ]
     for half in p.halves:
         side = "+x" if half.name == "plus_x" else "-x"
-        extra = f", BA {half.allowance:.4f}, BD {half.deduction:.4f} {u}" if p.thickness else ""
-        lines.append(f"fold half {side}: {half.label} (layer {half.layer}){extra}")
-    if p.thickness > 0.0:
+        lines.append(f"fold half {side}: {half.label} (layer {half.layer})")
+    if p.fold_rulings:
+        lines.append(
+            f"ruling folds: {len(p.fold_rulings)} rulings of the paper model's fan are folds "
+            "(planar triangles meeting at an angle), drawn on BEND_UP/BEND_DOWN and listed in "
+            "the bend sheet; the blank does not compensate them (width error 2 x shift each)"
+        )
+    if p.thickness <= 0.0:
+        lines.append("thickness compensation: none (t = 0, sharp crease)")
+    elif p.compensation == "none":
+        e = p.move.errors
+        lines.append(
+            "thickness compensation: NONE (asked for): this blank is the designed outline; "
+            f"across each half it is 2 x shift wider than the bend model asks ({e[0]:.4f}, "
+            f"{e[1]:.4f} {u} for +x, -x)"
+        )
+        lines += [f"limit passed: {q.message}" for q in p.problems]
+    else:
+        e = [round(x, 9) + 0.0 for x in p.move.errors]  # no '-0.0000'
         lines.append(
             f"thickness compensation: each side moved {p.shift:.4f} {u} towards the fold line "
-            f"(mean BD/2); residual |BD+ - BD-|/2 = {p.residual:.4f} {u}"
+            "(the mean of the halves' shifts SB - BA/2); blank width error across +x, -x: "
+            f"{e[0]:.4f}, {e[1]:.4f} {u}"
         )
-    else:
-        lines.append("thickness compensation: none (t = 0, sharp crease)")
+    lines += bend_table(p).splitlines()
     lines.append(f"kerf: {p.kerf:g} {u} (cut contours offset by kerf/2)")
     if p.hole_diameter > 0.0:
         lines.append(f"relief hole: diameter {p.hole_diameter:g} {u} at the apex mark")
     lines.append(f"flat size: {w:.3f} x {h:.3f} {u}, area {p.area:.3f} sq {u}")
-    if mat.density is not None:
-        mass = p.area * mat.thickness * mat.density
-        lines.append(f"mass: {mass:.6g} (density {mat.density:g} per cubic {u})")
-    return replace(p, notes=tuple(lines))
+    mass = design_mass(design, p.area)  # the one mass formula (kg or lb, density kg/m^3)
+    if mass is not None:
+        lines.append(f"mass: {mass}")
+    return tuple(lines)

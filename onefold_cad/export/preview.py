@@ -1,8 +1,17 @@
 """A shaded 3D preview (PNG) of the folded form standing on the ground.
 
-matplotlib is imported only inside this module (and only when a preview is
-drawn), on the non-interactive Agg canvas, so the rest of the package never
-pays for it.
+What the picture shows, each item named in its legend: the sheet's top face
+(the flat sheet's +z side) warm and its bottom face cool, whichever faces the
+camera; the crease dark, with each half's fold angle written beside it; the
+apex (H) as a dot; the form's outline on the ground (its shadow from above);
+the support polygon (the hull of the points that touch the ground) and the
+centre of mass with a plumb line to its ground point. Under the view: the fold
+angles and bend directions, the height and footprint, and whether it stands.
+
+matplotlib is imported only inside :func:`render_folded_preview` (and only
+when a preview is drawn), on the non-interactive Agg canvas, so the rest of
+the package never pays for it; the figure work is kept small (a few thousand
+triangles, no layout engine) because ``onefold build`` draws one per design.
 """
 
 from __future__ import annotations
@@ -16,25 +25,57 @@ from numpy.typing import NDArray
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.placement import RestingPlacement
 
-__all__ = ["render_folded_preview", "resting_mesh"]
+__all__ = ["render_folded_preview", "resting_mesh", "support_and_centre"]
 
+Array = NDArray[np.float64]
 _TOP = np.array([0.86, 0.62, 0.30])  # the flat sheet's top (+z) face
 _BOTTOM = np.array([0.55, 0.63, 0.72])
 _LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
+_CREASE, _APEX, _GROUND = "#222222", "#c0392b", "#8a8a8a"
+_SUPPORT, _COM = "#2e8b57", "#6a1b9a"
+#: Mesh density: rays of each side, points along each ray. The surface is
+#: straight along a ray, so few radial steps suffice (they keep the painter's
+#: depth order right where the sides overlap in the view).
+_ANGULAR, _RADIAL = 90, 6
 
 
 def resting_mesh(
-    folded: FoldedSheet, angular: int = 120, radial: int = 16
+    folded: FoldedSheet,
+    angular: int = 120,
+    radial: int = 16,
+    placement: RestingPlacement | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """The form's triangle mesh moved into its resting placement.
+
+    Args:
+        folded: the folded sheet.
+        angular, radial: the mesh density (see :meth:`FoldedSheet.mesh`).
+        placement: how the form stands (default ``folded.resting``, the bare
+            surface; :func:`onefold_cad.design.resting_placement` for the
+            body the STEP holds).
 
     Returns:
         ``(vertices (k, 3), faces (m, 3))``: vertices in the design unit, the
         ground at z = 0; faces oriented so their normal is the top side's.
     """
+    rest = folded.resting if placement is None else placement
     verts, faces = folded.mesh(angular=angular, radial=radial)
-    return folded.resting.apply(verts), faces
+    return rest.apply(verts), faces
+
+
+def support_and_centre(placement: RestingPlacement) -> tuple[Array, Array]:
+    """The support polygon and the centre of mass of a resting form, in 3D.
+
+    Returns:
+        ``(polygon (k, 3), centre (3,))``: the placement's support polygon on
+        the ground (z = 0), counter-clockwise (one or two points when the
+        form rests on a point or rocks on an edge), and its centre of mass
+        (the sheet with its thickness), in the resting frame (design unit).
+    """
+    poly = np.asarray(placement.support_polygon, dtype=float).reshape(-1, 2)
+    return np.column_stack([poly, np.zeros(len(poly))]), np.asarray(placement.centre_of_mass)
 
 
 def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -50,10 +91,32 @@ def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArra
     return np.concatenate([rgb, np.ones((len(rgb), 1))], axis=1)
 
 
+def _caption(folded: FoldedSheet, rest: RestingPlacement, units: str) -> str:
+    """The lines written under the view: fold angles, size, stability, read
+    from the placement (the report's ``resting`` section says the same)."""
+    u = f" {units}" if units else ""
+    folds = ", ".join(
+        f"{c.name.replace('_', ' ')} {c.fold_angle_deg:.1f}\N{DEGREE SIGN} {c.bend}"
+        for c in folded.crease
+    )
+    margin = rest.tipping_margin_deg
+    stands = (
+        f"stands with a tipping margin of {margin:.1f}\N{DEGREE SIGN}"
+        if rest.stable
+        else "does NOT stand stably (no tipping margin)"
+    )
+    return (
+        f"fold angles: {folds} (UP: the top faces end inside)\n"
+        f"height {rest.height:.4g}{u}, footprint {rest.width:.4g} x {rest.depth:.4g}{u} (x by y)\n"
+        f"the {rest.body} {stands}; tilted {rest.tilt_deg:.1f}\N{DEGREE SIGN} from the fold frame"
+    )
+
+
 def render_folded_preview(
     folded: FoldedSheet,
     path: str | os.PathLike[str],
     *,
+    placement: RestingPlacement | None = None,
     title: str = "",
     units: str = "",
     size_px: tuple[int, int] = (900, 700),
@@ -62,15 +125,17 @@ def render_folded_preview(
 ) -> Path:
     """Draw the folded form, standing on the ground, to a PNG file.
 
-    The crease halves are drawn dark, the sheet's top face warm and its
-    bottom face cool. Written to a temporary name in the same folder and
-    renamed into place, so ``path`` never holds a partial image.
+    Written to a temporary name in the same folder and renamed into place,
+    so ``path`` never holds a partial image.
 
     Args:
         folded: the folded sheet.
         path: the PNG file to write.
+        placement: how the form stands (default ``folded.resting``;
+            ``build`` passes :func:`onefold_cad.design.resting_placement`,
+            the placement of the STEP's body).
         title: a caption (e.g. the design name).
-        units: the length unit for the axis labels.
+        units: the length unit for the axis labels and the caption.
         size_px: image width and height in pixels.
         elev, azim: the camera's elevation and azimuth (deg, matplotlib's).
 
@@ -82,54 +147,92 @@ def render_folded_preview(
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
     out = Path(path)
-    verts, faces = resting_mesh(folded)
+    rest = folded.resting if placement is None else placement
+    verts, faces = resting_mesh(folded, angular=_ANGULAR, radial=_RADIAL, placement=rest)
     tri = verts[faces]
     e, a = np.radians(elev), np.radians(azim)
     view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    apex = rest.apply(folded.apex[None, :])[0]
+    support, centre = support_and_centre(rest)
 
     dpi = 100
     fig = Figure(figsize=(size_px[0] / dpi, size_px[1] / dpi), dpi=dpi)
     FigureCanvasAgg(fig)
-    ax = fig.add_subplot(projection="3d")
-    ax.add_collection3d(
-        Poly3DCollection(tri, facecolors=_face_colours(tri, view), edgecolors="none")
-    )
-    crease = np.array([[folded.apex, c.end_3d] for c in folded.crease])
-    ax.add_collection3d(
-        Line3DCollection(
-            folded.resting.apply(crease.reshape(-1, 3)).reshape(-1, 2, 3),
-            colors="#222222",
-            linewidths=1.6,
-        )
-    )
-    edge = folded.resting.apply(folded.boundary_3d)
+    # explicit drawing order (ground, surface, crease, labels, dots): the dots
+    # and labels stay visible where the surface would hide them
+    bottom = 60.0 / size_px[1]  # room for the three caption lines
+    ax = fig.add_axes((0.0, bottom, 0.8, 0.99 - bottom), projection="3d", computed_zorder=False)
+    edge = rest.apply(folded.boundary_3d)
     edge = np.vstack([edge, edge[:1]])
-    ax.plot(edge[:, 0], edge[:, 1], edge[:, 2], color="#333333", linewidth=0.7)
-    ax.plot(edge[:, 0], edge[:, 1], np.zeros(len(edge)), color="#999999", linewidth=0.5)
+    ax.plot(edge[:, 0], edge[:, 1], np.zeros(len(edge)), color=_GROUND, lw=0.9, zorder=1)
+    if len(support) >= 3:
+        poly = Poly3DCollection([support], facecolors=_SUPPORT, alpha=0.35, zorder=2)
+        poly.set_edgecolor(_SUPPORT)
+        ax.add_collection3d(poly)
+    else:
+        ax.plot(*support.T, color=_SUPPORT, linewidth=1.5, zorder=2)
+    ax.plot(*np.stack([centre, centre * [1.0, 1.0, 0.0]]).T, color=_COM, lw=1.0, ls=":", zorder=2)
+    surface = Poly3DCollection(
+        tri, facecolors=_face_colours(tri, view), edgecolors="none", antialiased=False
+    )
+    surface.set_zorder(3)
+    ax.add_collection3d(surface)
+    ax.plot(edge[:, 0], edge[:, 1], edge[:, 2], color="#333333", linewidth=0.7, zorder=4)
+    crease = rest.apply(np.array([[folded.apex, c.end_3d] for c in folded.crease]).reshape(-1, 3))
+    crease = crease.reshape(-1, 2, 3)
+    ax.add_collection3d(Line3DCollection(crease, colors=_CREASE, linewidths=1.8, zorder=4))
+    for (p, q), half in zip(crease, folded.crease, strict=True):
+        label = f"{half.fold_angle_deg:.1f}\N{DEGREE SIGN}"
+        ax.text(
+            *(0.5 * (p + q)),
+            label,
+            fontsize=8.5,
+            color=_CREASE,
+            zorder=5,
+            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.75},
+        )
+    ax.scatter(*centre, color=_COM, s=30, depthshade=False, zorder=6)
+    ax.scatter(*apex, color=_APEX, s=30, depthshade=False, zorder=6)
 
     lo, hi = verts.min(axis=0), verts.max(axis=0)
     span = np.maximum(hi - lo, 1e-9 * float(np.max(hi - lo)))
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(0.0, hi[2])
-    ax.set_box_aspect(tuple(span))
+    ax.set_box_aspect(tuple(span), zoom=0.95)
     ax.view_init(elev=elev, azim=azim)
     unit = f" ({units})" if units else ""
     ax.set_xlabel(f"x{unit}", fontsize=8)
     ax.set_ylabel(f"y{unit}", fontsize=8)
     ax.set_zlabel(f"z{unit}", fontsize=8)
-    ax.tick_params(labelsize=7)
+    ax.tick_params(labelsize=7, pad=0)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):  # few ticks: tick labels cost most
+        axis.set_major_locator(MaxNLocator(nbins=4))
     if title:
-        ax.set_title(title, fontsize=10)
-    fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.95)
+        fig.suptitle(title, fontsize=11, y=0.985)
+    handles = [
+        Patch(color=_TOP, label="top face (+z of the flat sheet)"),
+        Patch(color=_BOTTOM, label="bottom face"),
+        Line2D([], [], color=_CREASE, lw=1.8, label="crease, fold angle"),
+        Line2D([], [], color=_APEX, marker="o", ls="", label="apex (H)"),
+        Line2D([], [], color=_GROUND, lw=0.9, label="outline on the ground"),
+        Patch(facecolor=_SUPPORT, alpha=0.5, edgecolor=_SUPPORT, label="support polygon"),
+        Line2D([], [], color=_COM, marker="o", ls=":", label="centre of mass"),
+    ]
+    fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
+    fig.text(0.015, 0.015, _caption(folded, rest, units), fontsize=8.5, va="bottom")
 
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise ExportError(f"cannot write preview {str(out)!r}: {exc.strerror or exc}") from exc
     with atomic_output(out) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
+        # zlib level 1: a third of the encoding time, a slightly larger file
+        fig.savefig(tmp, format="png", dpi=dpi, pil_kwargs={"compress_level": 1})
     return out

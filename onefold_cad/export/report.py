@@ -3,70 +3,86 @@
 The report is plain JSON data (numbers, strings, lists, dicts): what
 ``onefold solve --json`` prints and ``onefold build`` writes as ``NAME.json``.
 Lengths are in the design's unit (``units``), areas in unit^2, angles in
-degrees, times in seconds.
+degrees, times in seconds, the mass in ``mass.unit`` (kg or lb) and the
+density in kg/m^3. Every number is checked to be finite before the report
+is printed or written (:func:`check_finite`).
+
+This module imports numpy and the geometry core only; the flat pattern is
+imported when a report is made.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
-from onefold_cad.design import Design, relief_hole_diameter
-from onefold_cad.errors import ExportError
+from onefold_cad.design import (
+    Design,
+    design_mass,
+    fabrication_warnings,
+    relief_hole_diameter,
+    resting_placement,
+    solid_min_relief_hole,
+)
+from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
+from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import bend_values
-from onefold_cad.geometry.thick_sheet import min_relief_hole
 from onefold_cad.templates import design_to_data
 
-__all__ = ["REPORT_VERSION", "design_report", "write_report", "report_json"]
+if TYPE_CHECKING:
+    from onefold_cad.export.flat_pattern import FlatPattern
+
+__all__ = [
+    "REPORT_VERSION",
+    "check_finite",
+    "design_report",
+    "design_warnings",
+    "report_json",
+    "resting_numbers",
+    "write_report",
+]
 
 #: Bumped when a key of the report changes meaning or disappears.
-REPORT_VERSION = 1
+#: 2: ``apex_height``/``apex`` moved to ``direction_surface``; ``mass`` became
+#: ``{value, unit, density}``; ``warnings``, ``sources``, ``resting.span`` added;
+#: the flat pattern keys are null when the flat pattern cannot be made.
+REPORT_VERSION = 2
+
+#: What the paper's h is, said wherever it is printed.
+APEX_HEIGHT_MEANING = (
+    "the paper's h: height of the direction-surface apex A above H for the frame "
+    "curve of radius R; it scales with R, not with the sheet (the folded form's "
+    "size is under 'resting')"
+)
 
 
 def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def _footprint_area(xy: np.ndarray) -> float:
-    """Area of the convex hull of ground-projected points ``(k, 2)``."""
-    try:
-        return float(ConvexHull(xy).volume)
-    except QhullError:
-        return 0.0
-
-
-def _resting(folded: FoldedSheet) -> dict[str, Any]:
-    pts = folded.resting.apply(np.vstack([folded.boundary_3d, folded.apex]))
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    size = hi - lo
-    return {
-        "bounding_box": {"min": _floats(lo), "max": _floats(hi)},
-        "height": float(size[2]),
-        "footprint": {
-            "width": float(size[0]),
-            "depth": float(size[1]),
-            "area": _footprint_area(pts[:, :2]),
-        },
-        "apex": _floats(pts[-1]),
-        "tilt_deg": float(folded.resting.tilt_deg),
-        "stable": bool(folded.resting.stable),
-        "touching_points": int(len(folded.resting.touching)),
-    }
+def resting_numbers(design: Design, folded: FoldedSheet) -> dict[str, Any]:
+    """The report's ``resting`` section: how the body the STEP holds stands on
+    the ground (:func:`~onefold_cad.design.resting_placement`): its exact
+    bounding box, height, footprint (width along the resting frame's x axis,
+    the fold line's direction, depth across it, and the area of its shadow),
+    ``span`` (the footprint's width: what ``onefold fit --span`` aims at),
+    apex, tilt, centre of mass, contacts, support polygon, tipping margin and
+    edge, and the stability warnings. The 3D preview's caption reads it too."""
+    data = resting_placement(design, folded).to_data(folded.apex)
+    data["span"] = data["footprint"]["width"]
+    return data
 
 
 def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     out: dict[str, Any] = {}
-    for half in folded.crease:
-        bv = bend_values(half.fold_angle_deg, design.material)
+    for half, bv in zip(folded.crease, crease_bends(folded, design.material), strict=True):
         out[half.name] = {
             "length": float(half.length),
             "fold_angle_deg": float(half.fold_angle_deg),
@@ -74,77 +90,50 @@ def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
             "bend_allowance": bv.allowance,
             "outside_setback": bv.outside_setback,
             "bend_deduction": bv.deduction,
+            "reference_surface": bv.reference.value,
+            "setback": bv.setback,
+            "shift": bv.shift,
             "end_flat": _floats(half.end_flat),
             "end_3d": _floats(half.end_3d),
         }
     return out
 
 
-def _solid_min_hole(design: Design, folded: FoldedSheet) -> float | None:
+def _solid_min_hole(design: Design, folded: FoldedSheet, warnings: list[str]) -> float | None:
     if design.model.value != "exact" or design.material.thickness <= 0.0:
         return None
-    return float(min_relief_hole(folded, design.material))
+    try:
+        return solid_min_relief_hole(folded, design.material)
+    except InvalidParameterError as exc:  # e.g. a flat fold has no mitre
+        warnings.append(str(exc))
+        return None
 
 
-def design_report(
-    design: Design,
-    folded: FoldedSheet,
-    files: Iterable[str | os.PathLike[str]] = (),
-    pattern: FlatPattern | None = None,
-) -> dict[str, Any]:
-    """Everything a fabricator or a test needs to know about one fold.
+def _flat_pattern(
+    design: Design, folded: FoldedSheet, warnings: list[str], compensation: Compensation
+) -> FlatPattern | None:
+    """The flat pattern, or None with the writer's refusal as a warning."""
+    from onefold_cad.export.flat_pattern import flat_pattern
 
-    Args:
-        design: the design.
-        folded: ``build_design(design)``.
-        files: the files written for the design (listed by name).
-        pattern: ``flat_pattern(design, folded)`` if already computed.
+    try:
+        try:
+            return flat_pattern(design, folded, compensation)
+        except FabricationError as exc:  # past the bend model's limits: design_warnings names them
+            bends = bend_error(check_bends(design, folded))
+            if bends is None or str(exc) != str(bends):
+                raise  # not a bend limit (a relief hole that does not fit, ...)
+            return flat_pattern(design, folded, "none")
+    except OneFoldError as exc:  # the writer's parameter checks (hole, kerf)
+        if not any(str(exc) in w for w in warnings):  # said already
+            warnings.append(f"{exc} (flat pattern; build refuses the DXF)")
+        return None
 
-    Returns:
-        A JSON-serialisable dict: ``inputs`` (the design as template data),
-        ``apex_height``, ``angle_condition_error_deg``, ``gammas_deg`` (paper
-        model, else null), ``fold_angles_deg`` and ``bend`` keyed
-        ``plus_x``/``minus_x``, ``crease`` (per half: length, fold angle, bend
-        direction, bend allowance, outside set-back and bend deduction),
-        ``relief_hole_diameter``, ``solid_min_relief_hole`` (the smallest
-        hole a STEP solid of this thickness needs; null for the paper model
-        or zero thickness), ``flat_size`` and ``flat_area`` (the cut
-        part: thickness-compensated outline, net of the relief hole),
-        ``flat_pattern`` (its compensation shift and residual), ``sheet`` (the
-        designed sheet: size in its own frame, area, perimeter, vertices),
-        ``surface_area`` (measured on the folded surface), ``mass`` (if a
-        density and thickness are given), ``resting`` (bounding box,
-        height, footprint of the form standing on the ground),
-        ``developability`` (measured errors), ``timings_s``
-        (``direction_surface``, ``final_surface``) and ``files``.
-    """
-    sol, sheet, mat, m = folded.solution, folded.sheet, design.material, folded.metrics
-    fp = flat_pattern(design, folded) if pattern is None else pattern
-    own = sheet.to_sheet.apply(sheet.vertices)
-    flat_size = own.max(axis=0) - own.min(axis=0)
-    hole = relief_hole_diameter(design, folded)
-    gammas = sol.gammas_deg
-    crease = _crease(design, folded)
-    mass = None
-    if mat.density is not None and mat.thickness > 0.0:
-        mass = mat.density * mat.thickness * fp.area
+
+def _pattern_keys(design: Design, fp: FlatPattern | None) -> dict[str, Any]:
+    if fp is None:
+        return {"flat_size": None, "flat_area": None, "flat_pattern": None, "mass": None}
+    mass = design_mass(design, fp.area)
     return {
-        "report_version": REPORT_VERSION,
-        "name": design.name,
-        "description": design.description,
-        "units": design.units.value,
-        "model": design.model.value,
-        "inputs": design_to_data(design),
-        "apex_height": float(sol.apex_height),
-        "apex": _floats(sol.apex),
-        "angle_sum_deg": float(sol.angle_sum_deg),
-        "angle_condition_error_deg": float(sol.angle_condition_error_deg),
-        "gammas_deg": None if gammas is None else _floats(gammas),
-        "fold_angles_deg": {k: v["fold_angle_deg"] for k, v in crease.items()},
-        "bend": {k: v["bend"] for k, v in crease.items()},
-        "crease": crease,
-        "relief_hole_diameter": float(hole),
-        "solid_min_relief_hole": _solid_min_hole(design, folded),
         "flat_size": list(fp.size),
         "flat_area": float(fp.area),
         "flat_pattern": {
@@ -154,8 +143,144 @@ def design_report(
             "cut_hole_diameter": float(fp.cut_hole_diameter),
             "shift": float(fp.shift),
             "residual": float(fp.residual),
+            "compensation": fp.compensation,
+            "bend_problems": [q.message for q in fp.problems],
             "kerf": float(fp.kerf),
         },
+        "mass": None
+        if mass is None
+        else {"value": mass.value, "unit": mass.unit, "density": mass.density},
+    }
+
+
+def design_warnings(
+    design: Design, folded: FoldedSheet, compensation: Compensation | str = Compensation.SHARP
+) -> list[str]:
+    """What ``solve`` and ``build`` warn about before any writer runs, one
+    line each: the solver's own warnings (when it gives any),
+    :func:`~onefold_cad.design.fabrication_warnings` and the bend model's
+    limits (:func:`~onefold_cad.geometry.bend.check_bends`), worded for what
+    ``build`` does with ``compensation`` ('sharp': refuses the flat pattern's
+    files, and the STEP solid unless only the blank's width is off; 'none':
+    writes the uncompensated blank)."""
+    comp = Compensation.parse(compensation)
+    problems = check_bends(design, folded)
+    error = bend_error(problems)
+    bends = []
+    if error is not None and comp is Compensation.NONE:
+        bends.append(
+            f"{error}; with --compensation none build writes the uncompensated blank (the "
+            "designed outline; its notes say so) and the STEP as designed"
+        )
+    elif error is not None:
+        solid = any(q.kind != "width" for q in problems)  # the solid is the designed part
+        refused = "the DXF, cut DXF, bend sheet and flat preview" + (
+            " and a STEP solid" if solid else ""
+        )
+        bends.append(
+            f"{error}; build refuses {refused} (--compensation none writes the uncompensated blank)"
+        )
+    return [
+        *getattr(folded.solution, "warnings", ()),
+        *fabrication_warnings(design, folded),
+        *bends,
+    ]
+
+
+def design_report(
+    design: Design,
+    folded: FoldedSheet,
+    files: Iterable[str | os.PathLike[str]] = (),
+    pattern: FlatPattern | None = None,
+    *,
+    sources: Mapping[str, str] | None = None,
+    timings: Mapping[str, float] | None = None,
+    warnings: Iterable[str] = (),
+    compensation: Compensation | str = Compensation.SHARP,
+) -> dict[str, Any]:
+    """Everything a fabricator or a test needs to know about one fold.
+
+    The geometry is always reported; what a writer would refuse (a flat
+    pattern that cannot be made, a relief hole that does not fit, ...) is a
+    line in ``warnings`` and the keys that depend on it are null.
+
+    Args:
+        design: the design.
+        folded: ``build_design(design)``.
+        files: the files written for the design (listed by name).
+        pattern: ``flat_pattern(design, folded)`` if already computed.
+        sources: where each input came from, keyed like the template
+            (``material.thickness`` -> ``--thickness``, ``template NAME``,
+            ``inherited from template NAME`` or ``default``).
+        timings: further stage times (s) to report, e.g. ``{"step": 2.1}``.
+        warnings: warnings found elsewhere, added before the report's own.
+        compensation: the flat pattern's ('sharp' or 'none', as ``build
+            --compensation``); past the bend model's limits a 'sharp' report
+            gives the uncompensated pattern's numbers, with the warning.
+
+    Returns:
+        A JSON-serialisable dict: ``inputs`` (the design as template data),
+        ``sources``, ``direction_surface`` (``apex_height``: the paper's h
+        at ``frame_radius`` R, ``apex``, ``apex_height_error`` (a bound on
+        its distance to the exact root), and the problem's conditioning:
+        ``ds_dh`` (dS/dh at the root, rad per length) and ``s_max_minus_pi``
+        (how far one side's angle sum rises above 180 deg, rad)),
+        ``angle_sum_deg``, ``angle_condition_error_deg`` (a verified bound on
+        |sum of the apex angles - 360 deg|, evaluated independently of the
+        search), ``gammas_deg`` (paper model, else
+        null), ``fold_angles_deg`` and ``bend`` keyed ``plus_x``/``minus_x``,
+        ``crease`` (per half: length, fold angle, bend direction, bend
+        allowance, outside set-back and bend deduction),
+        ``relief_hole_diameter``, ``solid_min_relief_hole`` (the smallest
+        hole a STEP solid of this thickness needs; null for the paper model
+        or zero thickness), ``flat_size`` and ``flat_area`` (the cut part:
+        thickness-compensated outline, net of the relief hole),
+        ``flat_pattern`` (its compensation shift and residual), ``sheet``
+        (the designed sheet: size in its own frame, area, perimeter,
+        vertices), ``surface_area`` (measured on the folded surface),
+        ``mass`` (``{value, unit, density}`` or null), ``resting`` (the form
+        standing on the ground: bounding box, height, span, footprint),
+        ``developability`` (measured errors), ``warnings``, ``timings_s``
+        and ``files``.
+    """
+    sol, sheet, m = folded.solution, folded.sheet, folded.metrics
+    comp = Compensation.parse(compensation)
+    notes = [*warnings, *design_warnings(design, folded, comp)]
+    fp = _flat_pattern(design, folded, notes, comp) if pattern is None else pattern
+    own = sheet.to_sheet.apply(sheet.vertices)
+    flat_size = own.max(axis=0) - own.min(axis=0)
+    gammas = sol.gammas_deg
+    crease = _crease(design, folded)
+    solid_hole = _solid_min_hole(design, folded, notes)
+    stage_times = {"direction_surface": float(sol.time_direction_surface)}
+    stage_times["final_surface"] = float(folded.time_final_surface)
+    stage_times.update({k: float(v) for k, v in (timings or {}).items()})
+    return {
+        "report_version": REPORT_VERSION,
+        "name": design.name,
+        "description": design.description,
+        "units": design.units.value,
+        "model": design.model.value,
+        "inputs": design_to_data(design),
+        "sources": dict(sources or {}),
+        "direction_surface": {
+            "apex_height": float(sol.apex_height),
+            "frame_radius": float(design.frame.radius),
+            "apex": _floats(sol.apex),
+            "meaning": APEX_HEIGHT_MEANING,
+            "apex_height_error": float(sol.apex_height_error),
+            "ds_dh": float(sol.ds_dh),
+            "s_max_minus_pi": float(sol.s_max_minus_pi),
+        },
+        "angle_sum_deg": float(sol.angle_sum_deg),
+        "angle_condition_error_deg": float(sol.angle_condition_error_deg),
+        "gammas_deg": None if gammas is None else _floats(gammas),
+        "fold_angles_deg": {k: v["fold_angle_deg"] for k, v in crease.items()},
+        "bend": {k: v["bend"] for k, v in crease.items()},
+        "crease": crease,
+        "relief_hole_diameter": float(relief_hole_diameter(design, folded)),
+        "solid_min_relief_hole": solid_hole,
+        **_pattern_keys(design, fp),
         "sheet": {
             "kind": sheet.kind,
             "size": _floats(flat_size),
@@ -164,8 +289,7 @@ def design_report(
             "vertices": _floats(sheet.vertices),
         },
         "surface_area": float(m.area_3d),
-        "mass": mass,
-        "resting": _resting(folded),
+        "resting": resting_numbers(design, folded),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
             "max_boundary_segment_error": float(m.max_boundary_segment_error),
@@ -176,30 +300,50 @@ def design_report(
             "area_3d": float(m.area_3d),
             "area_rel_error": float(m.area_rel_error),
         },
-        "timings_s": {
-            "direction_surface": float(sol.time_direction_surface),
-            "final_surface": float(folded.time_final_surface),
-        },
+        "warnings": list(dict.fromkeys(notes)),  # in order, each once
+        "timings_s": stage_times,
         "files": [Path(f).name for f in files],
     }
 
 
-def report_json(report: dict[str, Any]) -> str:
-    """The report as indented JSON text (strict: no NaN or infinity)."""
+def check_finite(report: Mapping[str, Any], where: str = "") -> None:
+    """Raise :class:`ExportError` naming the first key whose number is NaN or
+    infinite (``resting.height``, ``crease.plus_x.end_3d[2]``)."""
+
+    def walk(value: Any, key: str) -> None:
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ExportError(
+                f"the report of {report.get('name')!r} has {key} = {value}: not a finite "
+                "number (the computation failed for this design); nothing written"
+            )
+        if isinstance(value, Mapping):
+            for k, v in value.items():
+                walk(v, f"{key}.{k}" if key else str(k))
+        elif isinstance(value, list | tuple):
+            for i, v in enumerate(value):
+                walk(v, f"{key}[{i}]")
+
+    walk(report, where)
+
+
+def report_json(report: Mapping[str, Any]) -> str:
+    """The report as indented JSON text, after :func:`check_finite`."""
+    check_finite(report)
     return json.dumps(report, indent=2, allow_nan=False) + "\n"
 
 
-def write_report(path: str | os.PathLike[str], report: dict[str, Any]) -> Path:
+def write_report(path: str | os.PathLike[str], report: Mapping[str, Any]) -> Path:
     """Write ``report`` as JSON to ``path`` atomically (temp name, then rename).
 
     Raises:
-        ExportError: the file could not be written or the report holds a
-            non-finite number.
+        ExportError: the report holds a non-finite number (naming its key)
+            or another value JSON cannot hold, or the file could not be
+            written.
     """
     out = Path(path)
     try:
         text = report_json(report)
-    except ValueError as exc:
+    except (TypeError, ValueError) as exc:
         raise ExportError(f"report of {report.get('name')!r} is not valid JSON: {exc}") from exc
     with atomic_output(out) as tmp:
         tmp.write_text(text, encoding="utf-8")

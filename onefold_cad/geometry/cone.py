@@ -1,304 +1,57 @@
-"""Direction-surfaces: the paper's triangle fan and the exact cone over the arc.
+"""The exact model's direction-surface: the cone from the apex over the arc.
 
-Both describe one side (y >= 0) of the fold as a map from the flat polar angle
-theta in [0, pi] (radians, counter-clockwise from +x) to a unit ruling
-direction ``u(theta)`` and the unit in-surface direction ``e(theta)``
-perpendicular to it, towards increasing theta. A flat point at polar
-coordinates (r, theta) folds to ``A + r * u(theta)``; its neighbourhood's
-top-side normal is ``u x e``.
+The developed angle is the integral over the arc of the speed of the unit
+vector from the apex to the arc point, evaluated by Gauss-Legendre quadrature
+on panels graded towards the integrand's complex singularities (see below);
+the surface interface and the in-plane formulation are in :mod:`.surface`.
+:class:`PaperFan` and :class:`DirectionSurface` are re-exported here.
 """
 
 from __future__ import annotations
 
+import cmath
 import math
-from abc import ABC, abstractmethod
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.frame import arc_range, division_angles
+from onefold_cad.geometry.fan import PaperFan
+from onefold_cad.geometry.frame import ArcGeometry, arc_range, end_relative
 from onefold_cad.geometry.params import FrameCurve
+from onefold_cad.geometry.surface import EPS, Array, DirectionSurface
 
 __all__ = ["DirectionSurface", "PaperFan", "ExactCone"]
 
-Array = NDArray[np.float64]
+_EPS = EPS
 
+# -- the exact cone ---------------------------------------------------------------
+#
+# The developed angle is the integral over the arc of the speed of the unit
+# vector u from the apex to the arc point, in the plane's coordinates (units of
+# R, p = P - F, t = h cos(beta), phi the arc parameter):
+#
+#   |u'(phi)| = sqrt(w^2 + t^2) / (|p|^2 + t^2),   w = p x P'(phi) = x cos(phi) + q sin(phi).
+#
+# With W = C - F (C the arc's centre, F the apex's foot), |p|^2 = |W|^2 + 1 +
+# 2 |W| cos(phi - arg W) and w = 1 + |W| cos(phi - arg W): the integrand's
+# complex singularities are the zeros of |p|^2 + t^2 (one conjugate pair, at
+# arg(F - C) + i acosh((|W|^2 + 1 + t^2) / (2 |W|))) and of w^2 + t^2 (two
+# pairs, near the tangent points from F when F lies outside the circle). A
+# composite 20-point Gauss-Legendre rule whose panels are no wider than
+# 2 * _REACH times their distance from every singularity converges like
+# 4.8^-40; the panels are halved towards each singularity until that holds,
+# so the rule is graded geometrically towards nearly real singularities (H near
+# an end of the f-line, beta near 90 deg) instead of being uniformly fine.
+#
+# The arc is split at its midpoint into two halves, each parametrised by s, the
+# arc parameter's distance from its own end (phi = -alpha + s on the +x half,
+# phi = 180 + alpha - s on the -x half), so that nodes near an end are placed
+# to a rounding error of their distance from it.
 
-class DirectionSurface(ABC):
-    """One side's direction-surface over a frame curve, apex at (0, 0, h)."""
-
-    def __init__(self, frame: FrameCurve) -> None:
-        self.frame = frame
-        self.height: float | None = None
-
-    @abstractmethod
-    def angle_sum(self, h: float) -> float:
-        """Sum of the apex angles of one side (radians) for the apex at height h."""
-
-    @abstractmethod
-    def angle_sums(self, h: Array) -> Array:
-        """S(h) for many apex heights at once: ``(m,)`` heights -> ``(m,)`` radians."""
-
-    @abstractmethod
-    def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
-        """S(h) (radians) and dS/dh (radians per length), analytically."""
-
-    def refine(self, h: float) -> bool:
-        """Make the surface's numerics fit the apex at height h; True if that
-        changed S(h), so the apex must be solved again. (Only the exact
-        model's quadrature adapts.)"""
-        return False
-
-    @abstractmethod
-    def set_apex(self, h: float) -> None:
-        """Fix the apex height; afterwards :meth:`frames` may be called."""
-
-    @abstractmethod
-    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
-        """Unit ruling directions ``u`` and in-surface normals ``e`` ``(k, 3)``
-        at flat angles ``theta`` in [0, total angle] (radians)."""
-
-    def directions_at(self, theta: ArrayLike) -> Array:
-        """The ``u`` of :meth:`frames` alone."""
-        return self.frames(theta)[0]
-
-    def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
-        """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats."""
-        u, e = self.frames(np.array([theta]))
-        return u[0].tolist(), e[0].tolist()
-
-    @property
-    @abstractmethod
-    def total_angle(self) -> float:
-        """The developed angle of one side at the fixed apex (radians)."""
-
-    @property
-    def apex(self) -> Array:
-        """The apex ``(3,)``."""
-        if self.height is None:
-            raise RuntimeError("apex height not set")
-        return np.array([0.0, 0.0, self.height])
-
-
-class PaperFan(DirectionSurface):
-    """The fan of ``divisions`` planar triangles of the paper (section 3.2).
-
-    Attributes:
-        points: ``(divisions + 1, 3)`` the division points of the frame curve,
-            from the f-line's +x end to its -x end.
-        directions: once the apex is set, the ``(divisions + 1, 3)`` unit
-            direction-vectors from the apex to the points.
-        gammas: once the apex is set, the ``(divisions,)`` apex angles (radians).
-        thetas: once the apex is set, the ``(divisions + 1,)`` cumulative flat
-            angles theta_k = gamma_1 + ... + gamma_k (radians), theta_0 = 0.
-    """
-
-    def __init__(self, frame: FrameCurve) -> None:
-        super().__init__(frame)
-        phi = division_angles(frame)
-        r = frame.radius
-        a, b = math.radians(frame.alpha), math.radians(frame.beta)
-        cb, sb = math.cos(b), math.sin(b)
-        # the division points (x, d cos b, d sin b), as in frame.arc_points
-        x = -frame.h_c + r * np.cos(phi)
-        d = r * math.sin(a) + r * np.sin(phi)
-        pts = np.empty((len(phi), 3))
-        pts[:, 0] = x
-        np.multiply(d, cb, out=pts[:, 1])
-        np.multiply(d, sb, out=pts[:, 2])
-        self.points = pts
-        self.directions: Array | None = None
-        self.gammas: Array | None = None
-        self.thetas: Array | None = None
-        # Triangle i has the corners A = (0, 0, h), P_i and P_i+1. With
-        # m = x_i d_i+1 - d_i x_i+1 and the differences dx, dd of P_i+1 - P_i,
-        #   (P_i - A) x (P_i+1 - A) = (h cb dd, -(sb m + h dx), cb m),
-        #   (P_i - A) . (P_i+1 - A) = dot_i - h zs_i + h^2  (zs_i = z_i + z_i+1),
-        # so sin^2 and cos of gamma_i (times |P_i - A| |P_i+1 - A|) are quadratics
-        # in h: for the solver, the coefficients of (1, h, h^2) of sin^2, cos,
-        # d(sin^2)/dh / 2 and d(cos)/dh side by side, so that S(h) and S'(h)
-        # cost one matrix product.
-        x0, x1, d0, d1 = x[:-1], x[1:], d[:-1], d[1:]
-        n = len(x0)
-        q = np.zeros((3, 4 * n))
-        sin2, cos, dsin2, dcos = (slice(k * n, (k + 1) * n) for k in range(4))
-        m = x0 * d1
-        m -= d0 * x1
-        dx = x1 - x0
-        cdd = d1 - d0
-        cdd *= cb
-        np.multiply(m, m, out=q[0, sin2])
-        np.multiply(m, dx, out=q[0, dsin2])
-        q[0, dsin2] *= sb
-        np.multiply(q[0, dsin2], 2.0, out=q[1, sin2])
-        np.multiply(dx, dx, out=q[2, sin2])
-        q[2, sin2] += cdd * cdd
-        q[1, dsin2] = q[2, sin2]
-        np.multiply(x0, x1, out=q[0, cos])
-        q[0, cos] += d0 * d1
-        np.add(d0, d1, out=q[1, cos])
-        q[1, cos] *= -sb
-        q[2, cos] = 1.0
-        q[0, dcos] = q[1, cos]
-        q[1, dcos] = 2.0
-        self._quad = q
-        self._n = n
-        self._terms = (m, dx, cdd, sb, cb)
-
-    def _sin_cos(self, h: Array | float) -> tuple[Array, Array]:
-        """|(P_i - A) x (P_i+1 - A)| and (P_i - A) . (P_i+1 - A), from the terms
-        unexpanded (``h`` a float or a column ``(k, 1)``)."""
-        m, dx, cdd, sb, cb = self._terms
-        n = self._n
-        s2 = sb * m + h * dx
-        t = h * cdd
-        cm = cb * m
-        dot, zs = self._quad[0, n : 2 * n], self._quad[1, n : 2 * n]
-        return np.sqrt(t * t + s2 * s2 + cm * cm), dot + h * (h + zs)
-
-    def angle_sum(self, h: float) -> float:
-        return float(np.arctan2(*self._sin_cos(float(h))).sum())
-
-    def angle_sums(self, h: Array) -> Array:
-        hh = np.asarray(h, dtype=float)[:, None]
-        return np.arctan2(*self._sin_cos(hh)).sum(axis=1)
-
-    def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
-        n = self._n
-        q = np.array((1.0, h, h * h)) @ self._quad
-        sin2, cos, dsin2, dcos = q[:n], q[n : 2 * n], q[2 * n : 3 * n], q[3 * n :]
-        sin = np.sqrt(sin2)
-        # d/dh atan2(sin, cos) = (cos sin' - sin cos') / (sin^2 + cos^2), sin' = dsin2 / sin
-        slope = cos * dsin2
-        slope -= sin2 * dcos
-        den = cos * cos
-        den += sin2
-        den *= sin
-        slope /= den
-        return float(np.arctan2(sin, cos).sum()), float(slope.sum())
-
-    def set_apex(self, h: float) -> None:
-        self.height = h
-        v = self.points.copy()
-        v[:, 2] -= h
-        v /= np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
-        self.directions = v
-        # gamma_i from the chord between unit vectors: 2 asin(|d_i+1 - d_i| / 2)
-        chord = v[1:] - v[:-1]
-        half = np.sqrt(np.einsum("ij,ij->i", chord, chord))
-        half *= 0.5
-        gammas = np.arcsin(half, out=half)
-        gammas *= 2.0
-        self.gammas = gammas
-        thetas = np.empty(len(v))
-        thetas[0] = 0.0
-        np.cumsum(gammas, out=thetas[1:])
-        self.thetas = thetas
-
-    @property
-    def total_angle(self) -> float:
-        assert self.thetas is not None
-        return float(self.thetas[-1])
-
-    def sector(self, theta: ArrayLike) -> NDArray[np.int64]:
-        """Index k of the triangle whose flat sector [theta_k, theta_k+1] holds theta."""
-        assert self.thetas is not None
-        k = self.thetas.searchsorted(np.asarray(theta, dtype=float), side="right")
-        k -= 1
-        np.minimum(k, len(self.thetas) - 2, out=k)
-        return np.maximum(k, 0, out=k)
-
-    # In triangle k, with g its apex angle, the ray at the flat angle w from
-    # direction d_k is the spherical interpolation (slerp) of d_k and d_k+1,
-    #   u = (sin(g - w) d_k + sin(w) d_k+1) / sin(g),
-    # and its in-surface direction is e = du/dw
-    #   = (cos(w) d_k+1 - cos(g - w) d_k) / sin(g);
-    # on a division (w = 0) u is d_k exactly.
-
-    def _locate(self, theta: ArrayLike) -> tuple[NDArray[np.int64], Array]:
-        """The triangles k holding flat angles ``theta`` and the angles w
-        (radians) of ``theta`` from direction k."""
-        assert self.thetas is not None
-        t = np.asarray(theta, dtype=float)
-        k = self.sector(t)
-        return k, t - self.thetas.take(k)
-
-    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
-        assert self.directions is not None and self.gammas is not None
-        k, w = self._locate(theta)
-        g = self.gammas.take(k)
-        rest = g - w
-        sg = np.sin(g)
-        a0, a1 = np.sin(rest), np.sin(w)
-        b0, b1 = np.cos(rest), np.cos(w)
-        a0 /= sg
-        a1 /= sg
-        b0 /= sg
-        b1 /= sg
-        d0 = self.directions.take(k, axis=0)
-        d1 = self.directions.take(k + 1, axis=0)
-        u = a0[:, None] * d0
-        u += a1[:, None] * d1
-        e = b1[:, None] * d1
-        e -= b0[:, None] * d0
-        return u, e
-
-    def directions_at(self, theta: ArrayLike) -> Array:
-        """The unit ruling directions ``(k, 3)`` at flat angles ``theta``: the
-        ``u`` of :meth:`frames`. Rays on a division are gathered; the few
-        others (a sheet's vertex rays) are interpolated one by one."""
-        assert self.directions is not None
-        k, w = self._locate(theta)
-        u = self.directions.take(k, axis=0)
-        (off,) = w.nonzero()
-        if len(off) > _FEW:
-            u[off] = self.frames(np.asarray(theta, dtype=float)[off])[0]
-        else:
-            for j in off.tolist():
-                u[j] = self._frame1(int(k[j]), float(w[j]))[0]
-        return u
-
-    def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
-        """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats."""
-        assert self.thetas is not None
-        k = int(self.thetas.searchsorted(theta, side="right")) - 1
-        k = min(max(k, 0), len(self.thetas) - 2)
-        return self._frame1(k, theta - float(self.thetas[k]))
-
-    def _frame1(self, k: int, w: float) -> tuple[list[float], list[float]]:
-        """The slerp of triangle k at angle w, in plain Python (faster than
-        numpy for one ray)."""
-        assert self.directions is not None and self.gammas is not None
-        g = float(self.gammas[k])
-        sg = math.sin(g)
-        a0, a1 = math.sin(g - w) / sg, math.sin(w) / sg
-        b0, b1 = math.cos(g - w) / sg, math.cos(w) / sg
-        d0, d1 = self.directions[k].tolist(), self.directions[k + 1].tolist()
-        u = [a0 * p + a1 * q for p, q in zip(d0, d1, strict=True)]
-        e = [b1 * q - b0 * p for p, q in zip(d0, d1, strict=True)]
-        return u, e
-
-
-#: Up to this many rays are interpolated in plain Python by PaperFan.directions_at.
-_FEW = 8
-
-
-# Composite Gauss-Legendre rule on the arc parameter, 20 nodes per panel. The
-# integrand is analytic on the closed arc. Its complex singularities include
-# the zeros of |P(phi) - A|^2 = K0 + K1 cos(phi) + K2 sin(phi), at imaginary
-# distance acosh(K0 / hypot(K1, K2)) from the real axis: panels no wider than
-# 2 * _PANEL_REACH times that distance leave them outside the Bernstein
-# ellipse of parameter 5, where the 20-point rule's error is about 5^-40.
-# The zeros of |P' x (P - A)| approach the real axis as beta -> 90 deg; those
-# show in the Legendre coefficients of the integrand on each panel, so the
-# rule is checked at the apex and refined (panels doubled, up to _MAX_PANELS)
-# until the last two coefficients are below _TAIL_TOL of the integrand.
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(20)
-_PANEL_REACH = 0.4
-_MAX_PANELS = 16384
-_TAIL_TOL = 1e-12
-#: Rows of the last two Legendre coefficients of the polynomial through the nodes.
-_TAIL = np.linalg.inv(np.polynomial.legendre.legvander(_GL_NODES, 19))[-2:]
+_REACH = 0.4
+_MAX_DEPTH = 60
 
 
 def _integration_matrix(nodes: Array) -> Array:
@@ -306,249 +59,456 @@ def _integration_matrix(nodes: Array) -> Array:
     interpolates f at ``nodes`` (exact for polynomials of degree < len(nodes))."""
     leg = np.polynomial.legendre
     n = len(nodes)
-    # column j: the integral from -1 of the Legendre polynomial P_j, at the nodes
     integrals = leg.legval(nodes, leg.legint(np.eye(n), lbnd=-1)).T
     return integrals @ np.linalg.inv(leg.legvander(nodes, n - 1))
 
 
-#: theta at the nodes of a panel from the integrand there (for initial guesses).
+#: s at the nodes of a panel from the integrand there (for initial guesses).
 _NODE_INTEGRALS = _integration_matrix(_GL_NODES)
+
+
+def _singularities(
+    g: ArcGeometry, h: float, planar: bool = False
+) -> list[tuple[float, float, float]]:
+    """The integrand's complex singularities for the apex at height h (units of
+    R): ``(s+, s-, distance)``, their real parts as distances from the +x and
+    from the -x end (each accurate near its own end) and their distance from
+    the real axis. ``planar`` adds the zeros of |p|^2 (the in-plane sweep
+    w / |p|^2 of :meth:`ExactCone.excess_accurate`)."""
+    hs = h * g.sin_beta
+    t = h * g.cos_beta
+    m1 = hs * (hs - 2.0 * g.sin_alpha) - g.l_plus * g.l_minus  # |W|^2 - 1
+    wn = math.sqrt(max(1.0 + m1, 0.0))
+    if wn < 1e-6:  # F at the centre: |u'| is nearly constant
+        return []
+    ea = complex(g.cos_alpha, g.sin_alpha)
+    # the direction of F from the centre, from each end: arg((F - C) / (P_end - C))
+    psi_p = cmath.phase(1.0 + complex(-g.l_plus, hs) * ea)
+    psi_m = -cmath.phase(1.0 - complex(g.l_minus, hs) * ea.conjugate())
+    wm1 = m1 / (1.0 + wn)  # |W| - 1
+    y = (wm1 * wm1 + t * t) / (2.0 * wn)
+    out = [(psi_p, psi_m, math.log1p(y + math.sqrt(y * (y + 2.0))))]
+    if planar:
+        y = wm1 * wm1 / (2.0 * wn)
+        out.append((psi_p, psi_m, math.log1p(y + math.sqrt(y * (y + 2.0)))))
+    # w^2 + t^2 = 0: cos(phi - psi) = (1 +- i t) / |W| = 1 + zeta
+    zeta = complex(-wm1, t) / wn
+    z = 2.0 * cmath.asin(cmath.sqrt(-0.5 * zeta))
+    re, im = abs(z.real), abs(z.imag)
+    out.append((psi_p + re, psi_m - re, im))
+    out.append((psi_p - re, psi_m + re, im))
+    return out
+
+
+def _panels(half_span: float, sing: Array, reach: float) -> Array:
+    """Panel edges on [0, half_span] (one half's s), halved until every panel's
+    half-width is at most ``reach`` times its centre's distance from each
+    singularity ``sing`` ``(m, 2)`` (real part in this half's s, distance)."""
+    lo = np.array([0.0])
+    hi = np.array([half_span])
+    done_lo: list[Array] = []
+    done_hi: list[Array] = []
+    for _ in range(_MAX_DEPTH):
+        c = 0.5 * (lo + hi)
+        hw = 0.5 * (hi - lo)
+        if len(sing):
+            dist = np.hypot(c[:, None] - sing[:, 0], sing[:, 1]).min(axis=1)
+            split = hw > reach * dist
+        else:
+            split = hw > 0.5
+        done_lo.append(lo[~split])
+        done_hi.append(hi[~split])
+        if not split.any():
+            break
+        c, lo, hi = c[split], lo[split], hi[split]
+        lo, hi = np.concatenate((lo, c)), np.concatenate((c, hi))
+    else:
+        done_lo.append(lo)
+        done_hi.append(hi)
+    a, b = np.concatenate(done_lo), np.concatenate(done_hi)
+    order = np.argsort(a)
+    edges = np.empty(len(a) + 1)
+    edges[:-1] = a[order]
+    edges[-1] = b[order[-1]]
+    return edges
+
+
+@dataclass(frozen=True)
+class _Half:
+    """The quadrature rule on one half of the arc (``plus``: from the +x end).
+
+    Attributes:
+        plus: which half.
+        edges: ``(p + 1,)`` panel edges in s (radians from this half's end).
+        half: ``(p,)`` panel half-widths.
+        s: ``(p, 20)`` the nodes' s.
+        weights: ``(p * 20,)`` Gauss-Legendre weights.
+        x, d: ``(p * 20,)`` the nodes' in-plane coordinates (units of R).
+        cphi, sphi: ``(p * 20,)`` cos and sin of the nodes' arc parameter.
+    """
+
+    plus: bool
+    edges: Array
+    half: Array
+    s: Array
+    weights: Array
+    x: Array
+    d: Array
+    cphi: Array
+    sphi: Array
+
+
+def _half_rule(g: ArcGeometry, plus: bool, edges: Array) -> _Half:
+    half = 0.5 * (edges[1:] - edges[:-1])
+    mid = edges[:-1] + half
+    s = mid[:, None] + half[:, None] * _GL_NODES
+    flat = s.ravel()
+    x, d = end_relative(g, flat, plus)
+    ang = flat - g.alpha
+    cphi = np.cos(ang)
+    if not plus:
+        np.negative(cphi, out=cphi)
+    weights = (half[:, None] * _GL_WEIGHTS).ravel()
+    return _Half(plus, edges, half, s, weights, x, d, cphi, np.sin(ang))
+
+
+def _speed(hf: _Half, g: ArcGeometry, h: float | Array) -> Array:
+    """|u'| at the nodes of ``hf`` for apex heights ``h`` (units of R; a float
+    or a column ``(k, 1)``)."""
+    return _speed_at(g, hf.x, hf.d, hf.cphi, hf.sphi, h)
+
+
+def _speed_at(
+    g: ArcGeometry, x: Array, d: Array, cphi: Array, sphi: Array, h: float | Array
+) -> Array:
+    """|u'| at arc points with in-plane coordinates ``x``, ``d`` (units of R) and
+    arc parameter cosines/sines ``cphi``, ``sphi``, apex at height(s) ``h``."""
+    q = d - h * g.sin_beta
+    t = h * g.cos_beta
+    w = x * cphi
+    w = w + q * sphi
+    den = x * x
+    den = den + q * q
+    den += t * t
+    num = np.hypot(w, t)
+    num /= den
+    return num
 
 
 class ExactCone(DirectionSurface):
     """The continuous cone from the apex over the circular arc (exact model).
 
-    The developed angle theta(phi) = integral of |u'(phi)| dphi, with u the
-    unit vector from the apex to the arc point P(phi), is evaluated by
-    composite Gauss-Legendre quadrature (``panels`` panels of 20 nodes; by
-    default as many as the apex height needs, see :meth:`refine`) and
-    inverted by Newton's method.
-
-    With c = cos(phi), s = sin(phi), w = R - h_c c + R sin(alpha) s and
-    d = R sin(alpha) + R s:
-    |u'| = R |(h cb c, sb w - h s, cb w)| / |P - A|^2,
-    |P - A|^2 = (R c - h_c)^2 + d^2 - 2 h sb d + h^2 (cb, sb: cos and sin of beta).
+    The developed angle theta(phi) = integral of |u'(phi)| dphi is evaluated by
+    composite Gauss-Legendre quadrature on panels graded towards the
+    integrand's complex singularities for the apex heights in question (see
+    the comment above), and inverted by Newton's method. The rule is rebuilt
+    whenever a new apex height needs finer panels; :meth:`verify` checks it
+    against the rule with every panel halved.
     """
 
-    def __init__(self, frame: FrameCurve, panels: int | None = None) -> None:
+    def __init__(self, frame: FrameCurve, reach: float = _REACH) -> None:
         super().__init__(frame)
-        r = frame.radius
-        a, b = math.radians(frame.alpha), math.radians(frame.beta)
-        self._r, self._hc, self._rsa = r, frame.h_c, r * math.sin(a)
-        self._cb, self._sb = math.cos(b), math.sin(b)
-        self.fixed_panels = panels
-        self._panel_theta: Array | None = None
-        self._node_speed: Array | None = None  # |u'| at the nodes, (panels, 20)
-        self._table: tuple[Array, Array] | None = None  # see _node_table
-        self._checked: tuple[float, Array] | None = None  # see refine
-        if panels is None:
-            l0 = frame.paper_lower_bound
-            panels = max(self._panels_for(l0), self._panels_for(2.0 * l0))
-        self._build(panels)
+        self.reach = reach
+        self._rule: tuple[_Half, _Half] | None = None
+        self._valid_for: list[float] = []
+        # at the apex (set_apex)
+        self._apex_rule: tuple[_Half, _Half] | None = None
+        self._theta_lo: tuple[Array, Array] | None = None  # per half: theta at panel starts
+        self._speed_at: tuple[Array, Array] | None = None  # per half: |u'| at the nodes
+        self._half_total: tuple[float, float] = (0.0, 0.0)
+        self._tables: tuple[tuple[Array, Array], tuple[Array, Array]] | None = None
+        self._verified: tuple[float, float] | None = None
 
-    # -- the quadrature rule -------------------------------------------------
-    def _panels_for(self, h: float) -> int:
-        """Panels the rule needs for the apex at height h (see _PANEL_REACH)."""
-        r, hc, rsa, sb = self._r, self._hc, self._rsa, self._sb
-        k0 = r * r + hc * hc + rsa * rsa - 2.0 * h * sb * rsa + h * h
-        reach = math.acosh(max(k0 / math.hypot(2.0 * r * hc, 2.0 * r * (rsa - h * sb)), 1.0))
-        span = math.pi + 2.0 * math.radians(self.frame.alpha)
-        if not reach > 0.0:
-            return _MAX_PANELS
-        return min(_MAX_PANELS, max(1, math.ceil(0.5 * span / (_PANEL_REACH * reach))))
+    # -- the quadrature rule ---------------------------------------------------
+    def _sing_arrays(self, heights: list[float], planar: bool = False) -> tuple[Array, Array]:
+        g = self.geometry
+        sp: list[tuple[float, float]] = []
+        sm: list[tuple[float, float]] = []
+        two_pi = 2.0 * math.pi
+        for h in heights:
+            for rp, rm, dist in _singularities(g, h, planar):
+                for k in (-two_pi, 0.0, two_pi):
+                    sp.append((rp + k, dist))
+                    sm.append((rm + k, dist))
+        return np.array(sp).reshape(-1, 2), np.array(sm).reshape(-1, 2)
 
-    def _build(self, panels: int) -> None:
-        self._checked = None
-        p0, p1 = arc_range(self.frame)
-        width = (p1 - p0) / panels
-        self.edges = np.arange(panels + 1) * width + p0
-        self.edges[-1] = p1
-        half = 0.5 * width
-        mid = self.edges[:-1] + half
-        self._half = half
-        self._nodes = (mid[:, None] + half * _GL_NODES).ravel()
-        self._node_phi = np.concatenate(((p0,), self._nodes, (p1,)))
-        weights = np.empty((panels, len(_GL_WEIGHTS)))
-        weights[:] = half * _GL_WEIGHTS
-        self._weights = weights.ravel()
-        c, s = np.cos(self._nodes), np.sin(self._nodes)
-        self._cs = (c, s)
-        r, hc, rsa, sb, cb = self._r, self._hc, self._rsa, self._sb, self._cb
-        # |u'| = r sqrt(w^2 - 2 h sb w s + h^2 (cb^2 c^2 + s^2)) / (x^2 + d^2 - 2 h sb d + h^2):
-        # quadratics in h, side by side as coefficients of (1, h, h^2) for the
-        # numerator^2, the denominator and half their derivatives
-        w = r - hc * c + rsa * s
-        d = rsa + r * s
-        n = len(c)
-        q = np.zeros((3, 4 * n))
-        half_b = -sb * w * s
-        c2 = (cb * c) ** 2 + s * s
-        half_e = -sb * d
-        # |P|^2 = (r c - h_c)^2 + d^2
-        pp = (r * r + hc * hc + rsa * rsa) - (2.0 * r * hc) * c + (2.0 * r * rsa) * s
-        q[0, :n], q[1, :n], q[2, :n] = w * w, 2.0 * half_b, c2
-        q[0, n : 2 * n], q[1, n : 2 * n], q[2, n : 2 * n] = pp, 2.0 * half_e, 1.0
-        q[0, 2 * n : 3 * n], q[1, 2 * n : 3 * n] = half_b, c2
-        q[0, 3 * n :], q[1, 3 * n :] = half_e, 1.0
-        self._quad = q
-        self._n = n
-        self._rw = r * self._weights
+    def _build(
+        self, heights: list[float], reach: float, planar: bool = False
+    ) -> tuple[_Half, _Half]:
+        g = self.geometry
+        sp, sm = self._sing_arrays(heights, planar)
+        hs = 0.5 * g.span
+        return (
+            _half_rule(g, True, _panels(hs, sp, reach)),
+            _half_rule(g, False, _panels(hs, sm, reach)),
+        )
 
-    def refine(self, h: float) -> bool:
-        """Make the rule fine enough for the apex at height h; True if it changed
-        (the apex must then be solved again)."""
-        if self.fixed_panels is not None:
-            return False
-        panels = len(self.edges) - 1
-        need = self._panels_for(h)
-        if need <= panels:
-            speed = self._speed_cs(h, *self._cs).reshape(panels, -1)
-            tail = float(np.abs(speed @ _TAIL.T).max())
-            if tail <= _TAIL_TOL * float(speed.max()) or panels >= _MAX_PANELS:
-                self._checked = (h, speed)  # set_apex(h) reuses it
+    def _valid(self, rule: tuple[_Half, _Half], heights: list[float]) -> bool:
+        sp, sm = self._sing_arrays(heights)
+        for hf, sing in zip(rule, (sp, sm), strict=True):
+            if not len(sing):
+                continue
+            c = hf.edges[:-1] + hf.half
+            dist = np.hypot(c[:, None] - sing[:, 0], sing[:, 1]).min(axis=1)
+            if bool((hf.half > self.reach * dist).any()):
                 return False
-            need = 2 * panels
-        self._build(min(need, _MAX_PANELS))
         return True
 
-    def _speed_cs(self, h: float | Array, c: Array, s: Array) -> Array:
-        """|u'(phi)| (radians per radian) at arc parameters with cosines ``c`` and
-        sines ``s``, for apex heights ``h`` (a float, or an array broadcasting)."""
-        r, hc, rsa, sb, cb = self._r, self._hc, self._rsa, self._sb, self._cb
-        w = r - hc * c + rsa * s
-        t1 = (h * cb) * c
-        t2 = sb * w - h * s
-        t3 = cb * w
-        # |P - A|^2 = k0 + k1 c + k2 s
-        k0 = r * r + hc * hc + rsa * rsa - 2.0 * h * sb * rsa + h * h
-        vv = k0 - (2.0 * r * hc) * c + (2.0 * r) * (rsa - h * sb) * s
-        return r * np.sqrt(t1 * t1 + t2 * t2 + t3 * t3) / vv
+    def _rule_for(self, heights: list[float]) -> tuple[_Half, _Half]:
+        """A rule fine enough for every apex height in ``heights`` (units of R)."""
+        if self._rule is not None:
+            new = [h for h in heights if h not in self._valid_for]
+            if not new:
+                return self._rule
+            if self._valid(self._rule, new):
+                self._valid_for.extend(new)
+                return self._rule
+        self._rule = self._build(heights, self.reach)
+        self._valid_for = list(heights)
+        return self._rule
 
-    def _speed(self, h: float, phi: Array) -> Array:
-        return self._speed_cs(h, np.cos(phi), np.sin(phi))
+    # -- the angle condition -------------------------------------------------------
+    def _integral(self, rule: tuple[_Half, _Half], h: float | Array) -> Array | float:
+        g = self.geometry
+        total: Array | float = 0.0
+        for hf in rule:
+            total = total + _speed(hf, g, h) @ hf.weights
+        return total
 
-    # -- the angle condition ---------------------------------------------------
-    def angle_sum(self, h: float) -> float:
-        return float(self._speed_cs(float(h), *self._cs) @ self._weights)
+    def excess(self, h: float) -> float:
+        rule = self._rule_for([h])
+        return float(self._integral(rule, h)) - math.pi
 
-    def angle_sums(self, h: Array) -> Array:
-        hh = np.asarray(h, dtype=float)[:, None]
-        c, s = self._cs
-        return self._speed_cs(hh, c[None, :], s[None, :]) @ self._weights
+    def excesses(self, h: Array) -> Array:
+        hh = np.asarray(h, dtype=float).ravel()
+        rule = self._rule_for(hh.tolist())
+        out: Array = np.asarray(self._integral(rule, hh[:, None]), dtype=float)
+        return out - math.pi
 
-    def angle_sum_and_slope(self, h: float) -> tuple[float, float]:
-        n = self._n
-        q = np.array((1.0, h, h * h)) @ self._quad
-        num2, vv, dnum, dvv = q[:n], q[n : 2 * n], q[2 * n : 3 * n], q[3 * n :]
-        g = np.sqrt(num2)
-        g /= vv
-        # d/dh [sqrt(num2) / vv] = g (num2' / (2 num2) - vv' / vv)
-        slope = g * (dnum / num2 - 2.0 * dvv / vv)
-        return float(g @ self._rw), float(slope @ self._rw)
+    def excess_bound(self) -> float:
+        return 16.0 * _EPS * math.pi
 
+    def excess_accurate(self, h: float) -> tuple[float, float]:
+        g = self.geometry
+        hs = h * g.sin_beta
+        t = h * g.cos_beta
+        m1 = hs * (hs - 2.0 * g.sin_alpha) - g.l_plus * g.l_minus
+        if m1 >= 0.0:  # F on or outside the circle: no in-plane split
+            return self.excess(h), self.excess_bound()
+        rule = self._build([h], self.reach, planar=True)
+        t2 = t * t
+        total = 0.0
+        size = 0.0
+        for hf in rule:
+            q = hf.d - hs
+            w = hf.x * hf.cphi + q * hf.sphi  # > 0: F inside
+            pp = hf.x * hf.x + q * q
+            sig = np.hypot(w, t)
+            # w / pp - sig / (pp + t^2) = t^2 (w - pp / (w + sig)) / (pp (pp + t^2))
+            dens = w - pp / (w + sig)
+            dens *= t2
+            dens /= pp * (pp + t2)
+            total += float(dens @ hf.weights)
+            size += float(np.abs(dens) @ hf.weights)
+        sweep = math.atan(hs / g.l_plus) + math.atan(hs / g.l_minus)
+        return sweep - total, 16.0 * _EPS * (sweep + size)
+
+    def excess_and_slope(self, h: float) -> tuple[float, float]:
+        g = self.geometry
+        sb, cb = g.sin_beta, g.cos_beta
+        rule = self._rule_for([h])
+        t = h * cb
+        f = 0.0
+        slope = 0.0
+        for hf in rule:
+            q = hf.d - h * sb
+            w = hf.x * hf.cphi + q * hf.sphi
+            den = hf.x * hf.x + q * q + t * t
+            sig = np.hypot(w, t)
+            val = sig / den
+            # d/dh: w' = -sb sin(phi), t' = cb, den' = -2 q sb + 2 t cb
+            dsig = (t * cb - sb * w * hf.sphi) / sig
+            dden = 2.0 * (t * cb - sb * q)
+            deriv = (dsig - val * dden) / den
+            f += float(val @ hf.weights)
+            slope += float(deriv @ hf.weights)
+        return f - math.pi, slope
+
+    # -- the apex ----------------------------------------------------------------------
     def set_apex(self, h: float) -> None:
+        g = self.geometry
         self.height = h
-        panels = len(self.edges) - 1
-        if self._checked is not None and self._checked[0] == h:
-            speed = self._checked[1]
-        else:
-            speed = self._speed_cs(h, *self._cs).reshape(panels, -1)
-        theta = np.empty(panels + 1)
-        theta[0] = 0.0
-        np.cumsum(speed @ (self._half * _GL_WEIGHTS), out=theta[1:])
-        self._panel_theta = theta
-        self._node_speed = speed
-        self._table = None
+        hu = h / g.radius
+        coarse = self._rule_for([hu])
+        # the verified rule: every panel halved
+        fine = tuple(_half_rule(g, hf.plus, _halved(hf.edges)) for hf in coarse)  # type: tuple[_Half, _Half]
+        speeds = tuple(_speed(hf, g, hu) for hf in fine)
+        lo = []
+        totals = []
+        for hf, sp in zip(fine, speeds, strict=True):
+            per = (sp * hf.weights).reshape(len(hf.half), -1).sum(axis=1)
+            th = np.empty(len(per) + 1)
+            th[0] = 0.0
+            np.cumsum(per, out=th[1:])
+            lo.append(th)
+            totals.append(float(per.sum()))
+        self._apex_rule = fine  # type: ignore[assignment]
+        self._speed_at = speeds  # type: ignore[assignment]
+        self._theta_lo = (lo[0], lo[1])
+        self._half_total = (totals[0], totals[1])
+        self._tables = None
+        s_fine = totals[0] + totals[1]
+        s_coarse = float(self._integral(coarse, hu))
+        # node values to a few rounding errors each; the arc placed to ~4
+        # rounding errors of its coordinates (from the nearer end) and the apex
+        # to one of h: |u'| moves by about that over |P - A| times |u'| (R = 1)
+        sens = 0.0
+        for hf, sp in zip(fine, speeds, strict=True):
+            q = hf.d - hu * g.sin_beta
+            place = 4.0 * (np.abs(hf.x) + np.abs(hf.d)) + 2.0 * hu
+            place /= np.sqrt(hf.x * hf.x + q * q + (hu * g.cos_beta) ** 2)
+            sens += float((sp * place) @ hf.weights)
+        rounding = 16.0 * _EPS * math.pi + 4.0 * _EPS * sens
+        self._verified = (s_fine - math.pi, abs(s_fine - s_coarse) + rounding)
 
-    def _node_table(self) -> tuple[Array, Array]:
-        """theta and phi, ascending, at the start of the arc, every node and the
-        end of the arc (for first guesses of :meth:`phi_of_theta`)."""
-        if self._table is None:
-            assert self._panel_theta is not None and self._node_speed is not None
-            theta = self._panel_theta
-            nodes = self._node_speed @ (self._half * _NODE_INTEGRALS.T)
-            nodes += theta[:-1, None]
-            self._table = (np.concatenate(((0.0,), nodes.ravel(), theta[-1:])), self._node_phi)
-        return self._table
+    def verify(self, target: float = 0.0) -> tuple[float, float]:
+        if self._verified is None:
+            raise RuntimeError("apex height not set")
+        return self._verified
 
     @property
     def total_angle(self) -> float:
-        assert self._panel_theta is not None
-        return float(self._panel_theta[-1])
+        return self._half_total[0] + self._half_total[1]
 
-    # -- theta(phi) and its inverse --------------------------------------------
-    def _theta_and_speed(self, phi: Array) -> tuple[Array, Array]:
-        """theta(phi) (by a 20-point rule from the start of phi's panel) and
-        |u'(phi)|, for ``(k,)`` arc parameters in range."""
-        assert self._panel_theta is not None and self.height is not None
-        k = self.edges.searchsorted(phi, side="right")
-        k -= 1
-        np.minimum(k, len(self.edges) - 2, out=k)
-        np.maximum(k, 0, out=k)
-        a = self.edges.take(k)
-        half = 0.5 * (phi - a)
-        pts = np.empty((len(phi), 21))
+    # -- theta along each half and its inverse --------------------------------------
+    def _theta_half(self, k: int, s: Array) -> tuple[Array, Array]:
+        """theta measured from half k's end (0: +x, 1: -x) at distances ``s``
+        from it, and |u'| there."""
+        assert self._apex_rule is not None and self._theta_lo is not None
+        assert self.height is not None
+        hf = self._apex_rule[k]
+        g = self.geometry
+        j = hf.edges.searchsorted(s, side="right")
+        j -= 1
+        np.clip(j, 0, len(hf.half) - 1, out=j)
+        a = hf.edges.take(j)
+        half = 0.5 * (s - a)
+        pts = np.empty((len(s), 21))
         pts[:, :20] = (a + half)[:, None] + half[:, None] * _GL_NODES
-        pts[:, 20] = phi
-        speed = self._speed(self.height, pts)
-        theta = self._panel_theta.take(k) + half * (speed[:, :20] @ _GL_WEIGHTS)
+        pts[:, 20] = s
+        flat = pts.ravel()
+        x, d = end_relative(g, flat, hf.plus)
+        ang = flat - g.alpha
+        cphi = np.cos(ang)
+        if not hf.plus:
+            np.negative(cphi, out=cphi)
+        speed = _speed_at(g, x, d, cphi, np.sin(ang), self.height / g.radius)
+        speed = speed.reshape(len(s), 21)
+        theta = self._theta_lo[k].take(j) + half * (speed[:, :20] @ _GL_WEIGHTS)
         return theta, speed[:, 20]
+
+    def _node_table(self, k: int) -> tuple[Array, Array]:
+        """theta from half k's end and s, ascending, at the end, every node and
+        the midpoint (for first guesses of the inverse)."""
+        if self._tables is None:
+            assert self._apex_rule is not None and self._speed_at is not None
+            assert self._theta_lo is not None
+            out = []
+            for hf, sp, lo in zip(self._apex_rule, self._speed_at, self._theta_lo, strict=True):
+                per = sp.reshape(len(hf.half), -1)
+                nodes = per @ _NODE_INTEGRALS.T
+                nodes *= hf.half[:, None]
+                nodes += lo[:-1, None]
+                th = np.concatenate(((0.0,), nodes.ravel(), lo[-1:]))
+                s = np.concatenate(((0.0,), hf.s.ravel(), hf.edges[-1:]))
+                out.append((th, s))
+            self._tables = (out[0], out[1])
+        return self._tables[k]
+
+    def _s_of_theta(self, k: int, theta: Array) -> Array:
+        """Distances s from half k's end at which theta (from that end) is reached."""
+        th_tab, s_tab = self._node_table(k)
+        j = th_tab.searchsorted(theta, side="right")
+        j -= 1
+        np.clip(j, 0, len(th_tab) - 2, out=j)
+        t0, t1 = th_tab.take(j), th_tab.take(j + 1)
+        s0, s1 = s_tab.take(j), s_tab.take(j + 1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            frac = np.where(t1 > t0, (theta - t0) / (t1 - t0), 0.0)
+        s = s0 + frac * (s1 - s0)
+        top = float(s_tab[-1])
+        for _ in range(30):
+            f, speed = self._theta_half(k, s)
+            step = (f - theta) / speed
+            s -= step
+            np.clip(s, 0.0, top, out=s)
+            # Newton leaves an error of about step^2 |u''| / (2 |u'|), and
+            # |u''| / |u'| is at most about 1 / s near an end
+            if bool((np.abs(step) <= 1e-8 * s).all()):
+                break
+        return s
+
+    def _split(self, theta: ArrayLike) -> tuple[Array, NDArray[np.bool_], Array]:
+        """Flat angles -> (which half is +x, s on its half)."""
+        t = np.atleast_1d(np.asarray(theta, dtype=float))
+        first = self._half_total[0]
+        plus = t <= first
+        s = np.empty(len(t))
+        if plus.any():
+            s[plus] = self._s_of_theta(0, np.maximum(t[plus], 0.0))
+        if (~plus).any():
+            back = self.total_angle - t[~plus]
+            s[~plus] = self._s_of_theta(1, np.maximum(back, 0.0))
+        return t, plus, s
 
     def theta_of_phi(self, phi: ArrayLike) -> Array:
         """Developed angle theta (radians) at arc parameters ``phi``."""
         ph = np.atleast_1d(np.asarray(phi, dtype=float))
-        return self._theta_and_speed(ph)[0]
+        g = self.geometry
+        p0, p1 = arc_range(self.frame)
+        sp = ph - p0
+        plus = sp <= 0.5 * g.span
+        out = np.empty(len(ph))
+        if plus.any():
+            out[plus] = self._theta_half(0, np.clip(sp[plus], 0.0, None))[0]
+        if (~plus).any():
+            sm = np.clip(p1 - ph[~plus], 0.0, None)
+            out[~plus] = self.total_angle - self._theta_half(1, sm)[0]
+        return out
 
     def phi_of_theta(self, theta: ArrayLike) -> Array:
         """Arc parameters phi (radians) at developed angles ``theta`` (Newton)."""
-        assert self._panel_theta is not None and self.height is not None
-        t = np.atleast_1d(np.asarray(theta, dtype=float))
-        # first guess: linear between the tabulated nodes
-        th_tab, ph_tab = self._node_table()
-        j = th_tab.searchsorted(t, side="right")
-        j -= 1
-        np.minimum(j, len(th_tab) - 2, out=j)
-        np.maximum(j, 0, out=j)
-        t0, t1 = th_tab.take(j), th_tab.take(j + 1)
-        p0, p1 = ph_tab.take(j), ph_tab.take(j + 1)
-        phi = p0 + (t - t0) / (t1 - t0) * (p1 - p0)
-        lo, hi = float(self.edges[0]), float(self.edges[-1])
-        for _ in range(20):
-            f, speed = self._theta_and_speed(phi)
-            step = (f - t) / speed
-            phi -= step
-            np.minimum(np.maximum(phi, lo, out=phi), hi, out=phi)
-            # Newton leaves an error of about step^2 |u''| / (2 |u'|)
-            if float(np.max(np.abs(step), initial=0.0)) <= 1e-9:
-                break
-        return phi
+        _, plus, s = self._split(theta)
+        p0, p1 = arc_range(self.frame)
+        return np.where(plus, p0 + s, p1 - s)
 
-    def _directions(self, phi: Array) -> Array:
-        """Unit vectors ``(k, 3)`` from the apex to the arc points at ``phi``."""
+    def _vectors(self, plus: NDArray[np.bool_] | bool, s: Array) -> tuple[Array, Array]:
+        """Unit directions ``u`` from the apex and the arc's unit tangents
+        (towards increasing phi) ``(k, 3)`` at the points s from their ends."""
         assert self.height is not None
-        r = self._r
-        c, s = np.cos(phi), np.sin(phi)
-        d = self._rsa + r * s
-        v = np.empty((len(phi), 3))
-        np.multiply(c, r, out=v[:, 0])
-        v[:, 0] -= self._hc
-        np.multiply(d, self._cb, out=v[:, 1])
-        np.multiply(d, self._sb, out=v[:, 2])
-        v[:, 2] -= self.height
+        g = self.geometry
+        x, d = end_relative(g, s, plus)
+        v = np.empty((len(s), 3))
+        v[:, 0] = x
+        np.multiply(d, g.cos_beta, out=v[:, 1])
+        np.multiply(d, g.sin_beta, out=v[:, 2])
+        v[:, 2] -= self.height / g.radius
         v /= np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
-        return v
+        ang = s - g.alpha
+        cphi = np.where(plus, np.cos(ang), -np.cos(ang))
+        tan = np.empty_like(v)  # P'(phi) / R, a unit vector
+        np.negative(np.sin(ang), out=tan[:, 0])
+        np.multiply(cphi, g.cos_beta, out=tan[:, 1])
+        np.multiply(cphi, g.sin_beta, out=tan[:, 2])
+        return v, tan
 
     def directions_at(self, theta: ArrayLike) -> Array:
-        return self._directions(self.phi_of_theta(theta))
+        _, plus, s = self._split(theta)
+        return self._vectors(plus, s)[0]
 
     def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
-        phi = self.phi_of_theta(theta)
-        u = self._directions(phi)
-        c, s = np.cos(phi), np.sin(phi)
-        e = np.empty_like(u)  # P'(phi) / r, a unit vector
-        np.negative(s, out=e[:, 0])
-        np.multiply(c, self._cb, out=e[:, 1])
-        np.multiply(c, self._sb, out=e[:, 2])
+        _, plus, s = self._split(theta)
+        u, e = self._vectors(plus, s)
         e -= np.einsum("ij,ij->i", e, u)[:, None] * u
         e /= np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
         return u, e
@@ -556,21 +516,19 @@ class ExactCone(DirectionSurface):
     def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
         """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats
         (the ends of the arc without iterating)."""
-        assert self.height is not None
-        if theta <= 0.0:
-            phi = float(self.edges[0])
-        elif theta >= self.total_angle:
-            phi = float(self.edges[-1])
-        else:
-            phi = float(self.phi_of_theta(theta)[0])
-        r, cb, sb = self._r, self._cb, self._sb
-        c, s = math.cos(phi), math.sin(phi)
-        d = self._rsa + r * s
-        v = (r * c - self._hc, d * cb, d * sb - self.height)
-        norm = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-        u = [x / norm for x in v]
-        dp = (-s, c * cb, c * sb)
-        along = dp[0] * u[0] + dp[1] * u[1] + dp[2] * u[2]
-        e = [p - along * q for p, q in zip(dp, u, strict=True)]
-        norm = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
-        return u, [x / norm for x in e]
+        if theta <= 0.0 or theta >= self.total_angle:
+            plus = theta <= 0.0
+            u, e = self._vectors(np.array([plus]), np.zeros(1))
+            e -= float(e[0] @ u[0]) * u
+            e /= float(np.sqrt(e[0] @ e[0]))
+            return u[0].tolist(), e[0].tolist()
+        u, e = self.frames(np.array([theta]))
+        return u[0].tolist(), e[0].tolist()
+
+
+def _halved(edges: Array) -> Array:
+    """Panel edges with every panel split in two."""
+    out = np.empty(2 * len(edges) - 1)
+    out[::2] = edges
+    out[1::2] = 0.5 * (edges[:-1] + edges[1:])
+    return out

@@ -13,22 +13,24 @@ import math
 import time
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.geometry.cone import ExactCone, PaperFan
 from onefold_cad.geometry.frame import arc_range
-from onefold_cad.geometry.placement import RestingPlacement, rest_on_ground
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import Solution
 from onefold_cad.geometry.validate import cross3
+
+if TYPE_CHECKING:  # placement builds on this module
+    from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = ["CreaseHalf", "Developability", "FoldedSheet", "fold"]
 
 Array = NDArray[np.float64]
 _MIRROR = np.array([1.0, -1.0, 1.0])
-_RESTING_POINTS = 4000  # boundary points that may become ground contacts
 
 
 @dataclass(frozen=True)
@@ -58,7 +60,12 @@ class CreaseHalf:
 class Developability:
     """Measured differences between the folded form and the flat sheet.
 
-    Lengths in the design unit, areas in unit^2, angles in degrees.
+    Measured on the folded surface, not on samples: the paper model's
+    boundary is straight between ruling ends and its triangles planar (exact
+    sums); the exact model's edge lengths and cone-patch areas are
+    extrapolated from chord sums along each folded edge to 1e-12
+    (:func:`_edge_measures`). Lengths in the design unit, areas in unit^2,
+    angles in degrees.
     """
 
     max_ruling_length_error: float
@@ -135,12 +142,12 @@ class FoldedSheet:
 
     @cached_property
     def resting(self) -> RestingPlacement:
-        """The placement that stands the form on the ground (z = 0).
+        """The placement that stands the zero-thickness shell on the ground
+        (z = 0), without a relief hole: :func:`~onefold_cad.geometry.placement.rest_form`
+        (which also places a thick sheet, its solid, or a shell with a hole)."""
+        from onefold_cad.geometry.placement import rest_form
 
-        Its ``touching`` indices refer to ``vstack([boundary_3d, apex])``."""
-        area, centroid = _fan_area_and_centroid(self.apex, self.boundary_3d)
-        pts = np.vstack([self.boundary_3d, self.apex])
-        return rest_on_ground(pts, centroid, candidates=_RESTING_POINTS)
+        return rest_form(self)
 
     @property
     def apex(self) -> Array:
@@ -239,26 +246,12 @@ class FoldedSheet:
             idx = base + np.arange(nt * radial).reshape(nt, radial)
             a, b = idx[:-1, :-1], idx[1:, :-1]
             c, d = idx[1:, 1:], idx[:-1, 1:]
-            quads = np.stack([a, b, c, a, c, d], axis=-1).reshape(-1, 3)
+            quads = np.stack([a, c, b, a, d, c], axis=-1).reshape(-1, 3)  # top side: u x e
             fan = np.stack([np.zeros(nt - 1, dtype=np.int64), idx[:-1, 0], idx[1:, 0]], axis=-1)
             tri = np.concatenate([fan, quads])
             faces.append(tri if side == 0 else tri[:, ::-1])
             base += nt * radial
         return np.concatenate(verts), np.concatenate(faces).astype(np.int64)
-
-
-def _merge(fan: Array, vertices: Array, tol: float = 1e-12) -> Array:
-    """The sorted union of two angle lists (radians), leaving out every angle
-    closer than ``tol`` to the one before it; the largest angle is kept."""
-    t = np.concatenate((fan, vertices))
-    t.sort(kind="stable")  # two sorted runs: a merge
-    keep = np.empty(len(t), dtype=bool)
-    keep[0] = True
-    np.greater(t[1:] - t[:-1], tol, out=keep[1:])
-    last = t[-1]
-    t = t[keep]
-    t[-1] = max(t[-1], last)
-    return t
 
 
 def _ring(angles: tuple[Array, Array]) -> NDArray[np.int64]:
@@ -287,12 +280,138 @@ def _crease_half(
     return CreaseHalf(name, length, end, end3.copy(), angle, "UP" if into > 0.0 else "DOWN")
 
 
-def _fan_area_and_centroid(apex: Array, ring: Array) -> tuple[float, Array]:
+def _fan_area(apex: Array, ring: Array) -> float:
+    """Area of the fan of triangles (apex, ring_i, ring_i+1) over a closed ring."""
     a, b = ring, np.roll(ring, -1, axis=0)
-    areas = 0.5 * np.linalg.norm(cross3(a - apex, b - apex), axis=1)
-    centroids = (apex + a + b) / 3.0
-    total = float(np.sum(areas))
-    return total, (areas[:, None] * centroids).sum(axis=0) / total
+    return float(np.sum(0.5 * np.linalg.norm(cross3(a - apex, b - apex), axis=1)))
+
+
+#: Romberg levels (each halving the chords) before an edge piece that does not
+#: converge is cut in two, and the relative change at which it stops.
+_ROMBERG_LEVELS = 8
+_ROMBERG_RTOL = 1e-12
+#: At most this many pieces per fold (each up to 1025 points).
+_MAX_PIECES = 256
+
+
+def _edge_pieces(a: Array, b: Array) -> Array:
+    """Break points (fractions of the edge from ``a`` to ``b``) graded towards
+    the edge's point nearest H: the fold map varies on the scale of the
+    distance from H, so each piece is smooth on its own length."""
+    d = b - a
+    length2 = float(d @ d)
+    foot = float(np.clip(-(a @ d) / length2, 0.0, 1.0))
+    near = float(np.hypot(*(a + foot * d))) / math.sqrt(length2)  # distance from H / length
+    marks = [0.0, 1.0, foot]
+    step = max(near, 1e-12)
+    while step < 1.0:
+        marks += [foot - step, foot + step]
+        step *= 2.0
+    m = np.unique(np.clip(marks, 0.0, 1.0))
+    return m[np.concatenate([[True], np.diff(m) > 1e-15])]
+
+
+@dataclass
+class _Piece:
+    """A piece of a sheet edge being measured: its flat ends, the folded
+    points at its current chords and the Romberg rows so far."""
+
+    edge: int
+    p: Array
+    q: Array
+    pts: Array
+    rows: list[list[Array]]
+
+
+def _romberg_row(piece: _Piece, apex: Array, floor: Array) -> bool:
+    """Add the chord sum and chord-fan area at the piece's current points to
+    its Romberg table; True when the last two extrapolations agree to 1e-12
+    or to ``floor`` ``(2,)`` (length, area: the rounding of the whole)."""
+    p = piece.pts
+    chords = float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
+    fan = float(0.5 * np.linalg.norm(cross3(p[:-1] - apex, p[1:] - apex), axis=1).sum())
+    row = [np.array([chords, fan])]
+    for j, prev in enumerate(piece.rows[-1] if piece.rows else []):
+        row.append(row[j] + (row[j] - prev) / (4.0 ** (j + 1) - 1.0))
+    piece.rows.append(row)
+    if len(piece.rows) < 3:
+        return False
+    last, before = piece.rows[-1][-1], piece.rows[-2][-1]
+    return bool(np.all(np.abs(last - before) <= np.maximum(_ROMBERG_RTOL * np.abs(last), floor)))
+
+
+def _edge_measures(folded: FoldedSheet) -> tuple[Array, Array]:
+    """Per sheet edge: the length of its fold on the surface and the area of
+    the cone patch between it and the apex, each extrapolated (Romberg) from
+    chord sums and chord-fan areas of the folded edge at halving steps until
+    two estimates agree to 1e-12 (the chord errors run in even powers of the
+    step on each smooth piece of the edge). Pieces are graded towards the
+    edge's point nearest H; a piece that does not converge in
+    :data:`_ROMBERG_LEVELS` halvings (the cone bends sharply there, as beta
+    nears 90 deg) is cut in two and measured again, down to 1e-9 of its edge
+    and :data:`_MAX_PIECES` pieces in all."""
+    v = folded.sheet.vertices
+    apex = folded.apex
+    lengths, areas = np.zeros(len(v)), np.zeros(len(v))
+    frac = np.arange(9) / 8.0
+
+    def start(edge: int, p: Array, q: Array) -> _Piece:
+        return _Piece(edge, p, q, p + frac[:, None] * (q - p), [])
+
+    live: list[_Piece] = []
+    for k in range(len(v)):
+        a, b = v[k], v[(k + 1) % len(v)]
+        m = _edge_pieces(a, b)
+        ends = zip(m[:-1], m[1:], strict=True)
+        live += [start(k, a + m0 * (b - a), a + m1 * (b - a)) for m0, m1 in ends]
+    mapped = folded.map_points(np.concatenate([c.pts for c in live]))
+    for c, pts in zip(live, np.split(mapped, len(live)), strict=True):
+        c.pts = pts
+    edge_len = np.linalg.norm(np.roll(v, -1, axis=0) - v, axis=1)
+    # below 1e-14 of the perimeter, and of the perimeter times the size for the
+    # fan of long thin triangles from the apex, the changes are rounding
+    perimeter = float(edge_len.sum())
+    floor = 1e-14 * perimeter * np.array([1.0, folded.sheet.size])
+    pieces = len(live)
+    while live:
+        halve: list[_Piece] = []
+        split: list[_Piece] = []
+        for c in live:
+            if _romberg_row(c, apex, floor):
+                lengths[c.edge] += c.rows[-1][-1][0]
+                areas[c.edge] += c.rows[-1][-1][1]
+            elif len(c.rows) < _ROMBERG_LEVELS:
+                halve.append(c)
+            elif pieces < _MAX_PIECES and np.linalg.norm(c.q - c.p) > 1e-9 * edge_len[c.edge]:
+                split.append(c)
+                pieces += 1
+            else:  # as fine as it gets: keep the best estimate
+                lengths[c.edge] += c.rows[-1][-1][0]
+                areas[c.edge] += c.rows[-1][-1][1]
+        fresh = [
+            start(c.edge, *ends)
+            for c in split
+            for ends in ((c.p, 0.5 * (c.p + c.q)), (0.5 * (c.p + c.q), c.q))
+        ]
+        # one map call for every new point: the midpoints of the pieces
+        # halved, and the points of the new halves
+        mids = []
+        for c in halve:
+            n = len(c.pts) - 1
+            mids.append(c.p + ((np.arange(n) + 0.5) / n)[:, None] * (c.q - c.p))
+        mids += [c.pts for c in fresh]
+        if not mids:
+            break
+        cuts = np.cumsum([len(x) for x in mids])[:-1]
+        new = np.split(folded.map_points(np.concatenate(mids)), cuts)
+        for c, m in zip(halve, new[: len(halve)], strict=True):
+            both = np.empty((2 * len(m) + 1, 3))
+            both[0::2], both[1::2] = c.pts, m
+            c.pts = both
+        for c, m in zip(fresh, new[len(halve) :], strict=True):
+            c.pts = m
+        live = halve + fresh
+    return lengths, areas
 
 
 def _measure(folded: FoldedSheet) -> Developability:
@@ -306,10 +425,17 @@ def _measure(folded: FoldedSheet) -> Developability:
             )
         )
     )
-    b2, b3 = folded.boundary_flat, folded.boundary_3d
-    seg_flat = np.linalg.norm(np.roll(b2, -1, axis=0) - b2, axis=1)
-    seg_3d = np.linalg.norm(np.roll(b3, -1, axis=0) - b3, axis=1)
-    area3, _ = _fan_area_and_centroid(folded.apex, b3)
+    if isinstance(folded.solution.surface, PaperFan):
+        # planar triangles between the ruling ends, straight edges between them
+        b2, b3 = folded.boundary_flat, folded.boundary_3d
+        seg_flat = np.linalg.norm(np.roll(b2, -1, axis=0) - b2, axis=1)
+        seg_3d = np.linalg.norm(np.roll(b3, -1, axis=0) - b3, axis=1)
+        area3 = _fan_area(folded.apex, b3)
+    else:  # the exact cone: integrated along each edge
+        v = sheet.vertices
+        seg_flat = np.linalg.norm(np.roll(v, -1, axis=0) - v, axis=1)
+        seg_3d, areas = _edge_measures(folded)
+        area3 = float(np.sum(areas))
     return Developability(
         max_ruling_length_error=ruling_err,
         max_boundary_segment_error=float(np.max(np.abs(seg_3d - seg_flat))),
@@ -319,6 +445,45 @@ def _measure(folded: FoldedSheet) -> Developability:
         area_3d=area3,
         angle_sum_deg=folded.solution.angle_sum_deg,
     )
+
+
+def _fan_rays(
+    surface: PaperFan, vertices: tuple[Array, Array], tol: float = 1e-12
+) -> tuple[Array, Array, Array]:
+    """Both sides' ruling angles and the +y side's directions of their rays:
+    the fan's division rays with every sheet vertex ray between them inserted
+    (a vertex closer than ``tol`` to a division uses the division). Returns
+    ``(upper angles, lower angles, (m, 3) directions)``, the lower side's after
+    the upper side's."""
+    assert surface.thetas is not None and surface.directions is not None
+    fan, dirs = surface.thetas, surface.directions
+    n1 = len(fan)
+    if fan[-1] > math.pi:
+        fan = np.minimum(fan, math.pi)  # theta_0 = 0: only the top can overshoot
+    out: list[Array] = []
+    pieces: list[Array] = []
+    for vert in vertices:
+        inner = vert[1:-1]
+        k_all = fan.searchsorted(inner).tolist()  # fan[k - 1] < v <= fan[k]
+        angles: list[Array] = []
+        start = 0
+        for v, k in zip(inner.tolist(), k_all, strict=True):
+            k = min(k, n1 - 1)
+            lo, hi = float(fan[k - 1]), float(fan[k])
+            if v - lo <= tol or abs(hi - v) <= tol:
+                continue
+            angles += [fan[start:k], np.array((v,))]
+            pieces += [dirs[start:k], np.array([surface._frame1(k - 1, v - lo)[0]])]
+            start = k
+        if start:
+            angles.append(fan[start:])
+            side = np.concatenate(angles)
+        else:
+            side = fan.copy()
+        pieces.append(dirs[start:])
+        side[-1] = max(float(side[-1]), float(vert[-1]))  # the -x crease at pi
+        out.append(side)
+    return out[0], out[1], np.concatenate(pieces)
 
 
 def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> FoldedSheet:
@@ -338,48 +503,49 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
     """
     t0 = time.perf_counter()
     surface = solution.surface
-    vert_up, vert_lo = sheet._side_angles
-    if isinstance(surface, PaperFan):
-        assert surface.thetas is not None
-        fan = np.minimum(surface.thetas, math.pi)  # theta_0 = 0: only the top can overshoot
-        up, lo = _merge(fan, vert_up), _merge(fan, vert_lo)
+    fan = isinstance(surface, PaperFan)
+    if fan:
+        assert isinstance(surface, PaperFan)
+        up, lo, u = _fan_rays(surface, sheet._side_angles)
+        g = surface.gammas
+        assert g is not None
+        crease_frames = (surface._frame1(0, 0.0), surface._frame1(len(g) - 1, float(g[-1])))
+        theta = np.concatenate((up, lo))
     else:
+        vert_up, vert_lo = sheet._side_angles
         up, lo = vert_up.copy(), vert_lo.copy()  # the sheet's are read-only
+        theta = np.concatenate((up, lo))
+        u = surface.directions_at(theta)
+        crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
     mu, m = len(up), len(up) + len(lo)
-    theta = np.concatenate((up, lo))
-    # the +y side's directions (rays on a paper fan's divisions are its
-    # direction-vectors); the crease halves need the in-surface direction too
-    u = surface.directions_at(theta)
-    crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
-    psi = theta.copy()
-    np.negative(psi[mu:], out=psi[mu:])  # the -y side's flat angles run clockwise
+    psi = theta
+    psi[mu:] *= -1.0  # the -y side's flat angles run clockwise
     rho, cos, sin = sheet._rays(psi)
+    theta = None
     flat_r = np.zeros((m, 2, 2))
     np.multiply(rho, cos, out=flat_r[:, 1, 0])
     np.multiply(rho, sin, out=flat_r[:, 1, 1])
-    apex = solution.apex
+    h = solution.apex_height
     rulings3 = np.empty((m, 2, 3))
-    rulings3[:, 0] = apex
+    rulings3[:, 0] = (0.0, 0.0, h)
     ends3 = rulings3[:, 1]
     np.multiply(rho[:, None], u, out=ends3)
-    np.negative(ends3[mu:, 1], out=ends3[mu:, 1])  # the -y side: the mirror image
-    ends3[:, 2] += apex[2]
+    ends3[mu:, 1] *= -1.0  # the -y side: the mirror image
+    ends3[:, 2] += h
     xp, xm = sheet.crease_lengths
     crease = (
         _crease_half("plus_x", xp, ends3[0], *crease_frames[0]),
         _crease_half("minus_x", xm, ends3[mu - 1], *crease_frames[1]),
     )
-    boundary: dict[str, Array] = {}
-    if isinstance(surface, PaperFan):
-        # the paper model's boundary is straight between the ruling ends: it is
-        # part of the fold, so fill the cached properties' slots with it now
-        # (the +y side's ends from +x to -x, then the -y side's back; see _ring)
-        ends2 = flat_r[:, 1]
-        boundary["boundary_flat"] = np.concatenate((ends2[:mu], ends2[m - 2 : mu : -1]))
-        boundary["boundary_3d"] = np.concatenate((ends3[:mu], ends3[m - 2 : mu : -1]))
     elapsed = time.perf_counter() - t0
     folded = FoldedSheet(
         solution, sheet, (up, lo), flat_r, rulings3, crease, elapsed, int(boundary_samples)
     )
-    folded.__dict__.update(boundary)
+    if fan:
+        # the paper model's boundary is straight between the ruling ends: it is
+        # part of the fold, so fill the cached properties' slots with it now
+        # (the +y side's ends from +x to -x, then the -y side's back; see _ring)
+        ends2 = flat_r[:, 1]
+        folded.__dict__["boundary_flat"] = np.concatenate((ends2[:mu], ends2[m - 2 : mu : -1]))
+        folded.__dict__["boundary_3d"] = np.concatenate((ends3[:mu], ends3[m - 2 : mu : -1]))
     return folded

@@ -7,13 +7,15 @@ names follow build123d's sheet-metal vocabulary: ``thickness``,
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from enum import StrEnum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.validate import closed_interval, finite
+
+if TYPE_CHECKING:
+    from onefold_cad.geometry.bend import BendValues
 
 __all__ = ["SheetSurface", "Units", "Material", "BendValues", "bend_values"]
 
@@ -64,8 +66,18 @@ class Units(StrEnum):
 
     @property
     def mm(self) -> float:
-        """Millimetres per unit."""
+        """Millimetres per unit (exact: 1 in = 25.4 mm, 1 ft = 304.8 mm)."""
         return {"mm": 1.0, "in": 25.4, "ft": 304.8}[self.value]
+
+    def factor_to(self, other: Units | str) -> float:
+        """The factor that turns a length in this unit into one in ``other``."""
+        return self.mm / Units.parse(other).mm
+
+    @property
+    def mass_unit(self) -> str:
+        """The unit masses are reported in: 'kg' for mm designs, 'lb' for inch
+        and foot designs."""
+        return "kg" if self is Units.MM else "lb"
 
 
 @dataclass(frozen=True)
@@ -80,7 +92,8 @@ class Material:
         relief_hole: diameter of the relief hole at the apex >= 0 (0 = none);
             None chooses the default: none for t = 0, 2 * t + 2 * r otherwise
             (at least 3 * t).
-        density: mass per volume (mass unit per design unit^3) > 0, or None.
+        density: kg/m^3 > 0 (e.g. 7850 for steel), or None; independent of
+            the design's length unit (see :func:`onefold_cad.design.design_mass`).
         name: a material description for the notes (e.g. '304 stainless').
         sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
     """
@@ -129,29 +142,41 @@ class Material:
         return replace(self, **changes)
 
 
-@dataclass(frozen=True)
-class BendValues:
-    """Bend allowance, outside set-back and deduction of one bend (length).
+def bend_values(angle_deg: float, material: Material, bend: str | None = None) -> BendValues:
+    """The bend model's numbers for a bend of ``angle_deg`` in [0, 180) deg.
 
-    Attributes:
-        angle_deg: bend angle psi (deg), the angle between the sides' normals.
-        allowance: BA = psi * (r + K t).
-        outside_setback: OSSB = (r + t) tan(psi / 2).
-        deduction: BD = 2 OSSB - BA.
+    One source: this calls :func:`onefold_cad.geometry.bend.bend_model`
+    (setback SB = (r + s t) tan(psi/2), BA = psi (r + K t), BD = 2 SB - BA,
+    shift SB - BA/2, with s the reference surface's place in the bend).
+
+    Args:
+        angle_deg: the fold angle psi from flat (deg).
+        material: thickness, bend radius, K-factor and reference surface.
+        bend: 'UP' or 'DOWN'. Needed for an INSIDE or OUTSIDE reference
+            surface (the bend direction decides which face is inside); a MID
+            reference is the same in both directions.
     """
+    from onefold_cad.geometry.bend import bend_model
 
-    angle_deg: float
-    allowance: float
-    outside_setback: float
-    deduction: float
-
-
-def bend_values(angle_deg: float, material: Material) -> BendValues:
-    """The bend allowance, set-back and deduction for a bend of ``angle_deg``."""
-    psi = math.radians(finite("angle_deg", angle_deg))
-    if not 0.0 <= psi < math.pi:
+    psi = finite("angle_deg", angle_deg)
+    if not 0.0 <= psi < 180.0:
         raise InvalidParameterError("angle_deg", f"must be in [0, 180) deg, got {angle_deg:g}")
-    t, r, k = material.thickness, material.bend_radius, material.k_factor
-    ba = psi * (r + k * t)
-    ossb = (r + t) * math.tan(psi / 2.0)
-    return BendValues(math.degrees(psi), ba, ossb, 2.0 * ossb - ba)
+    if bend is None:
+        if material.sheet_surface is not SheetSurface.MID:
+            raise InvalidParameterError(
+                "bend",
+                f"'UP' or 'DOWN' is needed for the {material.sheet_surface.value} reference "
+                "surface: the bend direction decides whether it is the bend's inside or outside",
+            )
+        bend = "UP"
+    return bend_model(psi, bend, material)
+
+
+def __getattr__(name: str) -> Any:
+    """``BendValues`` lives with the bend model (imported on first use: the
+    bend model imports this module)."""
+    if name == "BendValues":
+        from onefold_cad.geometry.bend import BendValues
+
+        return BendValues
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,57 +1,283 @@
-"""Stand a folded form on the ground: the stable resting placement.
+"""Stand a folded form on the ground: its resting placement and how stable it is.
 
-The form rests on a face of its convex hull whose plane, taken as the ground,
-has the surface's centre of mass above the hull's contact polygon. Of the
-stable faces we take the one needing the smallest tilt from the fold frame
-(apex above H), rotate it onto z = 0 and report the points that touch.
+:func:`rest_form` sets the body the STEP holds (the reference surface, or the
+solid of the sheet's thickness: :class:`onefold_cad.geometry.body.Body`) down
+as it was solved (apex above H), lets it topple to rest, and makes the ground
+plane exact (:mod:`onefold_cad.geometry.ground`): its lowest point lies on
+z = 0 to rounding, found on the exact curves where it can lie, never on
+samples alone. The resting frame has the centre of mass above the origin;
+its rotation is the smallest one from the fold frame.
+
+Stability: the centre of mass of the sheet with its thickness, the contacts,
+their convex hull on the ground (the support polygon) and the tipping margin
+(the smallest tilt about a support edge that tips the form over),
+:func:`stability_warnings` below 5 deg. A form resting on two points rocks on
+a curved edge: its margin is 0.
+
+Lengths are in the design unit; angles in degrees at the API.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.spatial import ConvexHull, QhullError
 
+from onefold_cad.errors import NoSolutionError
+from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.ground import (
+    CONTACT_TOLERANCE,
+    Samples,
+    features,
+    holds,
+    lowest_points,
+    roll,
+    sample_spacing,
+    settle,
+    touching,
+)
+from onefold_cad.geometry.hull import convex_hull_2d, edge_distances, polygon_area
+from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.validate import cross3
 
-__all__ = ["RestingPlacement", "rest_on_ground"]
+__all__ = [
+    "RestingPlacement",
+    "rest_form",
+    "stability_warnings",
+    "TIPPING_WARNING_DEG",
+]
 
 Array = NDArray[np.float64]
+#: Below this tipping margin (deg) a form gets a stability warning.
+TIPPING_WARNING_DEG = 5.0
 
 
 @dataclass(frozen=True, eq=False)
 class RestingPlacement:
-    """A rigid motion ``p' = rotation @ p + translation`` that rests a form on z = 0.
+    """A rigid motion ``p' = rotation @ p + translation`` that stands a form on
+    z = 0, and the form's stability there.
 
     Attributes:
-        rotation: ``(3, 3)`` rotation matrix.
+        rotation: ``(3, 3)`` rotation matrix (fold frame to resting frame).
         translation: ``(3,)`` translation (length).
-        touching: indices of the input points that lie on the ground.
+        body: the body it stands ('shell' or 'solid').
         tilt_deg: angle between the fold frame's z axis and the ground's
             normal (deg); 0 when the form stands as it was solved.
-        stable: whether the centre of mass lies over the contact polygon.
+        centre_of_mass: ``(3,)`` of the sheet with its thickness (resting
+            frame; length).
+        contacts: ``(k, 3)`` the points that touch the ground (resting frame,
+            z = 0 within 1e-9 of the sheet's size).
+        support_polygon: ``(m, 2)`` the convex hull of the contacts on the
+            ground, counter-clockwise (length).
+        tipping_margin_deg: the smallest tilt about an edge of the support
+            polygon that tips the form over, atan(d / z) with d the distance
+            of the centre of mass's ground projection inside that edge and z
+            its height (deg); negative when it lies outside (not stable).
+        tipping_edge: indices ``(i, j)`` into ``support_polygon`` of that edge.
+        bounds: ``(2, 3)`` the placed body's lowest and highest x, y, z (exact;
+            length).
+        footprint: ``(p, 2)`` the convex hull of the body's shadow on the
+            ground, counter-clockwise, from samples of its extreme curves.
+        size: the sheet's size (length), the scale of the tolerances.
     """
 
     rotation: Array
     translation: Array
-    touching: NDArray[np.int64]
+    body: str
     tilt_deg: float
-    stable: bool
+    centre_of_mass: Array
+    contacts: Array
+    support_polygon: Array
+    tipping_margin_deg: float
+    tipping_edge: tuple[int, int]
+    bounds: Array
+    footprint: Array
+    size: float
 
     def apply(self, points: ArrayLike) -> Array:
         """Move fold-frame points ``(k, 3)`` into the resting placement."""
         return np.asarray(points, dtype=float) @ self.rotation.T + self.translation
 
+    @property
+    def stable(self) -> bool:
+        """Whether the centre of mass lies strictly over the support polygon."""
+        return self.tipping_margin_deg > 0.0
 
-def _rotation_to_down(n: Array) -> Array:
-    """The smallest rotation taking unit vector ``n`` to (0, 0, -1)."""
-    target = np.array([0.0, 0.0, -1.0])
-    axis = cross3(n, target)
+    @property
+    def height(self) -> float:
+        """The placed form's height (length)."""
+        return float(self.bounds[1, 2] - self.bounds[0, 2])
+
+    @property
+    def width(self) -> float:
+        """The placed form's extent along the resting frame's x axis (length)."""
+        return float(self.bounds[1, 0] - self.bounds[0, 0])
+
+    @property
+    def depth(self) -> float:
+        """The placed form's extent along the resting frame's y axis (length)."""
+        return float(self.bounds[1, 1] - self.bounds[0, 1])
+
+    @property
+    def footprint_area(self) -> float:
+        """Area of :attr:`footprint` (length^2)."""
+        return abs(polygon_area(self.footprint))
+
+    def to_data(self, apex: ArrayLike | None = None) -> dict[str, Any]:
+        """The placement as plain JSON data (lengths in the design unit,
+        angles in degrees), for the report; ``apex``: the fold frame's apex,
+        reported where it stands."""
+        lo, hi = self.bounds
+        i, j = self.tipping_edge
+        poly = self.support_polygon
+        data: dict[str, Any] = {
+            "body": self.body,
+            "bounding_box": {"min": lo.tolist(), "max": hi.tolist()},
+            "height": self.height,
+            "footprint": {
+                "width": self.width,
+                "depth": self.depth,
+                "area": self.footprint_area,
+            },
+            "tilt_deg": float(self.tilt_deg),
+            "stable": bool(self.stable),
+            "touching_points": len(self.contacts),
+            "centre_of_mass": self.centre_of_mass.tolist(),
+            "contacts": self.contacts.tolist(),
+            "support_polygon": poly.tolist(),
+            "tipping_margin_deg": float(self.tipping_margin_deg),
+            "tipping_edge": [poly[i].tolist(), poly[j].tolist()] if len(poly) else [],
+            "warnings": stability_warnings(self),
+        }
+        if apex is not None:
+            data["apex"] = self.apply(np.asarray(apex, dtype=float)[None, :])[0].tolist()
+        return data
+
+
+def stability_warnings(rest: RestingPlacement, units: str = "") -> list[str]:
+    """The warnings (one line each) a resting form deserves: none when its
+    tipping margin is at least :data:`TIPPING_WARNING_DEG`."""
+    margin = rest.tipping_margin_deg
+    if margin >= TIPPING_WARNING_DEG:
+        return []
+    i, j = rest.tipping_edge
+    poly = rest.support_polygon
+    u = f" {units}" if units else ""
+    if len(poly) >= 2:
+        a, b = poly[i], poly[j]
+        edge = (
+            f" about the support edge from ({a[0]:.4g}, {a[1]:.4g}) to ({b[0]:.4g}, {b[1]:.4g}){u}"
+        )
+    else:
+        edge = ""
+    if len(poly) == 2:
+        return [
+            f"the {rest.body} rests on two points only and rocks on a curved edge{edge}: "
+            "it has no margin against tipping about the line through them"
+        ]
+    if margin <= 0.0:
+        return [
+            f"the {rest.body} does not stand stably: its centre of mass lies "
+            f"{-margin:.3g} deg outside its support polygon{edge}"
+        ]
+    return [
+        f"the {rest.body} stands with a tipping margin of only {margin:.3g} deg (below "
+        f"{TIPPING_WARNING_DEG:g} deg): a tilt of {margin:.3g} deg{edge} tips it over"
+    ]
+
+
+def rest_form(
+    folded: FoldedSheet, material: Material | None = None, body: str = "shell"
+) -> RestingPlacement:
+    """How the form written as ``body`` stands on the ground (z = 0).
+
+    Args:
+        folded: the fold.
+        material: thickness, reference surface and relief hole (the hole
+            the STEP is built with: pass the material with ``relief_hole``
+            resolved, as :func:`onefold_cad.export.step.build_part` does);
+            None: a zero-thickness sheet without a hole.
+        body: 'shell' (the reference surface) or 'solid' (the thick sheet;
+            exact model, thickness > 0, relief hole > 0).
+
+    Returns:
+        The placement: the lowest point of the body lies on z = 0 (found on
+        the exact body, not on samples), three or more contacts in the ground
+        plane, and the stability values.
+
+    Raises:
+        InvalidParameterError: a body that cannot be built ('solid' for the
+            paper model or without thickness).
+        NoSolutionError: the fold's points are not finite.
+    """
+    form = Body(folded, material, body)
+    size = form.size
+    _, com = form.mass_properties
+    samples = Samples(*form.samples)
+    if not (np.all(np.isfinite(samples.points)) and np.all(np.isfinite(com))):
+        raise NoSolutionError(
+            f"the fold of alpha {folded.solution.frame.alpha:g}, beta "
+            f"{folded.solution.frame.beta:g} deg is not finite in double precision "
+            f"(apex height {folded.solution.apex_height:g}): it cannot stand on the ground"
+        )
+    tol = 1e-10 * size
+    contact_tol = CONTACT_TOLERANCE * size
+    band = 2.0 * sample_spacing(form) + tol
+    g = np.array([0.0, 0.0, 1.0])
+    lows: list[tuple[int, float, Array]] = []
+    for _ in range(8):
+        g, on = roll(samples.points, com, g, tol)
+        g, plane, rocks = settle(form, features(form, samples, on), com, g)
+        lows = lowest_points(form, samples, g, band)
+        level = float(lows[0][2] @ g)
+        # roll on with the exact lowest points among the samples when the
+        # exact body reaches below the plane between samples, or when the
+        # exact contacts no longer hold the centre of mass (samples near an
+        # exact contact can look as low as it)
+        samples = samples.plus([x for x in lows if float(x[2] @ g) <= level + band])
+        on_ground = touching(samples, lows, g, level, contact_tol)
+        if level >= plane - contact_tol and (rocks or holds(on_ground, com, g, tol)):
+            break
+    rot = _rotation_to_up(g)
+    level = float(lows[0][2] @ g)
+    # stand the lowest point on z = 0, the centre of mass over the origin
+    com_r = rot @ com
+    shift = np.array([-com_r[0], -com_r[1], -level])
+    contacts = touching(samples, lows, g, level, contact_tol) @ rot.T + shift
+    polygon = contacts[convex_hull_2d(contacts[:, :2], contact_tol), :2]
+    margin, edge = _tipping(polygon, com_r + shift, contact_tol)
+    bounds = _bounds(form, samples, rot, shift, band)
+    shadow = samples.points @ rot.T
+    footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
+    tilt = math.degrees(math.acos(float(np.clip(g[2], -1.0, 1.0))))
+    # the body's points are relative to the apex: p' = rot (p - A) + shift
+    translation = shift - rot @ form.origin
+    return RestingPlacement(
+        rot,
+        translation,
+        body,
+        tilt,
+        com_r + shift,
+        contacts,
+        polygon,
+        margin,
+        edge,
+        bounds,
+        footprint,
+        size,
+    )
+
+
+def _rotation_to_up(g: Array) -> Array:
+    """The smallest rotation taking unit vector ``g`` to (0, 0, 1)."""
+    target = np.array([0.0, 0.0, 1.0])
+    axis = cross3(g, target)
     s = float(np.linalg.norm(axis))
-    c = float(np.dot(n, target))
+    c = float(g @ target)
     if s < 1e-15:
         return np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])
     k = axis / s
@@ -59,66 +285,36 @@ def _rotation_to_down(n: Array) -> Array:
     return np.eye(3) + s * kx + (1 - c) * (kx @ kx)
 
 
-def _inside_convex(point2: Array, poly2: Array) -> bool:
-    """Whether ``point2`` lies in the convex hull of the 2D points ``poly2``."""
-    if len(poly2) < 3:
-        return False
-    try:
-        hull = ConvexHull(poly2)
-    except QhullError:
-        return False
-    eq = hull.equations
-    return bool(np.all(eq[:, :2] @ point2 + eq[:, 2] <= 1e-9 * (1 + np.abs(eq[:, 2]).max())))
+def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, int]]:
+    """The tipping margin (deg) of a centre of mass ``(3,)`` over a support
+    polygon ``(m, 2)`` and the edge it is smallest about. Two corners (a form
+    that rocks on a curved edge): 0 while the centre of mass lies over the
+    segment within ``tol`` (length), else minus the tilt that brings it there;
+    one corner: minus the tilt that brings it over that point."""
+    z = max(float(com[2]), 0.0)
+    m = len(polygon)
+    if m == 0:
+        return -90.0, (0, 0)
+    if m == 1:
+        return -math.degrees(math.atan2(float(np.hypot(*(com[:2] - polygon[0]))), z)), (0, 0)
+    if m == 2:
+        a, b = polygon
+        d = b - a
+        t = float(np.clip((com[:2] - a) @ d / float(d @ d), 0.0, 1.0))
+        off = float(np.hypot(*(com[:2] - a - t * d)))
+        return 0.0 - math.degrees(math.atan2(max(off - tol, 0.0), z)), (0, 1)
+    d = edge_distances(com[:2], polygon)
+    i = int(np.argmin(d))
+    return math.degrees(math.atan2(float(d[i]), z)), (i, (i + 1) % m)
 
 
-def rest_on_ground(
-    points: ArrayLike, centre_of_mass: ArrayLike, candidates: int | None = None
-) -> RestingPlacement:
-    """Find how the form made of ``points`` ``(k, 3)`` rests on the ground.
-
-    Args:
-        points: the form's boundary points and apex (fold frame).
-        centre_of_mass: ``(3,)`` the surface's area centroid.
-        candidates: if given and exceeded, only about this many evenly spaced
-            points (and the last point, the apex) are considered as contacts;
-            the rest are moved with the placement all the same.
-    """
-    allp = np.asarray(points, dtype=float)
-    idx = np.arange(len(allp))
-    if candidates is not None and len(allp) > candidates:
-        step = int(np.ceil(len(allp) / candidates))
-        idx = np.unique(np.concatenate([idx[:-1:step], idx[-1:]]))
-    p = allp[idx]
-    com = np.asarray(centre_of_mass, dtype=float)
-    scale = float(np.ptp(p, axis=0).max())
-    tol = 1e-9 * scale
-    best: tuple[float, Array, NDArray[np.int64], bool] | None = None
-    try:
-        hull = ConvexHull(p)
-        planes = np.unique(np.round(hull.equations, 12), axis=0)
-    except QhullError:
-        planes = np.empty((0, 4))
-    planes = planes[np.argsort(planes[:, 2])]  # most downward-facing first
-    for eq in planes:
-        n = eq[:3] / np.linalg.norm(eq[:3])
-        dist = p @ n + eq[3] / np.linalg.norm(eq[:3])
-        on = np.flatnonzero(np.abs(dist) <= max(tol, 1e-7 * scale))
-        rot = _rotation_to_down(n)
-        stable = _inside_convex((com @ rot.T)[:2], (p[on] @ rot.T)[:, :2])
-        tilt = math.degrees(math.acos(float(np.clip(-n[2], -1.0, 1.0))))
-        if best is None:
-            best = (tilt, rot, on, stable)
-        if stable:  # planes are sorted by tilt, so the first stable one is best
-            best = (tilt, rot, on, stable)
-            break
-    if best is None:  # degenerate (flat) form: keep the fold frame orientation
-        rot = np.eye(3)
-        zmin = float(p[:, 2].min())
-        on = np.flatnonzero(p[:, 2] <= zmin + tol)
-        return RestingPlacement(rot, np.array([0.0, 0.0, -zmin]), idx[on], 0.0, False)
-    tilt, rot, on, stable = best
-    moved = p @ rot.T
-    zmin = float(moved[on, 2].mean())
-    return RestingPlacement(
-        rot, np.array([0.0, 0.0, -zmin]), idx[on].astype(np.int64), tilt, stable
-    )
+def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, band: float) -> Array:
+    """The placed body's exact lowest and highest x, y, z ``(2, 3)``."""
+    out = np.zeros((2, 3))
+    for axis in range(3):
+        d = rot[axis]  # the resting frame's axis in the fold frame
+        lo = float(lowest_points(form, samples, d, band)[0][2] @ d)
+        hi = float(lowest_points(form, samples, -d, band)[0][2] @ d)
+        out[0, axis] = lo + translation[axis]
+        out[1, axis] = hi + translation[axis]
+    return out

@@ -1,11 +1,22 @@
 """The apex: the non-trivial root of the angle condition (paper section 3.2).
 
 S(h), the sum of one side's apex angles with the apex at (0, 0, h), equals
-180 deg at h = 0 (the flat, trivial solution), rises to a maximum and falls
-towards 0 as h grows. The design is the root past the maximum. The paper
-bisects on [l, 2R]; that bracket misses the root for large alpha and beta, so
-:func:`solve` finds the root with a safeguarded Newton's method of its own,
-which keeps every height it has tried as a bound on the root.
+180 deg at h = 0 (the flat, trivial solution), rises (its slope there is
+sin(beta) (1/L+ + 1/L-) > 0, L+- the distances from H to the f-line's ends)
+and falls towards 0 as h grows, so a root past the maximum always exists,
+except for the paper model's single triangle, whose apex angle is below
+180 deg for every h > 0. The paper bisects on [l, 2R]; that bracket misses
+the root for large alpha and beta and for H near an end of the f-line, so
+:func:`solve` brackets for itself (relative to l, and as far down as the
+root may lie: there is no fixed floor) and refines by inverse polynomial
+interpolation through several heights evaluated at once.
+
+Every returned root is verified: the angle sum is evaluated again at the
+returned height by an independent computation (the fan's apex angles from
+the unit direction-vectors; the cone's integral with every quadrature panel
+halved), and ``angle_condition_error_deg`` is that evaluation's deviation
+from 360 deg plus a bound on its own error. Where that cannot be brought
+within 1e-9 deg, :class:`NoSolutionError` says why.
 """
 
 from __future__ import annotations
@@ -13,17 +24,25 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.errors import NoSolutionError
+from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.geometry.cone import DirectionSurface, ExactCone, PaperFan
 from onefold_cad.geometry.params import FrameCurve, Model
+from onefold_cad.geometry.root import Search, SearchFailed, find_root
 
-__all__ = ["Solution", "solve", "make_direction_surface"]
+__all__ = ["Solution", "solve", "make_direction_surface", "ANGLE_TOLERANCE_DEG"]
 
-_HALF_TURN = math.pi
+#: The angle condition every returned solution meets: |sum of apex angles - 360| (deg).
+ANGLE_TOLERANCE_DEG = 1e-9
+#: The same per side, in radians: |S(h) - pi|.
+_TOL = math.radians(ANGLE_TOLERANCE_DEG) / 2.0
+#: An apex height known less precisely than this (relative) is reported as a warning.
+_WARN_REL = 1e-9
+_EPS = 2.0**-52
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,11 +56,20 @@ class Solution:
         surface: the direction-surface with its apex fixed (maps flat angles
             to ruling directions); shared by both sides (the -y side is the
             mirror image in the xz-plane).
-        angle_sum_deg: the sum of apex angles around the apex, both sides (deg).
-        angle_condition_error_deg: |angle_sum_deg - 360| (deg).
+        angle_sum_deg: the sum of apex angles around the apex, both sides,
+            evaluated independently of the search at ``apex_height`` (deg).
+        angle_condition_error_deg: a bound on |sum - 360| at ``apex_height``:
+            the verifying evaluation's deviation plus a bound on its own
+            rounding (and, exact model, quadrature) error (deg); at most
+            :data:`ANGLE_TOLERANCE_DEG`.
         time_direction_surface: wall time spent solving (s).
-        bracket: the (lo, hi) heights the root was refined in (length).
+        bracket: heights (lo, hi) with S above / below 180 deg between which
+            the root was refined (length).
         evaluations: how many times S(h) was evaluated.
+        apex_height_error: a bound on |apex_height - h*|, h* the exact root for
+            these inputs (length): the verified angle error over |dS/dh|.
+        ds_dh: dS/dh at the root (one side's angle sum, radians per length; < 0).
+        warnings: what the user must know about this solution (one line each).
     """
 
     frame: FrameCurve
@@ -53,6 +81,9 @@ class Solution:
     time_direction_surface: float
     bracket: tuple[float, float]
     evaluations: int
+    apex_height_error: float = 0.0
+    ds_dh: float = math.nan
+    warnings: tuple[str, ...] = ()
 
     @property
     def apex(self) -> NDArray[np.float64]:
@@ -72,6 +103,13 @@ class Solution:
             return np.degrees(self.surface.gammas)
         return None
 
+    @cached_property
+    def s_max_minus_pi(self) -> float:
+        """max over h of S(h) - pi (radians, one side): how far the angle sum
+        rises above 180 deg before it falls to the root. Tiny values (beta
+        near 0) mean an ill-determined apex height. Computed on first access."""
+        return _s_max(self.surface, self.apex_height / self.frame.radius)[1]
+
 
 def make_direction_surface(frame: FrameCurve, model: Model | str) -> DirectionSurface:
     """The (unsolved) direction-surface of ``frame`` in the chosen model."""
@@ -79,83 +117,120 @@ def make_direction_surface(frame: FrameCurve, model: Model | str) -> DirectionSu
     return PaperFan(frame) if m is Model.PAPER else ExactCone(frame)
 
 
-def _no_solution(frame: FrameCurve, surface: DirectionSurface) -> NoSolutionError:
-    hint = "increase alpha or beta (allowed: (0, 90) deg)"
-    if isinstance(surface, PaperFan):
-        hint += (
-            f" or divisions (the paper model's fan of {frame.divisions} triangles is too coarse)"
-        )
-    return NoSolutionError(
-        "no non-trivial apex: the sum of apex angles never exceeds 180 deg for "
-        f"alpha={frame.alpha:g} deg, beta={frame.beta:g} deg, h_c={frame.h_c:g}, "
-        f"radius={frame.radius:g}, divisions={frame.divisions}; {hint}"
+def _describe(frame: FrameCurve, model: Model) -> str:
+    text = (
+        f"alpha={frame.alpha!r} deg, beta={frame.beta!r} deg, h_c={frame.h_c!r}, "
+        f"radius={frame.radius!r}, model={model.value}"
     )
+    if model is Model.PAPER:
+        text += f", divisions={frame.divisions}"
+    return text
 
 
-#: The lowest apex height searched, as a fraction of the paper's lower bound l:
-#: below it S(h) - 180 deg is lost in rounding (S(0) = 180 deg exactly).
-_FLOOR = 2.0**-20
-#: A Newton step smaller than this (relative to h) on the falling flank of S
-#: ends the search: the error it leaves is of the order of its square.
-_STEP_TOL = 1e-8
-_MAX_EVALUATIONS = 200
-#: A measured |S(h) - 180 deg| above this (radians) at the root gets one more
-#: Newton step (rare: the search's expanded S(h) loses digits only when the
-#: apex is very low).
-_POLISH = 1e-13
+def _no_root(frame: FrameCurve, model: Model, why: str, reason: str = "no_root") -> NoSolutionError:
+    err = NoSolutionError(f"no non-trivial apex for {_describe(frame, model)}: {why}")
+    err.reason = reason  # type: ignore[attr-defined]
+    return err
 
 
-def _find_root(
-    surface: DirectionSurface, frame: FrameCurve, start: float
-) -> tuple[float, float, float, int]:
-    """The non-trivial root of S(h) = 180 deg: (h, lo, hi, evaluations).
+def _unresolved(
+    frame: FrameCurve, model: Model, why: str, heights: tuple[float, float]
+) -> NoSolutionError:
+    err = NoSolutionError(
+        f"the apex cannot be resolved to {ANGLE_TOLERANCE_DEG:g} deg in double precision "
+        f"for {_describe(frame, model)}: {why}"
+    )
+    err.reason = "unresolved"  # type: ignore[attr-defined]
+    err.heights = heights  # type: ignore[attr-defined]
+    return err
 
-    S(h) > 180 deg exactly on (0, h*), so every evaluation is a lower (S above
-    180 deg) or an upper (below) bound of h*. Newton's method from ``start``
-    (the paper's lower bound l, or a previous root), kept inside the known
-    bounds: before the maximum of S (S above 180 deg and still rising) the
-    height doubles; a step out of the bounds bisects them, or, with no lower
-    bound yet, goes to a quarter of the upper one. Below ``_FLOOR * l``
-    without a lower bound there is no non-trivial root.
-    The search ends with a Newton step below ``_STEP_TOL * h`` on the falling
-    flank of S, where h* is the only root (:func:`solve` measures the angle
-    condition at the result), or when the bounds meet.
+
+def _s_max(surface: DirectionSurface, root: float) -> tuple[float, float]:
+    """(h, S(h) - pi) at the maximum of S on (0, root) (golden section on log h)."""
+    lo, hi = math.log(root) - 40.0, math.log(root)
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+    fa, fb = surface.excess(math.exp(a)), surface.excess(math.exp(b))
+    for _ in range(120):
+        if fa < fb:
+            lo, a, fa = a, b, fb
+            b = lo + g * (hi - lo)
+            fb = surface.excess(math.exp(b))
+        else:
+            hi, b, fb = b, a, fa
+            a = hi - g * (hi - lo)
+            fa = surface.excess(math.exp(a))
+        if hi - lo < 1e-6:
+            break
+    h = math.exp(0.5 * (lo + hi))
+    return h, surface.excess_accurate(h)[0]
+
+
+def _resolve(
+    surface: DirectionSurface,
+    frame: FrameCurve,
+    m: Model,
+    search: Search,
+    h: float,
+    res: float,
+    bound: float,
+    slope: float,
+) -> tuple[float, float, float]:
+    """The verified root when the search's root fails verification (lengths).
+
+    Steps on the verifying evaluation itself (Newton with the search's slope,
+    then regula falsi and bisection between heights it shows above and below
+    180 deg) until it meets the tolerance, or two adjacent doubles show
+    that no height does (raise), or its own error bound is too large (raise).
     """
-    l0 = frame.paper_lower_bound
-    floor = _FLOOR * l0
-    lo, hi = 0.0, math.inf
-    h = start
-    for evals in range(1, _MAX_EVALUATIONS + 1):
-        s, slope = surface.angle_sum_and_slope(h)
-        f = s - _HALF_TURN
-        if f > 0.0:
-            lo = h
-        elif f < 0.0:
-            hi = h
-        else:
-            return h, lo or h, h if math.isinf(hi) else hi, evals
-        if lo == 0.0 and hi <= floor:
-            raise _no_solution(frame, surface)
-        if f > 0.0 and slope >= 0.0:
-            new = 2.0 * h  # still on the rising flank of S: climb past its maximum
-        else:
-            new = h - f / slope if slope != 0.0 else math.nan
-        if (slope < 0.0 and abs(new - h) <= _STEP_TOL * h) or hi - lo <= 4e-16 * lo:
-            new = min(max(new, lo), hi)
-            return new, lo or new, new if math.isinf(hi) else hi, evals
-        if not lo < new < hi:
-            if math.isinf(hi):
-                new = 2.0 * h
-            elif lo == 0.0:
-                new = 0.25 * hi
-            else:
-                new = 0.5 * (lo + hi)
-        if lo == 0.0 and new < floor:
-            new = floor  # below it S(h) - 180 deg is rounding noise
-        h = new
-    if lo == 0.0 or math.isinf(hi):
-        raise _no_solution(frame, surface)
-    return h, lo, hi, _MAX_EVALUATIONS
+    pts: dict[float, tuple[float, float]] = {h: (res, bound)}
+
+    def check(x: float) -> tuple[float, float]:
+        if x not in pts:
+            surface.set_apex(x)
+            pts[x] = surface.verify(_TOL)
+            search.evals += 1
+        return pts[x]
+
+    def fail(why: str, heights: tuple[float, float]) -> NoSolutionError:
+        surface.set_apex(h)
+        return _unresolved(frame, m, why, heights)
+
+    x = h - res / slope if slope < 0.0 else h
+    for _ in range(200):
+        r, b = check(x)
+        if abs(r) + b <= _TOL:
+            return x, r, b
+        if b > 0.5 * _TOL:
+            raise fail(
+                f"at h = {x!r} the verifying evaluation's own error bound is "
+                f"{2 * math.degrees(b):.3g} deg",
+                (x, x),
+            )
+        above = [k for k, (rk, bk) in pts.items() if rk > bk]
+        below = [k for k, (rk, bk) in pts.items() if rk < -bk]
+        lo = max(above) if above else None
+        hi = min((k for k in below if lo is None or k > lo), default=None)
+        if lo is None:
+            x = 0.5 * min(pts)
+            continue
+        if hi is None:
+            x = 2.0 * max(pts)
+            continue
+        if math.nextafter(lo, math.inf) >= hi:
+            rl, rh = pts[lo][0], pts[hi][0]
+            raise fail(
+                f"the angle sum falls from {2 * math.degrees(rl):+.3g} to "
+                f"{2 * math.degrees(rh):+.3g} deg off 360 deg between the adjacent "
+                f"doubles h = {lo!r} and {hi!r} (dS/dh = {(rh - rl) / (hi - lo):.3g} "
+                "rad per length)",
+                (lo, hi),
+            )
+        rl, rh = pts[lo][0], pts[hi][0]
+        x = lo + (hi - lo) * rl / (rl - rh)  # regula falsi
+        if not lo < x < hi or len(pts) % 3 == 0:
+            x = 0.5 * (lo + hi)
+    raise fail("the verified search did not converge", (h, h))
 
 
 def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
@@ -166,38 +241,105 @@ def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
         model: 'exact' (continuous cone) or 'paper' (triangle fan).
 
     Returns:
-        The :class:`Solution`, with the angle-condition error measured at the
-        returned apex.
+        The :class:`Solution`, verified at the returned apex to within
+        :data:`ANGLE_TOLERANCE_DEG`.
 
     Raises:
-        NoSolutionError: S(h) never exceeds 180 deg, so only the flat sheet
-            satisfies the angle condition.
+        NoSolutionError: the paper model's single triangle (no h > 0 makes its
+            apex angle 180 deg), a root that double precision cannot resolve,
+            or a design too flat to represent; the message names the inputs
+            and the reason.
     """
     m = Model.parse(model)
+    try:
+        return _solve(frame, m)
+    except FloatingPointError as exc:
+        # only when the caller made numpy raise on underflow: a vanishing term
+        # of a design near the limits of double precision; harmless here
+        if "underflow" not in str(exc):
+            raise
+        with np.errstate(under="ignore"):
+            return _solve(frame, m)
+
+
+def _solve(frame: FrameCurve, m: Model) -> Solution:
     t0 = time.perf_counter()
+    if m is Model.PAPER and frame.divisions == 1:
+        raise _no_root(
+            frame,
+            m,
+            "the sum of apex angles never exceeds 180 deg: a single triangle's apex "
+            "angle is below 180 deg for every apex height (use 2 or more divisions)",
+        )
     surface = make_direction_surface(frame, m)
-    h, lo, hi, evals = _find_root(surface, frame, frame.paper_lower_bound)
-    while surface.refine(h):  # a finer rule (exact model): solve again from h
-        h, lo, hi, more = _find_root(surface, frame, h)
-        evals += more
-    surface.set_apex(float(h))
-    residual = surface.total_angle - _HALF_TURN
-    if abs(residual) > _POLISH:
-        # the search's S(h) (expanded in h) and the angle sum set_apex measures
-        # (unexpanded) differ by more than rounding: one Newton step on the latter
-        h -= residual / surface.angle_sum_and_slope(h)[1]
-        surface.set_apex(float(h))
-        evals += 1
-    total = 2.0 * math.degrees(surface.total_angle)
+    g = surface.geometry
+    near = min(g.l_plus, g.l_minus)
+    if near <= 0.0:
+        end = "+x" if g.l_plus <= g.l_minus else "-x"
+        raise InvalidParameterError(
+            "h_c",
+            f"H must lie strictly inside the f-line: evaluated to 40 digits, h_c={frame.h_c!r} "
+            f"puts H {-near * frame.radius:.3g} beyond its {end} end "
+            f"(radius={frame.radius!r}, alpha={frame.alpha!r} deg)",
+        )
+    if near < 1e-100:
+        raise _no_root(
+            frame,
+            m,
+            f"H lies {near:.3g} R from an end of the f-line: the apex would lie about "
+            "as close to it, beyond double precision",
+            "precision",
+        )
+    if g.sin_beta < 1e-100:
+        raise _no_root(
+            frame,
+            m,
+            f"sin(beta) = {g.sin_beta:.3g}: the apex would lie within about "
+            f"{g.sin_beta:.1g} R of H, beyond double precision",
+            "precision",
+        )
+    r = frame.radius
+    l0 = (1.0 + g.sin_alpha) * g.sin_beta
+    try:
+        h, search, slope = find_root(surface, l0)
+    except SearchFailed as exc:
+        raise _no_root(frame, m, f"the root search failed ({exc})") from None
+    h_abs = h * r
+    surface.set_apex(h_abs)
+    res, bound = surface.verify(_TOL)
+    search.evals += 1
+    if abs(res) + bound > _TOL:
+        h_abs, res, bound = _resolve(surface, frame, m, search, h_abs, res, bound, slope / r)
+        h = h_abs / r
+    # the apex height's own uncertainty: from the most accurate evaluation at h
+    err_f = abs(res) + bound
+    if slope != 0.0 and err_f / abs(slope) > _WARN_REL * h:
+        f_acc, b_acc = surface.excess_accurate(h)
+        search.evals += 1
+        err_f = min(err_f, abs(f_acc) + b_acc)
+    h_err = (err_f / abs(slope) if slope != 0.0 else math.inf) + 4.0 * _EPS * h
+    warnings: list[str] = []
+    if h_err > _WARN_REL * h:
+        smax = _s_max(surface, h)[1]
+        warnings.append(
+            f"ill-conditioned apex: the angle sum rises only {2 * math.degrees(smax):.3g} deg "
+            f"above 360 deg before it falls to the root, so the apex height "
+            f"{h * r:.10g} is known only to +-{h_err * r:.3g} ({h_err / h:.2g} relative)"
+        )
+    lo, hi = min(search.lo, h), max(search.hi, h)
+    total = 2.0 * math.degrees(math.pi + res)
     elapsed = time.perf_counter() - t0
     return Solution(
         frame=frame,
         model=m,
-        apex_height=float(h),
+        apex_height=h_abs,
         surface=surface,
         angle_sum_deg=total,
-        angle_condition_error_deg=abs(total - 360.0),
+        angle_condition_error_deg=2.0 * math.degrees(abs(res) + bound),
         time_direction_surface=elapsed,
-        bracket=(lo, hi),
-        evaluations=evals,
+        bracket=(lo * r, hi * r),
+        evaluations=search.evals,
+        apex_height_error=h_err * r,
+        ds_dh=slope / r,
+        warnings=tuple(warnings),
     )

@@ -2,20 +2,22 @@
 
 from __future__ import annotations
 
+import datetime
 import math
 import re
-from dataclasses import replace
 from functools import cache
 from pathlib import Path
 
 import ezdxf
 import numpy as np
 import pytest
+from ezdxf.tools.juliandate import juliandate
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import (
     Design,
+    FabricationError,
     FrameCurve,
     InvalidParameterError,
     Material,
@@ -27,6 +29,8 @@ from onefold_cad import (
 from onefold_cad.export.dxf import LAYERS, draw_flat_pattern, export_design_dxf
 from onefold_cad.export.dxf_preview import render_preview
 from onefold_cad.export.flat_pattern import flat_pattern
+from onefold_cad.geometry.bend import check_bends
+from tests.hand_bend import fan_folds, hand_bend
 
 STAR = [(220, 0), (70, 45), (90, 190), (-30, 80), (-150, 150), (-110, 15), (-200, -50),
         (-45, -60), (30, -170), (75, -35)]  # fmt: skip
@@ -42,8 +46,12 @@ SHAPES = {
 MATERIALS = {
     "bare": Material(),
     "kerf": Material(kerf=0.5),
-    "thick": Material(thickness=2.0, bend_radius=3.0, k_factor=0.44, density=7.9e-6, name="S235"),
+    # r 2.5: t1d's asymmetric halves keep the blank within the width limit (r <= 2.67)
+    "thick": Material(thickness=2.0, bend_radius=2.5, k_factor=0.44, density=7900.0, name="S235"),
     "thick_kerf": Material(thickness=1.5, bend_radius=1.0, k_factor=0.33, kerf=0.4),
+    "thick_inside": Material(
+        thickness=2.5, bend_radius=0.0, k_factor=0.5, sheet_surface="INSIDE", relief_hole=12.0
+    ),
 }
 CASES = [(s, m) for s in SHAPES for m in MATERIALS]
 
@@ -93,11 +101,12 @@ def line_dist(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
     return abs(float(v[0] * d[1] - v[1] * d[0]))
 
 
-def bend(psi_deg: float, m: Material) -> tuple[float, float]:
-    """(BA, BD) from the textbook formulas."""
-    psi = math.radians(psi_deg)
-    ba = psi * (m.bend_radius + m.k_factor * m.thickness)
-    return ba, 2.0 * (m.bend_radius + m.thickness) * math.tan(psi / 2.0) - ba
+def bend(half, m: Material) -> dict:
+    """SB, BA, BD and the shift of a crease half, from the textbook formulas."""
+    surface = m.sheet_surface.value
+    return hand_bend(
+        half.fold_angle_deg, half.bend, surface, m.thickness, m.bend_radius, m.k_factor
+    )
 
 
 def entities(doc, layer: str, kind: str | None = None) -> list:
@@ -169,7 +178,7 @@ def test_fold_halves_meet_at_apex_and_end_on_outline(tmp_path, shape, mat):
     for cross in entities(doc, "APEX", "LINE"):
         assert np.allclose(seg(cross).mean(axis=0), apex, atol=1e-9 * design.sheet.size)
     lines = entities(doc, "BEND_UP", "LINE") + entities(doc, "BEND_DOWN", "LINE")
-    assert len(lines) == 2
+    assert len(lines) == 2  # the exact model: the crease halves alone
     cut = outline_of(doc)
     nominal = cut if design.material.kerf == 0 else outline_of(
         write_read(tmp_path, design.with_changes(
@@ -216,35 +225,44 @@ def test_zero_thickness_outline_is_the_sheet(tmp_path, shape, dxfversion):
 
 
 @pytest.mark.parametrize("shape", list(SHAPES))
-@pytest.mark.parametrize("mat", ["thick", "thick_kerf"])
+@pytest.mark.parametrize("mat", ["thick", "thick_kerf", "thick_inside"])
 def test_thickness_compensation_and_bend_zones(tmp_path, shape, mat):
     design, folded = _design(shape, mat)
     m = design.material
     nominal_design = design.with_changes(name=design.name + "_n", material=m.with_changes(kerf=0))
     doc = write_read(tmp_path, nominal_design, folded=None)
     place = design.sheet.to_sheet
-    ba, bd = zip(*(bend(h.fold_angle_deg, m) for h in folded.crease), strict=True)
-    shift = (bd[0] + bd[1]) / 4.0  # the documented rule: each side moves by the mean BD / 2
+    hb = [bend(h, m) for h in folded.crease]
+    ba = [b["ba"] for b in hb]
+    shift = (hb[0]["shift"] + hb[1]["shift"]) / 2.0  # the documented rule: the mean shift
     pattern = flat_pattern(design, folded)
-    assert pattern.residual == pytest.approx(abs(bd[0] - bd[1]) / 2.0, abs=1e-12)
-    assert f"{pattern.residual:.4f}" in " ".join(pattern.notes)
-    if shape in ("t1a", "t1b", "t1c", "rect"):  # symmetric: the outline moves by BD/2 per side
-        assert shift == pytest.approx(bd[0] / 2.0, abs=1e-9) and pattern.residual < 1e-9
+    assert pattern.shift == pytest.approx(shift, rel=1e-12)
+    assert pattern.residual == pytest.approx(abs(hb[0]["shift"] - hb[1]["shift"]) / 2.0, abs=1e-12)
+    errors = [round(2 * (b["shift"] - shift), 9) + 0.0 for b in hb]  # '-0.0000' is '0.0000
+    assert f"{errors[0]:.4f}, {errors[1]:.4f} mm" in " ".join(pattern.notes)
+    if shape in ("t1a", "t1b", "t1c", "rect"):  # symmetric: each side moves by its own shift
+        assert shift == pytest.approx(hb[0]["shift"], rel=1e-9) and pattern.residual < 1e-9
     out = place.inverse(outline_of(doc))  # back to the fold frame: fold line = x axis
     v = np.asarray(design.sheet.vertices)
     c = max(ba) / 2.0
     moved = v[np.abs(v[:, 1]) > shift + c + 1e-6]
     moved = moved - np.sign(moved[:, 1])[:, None] * np.array([0.0, shift])
     for q in moved:  # every corner off the fold line moved by `shift` towards it
-        assert np.min(np.linalg.norm(out - q, axis=1)) < 1e-6
+        assert np.min(np.linalg.norm(out - q, axis=1)) < 1e-9 * design.sheet.size
     edges = np.stack([v, np.roll(v, -1, axis=0)], axis=1)
+    # where the mean shift takes a crease end out of its half's zone, the bridge starts at
+    # the moved crease end itself
+    lp, lm = design.sheet.crease_lengths
+    ends = np.array([(lp, -shift), (lp, shift), (-lm, -shift), (-lm, shift)])
+    ends = ends[[-shift > ba[0] / 2] * 2 + [-shift > ba[1] / 2] * 2]
+    moved = np.vstack([moved, ends])
     for q in out:  # every outline vertex is a moved corner or a bridge point at BA/2
-        if np.min(np.linalg.norm(moved - q, axis=1)) < 1e-6:
+        if np.min(np.linalg.norm(moved - q, axis=1)) < 1e-9 * design.sheet.size:
             continue
         assert min(abs(abs(q[1]) - b / 2) for b in ba) < 1e-9 * design.sheet.size
         side = np.sign(q[1])
         cand = edges[np.sign(edges[:, :, 1]).sum(axis=1) * side > 0] - [0.0, side * shift]
-        assert min(line_dist(q, a, b) for a, b in cand) < 1e-6
+        assert min(line_dist(q, a, b) for a, b in cand) < 1e-9 * design.sheet.size
     # bend-zone lines: parallel to their fold half at BA/2, from over H to the outline
     halves = {ln.get_xdata("ONEFOLD")[0].value: seg(ln) for ln in
               entities(doc, "BEND_UP") + entities(doc, "BEND_DOWN")}  # fmt: skip
@@ -256,9 +274,9 @@ def test_thickness_compensation_and_bend_zones(tmp_path, shape, mat):
         assert len(mine) == 2
         for z in mine:
             for x in z:
-                assert line_dist(x, f[0], f[1]) == pytest.approx(a / 2.0, abs=1e-6)
-            assert dist_to_polygon(z[1], outline_of(doc)) < 1e-6
-        assert np.linalg.norm(mine[0][0] - mine[1][0]) == pytest.approx(a, abs=1e-6)
+                assert line_dist(x, f[0], f[1]) == pytest.approx(a / 2.0, abs=1e-9 * 300)
+            assert dist_to_polygon(z[1], outline_of(doc)) < 1e-9 * 300
+        assert np.linalg.norm(mine[0][0] - mine[1][0]) == pytest.approx(a, abs=1e-9 * 300)
 
 
 @pytest.mark.parametrize("shape", list(SHAPES))
@@ -305,25 +323,30 @@ def test_notes_content_and_mass(tmp_path):
     text = "\n".join(t.dxf.text for t in entities(doc, "NOTES", "TEXT"))
     m = design.material
     for needle in ("t1d_thick", "units: mm", "S235", "thickness t = 2 mm",
-                   "bend radius r = 3 mm", "K-factor = 0.44", "flat size", "area"):  # fmt: skip
+                   "bend radius r = 2.5 mm", "K-factor = 0.44", "flat size", "area"):  # fmt: skip
         assert needle in text
     for half in folded.crease:
         assert f"{half.bend} {half.fold_angle_deg:.2f} deg" in text
     area = shoelace(outline_of(doc)) - math.pi * m.relief_hole_diameter**2 / 4
-    mass = float(re.search(r"mass: ([-0-9.eE+]+)", text).group(1))
-    assert mass == pytest.approx(area * m.thickness * m.density, rel=1e-5)
+    # ("^ " is how DXF text writes a caret)
+    mass = float(re.search(r"mass: ([-0-9.eE+]+) kg \(density 7900 kg/m\^ 3\)", text).group(1))
+    # 7900 kg/m^3 x t (mm) x area (mm^2), with 1 mm^3 = 1e-9 m^3
+    assert mass == pytest.approx(area * m.thickness * 7900.0 * 1e-9, rel=1e-5)
     w, h = np.ptp(outline_of(doc), axis=0)
     assert f"flat size: {w:.3f} x {h:.3f} mm" in text
     assert "mass" not in "\n".join(flat_pattern(*_design("t1d", "bare")).notes)
 
 
 def test_paper_model_rulings_inside_and_optional(tmp_path):
+    """The paper model's rulings that are no folds (the rays through the star's corners,
+    inside one planar triangle of the fan) are etch lines, inside the blank, off the bend
+    zones and the hole, and optional."""
     design, folded = _design("star", "thick", model=Model.PAPER)
     doc = write_read(tmp_path, design, folded)
     outline = outline_of(doc)
     rulings = [seg(e) for e in entities(doc, "RULINGS")]
-    assert len(rulings) > 50  # the paper model's fan
-    c = max(bend(h.fold_angle_deg, design.material)[0] for h in folded.crease) / 2
+    assert len(rulings) == sum(1 for x, y in STAR if y != 0)  # one per corner off the x axis
+    c = max(bend(h, design.material)["ba"] for h in folded.crease) / 2
     hole_r = design.material.relief_hole_diameter / 2
     for r in rulings:
         for x in r:
@@ -331,17 +354,215 @@ def test_paper_model_rulings_inside_and_optional(tmp_path):
             assert abs(x[1]) >= c - 1e-9 and np.linalg.norm(x) >= hole_r - 1e-9
     doc2 = write_read(tmp_path, design.with_changes(name="norul"), folded=None, rulings=False)
     assert not entities(doc2, "RULINGS")
+    assert len(entities(doc2, "BEND_UP") + entities(doc2, "BEND_DOWN")) > 2  # folds stay
 
 
-def test_bend_down_layer_and_existing_doc():
+def _fan_by_hand(frame: FrameCurve) -> tuple[np.ndarray, float]:
+    """The paper fan's division points P_i (from the frame curve's definition) and its
+    apex height (the angle condition, solved here)."""
+    alpha, beta = math.radians(frame.alpha), math.radians(frame.beta)
+    n = frame.divisions
+    phi = -alpha + np.arange(n + 1) * (math.pi + 2 * alpha) / n
+    x = -frame.h_c + frame.radius * np.cos(phi)
+    dd = frame.radius * (math.sin(alpha) + np.sin(phi))
+    pts = np.stack([x, dd * math.cos(beta), dd * math.sin(beta)], axis=1)
+    return pts, _apex_height_by_hand(pts)
+
+
+def _fold_lines(doc) -> dict[str, tuple[str, str, float, np.ndarray]]:
+    """name -> (layer, direction, angle, segment) of every line on BEND_UP/BEND_DOWN."""
+    out = {}
+    for line in entities(doc, "BEND_UP", "LINE") + entities(doc, "BEND_DOWN", "LINE"):
+        xd = line.get_xdata("ONEFOLD")
+        out[xd[0].value] = (line.dxf.layer, xd[1].value, xd[2].value, seg(line))
+    return out
+
+
+def test_paper_fan_rulings_are_bends_with_their_fold_angles(tmp_path):
+    """The paper model's fan: two planar triangles meet along each division ray at an
+    angle, a real fold. Each is drawn on BEND_UP/BEND_DOWN (DASHED, XDATA), with its fold
+    angle and direction derived here from the frame curve and the hand-solved apex
+    (fold angle between consecutive triangles' top normals, UP when the next triangle
+    turns towards the top side), to 1e-9 deg; in the blank each line runs along its flat
+    ray, at the flat angle theta_k = the sum of the fan's apex angles up to it. The
+    -y side is the mirror image: '-y ruling k' (k-th from the -x crease) is ray n - k."""
+    design, folded = _design("star", "thick", model=Model.PAPER)
+    pts, h = _fan_by_hand(design.frame)
+    folds = fan_folds(pts, np.array([0.0, 0.0, h]))
+    u = pts - [0.0, 0.0, h]
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    theta = np.concatenate([[0.0], np.cumsum(np.arccos((u[:-1] * u[1:]).sum(axis=1)))])
+    doc = write_read(tmp_path, design, folded)
+    lines = _fold_lines(doc)
+    n = design.frame.divisions
+    assert len(lines) == 2 + 2 * (n - 1)
+    for k in range(1, n):
+        angle, direction = folds[k - 1]
+        for name, ray, sign in ((f"+y ruling {k}", k, 1.0), (f"-y ruling {n - k}", k, -1.0)):
+            layer, xd_dir, xd_angle, (a, b) = lines[name]
+            assert (layer, xd_dir) == (f"BEND_{direction}", direction)
+            assert xd_angle == pytest.approx(angle, abs=1e-9)
+            d = b - a  # the star is drawn in the fold frame
+            assert math.atan2(sign * d[1], d[0]) == pytest.approx(theta[ray], abs=1e-9)
+    notes = [t.dxf.text for t in entities(doc, "NOTES", "TEXT")]
+    assert any(t.startswith(f"ruling folds: {2 * (n - 1)} rulings") for t in notes)
+    assert any(t.startswith(f"+y ruling 1: {folds[0][1]} {folds[0][0]:.2f};") for t in notes)
+
+
+def test_exact_model_rulings_stay_etch_lines(tmp_path):
+    design, folded = _design("star", "thick")
+    doc = write_read(tmp_path, design, folded)
+    assert set(_fold_lines(doc)) == {"plus_x", "minus_x"}
+    assert len(entities(doc, "RULINGS")) == sum(1 for x, y in STAR if y != 0)
+
+
+def _apex_height_by_hand(points: np.ndarray) -> float:
+    """The paper model's apex height, solved here from the angle condition alone: the
+    apex angles between consecutive directions from A = (0, 0, h) to the division
+    points add up to 180 deg, on the branch past S(h)'s maximum."""
+    from scipy.optimize import brentq
+
+    def excess(h: float) -> float:
+        u = points - np.array([0.0, 0.0, h])
+        u /= np.linalg.norm(u, axis=1)[:, None]
+        return float(np.sum(np.arccos(np.clip((u[:-1] * u[1:]).sum(axis=1), -1, 1)))) - math.pi
+
+    hs = np.geomspace(1e-3, 1e4, 2000)
+    top = int(np.argmax([excess(h) for h in hs]))
+    return brentq(excess, hs[top], 1e4, xtol=1e-14, rtol=1e-15)
+
+
+def test_down_half_by_hand_layer_width_refusal_and_uncompensated_blank(tmp_path):
+    """A DOWN crease half, derived by hand (paper model, alpha 8.3, beta 85, 4 divisions,
+    H at 0.8 of the half chord towards +x; the sheet's apex sits near its +x end).
+
+    The division points are P_i = (x_i, d_i cos beta, d_i sin beta), x_i = -h_c + R cos
+    phi_i, d_i = R sin alpha + R sin phi_i, phi_i = -alpha + i (180 + 2 alpha) / 4. The
+    plus_x crease is the ruling u0 = P0 - A = (a, 0, -h), a = x_0; the +y side's first
+    triangle is spanned by u0 and u1 = P1 - A = (b, c, w), b = x_1, c = y_1 > 0,
+    w = z_1 - h. Its top normal is u0 x u1 = (h c, -h b - a w, a c) (the flat x-axis
+    and the +y side's first ray give +z); the -y side is the mirror image M (y -> -y),
+    whose top normal is M (u0 x u1). The half bends UP (the top faces end inside) when
+    the +y side, leaving the crease along the part of u1 normal to u0, heads towards
+    the -y side's top normal: u1 . M (u0 x u1) = 2 c (b h + a w) > 0 (u0 . M(u0 x u1) = 0
+    as M u0 = u0). With R = 100: a = -h_c + R cos(alpha) = 0.2 R cos(8.3) = 19.79,
+    phi_1 = 40.85 deg, b = -79.16 + 75.64 = -3.52, d_1 = 100 (0.1444 + 0.6540) = 79.84,
+    z_1 = d_1 sin 85 = 79.54; so b h + a (z_1 - h) = 1574 - 23.31 h, positive only for
+    h < 67.5. The angle condition puts the apex at h = 86.6 (solved below, by hand), so
+    plus_x bends DOWN; its fold angle is the angle between the two top normals.
+
+    minus_x folds UP to 167 deg: the one rigid blank cannot follow both halves' shifts,
+    so the compensated DXF is refused naming the width error (by hand: shift+ - shift-,
+    each side moved by their mean); --compensation none writes the designed outline,
+    with the DOWN half and the fan's DOWN ruling folds on BEND_DOWN.
+    """
+    frame = FrameCurve(8.3, 85.0, 0.8 * 100.0 * math.cos(math.radians(8.3)), 100.0, 4)
+    alpha, beta = math.radians(8.3), math.radians(85.0)
+    phi = -alpha + np.arange(5) * (math.pi + 2 * alpha) / 4
+    x = -frame.h_c + 100.0 * np.cos(phi)
+    dd = 100.0 * (math.sin(alpha) + np.sin(phi))
+    pts = np.stack([x, dd * math.cos(beta), dd * math.sin(beta)], axis=1)
+    h = _apex_height_by_hand(pts)
+    a, (b, c, z1) = pts[0, 0], pts[1]
+    assert c > 0 and 67.6 < h and b * h + a * (z1 - h) < 0  # DOWN
+    u0, u1 = pts[0] - [0, 0, h], pts[1] - [0, 0, h]
+    n = np.cross(u0, u1)
+    m = n * [1.0, -1.0, 1.0]
+    psi = math.degrees(math.acos(float(n @ m) / float(n @ n)))
+    mat = Material(thickness=1.0, bend_radius=1.0, k_factor=0.44, sheet_surface="INSIDE")
+    design = Design("down", frame, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
+                    material=mat)  # fmt: skip
+    folded = build_design(design)
+    assert folded.solution.apex_height == pytest.approx(h, rel=1e-9)
+    plus = folded.crease[0]
+    assert plus.bend == "DOWN" and plus.fold_angle_deg == pytest.approx(psi, abs=1e-9)
+    # INSIDE reference in a DOWN bend is its outside face (s = 1); minus_x is UP (s = 0)
+    hb = [hand_bend(hh.fold_angle_deg, hh.bend, "INSIDE", 1.0, 1.0, 0.44) for hh in folded.crease]
+    assert hb[0]["s"] == 1.0 and hb[1]["s"] == 0.0
+    shift = (hb[0]["shift"] + hb[1]["shift"]) / 2
+    width = hb[1]["shift"] - hb[0]["shift"]  # across minus_x, the blank moved by the mean
+    target = tmp_path / "down.dxf"
+    with pytest.raises(FabricationError) as info:
+        export_design_dxf(design, target, folded)
+    assert f"{width:+.4g} mm too wide" in str(info.value) and f"d = {shift:.4g} mm" in str(
+        info.value
+    )
+    assert not target.exists()
+    doc = write_read(tmp_path, design, folded, compensation="none")
+    assert np.allclose(outline_of(doc), [(60, 0), (0, 300), (-340, 0), (0, -280)], atol=1e-9)
+    fan = fan_folds(pts, np.array([0.0, 0.0, h]))  # rays 1, 2, 3 of the +y side
+    expected = {"plus_x": psi} | {
+        name: a
+        for k, (a, direction) in enumerate(fan, 1)
+        if direction == "DOWN"
+        for name in (f"+y ruling {k}", f"-y ruling {4 - k}")
+    }
+    down = {e.get_xdata("ONEFOLD")[0].value: e for e in entities(doc, "BEND_DOWN", "LINE")}
+    assert set(down) == set(expected)
+    for name, e in down.items():
+        assert e.dxf.linetype == "DASHED"
+        assert e.get_xdata("ONEFOLD")[2].value == pytest.approx(expected[name], abs=1e-9)
+
+
+def test_drawing_into_an_existing_doc():
     design, folded = _design("t1d", "thick")
     pattern = flat_pattern(design, folded)
-    down = replace(pattern.halves[1], bend="DOWN")
-    pattern = replace(pattern, halves=(pattern.halves[0], down))
     doc = ezdxf.new("R2000")
     assert draw_flat_pattern(pattern, doc, rulings=False) is doc
-    assert len(entities(doc, "BEND_UP")) == 1 and len(entities(doc, "BEND_DOWN")) == 1
-    assert entities(doc, "BEND_DOWN")[0].get_xdata("ONEFOLD")[1].value == "DOWN"
+    assert len(entities(doc, "BEND_UP")) == 2 and not entities(doc, "BEND_DOWN")
+
+
+def raw_header(path: Path, var: str) -> str:
+    """The value of header variable ``var`` as written in the file (group code, value)."""
+    lines = [ln.strip() for ln in path.read_text().splitlines()]
+    return lines[lines.index(var) + 2]
+
+
+def _fake_clock(monkeypatch, when: datetime.datetime) -> None:
+    class Clock(datetime.datetime):
+        @classmethod
+        def now(cls, tz=None):
+            return when if tz is None else when.replace(tzinfo=tz)
+
+    monkeypatch.setattr(ezdxf.document, "datetime", Clock)
+
+
+@pytest.mark.parametrize("dxfversion", ["R2000", "R12"])
+def test_two_writes_are_byte_identical_across_a_clock_change(tmp_path, monkeypatch, dxfversion):
+    """ezdxf stamps $TDUPDATE, a random $VERSIONGUID and its own metadata when it
+    writes; ours fix every stamp and derive the GUIDs from the design."""
+    design, folded = _design("t1d", "thick")
+    paths = []
+    for i, year in enumerate((2001, 2031)):
+        _fake_clock(monkeypatch, datetime.datetime(year, 5, 6, 7, 8, 9))
+        paths.append(
+            export_design_dxf(design, tmp_path / f"{i}.dxf", folded, dxfversion=dxfversion)
+        )
+    assert paths[0].read_bytes() == paths[1].read_bytes()
+    # the clock does reach ezdxf: a plain save differs between the two times
+    plain = []
+    for i, year in enumerate((2001, 2031)):
+        _fake_clock(monkeypatch, datetime.datetime(year, 5, 6, 7, 8, 9))
+        doc = draw_flat_pattern(flat_pattern(design, folded), dxfversion=dxfversion)
+        doc.saveas(tmp_path / f"plain{i}.dxf")
+        plain.append((tmp_path / f"plain{i}.dxf").read_bytes())
+    assert plain[0] != plain[1]
+    # (read from the text: ezdxf's reader restamps $TDCREATE of the document it loads)
+    for var in ("$TDCREATE", "$TDUPDATE"):  # 2000-01-01 in ezdxf's Julian-date convention
+        assert raw_header(paths[0], var) == str(juliandate(datetime.datetime(2000, 1, 1)))
+    if dxfversion != "R12":
+        other = export_design_dxf(design.with_changes(name="other"), tmp_path / "o.dxf", folded)
+        guids = [raw_header(p, "$FINGERPRINTGUID") for p in (paths[0], other)]
+        assert guids[0] != guids[1] and re.fullmatch(r"\{[0-9A-F-]{36}\}", guids[0])
+
+
+def test_compensation_none_is_said_in_the_notes(tmp_path):
+    design, folded = _design("t1d", "thick")
+    doc = write_read(tmp_path, design, folded, compensation="none")
+    text = "\n".join(t.dxf.text for t in entities(doc, "NOTES", "TEXT"))
+    assert "thickness compensation: NONE" in text
+    assert np.allclose(outline_of(doc), design.sheet.to_sheet.apply(design.sheet.vertices))
+    assert not entities(doc, "BEND_ZONE")
 
 
 @pytest.mark.parametrize(
@@ -361,9 +582,13 @@ def test_bad_material_is_named(param, changes):
     [
         ("kerf", "t1a", Material(kerf=500.0)),
         ("kerf", "t1a", Material(thickness=1, relief_hole=4.0, kerf=4.0)),
+        # fits the sheet (< 424.26), not the compensated blank (sides moved 2.9 mm)
         ("relief_hole", "t1a", Material(thickness=4, bend_radius=6, relief_hole=420.0)),
-        ("thickness", "t1d", Material(thickness=60, bend_radius=60, relief_hole=0)),
-        ("thickness", "star", Material(thickness=10, bend_radius=10, relief_hole=0)),
+        ("relief_hole", "t1a", Material(relief_hole=425.0)),  # not even the sheet
+        ("thickness", "t1a", Material(thickness=150.0)),  # default hole 3 t = 450
+        ("bend_radius", "t1a", Material(thickness=10.0, bend_radius=210.0)),  # 2 (t + r) = 440
+        ("bend_radius", "t1d", Material(thickness=60, bend_radius=60, relief_hole=0)),
+        ("bend_radius", "star", Material(thickness=10, bend_radius=10, relief_hole=0)),
     ],
 )
 def test_bad_fabrication_input_leaves_no_file(tmp_path, param, shape, material):
@@ -371,7 +596,8 @@ def test_bad_fabrication_input_leaves_no_file(tmp_path, param, shape, material):
     design = Design("bad", FrameCurve(*frame), sheet(), material=material)
     target = tmp_path / "bad.dxf"
     target.write_text("previous")
-    with pytest.raises(InvalidParameterError) as info:
+    error = InvalidParameterError if param == "kerf" else FabricationError
+    with pytest.raises(error) as info:
         export_design_dxf(design, target)
     assert info.value.parameter == param
     assert target.read_text() == "previous"
@@ -414,8 +640,11 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
     folded = build_design(design)
     try:
         pattern = flat_pattern(design, folded)
-    except InvalidParameterError as exc:  # only the documented refusals
-        assert exc.parameter in ("thickness", "kerf")
+    except FabricationError as exc:  # the bend model's limits, and only those
+        assert t > 0 and check_bends(design, folded) and exc.parameter in ("bend_radius", "hc")
+        return
+    except InvalidParameterError as exc:  # the kerf's documented refusal
+        assert exc.parameter == "kerf"
         return
     doc = draw_flat_pattern(pattern)
     assert not doc.audit().has_errors
@@ -426,7 +655,7 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
         assert 0 < shoelace(out) < design.sheet.area
     for half, crease in zip(pattern.halves, folded.crease, strict=True):
         assert np.allclose(half.start, 0.0) and dist_to_polygon(half.end, out) < 1e-9 * 300
-        ba = bend(crease.fold_angle_deg, design.material)[0] if t > 0 else 0.0
+        ba = bend(crease, design.material)["ba"] if t > 0 else 0.0
         for z in half.zone:
             for x in z:
                 assert line_dist(x, half.start, half.end) == pytest.approx(ba / 2, abs=1e-6)

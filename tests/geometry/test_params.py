@@ -15,6 +15,7 @@ from onefold_cad import (
     Sheet,
     bend_values,
 )
+from onefold_cad.design import relief_hole_problem
 
 NAN, INF = math.nan, math.inf
 
@@ -164,8 +165,11 @@ def test_bad_material(kwargs: dict, param: str) -> None:
 
 def test_relief_hole_must_fit_the_sheet() -> None:
     frame, sheet = FrameCurve(50, 45), Sheet.quadrilateral(10, 10, 10, 10)
-    with pytest.raises(InvalidParameterError, match="relief_hole: diameter must be < 14.14"):
-        Design("x", frame, sheet, material=Material(relief_hole=15))
+    # A fabrication limit, not a geometry one: the design is made, the writers refuse.
+    d = Design("x", frame, sheet, material=Material(relief_hole=15))
+    problem = relief_hole_problem(d)
+    assert problem is not None and problem.parameter == "relief_hole"
+    assert str(problem).startswith("relief_hole: diameter 15 mm must be < 14.1421 mm")
     with pytest.raises(InvalidParameterError, match="^name: "):
         Design("bad name/..", frame, sheet)
     with pytest.raises(InvalidParameterError, match="^units: "):
@@ -179,6 +183,8 @@ def test_bend_values_formulas() -> None:
     b = bend_values(90.0, m)
     assert b.allowance == pytest.approx(math.pi / 2 * (3 + 0.8))
     assert b.outside_setback == pytest.approx(5.0)
-    assert b.deduction == pytest.approx(10.0 - math.pi / 2 * 3.8)
+    # MID reference: the setback is the mid-surface's, (r + t/2) tan(psi/2) = 4
+    assert b.setback == pytest.approx(4.0)
+    assert b.deduction == pytest.approx(8.0 - math.pi / 2 * 3.8)
     with pytest.raises(InvalidParameterError, match="angle_deg"):
         bend_values(180.0, m)

@@ -1,0 +1,70 @@
+"""The page's downloads: the current design as DXF, STEP, JSON report or TOML.
+
+Each file is made by the package's own writer (the same calls as ``onefold
+build``) into a private temporary folder and returned as bytes; no path
+comes from the page. Only the STEP runs the CAD kernel, one at a time.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+
+from onefold_cad.design import Design, build_design
+
+__all__ = ["KINDS", "Download", "make_download"]
+
+#: Download kind -> (file suffix, MIME type).
+KINDS: dict[str, tuple[str, str]] = {
+    "dxf": (".dxf", "application/dxf"),
+    "step": (".step", "application/step"),
+    "json": (".json", "application/json"),
+    "toml": (".toml", "application/toml"),
+}
+
+_KERNEL = threading.Lock()  # OCC is not known to be thread-safe
+
+
+@dataclass(frozen=True)
+class Download:
+    """A file for the browser: its name, MIME type and bytes."""
+
+    filename: str
+    mime: str
+    body: bytes
+
+
+def make_download(kind: str, design: Design) -> Download:
+    """The file of ``kind`` ('dxf', 'step', 'json' or 'toml') for ``design``.
+
+    Raises:
+        KeyError: an unknown kind.
+        OneFoldError: the writer refuses the design (the CLI's message).
+    """
+    suffix, mime = KINDS[kind]
+    name = f"{design.name}{suffix}"
+    if kind == "toml":
+        import tomli_w
+
+        from onefold_cad.templates import design_to_data
+
+        return Download(name, mime, tomli_w.dumps(design_to_data(design)).encode("utf-8"))
+    folded = build_design(design)
+    if kind == "json":
+        from onefold_cad.export.report import design_report, report_json
+
+        return Download(name, mime, report_json(design_report(design, folded)).encode("utf-8"))
+    with tempfile.TemporaryDirectory(prefix="onefold-explore-") as tmp:
+        path = Path(tmp) / name
+        if kind == "dxf":
+            from onefold_cad.export.dxf import export_design_dxf
+
+            export_design_dxf(design, path, folded)
+        else:
+            from onefold_cad.export.step import export_design_step
+
+            with _KERNEL:
+                export_design_step(design, path, folded)
+        return Download(name, mime, path.read_bytes())

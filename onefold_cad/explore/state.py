@@ -1,0 +1,185 @@
+"""One state of the page: a design solved, folded, placed, meshed and measured.
+
+Every number and every vertex the page shows comes from here; the page only
+draws. The 3D form is :meth:`FoldedSheet.mesh` moved by
+:attr:`FoldedSheet.resting` (standing as it rests on the ground, z up), the
+flat pattern is :func:`onefold_cad.export.flat_pattern.flat_pattern` drawn by
+:func:`onefold_cad.explore.flat_svg.flat_pattern_svg`, and the numbers are
+those of :func:`onefold_cad.export.report.design_report`.
+
+A design the fabrication model cannot make (a bend zone reaching a corner,
+...) still shows its form: the flat pattern's error is one message among the
+others, exactly as the command prints it.
+"""
+
+from __future__ import annotations
+
+import base64
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from onefold_cad.design import Design, build_design, relief_hole_problem
+from onefold_cad.errors import OneFoldError
+from onefold_cad.explore.flat_svg import flat_pattern_svg
+from onefold_cad.explore.params import PAGE_FLAGS, ParameterProblem, page_values
+
+__all__ = ["MESH_ANGULAR", "MESH_RADIAL", "design_state", "problem_state", "message"]
+
+#: Mesh density of the 3D view (:meth:`FoldedSheet.mesh` arguments).
+MESH_ANGULAR = 120
+MESH_RADIAL = 16
+
+
+def message(level: str, text: str, controls: Sequence[str] = ()) -> dict[str, Any]:
+    """One message for the page: ``level`` 'error' or 'warning', the text on one
+    line as the CLI prints it, and the page controls it concerns."""
+    return {"level": level, "text": " ".join(str(text).split()), "controls": list(controls)}
+
+
+def _b64(a: np.ndarray, dtype: str) -> str:
+    return base64.b64encode(np.ascontiguousarray(a, dtype=dtype).tobytes()).decode("ascii")
+
+
+def _controls(exc: OneFoldError) -> tuple[str, ...]:
+    name = getattr(exc, "parameter", "")
+    return (name,) if name in PAGE_FLAGS else ()
+
+
+def _add(messages: list[dict[str, Any]], m: dict[str, Any]) -> None:
+    """Append ``m`` unless it repeats a message already there: the same text,
+    or that text with a tail (the report's warning of a refusal already shown
+    as the error: ``...; build refuses the DXF ...``, ``... (flat pattern; ...)``)."""
+    if not any(m["text"].startswith(old["text"]) for old in messages):
+        messages.append(m)
+
+
+def problem_state(problem: ParameterProblem) -> dict[str, Any]:
+    """The state of a page whose values the design refuses: the message only."""
+    return {"ok": False, "messages": [message("error", problem.message, problem.controls)]}
+
+
+def _numbers(folded: Any, report: dict[str, Any] | None) -> dict[str, Any]:
+    """The numbers the page prints (design units, degrees); None where unknown."""
+    if report is not None:
+        r = report["resting"]
+        fold = {
+            k: {"deg": v["fold_angle_deg"], "bend": v["bend"]} for k, v in report["crease"].items()
+        }
+        return {
+            "fold_angles": fold,
+            "apex_height": report["direction_surface"]["apex_height"],
+            "angle_condition_error_deg": report["angle_condition_error_deg"],
+            "height": r["height"],
+            "span": r["span"],
+            "width": r["footprint"]["width"],
+            "depth": r["footprint"]["depth"],
+            "footprint_area": r["footprint"]["area"],
+            "tilt_deg": r["tilt_deg"],
+            "stable": r["stable"],
+            "relief_hole": report["relief_hole_diameter"],
+            "flat_size": report["flat_size"],
+            "surface_area": report["surface_area"],
+        }
+    sol = folded.solution
+    return {
+        "fold_angles": {
+            c.name: {"deg": float(c.fold_angle_deg), "bend": c.bend} for c in folded.crease
+        },
+        "apex_height": float(sol.apex_height),
+        "angle_condition_error_deg": float(sol.angle_condition_error_deg),
+        "height": None,
+        "span": None,
+        "width": None,
+        "depth": None,
+        "footprint_area": None,
+        "tilt_deg": None,
+        "stable": None,
+        "relief_hole": None,
+        "flat_size": None,
+        "surface_area": None,
+    }
+
+
+def design_state(design: Design) -> dict[str, Any]:
+    """Solve, fold, place, mesh and measure ``design`` for the page.
+
+    Returns:
+        A JSON-ready dict: ``ok`` (the form was solved), ``messages`` (errors
+        and warnings, each as the CLI words it), ``page`` (the design's
+        control values, see :func:`onefold_cad.explore.params.page_values`),
+        and when solved ``numbers``, ``form`` (the resting mesh as base64
+        float32 positions and uint16 or uint32 (``index_type``) triangle
+        indices, the apex, the crease halves, the bounding box; z up, design
+        units), ``flat_svg`` (or None when the flat pattern cannot be made)
+        and ``server_ms``.
+    """
+    from onefold_cad.export.flat_pattern import flat_pattern
+    from onefold_cad.export.report import design_report
+
+    t0 = time.perf_counter()
+    messages: list[dict[str, Any]] = []
+    state: dict[str, Any] = {"ok": False, "messages": messages, "page": page_values(design)}
+    try:
+        folded = build_design(design)
+    except OneFoldError as exc:
+        messages.append(message("error", str(exc), _controls(exc)))
+        return state
+
+    verts, faces = folded.mesh(MESH_ANGULAR, MESH_RADIAL)
+    place = folded.resting
+    pts = place.apply(verts)
+    if not np.all(np.isfinite(pts)):
+        messages.append(message("error", "design: the folded form has non-finite coordinates"))
+        return state
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    apex = place.apply(folded.apex[None, :])[0]
+    crease = [
+        {
+            "half": c.name,
+            "bend": c.bend,
+            "fold_angle_deg": float(c.fold_angle_deg),
+            "points": [apex.tolist(), place.apply(c.end_3d[None, :])[0].tolist()],
+        }
+        for c in folded.crease
+    ]
+
+    small = len(pts) < 2**16
+    # the flat pattern's refusal, as `onefold build` words it (the relief hole first)
+    pattern = None
+    refusal: OneFoldError | None = relief_hole_problem(design)
+    if refusal is None:
+        try:
+            pattern = flat_pattern(design, folded)
+        except OneFoldError as exc:
+            refusal = exc
+    if refusal is not None:
+        messages.append(message("error", str(refusal), _controls(refusal)))
+    report = None
+    try:
+        report = design_report(design, folded, pattern=pattern)
+    except OneFoldError as exc:
+        _add(messages, message("error", str(exc), _controls(exc)))
+    if report is not None:
+        for w in report.get("warnings", []):
+            _add(messages, message("warning", w))
+
+    state.update(
+        ok=True,
+        numbers={"units": design.units.value, **_numbers(folded, report)},
+        form={
+            "positions": _b64(pts, "<f4"),
+            "indices": _b64(faces, "<u2" if small else "<u4"),
+            "index_type": "uint16" if small else "uint32",
+            "vertex_count": int(len(pts)),
+            "triangle_count": int(len(faces)),
+            "apex": apex.tolist(),
+            "crease": crease,
+            "bbox": {"min": lo.tolist(), "max": hi.tolist()},
+        },
+        flat_svg=None if pattern is None else flat_pattern_svg(pattern),
+    )
+    state["server_ms"] = 1e3 * (time.perf_counter() - t0)
+    return state

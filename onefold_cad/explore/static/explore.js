@@ -1,0 +1,394 @@
+// onefold explore: the page draws what the server computes; it computes no geometry.
+// Each control change asks /api/state for the design's new state (the Python
+// solver is the one source of truth) and draws the form, the flat pattern, the
+// numbers and the messages it returns.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+
+// Controls with a range slider and a number box (id and id-num); the number box
+// holds the value sent (it may hold a bad value: the server says what is wrong).
+const SLIDERS = ['alpha', 'beta', 'hc', 'width', 'height', 'apex_fraction',
+  'x_plus', 'x_minus', 'y_plus', 'y_minus', 'thickness', 'bend_radius'];
+const PLAIN = ['model', 'divisions', 'radius', 'polygon'];
+const SHEET_FIELDS = {
+  rectangle: ['width', 'height', 'apex_fraction'],
+  quadrilateral: ['x_plus', 'x_minus', 'y_plus', 'y_minus'],
+  polygon: ['polygon'],
+};
+const COMMON = ['model', 'alpha', 'beta', 'hc', 'radius', 'divisions', 'thickness', 'bend_radius'];
+
+let templateKey = null;
+let sheetKind = 'rectangle';
+let units = '';
+let updates = 0;
+
+// -- controls -------------------------------------------------------------
+function valueOf(name) {
+  return SLIDERS.includes(name) ? $(`${name}-num`).value : $(name).value;
+}
+
+function setValue(name, text) {
+  if (SLIDERS.includes(name)) {
+    $(`${name}-num`).value = text;
+    $(name).value = text;
+  } else {
+    $(name).value = text;
+  }
+}
+
+function query(onlyTemplate = false) {
+  const q = new URLSearchParams();
+  if (templateKey !== null) q.set('template', templateKey);
+  if (onlyTemplate) return q.toString();
+  for (const name of [...COMMON, ...SHEET_FIELDS[sheetKind]]) q.set(name, valueOf(name));
+  return q.toString();
+}
+
+function setRange(name, lo, hi) {
+  const r = $(name);
+  if (!(Number.isFinite(lo) && Number.isFinite(hi) && hi > lo)) return;
+  r.min = String(lo);
+  r.max = String(hi);
+  r.step = String((hi - lo) / 1000);
+  r.value = $(`${name}-num`).value;
+}
+
+// Slider bounds are display ranges only; the number box accepts any value.
+function fitRanges(page) {
+  const v = page.values;
+  const num = (k) => Number(v[k]);
+  for (const k of ['width', 'height', 'x_plus', 'x_minus', 'y_plus', 'y_minus']) {
+    if (k in v) setRange(k, num(k) / 5, num(k) * 3);
+  }
+  const size = page.sheet_size;
+  setRange('thickness', 0, Math.max(4 * num('thickness'), size / 200));
+  setRange('bend_radius', 0, Math.max(4 * num('bend_radius'), 4 * num('thickness'), size / 200));
+}
+
+function fitHcRange(page) {
+  if (page.hc_limit) setRange('hc', -0.98 * page.hc_limit, 0.98 * page.hc_limit);
+}
+
+function fillControls(page) {
+  sheetKind = page.sheet_kind;
+  units = page.units;
+  for (const [k, text] of Object.entries(page.values)) setValue(k, text);
+  for (const fs of document.querySelectorAll('fieldset[data-kind]')) fs.hidden = fs.dataset.kind !== sheetKind;
+  for (const u of document.querySelectorAll('.unit')) u.textContent = units;
+  fitRanges(page);
+  fitHcRange(page);
+}
+
+// -- 3D view --------------------------------------------------------------
+THREE.Object3D.DEFAULT_UP.set(0, 0, 1); // z up, as the form stands on the ground
+const canvas = $('view');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xeef1f5);
+const camera = new THREE.PerspectiveCamera(35, 1, 0.1, 1000);
+scene.add(camera);
+const headlight = new THREE.DirectionalLight(0xffffff, 2.2);
+headlight.position.set(0.6, 0.8, 1.0);
+camera.add(headlight);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x777777, 1.3));
+const controls = new OrbitControls(camera, canvas);
+controls.addEventListener('change', render);
+
+const topMaterial = new THREE.MeshStandardMaterial({
+  color: 0xb9c6d3, metalness: 0.25, roughness: 0.5, side: THREE.FrontSide,
+  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+});
+const underMaterial = new THREE.MeshStandardMaterial({
+  color: 0xa8825e, metalness: 0.1, roughness: 0.7, side: THREE.BackSide,
+  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+});
+const edgeMaterial = new THREE.LineBasicMaterial({ color: 0x374151 });
+const BEND_COLOURS = { UP: 0xd62828, DOWN: 0x1d4ed8 };
+const form = new THREE.Group();
+const decorations = new THREE.Group();
+const groundMaterial = new THREE.MeshStandardMaterial({ color: 0xd5dbe2, roughness: 1 });
+const ground = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), groundMaterial);
+scene.add(ground, form, decorations);
+let grid = null;
+let framed = false;
+
+function decode(b64, Type) {
+  const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+  return new Type(bytes.buffer);
+}
+
+function disposeGroup(group) {
+  for (const child of [...group.children]) {
+    group.remove(child);
+    child.geometry?.dispose();
+    if (child.material && ![topMaterial, underMaterial, edgeMaterial].includes(child.material)) child.material.dispose();
+  }
+}
+
+function rod(a, b, radius, colour) {
+  const pa = new THREE.Vector3(...a);
+  const pb = new THREE.Vector3(...b);
+  const dir = pb.clone().sub(pa);
+  const mesh = new THREE.Mesh(
+    new THREE.CylinderGeometry(radius, radius, dir.length(), 10),
+    new THREE.MeshBasicMaterial({ color: colour }),
+  );
+  mesh.position.copy(pa).add(pb).multiplyScalar(0.5);
+  mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), dir.normalize());
+  return mesh;
+}
+
+function drawForm(f, fit) {
+  disposeGroup(form);
+  disposeGroup(decorations);
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(decode(f.positions, Float32Array), 3));
+  const IndexType = f.index_type === 'uint16' ? Uint16Array : Uint32Array;
+  geometry.setIndex(new THREE.BufferAttribute(decode(f.indices, IndexType), 1));
+  geometry.computeVertexNormals(); // shading only
+  form.add(new THREE.Mesh(geometry, topMaterial), new THREE.Mesh(geometry, underMaterial));
+  // the sheet's edge (and the crease, where the two sides' meshes meet), drawn as lines
+  form.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 40), edgeMaterial));
+
+  const lo = new THREE.Vector3(...f.bbox.min);
+  const hi = new THREE.Vector3(...f.bbox.max);
+  const size = Math.max(hi.x - lo.x, hi.y - lo.y, hi.z - lo.z) || 1;
+  for (const c of f.crease) decorations.add(rod(c.points[0], c.points[1], size * 0.004, BEND_COLOURS[c.bend]));
+  const apex = new THREE.Mesh(new THREE.SphereGeometry(size * 0.012, 20, 12),
+    new THREE.MeshBasicMaterial({ color: 0xf59e0b }));
+  apex.position.set(...f.apex);
+  decorations.add(apex);
+
+  const cx = (lo.x + hi.x) / 2;
+  const cy = (lo.y + hi.y) / 2;
+  const extent = 1.8 * Math.max(hi.x - lo.x, hi.y - lo.y);
+  ground.scale.set(extent, extent, 1);
+  ground.position.set(cx, cy, -1e-3 * size);
+  if (grid) { scene.remove(grid); grid.geometry.dispose(); grid.material.dispose(); }
+  grid = new THREE.GridHelper(extent, 12, 0x9aa5b1, 0xbac3cc);
+  grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; the ground is x-y
+  grid.position.set(cx, cy, -5e-4 * size);
+  scene.add(grid);
+
+  if (fit || !framed) {
+    const centre = lo.clone().add(hi).multiplyScalar(0.5);
+    const dist = (0.95 * size) / Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
+    camera.near = size / 500;
+    camera.far = size * 200;
+    camera.position.copy(centre).add(new THREE.Vector3(0.9, -1.5, 0.6).normalize().multiplyScalar(dist));
+    camera.updateProjectionMatrix();
+    controls.target.copy(centre);
+    controls.update();
+    framed = true;
+  }
+}
+
+function resize() {
+  const box = canvas.parentElement.getBoundingClientRect();
+  const w = Math.max(1, Math.floor(box.width));
+  const h = Math.max(1, Math.floor(canvas.getBoundingClientRect().height));
+  renderer.setSize(w, h, false);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+  render();
+}
+
+function render() {
+  renderer.render(scene, camera);
+}
+
+new ResizeObserver(resize).observe(canvas.parentElement);
+
+// -- numbers and messages ---------------------------------------------------
+function fmt(x, digits = 5) {
+  return x === null || x === undefined ? '–' : String(Number(Number(x).toPrecision(digits)));
+}
+function len(x) {
+  return x === null || x === undefined ? '–' : `${fmt(x, 6)} ${units}`;
+}
+
+function showNumbers(n) {
+  const halves = { plus_x: '+x half', minus_x: '−x half' };
+  $('fold-angles').textContent = Object.entries(n.fold_angles)
+    .map(([k, v]) => `${halves[k] || k}: ${Number(v.deg).toFixed(2)}° ${v.bend}`).join(' · ');
+  $('apex-height').textContent = len(n.apex_height);
+  $('form-height').textContent = len(n.height);
+  $('form-span').textContent = len(n.span);
+  // the footprint as `onefold solve` prints it: width x depth (x, y), 6 significant digits
+  $('form-footprint').textContent = n.width === null ? '–'
+    : `${fmt(n.width, 6)} × ${fmt(n.depth, 6)} ${units}, hull area ${fmt(n.footprint_area)} ${units}²`
+      + (n.stable === false ? ' (no stable resting face)' : '');
+  $('flat-size').textContent = n.flat_size ? `${fmt(n.flat_size[0])} × ${fmt(n.flat_size[1])} ${units}` : '–';
+  $('relief-hole').textContent = n.relief_hole ? `Ø ${len(n.relief_hole)}` : (n.relief_hole === 0 ? 'none' : '–');
+  $('angle-error').textContent = `${fmt(n.angle_condition_error_deg, 3)}°`;
+}
+
+function showMessages(messages) {
+  const ul = $('messages');
+  ul.replaceChildren();
+  for (const el of document.querySelectorAll('#controls .invalid')) el.classList.remove('invalid');
+  if (!messages.length) {
+    const li = document.createElement('li');
+    li.className = 'none';
+    li.textContent = 'none';
+    ul.append(li);
+  }
+  for (const m of messages) {
+    const li = document.createElement('li');
+    li.className = m.level;
+    li.textContent = `${m.level}: ${m.text}`;
+    ul.append(li);
+    for (const c of m.controls || []) {
+      $(c)?.classList.add('invalid');
+      $(`${c}-num`)?.classList.add('invalid');
+    }
+  }
+}
+
+function setDownloads(q, enabled) {
+  for (const a of document.querySelectorAll('#downloads a')) {
+    a.href = `/download/${a.dataset.kind}?${q}`;
+    a.setAttribute('aria-disabled', enabled ? 'false' : 'true');
+  }
+}
+
+// -- the update loop: one request at a time, the latest values win -------------
+let inflight = false;
+let pending = null; // {templateOnly, fit}
+
+function request(templateOnly = false, fit = false) {
+  pending = { templateOnly: templateOnly || pending?.templateOnly || false, fit: fit || pending?.fit || false };
+  if (!inflight) run();
+}
+
+async function run() {
+  const job = pending;
+  pending = null;
+  inflight = true;
+  const started = performance.now();
+  const q = query(job.templateOnly);
+  $('status').textContent = 'solving…';
+  try {
+    const res = await fetch(`/api/state?${q}`);
+    const state = await res.json();
+    apply(state, job, res.ok ? q : null);
+    const ms = performance.now() - started;
+    $('status').textContent = state.ok
+      ? `updated in ${Math.round(ms)} ms (server ${Math.round(state.server_ms)} ms)`
+      : 'the design has an error: see the messages';
+    finish(started, state.ok);
+  } catch (err) {
+    showMessages([{ level: 'error', text: `no answer from the server (${err})`, controls: [] }]);
+    $('status').textContent = 'server not reachable';
+    finish(started, false);
+  } finally {
+    inflight = false;
+    if (pending) run();
+  }
+}
+
+function apply(state, job, q) {
+  if (state.page) {
+    if (job.templateOnly) fillControls(state.page);
+    else fitHcRange(state.page);
+  }
+  showMessages(state.messages || []);
+  document.body.classList.toggle('has-error', !state.ok);
+  if (!state.ok) {
+    setDownloads(q || '', false);
+    return;
+  }
+  showNumbers(state.numbers);
+  drawForm(state.form, job.fit);
+  $('flat').innerHTML = state.flat_svg
+    || '<p class="no-flat">No flat pattern for these values: see the messages.</p>';
+  setDownloads(query(), true);
+  render();
+}
+
+function finish(started, ok) {
+  requestAnimationFrame(() => {
+    updates += 1;
+    document.body.dataset.updates = String(updates);
+    window.dispatchEvent(new CustomEvent('explore:updated', {
+      detail: { started, done: performance.now(), ok },
+    }));
+  });
+}
+
+// -- wiring ---------------------------------------------------------------
+for (const name of SLIDERS) {
+  $(name).addEventListener('input', () => {
+    $(`${name}-num`).value = $(name).value;
+    request();
+  });
+  $(`${name}-num`).addEventListener('input', () => {
+    $(name).value = $(`${name}-num`).value;
+    request();
+  });
+}
+let typing = null;
+for (const name of PLAIN) {
+  $(name).addEventListener('input', () => {
+    clearTimeout(typing);
+    typing = setTimeout(request, name === 'polygon' ? 300 : 0);
+  });
+}
+$('template').addEventListener('change', () => {
+  templateKey = $('template').value;
+  request(true, true);
+});
+$('controls').addEventListener('submit', (ev) => ev.preventDefault());
+
+for (const a of document.querySelectorAll('#downloads a')) {
+  a.addEventListener('click', async (ev) => {
+    ev.preventDefault();
+    const note = $('download-message');
+    if (a.getAttribute('aria-disabled') === 'true') {
+      note.textContent = 'Fix the values first: the design has an error.';
+      return;
+    }
+    note.textContent = `making the ${a.dataset.kind.toUpperCase()} file…`;
+    try {
+      const res = await fetch(a.href);
+      if (!res.ok) {
+        note.textContent = `${a.dataset.kind.toUpperCase()}: ${await res.text()}`;
+        return;
+      }
+      const name = /filename="([^"]+)"/.exec(res.headers.get('Content-Disposition') || '')?.[1] || 'onefold';
+      const url = URL.createObjectURL(await res.blob());
+      const link = document.createElement('a');
+      link.href = url;
+      link.download = name;
+      document.body.append(link);
+      link.click();
+      link.remove();
+      setTimeout(() => URL.revokeObjectURL(url), 60000);
+      note.textContent = `saved ${name}`;
+    } catch (err) {
+      note.textContent = `download failed (${err})`;
+    }
+  });
+}
+
+async function start() {
+  const res = await fetch('/api/templates');
+  const info = await res.json();
+  const select = $('template');
+  for (const t of info.templates) {
+    const opt = document.createElement('option');
+    opt.value = t.key;
+    opt.textContent = t.key;
+    opt.title = t.description;
+    select.append(opt);
+  }
+  templateKey = info.initial;
+  select.value = templateKey;
+  resize();
+  request(true, true);
+}
+
+start();

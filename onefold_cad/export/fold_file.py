@@ -1,0 +1,349 @@
+"""NAME.fold: the design as a FOLD 1.2 file for origami tools (Origami
+Simulator, Rabbit Ear, the FOLD viewer).
+
+Spec: edemaine/fold, doc/spec.md (version 1.2). The file holds two frames:
+
+* the key frame, ``frame_classes: ["creasePattern"]``: the flat sheet (2D,
+  in the sheet's own frame, as in the DXF), triangulated along its rulings;
+* ``file_frames[0]``, ``["foldedForm"]``, ``frame_parent: 0``,
+  ``frame_inherit: true``: the same vertices folded (3D), standing as the
+  form rests on the ground (z = 0; :attr:`FoldedSheet.resting`).
+
+The mesh is a fan about H: one vertex at H, one at every ruling's end on the
+outline, one triangle between each two neighbouring rulings (counter-clockwise
+in the crease pattern, so every face's normal is the sheet's top, +z, side).
+With a relief hole (:func:`onefold_cad.design.relief_hole_diameter` > 0) the
+hole is cut: H is gone, and each ruling starts where it crosses the hole's
+circle, so the hole's boundary is the polygon of those points (inscribed in
+the circle) and each triangle of the fan becomes a quad, split into two
+triangles by a diagonal that lies in the fan triangle's plane (``F``).
+Edges: ``B`` on the outline and the hole; the two crease halves ``V`` or ``M`` from their
+bend direction (:attr:`CreaseHalf.bend` 'UP' rotates both sides towards the
+top side, +z: a valley seen from +z); the rulings ``V``/``M`` by the sign of
+their own small dihedral angle, or ``F`` where they run inside a planar
+triangle of the fan (the rulings through polygon vertices); both from
+:mod:`onefold_cad.geometry.fan_folds`, as the DXF's ruling folds. ``edges_foldAngle``
+is in degrees, valley positive, mountain negative, 0 for ``F`` and ``B``
+(the spec's convention).
+
+Which polyhedral surface. The paper model is a fan of planar triangles: it is
+written as it is, every ruling of :attr:`FoldedSheet.rulings_flat` /
+``rulings_3d`` (the division rays and the rays through polygon vertices) an
+edge. The exact model is a smooth cone, which a FOLD file (flat faces) can only
+approximate. The obvious approximation, a polyhedral cone inscribed in the
+exact one (the exact apex, rulings at chosen angles), is not isometric to the
+flat sheet: its triangles' apex angles are chords of the cone's directions,
+so they add up to less than 180 deg per side and the folded triangles cannot
+have their flat shapes. The isometric approximation is the paper's fan over
+the same frame curve with ``frame.divisions`` triangles per side, solved for
+its own apex (the angle condition then holds exactly for the fan). That is what
+an exact-model design writes; its folded frame differs from the exact cone by
+O(1 / divisions^2), and the file records the largest distance between the two
+(fold frame, matched by flat point) as ``onefold:max_deviation_from_exact``.
+So the folded frame is exact to itself: every edge keeps its flat length and
+every dihedral angle equals its ``edges_foldAngle``, to rounding.
+
+The relief hole is cut as the polygon of its crossings with the rulings, so
+every edge of it is a chord of a flat triangle and the file stays exact to
+itself; ``onefold:relief_hole_diameter`` records the circle's diameter and
+``onefold:relief_hole_cut`` whether there is one.
+
+Units: ``frame_unit`` is the design's unit ('mm' and 'in' are the spec's own
+values; 'ft' is a custom value the spec allows, with ``onefold:mm_per_unit``
+so a reader can convert). Our extra values carry the ``onefold:`` prefix.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from onefold_cad.design import (
+    Design,
+    relief_hole_diameter,
+    relief_hole_problem,
+    sheet_inradius,
+)
+from onefold_cad.errors import FabricationError, InvalidParameterError, NoSolutionError
+from onefold_cad.export.atomic import atomic_output
+from onefold_cad.geometry.cone import PaperFan
+from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
+from onefold_cad.geometry.folding import FoldedSheet, fold
+from onefold_cad.geometry.params import Model
+from onefold_cad.geometry.solver import solve
+
+__all__ = ["FOLD_SPEC", "RESOLUTION", "fold_data", "fold_fan", "write_fold"]
+
+#: The FOLD spec version written.
+FOLD_SPEC = 1.2
+Array = NDArray[np.float64]
+#: The shortest edge a cut relief hole may add, relative to the sheet's size
+#: (:attr:`Sheet.size`): shorter ones would leave faces of no area once the
+#: coordinates are rounded (about 1e-16 of the size).
+RESOLUTION = 1e-12
+
+
+def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
+    """The paper-model fan the FOLD file triangulates: ``folded`` itself for the
+    paper model; for the exact model the paper's fan over the same frame curve
+    and ``divisions``, solved for its own apex and folded (see the module notes).
+
+    Raises:
+        InvalidParameterError: ('divisions') the fan of that many divisions has
+            no non-trivial apex (always so for 1 division).
+    """
+    if isinstance(folded.solution.surface, PaperFan):
+        return folded
+    try:
+        return fold(solve(design.frame, Model.PAPER), design.sheet)
+    except NoSolutionError:
+        raise InvalidParameterError(
+            "divisions",
+            f"the FOLD file approximates the exact cone by the paper fan of "
+            f"{design.frame.divisions} triangles per side, which has no non-trivial apex "
+            "for this frame; use more divisions (at least 2)",
+        ) from None
+
+
+def _disc(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
+    """Edges, faces and the (assignment, kind) of each group of ``n`` edges after
+    the rulings, of the fan without a hole: vertex 0 is H, vertex 1 + i the
+    i-th ruling's end; edge i the ruling, edge n + i the outline after it."""
+    ring = [1 + i for i in range(n)]
+    edges = [[0, v] for v in ring] + [[ring[i], ring[(i + 1) % n]] for i in range(n)]
+    faces = [[0, ring[i], ring[(i + 1) % n]] for i in range(n)]
+    return edges, faces, [("B", "outline")]
+
+
+def _annulus(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
+    """Edges, faces and edge groups (see :func:`_disc`) of the fan with the
+    relief hole cut: vertex i is the hole's vertex on ruling i, vertex n + i
+    the ruling's end on the outline. Edge i is the ruling (hole to outline),
+    n + i the outline after it, 2n + i the hole's edge after it, 3n + i the
+    diagonal that splits the quad between rulings i and i + 1 (flat: both of
+    its triangles lie in the fan's triangle between the two rulings). Faces
+    counter-clockwise in the crease pattern."""
+    nxt = [(i + 1) % n for i in range(n)]
+    edges = (
+        [[i, n + i] for i in range(n)]
+        + [[n + i, n + nxt[i]] for i in range(n)]
+        + [[i, nxt[i]] for i in range(n)]
+        + [[i, n + nxt[i]] for i in range(n)]
+    )
+    faces = [f for i in range(n) for f in ([i, n + i, n + nxt[i]], [i, n + nxt[i], nxt[i]])]
+    return edges, faces, [("B", "outline"), ("B", "hole"), ("F", "diagonal")]
+
+
+def _with_hole(design: Design, fan: FoldedSheet, hole: float) -> tuple[Array, Array]:
+    """The vertices of the fan with the relief hole cut, flat (fold frame) and
+    folded: the hole's vertices where the rulings cross the hole's circle
+    (radius ``hole / 2`` about H; at that distance from the apex along each
+    folded ruling), then the ruling ends on the outline.
+
+    Raises:
+        FabricationError: ('relief_hole' or 'thickness') the hole does not
+            fit inside the sheet around H; ('relief_hole') it would add an
+            edge shorter than :data:`RESOLUTION` x the sheet's size.
+    """
+    radius = hole / 2.0
+    inner = sheet_inradius(design.sheet)
+    if radius >= inner:
+        u = design.units.value
+        raise relief_hole_problem(design) or FabricationError(
+            "relief_hole",
+            f"diameter {hole:g} {u} must be < {2.0 * inner:.6g} {u} (twice the distance from "
+            "H to the nearest sheet edge)",
+        )
+    ends2, ends3 = fan.boundary_flat, fan.boundary_3d
+    length = np.linalg.norm(ends2, axis=1)
+    dir2 = ends2 / length[:, None]
+    rel3 = ends3 - fan.apex
+    dir3 = rel3 / np.linalg.norm(rel3, axis=1, keepdims=True)
+    unit_chords = np.linalg.norm(np.roll(dir2, -1, axis=0) - dir2, axis=1)
+    _check_resolution(design, hole, float(unit_chords.min()), length - radius)
+    flat = np.vstack([radius * dir2, ends2])
+    pts3 = np.vstack([fan.apex + radius * dir3, ends3])
+    return flat, pts3
+
+
+def _check_resolution(design: Design, hole: float, unit_chord: float, rest: Array) -> None:
+    """Refuse a hole whose new edges the file cannot hold: every edge of the
+    hole's polygon (the shortest is ``unit_chord`` x the radius) and every
+    ruling's part outside the hole (``rest``) must be at least
+    :data:`RESOLUTION` x the sheet's size long, or faces beside them collapse
+    when the coordinates are rounded."""
+    tau = RESOLUTION * design.sheet.size
+    u = design.units.value
+    chord = unit_chord * hole / 2.0
+    if chord < tau:
+        need = 2.0 * tau / unit_chord
+        step = 10.0 ** (math.floor(math.log10(need)) - 2)
+        need = math.ceil(need / step) * step  # 3 digits, rounded up
+        raise FabricationError(
+            "relief_hole",
+            f"diameter {hole:.6g} {u} is too small for the FOLD file: the hole's edge "
+            f"between two rulings would be {chord:.3g} {u} long, under its resolution "
+            f"{tau:.3g} {u} ({RESOLUTION:g} of the sheet's size); use at least {need:.3g} {u}, "
+            "or no relief hole (0)",
+        )
+    if rest.min() < tau:
+        most = 2.0 * (rest.min() + hole / 2.0 - 2.0 * tau)
+        raise FabricationError(
+            "relief_hole",
+            f"diameter {hole:.17g} {u} is too large for the FOLD file: a ruling would keep "
+            f"{rest.min():.3g} {u} outside the hole, under its resolution {tau:.3g} {u} "
+            f"({RESOLUTION:g} of the sheet's size); use at most {most:.17g} {u}",
+        )
+
+
+def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
+    """The FOLD 1.2 document of ``design`` as a JSON-ready dict.
+
+    Args:
+        design: the design (name, units, frame, sheet, material).
+        folded: its fold (:func:`onefold_cad.build_design`).
+
+    Returns:
+        The key frame (crease pattern, 2D, the sheet's own frame) with the
+        folded form as ``file_frames[0]`` (3D, standing on z = 0); lengths in
+        ``design.units``. With n rulings, counted counter-clockwise from the
+        +x crease end: without a relief hole vertex 0 is H and vertex 1 + i
+        the i-th ruling's end, edge i the ruling, edge n + i the outline after
+        it (a disc: V - E + F = 1); with one, vertex i is the hole's vertex on
+        ruling i and vertex n + i the ruling's end, edges i, n + i, 2n + i,
+        3n + i the ruling, the outline, the hole's edge and the quad's
+        diagonal after it (an annulus: V - E + F = 0).
+
+    Raises:
+        FabricationError: the relief hole does not fit inside the sheet.
+        InvalidParameterError: ('divisions') see :func:`fold_fan`.
+    """
+    fan = fold_fan(design, folded)
+    theta, minus_x = ring_angles(fan)
+    n = len(theta)
+    hole = relief_hole_diameter(design, folded)
+    if hole > 0.0:
+        flat, pts3 = _with_hole(design, fan, hole)
+        edges, faces, extra = _annulus(n)
+    else:
+        flat = np.vstack([np.zeros((1, 2)), fan.boundary_flat])
+        pts3 = np.vstack([fan.apex[None, :], fan.boundary_3d])
+        edges, faces, extra = _disc(n)
+
+    angle = signed_fold_angles(fan.apex, fan.boundary_3d)
+    division = on_division_rays(theta, fan)
+    assignment = np.where(angle > 0.0, "V", np.where(angle < 0.0, "M", "F")).astype(object)
+    kind = np.full(n, "ruling", dtype=object)
+    flat_ray = ~division
+    assignment[flat_ray], angle[flat_ray], kind[flat_ray] = "F", 0.0, "flat_ruling"
+    for i, half in ((0, fan.crease[0]), (minus_x, fan.crease[1])):
+        valley = half.bend == "UP"  # both sides turn towards +z: a valley seen from +z
+        assignment[i] = "V" if valley else "M"
+        angle[i] = half.fold_angle_deg if valley else -half.fold_angle_deg
+        kind[i] = f"crease_{half.name}"
+
+    units = design.units.value
+    frame = design.frame
+    extras: dict[str, Any] = {
+        "onefold:design": design.name,
+        "onefold:model": design.model.value,
+        "onefold:mm_per_unit": design.units.mm,
+        "onefold:frame": {
+            "alpha_deg": frame.alpha,
+            "beta_deg": frame.beta,
+            "h_c": frame.h_c,
+            "radius": frame.radius,
+            "divisions": frame.divisions,
+        },
+        "onefold:surface": (
+            "the paper model's fan of planar triangles"
+            if fan is folded
+            else f"the paper fan of {frame.divisions} divisions per side over the exact "
+            "model's frame curve, solved for its own apex: the isometric polyhedral "
+            "approximation of the exact cone"
+        ),
+        "onefold:apex_height": fan.solution.apex_height,
+        "onefold:crease": [
+            {"name": c.name, "length": c.length, "fold_angle_deg": c.fold_angle_deg, "bend": c.bend}
+            for c in fan.crease
+        ],
+        "onefold:relief_hole_diameter": hole,
+        "onefold:relief_hole_cut": hole > 0.0,
+        "onefold:resting_tilt_deg": fan.resting.tilt_deg,
+    }
+    if fan is not folded:
+        exact = folded.map_points(fan.boundary_flat)
+        dev = max(
+            float(np.max(np.linalg.norm(exact - fan.boundary_3d, axis=1))),
+            abs(fan.solution.apex_height - folded.solution.apex_height),
+        )
+        extras["onefold:exact_apex_height"] = folded.solution.apex_height
+        extras["onefold:max_deviation_from_exact"] = dev
+
+    folded_frame = {
+        "frame_title": f"{design.name}: folded, standing on the ground (z = 0)",
+        "frame_classes": ["foldedForm"],
+        "frame_attributes": ["3D", "manifold", "orientable", "convexFaces"],
+        "frame_parent": 0,
+        "frame_inherit": True,
+        "vertices_coords": fan.resting.apply(pts3).tolist(),
+    }
+    doc: dict[str, Any] = {
+        "file_spec": FOLD_SPEC,
+        "file_creator": f"onefold_cad {_version()}",
+        "file_title": design.name,
+        "file_description": design.description
+        or f"One-Fold design {design.name}: crease pattern and folded form",
+        "file_classes": ["singleModel"],
+        "frame_title": f"{design.name}: crease pattern (the flat sheet, top side +z)",
+        "frame_classes": ["creasePattern"],
+        "frame_attributes": [
+            "2D",
+            "manifold",
+            "orientable",
+            "nonSelfTouching",
+            "nonSelfIntersecting",
+            "convexFaces",
+        ],
+        "frame_unit": units,
+        "vertices_coords": design.sheet.to_sheet.apply(flat).tolist(),
+        "edges_vertices": edges,
+        "edges_assignment": list(assignment) + [a for a, _ in extra for _ in range(n)],
+        "edges_foldAngle": [float(a) for a in angle] + [0.0] * (len(edges) - n),
+        "edges_onefold:kind": list(kind) + [k for _, k in extra for _ in range(n)],
+        "faces_vertices": faces,
+        **extras,
+        "file_frames": [folded_frame],
+    }
+    return doc
+
+
+def _version() -> str:
+    from onefold_cad import __version__
+
+    return __version__
+
+
+def write_fold(design: Design, folded: FoldedSheet, path: str | os.PathLike[str]) -> Path:
+    """Write ``design`` as a FOLD 1.2 file (:func:`fold_data`), atomically.
+
+    Returns:
+        The path written.
+
+    Raises:
+        ExportError: the file could not be written.
+        FabricationError: the relief hole does not fit inside the sheet.
+        InvalidParameterError: ('divisions') the exact model's fan
+            approximation has no apex (:func:`fold_fan`).
+    """
+    out = Path(path)
+    text = json.dumps(fold_data(design, folded), indent=1, allow_nan=False)
+    with atomic_output(out) as tmp:
+        tmp.write_text(text + "\n", encoding="utf-8")
+    return out

@@ -1,0 +1,469 @@
+"""The design flags of ``onefold build`` and ``onefold solve``, and the designs
+they make from templates.
+
+:data:`DESIGN_FLAGS` lists every flag once (the parser is built from it);
+:class:`Overrides` puts flag values into template data; :func:`load_jobs`
+turns templates and flags into validated designs, converting a template's
+values into ``--units`` first (so flag values are read in that unit), naming
+each design after what defines it and recording where every material value
+came from.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import hashlib
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.templates import DEFAULT_TEMPLATE
+
+if TYPE_CHECKING:
+    from onefold_cad.design import Design
+
+__all__ = [
+    "DESIGN_FLAGS",
+    "Flag",
+    "Job",
+    "Overrides",
+    "changed_flags",
+    "derived_name",
+    "flags_text",
+    "load_jobs",
+    "mark_changes",
+]
+
+MODELS = ("exact", "paper")
+UNITS = ("mm", "in", "ft")
+SURFACES = ("INSIDE", "OUTSIDE", "MID")
+BODIES = ("auto", "solid", "shell")
+MATERIAL_KEYS = (
+    "name",
+    "thickness",
+    "bend_radius",
+    "k_factor",
+    "kerf",
+    "relief_hole",
+    "density",
+    "sheet_surface",
+)
+
+
+# -- flag values -------------------------------------------------------------------
+def parse_float(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a number") from None
+
+
+def parse_int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a whole number") from None
+
+
+def parse_choice(values: Sequence[str], upper: bool = False) -> Callable[[str], str]:
+    def parse(text: str) -> str:
+        v = text.strip().upper() if upper else text.strip().lower()
+        if v not in values:
+            raise argparse.ArgumentTypeError(
+                f"must be one of {', '.join(values)}, got {text.strip()!r}"
+            )
+        return v
+
+    return parse
+
+
+@dataclass(frozen=True)
+class Flag:
+    """A design flag shared by ``build`` and ``solve``."""
+
+    dest: str
+    flag: str
+    kind: Callable[[str], Any]
+    help: str
+    group: str
+    metavar: str | None = None
+
+
+_FRAME = "frame curve (paper section 3.2; lengths in the design's unit)"
+_SHEET = "sheet (fold frame: fold line on the x axis, H at the origin; design unit)"
+_MAT = "material (lengths in the design's unit)"
+_DESIGN = "design"
+
+DESIGN_FLAGS: tuple[Flag, ...] = (
+    Flag("model", "--model", parse_choice(MODELS), "exact: the cone over the arc; paper: the "
+         "paper's fan of --divisions triangles (default: the template's)", _DESIGN, "exact|paper"),
+    Flag("units", "--units", parse_choice(UNITS), "the design's length unit: the template's values "
+         "are converted into it and the flags below are read in it", _DESIGN, "mm|in|ft"),
+    Flag("alpha", "--alpha", parse_float, "arc opening alpha, deg in (0, 90)", _FRAME, "DEG"),
+    Flag("beta", "--beta", parse_float, "tilt beta of the arc's plane, deg in (0, 90)", _FRAME,
+         "DEG"),
+    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint", _FRAME, "LENGTH"),
+    Flag("radius", "--radius", parse_float, "frame-curve radius R > 0", _FRAME, "LENGTH"),
+    Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, >= 1",
+         _FRAME, "N"),
+    Flag("x_plus", "--x-plus", parse_float, "quadrilateral: distance from H to the +x vertex",
+         _SHEET, "LENGTH"),
+    Flag("x_minus", "--x-minus", parse_float, "quadrilateral: distance from H to the -x vertex",
+         _SHEET, "LENGTH"),
+    Flag("y_plus", "--y-plus", parse_float, "quadrilateral: distance from H to the +y vertex",
+         _SHEET, "LENGTH"),
+    Flag("y_minus", "--y-minus", parse_float, "quadrilateral: distance from H to the -y vertex",
+         _SHEET, "LENGTH"),
+    Flag("polygon", "--polygon", str, 'polygon sheet "x,y;x,y;...", star-shaped about H',
+         _SHEET, "X,Y;..."),
+    Flag("rectangle", "--rectangle", str, "rectangle folded along its diagonal", _SHEET,
+         "WIDTHxHEIGHT"),
+    Flag("apex_fraction", "--apex-fraction", parse_float, "rectangle: where H sits along the "
+         "diagonal, in (0, 1)", _SHEET, "F"),
+    Flag("thickness", "--thickness", parse_float, "sheet thickness t >= 0", _MAT, "LENGTH"),
+    Flag("bend_radius", "--bend-radius", parse_float, "inside bend radius r >= 0", _MAT, "LENGTH"),
+    Flag("k_factor", "--k-factor", parse_float, "K-factor in [0, 1]", _MAT, "K"),
+    Flag("kerf", "--kerf", parse_float, "cutting kerf >= 0", _MAT, "LENGTH"),
+    Flag("relief_hole", "--relief-hole", parse_float, "relief hole diameter at the apex >= 0 "
+         "(0: none)", _MAT, "DIAMETER"),
+    Flag("density", "--density", parse_float, "density in kg/m^3 > 0 (e.g. 7850 for steel), "
+         "whatever the design unit", _MAT, "KG/M3"),
+    Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
+         "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
+)  # fmt: skip
+FLAG_OF = {f.dest: f.flag for f in DESIGN_FLAGS}
+
+
+# -- designs from templates and flags ---------------------------------------------
+class Overrides:
+    """Flag values that replace template values; None means "keep the template's"."""
+
+    _FLAGS = {
+        "frame.alpha": "--alpha",
+        "frame.beta": "--beta",
+        "frame.h_c": "--hc",
+        "frame.radius": "--radius",
+        "frame.divisions": "--divisions",
+        "material.thickness": "--thickness",
+        "material.bend_radius": "--bend-radius",
+        "material.k_factor": "--k-factor",
+        "material.kerf": "--kerf",
+        "material.relief_hole": "--relief-hole",
+        "material.density": "--density",
+    }
+    _QUAD = {
+        "x_plus": "--x-plus",
+        "x_minus": "--x-minus",
+        "y_plus": "--y-plus",
+        "y_minus": "--y-minus",
+    }
+
+    def __init__(self, **values: Any) -> None:
+        self.values = {k: v for k, v in values.items() if v is not None}
+
+    def apply(self, data: dict[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+        """Template data with the flags applied, and the flag name of each changed key."""
+        out = copy.deepcopy(data)
+        v = self.values
+        names: dict[str, str] = {}
+        for key, flag in self._FLAGS.items():
+            arg = flag[2:].replace("-", "_")
+            if arg in v:
+                table, fld = key.split(".")
+                out.setdefault(table, {})[fld] = v[arg]
+                names[key] = flag
+        if "model" in v:
+            out["model"] = v["model"]
+            names["model"] = "--model"
+        if "units" in v:
+            out["units"] = v["units"]
+            names["units"] = "--units"
+        if "sheet_surface" in v:
+            out.setdefault("material", {})["sheet_surface"] = v["sheet_surface"]
+            names["material.sheet_surface"] = "--sheet-surface"
+        if "name" in v:
+            out["name"] = v["name"]
+            names["name"] = "--name"
+        self._apply_sheet(out, names)
+        return out, names
+
+    def _apply_sheet(self, out: dict[str, Any], names: dict[str, str]) -> None:
+        v = self.values
+        quad = {k: v[k] for k in self._QUAD if k in v}
+        given = [
+            f
+            for f, on in (
+                ("--polygon", "polygon" in v),
+                ("--rectangle", "rectangle" in v),
+                ("--x-plus/--x-minus/--y-plus/--y-minus", bool(quad)),
+            )
+            if on
+        ]
+        if len(given) > 1:
+            raise InvalidParameterError(given[1], f"cannot be combined with {given[0]}")
+        sheet = out.get("sheet") if isinstance(out.get("sheet"), dict) else {}
+        if "polygon" in v:
+            out["sheet"] = {"polygon": _parse_polygon(v["polygon"])}
+            names["sheet.polygon"] = "--polygon"
+        elif "rectangle" in v:
+            w, h = _parse_rectangle(v["rectangle"])
+            old = sheet.get("rectangle", {}) if isinstance(sheet.get("rectangle"), dict) else {}
+            out["sheet"] = {"rectangle": {**old, "width": w, "height": h}}
+            names["sheet.rectangle.width"] = names["sheet.rectangle.height"] = "--rectangle"
+        elif quad:
+            if "quadrilateral" in sheet:
+                out["sheet"] = {"quadrilateral": {**sheet["quadrilateral"], **quad}}
+            else:
+                for key, flag in self._QUAD.items():
+                    if key not in quad:
+                        raise InvalidParameterError(
+                            flag,
+                            "missing: a quadrilateral sheet needs all of --x-plus, "
+                            "--x-minus, --y-plus, --y-minus (each > 0)",
+                        )
+                out["sheet"] = {"quadrilateral": quad}
+            for key, flag in self._QUAD.items():
+                names[f"sheet.quadrilateral.{key}"] = flag
+        if "apex_fraction" in v:
+            rect = out.get("sheet", {}).get("rectangle")
+            if not isinstance(rect, dict):
+                raise InvalidParameterError(
+                    "--apex-fraction", "applies to a rectangle sheet only (add --rectangle WxH)"
+                )
+            rect["apex_fraction"] = v["apex_fraction"]
+            names["sheet.rectangle.apex_fraction"] = "--apex-fraction"
+
+
+def _parse_number(text: str, flag: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise InvalidParameterError(flag, f"{text.strip()!r} is not a number") from None
+
+
+def _parse_polygon(text: str) -> list[list[float]]:
+    pts = []
+    for i, pair in enumerate(p for p in text.split(";") if p.strip()):
+        parts = pair.split(",")
+        if len(parts) != 2:
+            raise InvalidParameterError(
+                "--polygon",
+                f'vertex {i} must be "x,y", got {pair.strip()!r} (format "x,y;x,y;...")',
+            )
+        pts.append([_parse_number(parts[0], "--polygon"), _parse_number(parts[1], "--polygon")])
+    return pts
+
+
+def _parse_rectangle(text: str) -> tuple[float, float]:
+    parts = text.lower().split("x")
+    try:
+        width, height = (float(p) for p in parts)
+    except ValueError:
+        raise InvalidParameterError(
+            "--rectangle", f"must be WIDTHxHEIGHT (e.g. 3048x7315.2), got {text!r}"
+        ) from None
+    return width, height
+
+
+_SHORT = {"hc": "hc", "radius": "r", "divisions": "div", "apex_fraction": "af", "k_factor": "k",
+          "bend_radius": "br", "relief_hole": "hole", "x_plus": "xp", "x_minus": "xm",
+          "y_plus": "yp", "y_minus": "ym", "thickness": "t", "density": "rho"}  # fmt: skip
+
+
+def derived_name(base: str, flags: dict[str, Any]) -> str:
+    """``base`` followed by the design flags given, e.g. ``onefold-3048x7315.2-alpha35``:
+    a file-safe name (at most 64 characters; a longer one keeps its start and
+    ends in a hash of the whole) that says what defines the design."""
+    parts = [base]
+    for f in DESIGN_FLAGS:
+        v = flags.get(f.dest)
+        if v is None:
+            continue
+        if f.dest == "polygon":
+            digest = hashlib.sha1(str(_parse_polygon(v)).encode()).hexdigest()[:6]
+            parts.append(f"polygon{len(_parse_polygon(v))}-{digest}")
+        elif f.dest == "rectangle":
+            w, h = _parse_rectangle(v)
+            parts.append(f"{w:g}x{h:g}")
+        elif f.dest in ("model", "units", "sheet_surface"):
+            parts.append(str(v).lower())
+        else:
+            parts.append(f"{_SHORT.get(f.dest, f.dest)}{v:g}")
+    name = "".join(c for c in "-".join(parts) if c.isalnum() or c in "._-")
+    if len(name) > 64:
+        name = f"{name[:55]}-{hashlib.sha1(name.encode()).hexdigest()[:8]}"
+    return name
+
+
+def _at(data: Any, key: str) -> Any:
+    """The value at dotted ``key`` of template data (``material.thickness``), or
+    :data:`_MISSING`."""
+    for part in key.split("."):
+        if not isinstance(data, dict) or part not in data:
+            return _MISSING
+        data = data[part]
+    return data
+
+
+_MISSING = object()
+
+
+def changed_flags(before: dict[str, Any], after: dict[str, Any], names: dict[str, str]) -> set[str]:
+    """The flags (``--alpha``) of ``names`` (key -> flag, from
+    :meth:`Overrides.apply`) that changed a value of ``before`` into ``after``
+    (a flag repeating the template's value changes nothing). ``before`` is
+    the template's data with its defaults filled in (``design_to_data``), so
+    that ``--hc 0`` on a template without ``h_c`` changes nothing."""
+    return {
+        flag for key, flag in names.items() if key != "name" and _at(before, key) != _at(after, key)
+    }
+
+
+def flags_text(flags: dict[str, Any]) -> str:
+    """The design flags given (not None) with their values, as typed
+    (``--rectangle 1000x400 --alpha 30``), in the order of :data:`DESIGN_FLAGS`."""
+    parts = []
+    for f in DESIGN_FLAGS:
+        v = flags.get(f.dest)
+        if v is None:
+            continue
+        if f.dest == "polygon":
+            text = f"({len(_parse_polygon(v))} vertices)"
+        elif isinstance(v, float):
+            text = f"{v:g}"
+        else:
+            text = str(v).strip()
+        parts.append(f"{f.flag} {text}")
+    return " ".join(parts)
+
+
+def mark_changes(
+    data: dict[str, Any],
+    flags: dict[str, Any],
+    changed: set[str],
+    template: str,
+    implicit: bool,
+    by: str = "flags",
+) -> dict[str, Any]:
+    """Template data with flags applied, its description and material name
+    made true again.
+
+    Args:
+        data: the template's data with the flags applied.
+        flags: the design flags that define the design (dest -> value; None
+            for a flag not given), listed in the description.
+        changed: the flags that changed a value (:func:`changed_flags`).
+        template: the template's name.
+        implicit: no template was named (the default one was used).
+        by: who set the values ('flags', 'the page').
+
+    * Description: without a template the default template's is not
+      inherited: ``from flags --rectangle 1000x400 --alpha 30 (other values:
+      template patkau-one-fold)``. With one, its description is kept and
+      followed by ``(changed by --alpha 40)``. No flag: unchanged.
+    * Material name: when the thickness or bend radius changed, the inherited
+      name no longer names the gauge it was. Its first part (up to the first
+      comma: the material, by the templates' convention ``MATERIAL, GAUGE``)
+      is kept and marked: ``304 stainless steel (from template
+      patkau-one-fold), t and r from flags``.
+    """
+    text = flags_text(flags)
+    if not text:
+        return data
+    out = copy.deepcopy(data)
+    if implicit:
+        out["description"] = f"from {by} {text} (other values: template {template})"
+    else:
+        base = str(data.get("description", "")).strip() or f"template {template}"
+        out["description"] = f"{base} (changed by {text})"
+    mat = out.get("material")
+    own = [s for s, flag in (("t", "--thickness"), ("r", "--bend-radius")) if flag in changed]
+    if own and isinstance(mat, dict) and str(mat.get("name", "")).strip():
+        kind = str(mat["name"]).split(",", 1)[0].strip()
+        mat["name"] = f"{kind} (from template {template}), {' and '.join(own)} from {by}"
+    return out
+
+
+@dataclass(frozen=True)
+class Job:
+    """One design to solve or build, and where its values came from.
+
+    Attributes:
+        design: the validated design.
+        template: the template it started from.
+        sources: template key -> where its value came from: a flag
+            (``--thickness``), ``template NAME``, ``inherited from template
+            NAME`` (no template was given: the default one's) or ``default``.
+    """
+
+    design: Design
+    template: str
+    sources: dict[str, str] = field(default_factory=dict)
+
+
+def _sources(
+    raw: dict[str, Any], names: dict[str, str], template: str, implicit: bool
+) -> dict[str, str]:
+    where = f"inherited from template {template}" if implicit else f"template {template}"
+    table = raw.get("material") if isinstance(raw.get("material"), dict) else {}
+    out = {}
+    for key in MATERIAL_KEYS:
+        full = f"material.{key}"
+        out[full] = names.get(full) or (where if key in table else "default")
+    for key in ("units", "model"):
+        out[key] = names.get(key) or (where if key in raw else "default")
+    return out
+
+
+def load_jobs(refs: Sequence[str], flags: dict[str, Any], name: str | None = None) -> list[Job]:
+    """The designs of the templates ``refs`` (the default one if none) with the
+    design flags applied.
+
+    A template's values are converted into ``--units`` first (when given), so
+    flag values are read in that unit. The design is named ``name`` if given;
+    else the template's name, with the flags given appended; without a
+    template, ``onefold-`` and the flags (never the default template's name).
+    """
+    from onefold_cad.templates import (
+        design_from_data,
+        design_to_data,
+        find_template,
+        read_template,
+        template_units,
+    )
+
+    implicit = not refs
+    jobs = []
+    for ref in refs or [DEFAULT_TEMPLATE]:
+        path = find_template(ref)
+        raw = read_template(path)
+        units = template_units(raw, path)
+        template = str(raw.get("name", path.stem))
+        data = raw
+        try:
+            if flags.get("units") and flags["units"] != units.lower():
+                base = design_from_data(raw)
+                data = {**raw, **design_to_data(base.in_units(flags["units"]))}
+            given = {k: v for k, v in flags.items() if v is not None}
+            if name is not None:
+                stem = name
+            elif implicit:
+                stem = derived_name("onefold", given) if given else template
+            else:
+                stem = derived_name(template, given)
+            changed, names = Overrides(**flags, name=stem).apply(data)
+            if name is None:
+                names.pop("name")
+            which = changed_flags(design_to_data(design_from_data(data)), changed, names)
+            changed = mark_changes(changed, given, which, template, implicit)
+            design = design_from_data(changed, key_names=names)
+        except InvalidParameterError as exc:
+            if exc.parameter.startswith("--"):
+                raise
+            raise type(exc)(
+                f"{path}: {exc.parameter}", str(exc)[len(exc.parameter) + 2 :]
+            ) from None
+        jobs.append(Job(design, template, _sources(raw, names, template, implicit)))
+    return jobs

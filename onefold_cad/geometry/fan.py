@@ -1,0 +1,352 @@
+"""The paper's direction-surface: a fan of planar triangles (section 3.2).
+
+The apex angles are evaluated as described in :mod:`.surface`; the search's
+evaluation (:meth:`PaperFan.excess`) works in the plane of the frame curve,
+the verifying one (:meth:`PaperFan.set_apex`) from the unit direction-vectors
+in space, so the two share the points but no formula.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from onefold_cad.geometry.frame import division_points
+from onefold_cad.geometry.params import FrameCurve
+from onefold_cad.geometry.surface import EPS, Array, DirectionSurface
+from onefold_cad.geometry.validate import cross3
+
+__all__ = ["PaperFan"]
+
+#: Up to this many divisions the fan's apex angles are taken from the unit
+#: direction-vectors (Kahan's 2 atan2(|u - v|, |u + v|), each to ~6 rounding
+#: errors, absolute); above it from the chords, to a relative rounding error.
+_KAHAN_MAX = 2048
+
+
+class PaperFan(DirectionSurface):
+    """The fan of ``divisions`` planar triangles of the paper (section 3.2).
+
+    Attributes:
+        directions: once the apex is set, the ``(divisions + 1, 3)`` unit
+            direction-vectors from the apex to the division points, from the
+            f-line's +x end to its -x end.
+        gammas: once the apex is set, the ``(divisions,)`` apex angles (radians).
+        thetas: once the apex is set, the ``(divisions + 1,)`` cumulative flat
+            angles theta_k = gamma_1 + ... + gamma_k (radians), theta_0 = 0.
+    """
+
+    def __init__(self, frame: FrameCurve) -> None:
+        super().__init__(frame)
+        g = self.geometry
+        x, d = division_points(g, frame.divisions)
+        ex = x[1:] - x[:-1]
+        ed = d[1:] - d[:-1]
+        self._x, self._d, self._ex, self._ed = x, d, ex, ed
+        # The search's S(h): with c_i = p_i x e_i = P_i x e_i + h sin(beta) ex_i
+        # (p = P - F, F = (0, h sin(beta)) the apex's foot in the arc's plane),
+        #   |a_i x a_i+1|^2 = c_i^2 + t^2 |e_i|^2 = c0^2 + 2 sb c0 ex h + (ex^2 + cb^2 ed^2) h^2,
+        #   a_i . a_i+1 = P_i . P_i+1 - sb (d_i + d_i+1) h + h^2,
+        # their coefficients of (1, h, h^2) side by side, so that S(h) at several
+        # heights costs one matrix product (the verification does not use them).
+        n = len(ex)
+        quad = np.empty((3, 2 * n))
+        c0 = x[:-1] * ed
+        c0 -= d[:-1] * ex
+        c0[-1] = x[-1] * ed[-1]  # from the -x end (d_n = 0): P_n may lie close to H
+        np.multiply(c0, c0, out=quad[0, :n])
+        np.multiply(c0, ex, out=quad[1, :n])
+        quad[1, :n] *= 2.0 * g.sin_beta
+        np.multiply(ed, ed, out=quad[2, :n])
+        quad[2, :n] *= g.cos_beta * g.cos_beta
+        quad[2, :n] += ex * ex
+        np.multiply(x[:-1], x[1:], out=quad[0, n:])
+        quad[0, n:] += d[:-1] * d[1:]
+        np.add(d[:-1], d[1:], out=quad[1, n:])
+        quad[1, n:] *= -g.sin_beta
+        quad[2, n:] = 1.0
+        self._quad = quad
+        self._n = n
+        self._plane: tuple[Array, Array, Array, tuple[float, float]] | None = None
+        self.directions: Array | None = None
+        self.gammas: Array | None = None
+        self.thetas: Array | None = None
+        self._apex_state: tuple[float, float, float, Array] | None = None
+
+    @property
+    def points(self) -> Array:
+        """``(divisions + 1, 3)`` the division points (length), +x end first."""
+        g = self.geometry
+        r = g.radius
+        return np.stack(
+            [r * self._x, (r * g.cos_beta) * self._d, (r * g.sin_beta) * self._d], axis=-1
+        )
+
+    # -- the angle condition -----------------------------------------------------
+    def excess(self, h: float) -> float:
+        n = self._n
+        q = np.dot((1.0, h, h * h), self._quad)
+        s = np.sqrt(np.maximum(q[:n], 0.0))  # >= 0 but for rounding
+        return float(np.arctan2(s, q[n:], out=s).sum()) - math.pi
+
+    def excesses(self, h: Array) -> Array:
+        n = self._n
+        hh = np.empty((len(h), 3))
+        hh[:, 0] = 1.0
+        hh[:, 1] = h
+        np.multiply(h, h, out=hh[:, 2])
+        q = np.dot(hh, self._quad)
+        s = np.sqrt(np.maximum(q[:, :n], 0.0))  # >= 0 but for rounding
+        out: Array = np.arctan2(s, q[:, n:], out=s).sum(axis=1)
+        out -= math.pi
+        return out
+
+    def excess_bound(self) -> float:
+        # |a x b|^2 and a . b to a few rounding errors of the sizes of their
+        # expanded terms, which exceed them only where A lies close to the
+        # plane of the frame and near it (the verification then rejects the
+        # root and :func:`solve` steps on the verified sum)
+        return 16.0 * EPS * math.pi
+
+    def _terms(self, h: float) -> tuple[Array, Array, Array, Array]:
+        """c_i = p_i x e_i, p_i . p_i+1, t |e_i| and q = d - h sin(beta), each
+        from the differences of points (no expansion in h)."""
+        if self._plane is None:
+            x, ex, ed = self._x, self._ex, self._ed
+            self._plane = (
+                x[:-1] * ed,
+                x[:-1] * x[1:],
+                np.hypot(ex, ed),
+                (float(x[-1] * ed[-1]), float(ex[-1])),
+            )
+        xed, xx, elen, (xl, el) = self._plane
+        g = self.geometry
+        hs = h * g.sin_beta
+        q = self._d - hs
+        q0 = q[:-1]
+        c = xed - q0 * self._ex
+        c[-1] = xl + hs * el  # the last triangle from its -x end
+        dot = q0 * q[1:]
+        dot += xx
+        return c, dot, (h * g.cos_beta) * elen, q
+
+    def excess_accurate(self, h: float) -> tuple[float, float]:
+        g = self.geometry
+        c, dot, te, _ = self._terms(h)
+        t = h * g.cos_beta
+        t2 = t * t
+        sig = np.hypot(c, te)
+        if float(c.min()) > 0.0:
+            # F inside the fan: the in-plane sweep is pi + eps exactly; deficit
+            # phi_i - gamma_i = atan2(c t^2 + dot (c - sig), dot (dot + t^2) + c sig)
+            # with c - sig = -t^2 |e|^2 / (c + sig)
+            cms = te * te
+            cms /= c + sig
+            num = c * t2
+            num -= dot * cms
+            den = dot + t2
+            den *= dot
+            den += c * sig
+            deficit = np.arctan2(num, den)
+            hs = h * g.sin_beta
+            sweep = math.atan(hs / g.l_plus) + math.atan(hs / g.l_minus)
+            scale = sweep + float(np.abs(deficit).sum())
+            return sweep - float(deficit.sum()), 16.0 * EPS * scale
+        dot += t2
+        return float(np.arctan2(sig, dot).sum()) - math.pi, self.excess_bound()
+
+    def excess_and_slope(self, h: float) -> tuple[float, float]:
+        g = self.geometry
+        sb, cb = g.sin_beta, g.cos_beta
+        c, dot, te, q = self._terms(h)
+        t = h * cb
+        dot += t * t
+        ss = c * c
+        ss += te * te
+        sig = np.sqrt(ss)
+        f = float(np.arctan2(sig, dot).sum()) - math.pi
+        # d/dh atan2(sig, dot) = (dot sig' - sig dot') / (sig^2 + dot^2)
+        dsig = c * (sb * self._ex)
+        assert self._plane is not None
+        elen = self._plane[2]
+        dsig += (t * cb) * (elen * elen)
+        dsig /= sig
+        ddot = q[:-1] + q[1:]
+        ddot *= -sb
+        ddot += 2.0 * t * cb
+        num = dot * dsig
+        num -= sig * ddot
+        ss += dot * dot
+        num /= ss
+        return f, float(num.sum())
+
+    # -- the apex ------------------------------------------------------------------
+    def set_apex(self, h: float) -> None:
+        g = self.geometry
+        self.height = h
+        hu = h / g.radius
+        n = len(self._x) - 1
+        v = np.empty((n + 1, 3))
+        v[:, 0] = self._x
+        np.multiply(self._d, g.cos_beta, out=v[:, 1])
+        np.multiply(self._d, g.sin_beta, out=v[:, 2])
+        v[:, 2] -= hu
+        nrm = np.sqrt(np.einsum("ij,ij->i", v, v))
+        if n > _KAHAN_MAX:
+            # from the 3D chords: |a_i x e_i| and a_i . a_i+1, relative accuracy
+            e = np.empty((n, 3))
+            e[:, 0] = self._ex
+            np.multiply(self._ed, g.cos_beta, out=e[:, 1])
+            np.multiply(self._ed, g.sin_beta, out=e[:, 2])
+            cr = cross3(v[:-1], e)
+            dots = np.einsum("ij,ij->i", v[:-1], v[1:])
+            gammas = np.arctan2(np.sqrt(np.einsum("ij,ij->i", cr, cr)), dots)
+            arithmetic = 24.0 * EPS * math.pi
+            v /= nrm[:, None]
+        else:
+            v /= nrm[:, None]
+            # Kahan: gamma = 2 atan2(|u_i+1 - u_i|, |u_i+1 + u_i|), each to ~6
+            # rounding errors (absolute)
+            du = v[1:] - v[:-1]
+            su = v[1:] + v[:-1]
+            chord = np.sqrt(np.einsum("ij,ij->i", du, du))
+            gammas = np.arctan2(chord, np.sqrt(np.einsum("ij,ij->i", su, su)))
+            gammas *= 2.0
+            arithmetic = EPS * (6.0 * n + 8.0 * math.pi)
+        self.directions = v
+        self.gammas = gammas
+        thetas = np.empty(n + 1)
+        thetas[0] = 0.0
+        np.cumsum(gammas, out=thetas[1:])
+        self.thetas = thetas
+        self._apex_state = (float(gammas.sum()) - math.pi, arithmetic, hu, nrm)
+
+    def verify(self, target: float = 0.0) -> tuple[float, float]:
+        """S(h) - pi from the apex angles of :meth:`set_apex` and a bound on its
+        error: the arithmetic's, and that of the points' and the apex's own
+        placement (each to ~4 rounding errors of its coordinates, measured from
+        the nearer end of the arc, so an end point to one of L). A crude bound
+        on the latter is used when it proves ``|S - pi| <= target / 10``."""
+        if self._apex_state is None:
+            raise RuntimeError("apex height not set")
+        res, arithmetic, hu, nrm = self._apex_state
+        # every apex angle moves by at most 2 dP / |P - A| for a placement dP
+        g = self.geometry
+        size = 4.0 * (2.0 + abs(g.hc) + g.sin_alpha) + 2.0 * hu
+        crude = EPS * 2.0 * size * len(nrm) / float(nrm.min())
+        if abs(res) + arithmetic + crude <= 0.1 * target:
+            return res, arithmetic + crude
+        return res, arithmetic + EPS * self._placement(nrm, hu)
+
+    def _placement(self, nrm: Array, hu: float) -> float:
+        """sum over the points of |grad_P S| times their placement error (/eps).
+
+        Moving P_i by dP turns u_i by dP / |a_i|, which changes gamma_i-1 +
+        gamma_i by at most that times |t_in - t_out|, the turn of the fan's
+        spherical image at u_i: at most the turn of its chords plus half the
+        two angles. The end directions each bound one angle."""
+        assert self.directions is not None and self.gammas is not None
+        v, gammas = self.directions, self.gammas
+        du = v[1:] - v[:-1]
+        chord = np.sqrt(np.einsum("ij,ij->i", du, du))
+        np.maximum(chord, 1e-300, out=chord)
+        du /= chord[:, None]
+        turn = du[1:] - du[:-1]
+        turn = np.sqrt(np.einsum("ij,ij->i", turn, turn))
+        turn += 0.5 * (gammas[1:] + gammas[:-1])
+        np.minimum(turn, 2.0, out=turn)
+        place = np.abs(self._x)
+        place += np.abs(self._d)
+        place *= 4.0
+        place += 2.0 * hu
+        place /= nrm
+        return float(place[0] + place[-1]) + float(turn @ place[1:-1])
+
+    @property
+    def total_angle(self) -> float:
+        assert self.thetas is not None
+        return float(self.thetas[-1])
+
+    def sector(self, theta: ArrayLike) -> NDArray[np.int64]:
+        """Index k of the triangle whose flat sector [theta_k, theta_k+1] holds theta."""
+        assert self.thetas is not None
+        k = self.thetas.searchsorted(np.asarray(theta, dtype=float), side="right")
+        k -= 1
+        np.minimum(k, len(self.thetas) - 2, out=k)
+        return np.maximum(k, 0, out=k)
+
+    # In triangle k, with g its apex angle, the ray at the flat angle w from
+    # direction d_k is the spherical interpolation (slerp) of d_k and d_k+1,
+    #   u = (sin(g - w) d_k + sin(w) d_k+1) / sin(g),
+    # and its in-surface direction is e = du/dw
+    #   = (cos(w) d_k+1 - cos(g - w) d_k) / sin(g);
+    # on a division (w = 0) u is d_k exactly.
+
+    def _locate(self, theta: ArrayLike) -> tuple[NDArray[np.int64], Array]:
+        """The triangles k holding flat angles ``theta`` and the angles w
+        (radians) of ``theta`` from direction k."""
+        assert self.thetas is not None
+        t = np.asarray(theta, dtype=float)
+        k = self.sector(t)
+        return k, t - self.thetas.take(k)
+
+    def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
+        assert self.directions is not None and self.gammas is not None
+        k, w = self._locate(theta)
+        g = self.gammas.take(k)
+        rest = g - w
+        sg = np.sin(g)
+        a0, a1 = np.sin(rest), np.sin(w)
+        b0, b1 = np.cos(rest), np.cos(w)
+        a0 /= sg
+        a1 /= sg
+        b0 /= sg
+        b1 /= sg
+        d0 = self.directions.take(k, axis=0)
+        d1 = self.directions.take(k + 1, axis=0)
+        u = a0[:, None] * d0
+        u += a1[:, None] * d1
+        e = b1[:, None] * d1
+        e -= b0[:, None] * d0
+        return u, e
+
+    def directions_at(self, theta: ArrayLike) -> Array:
+        """The unit ruling directions ``(k, 3)`` at flat angles ``theta``: the
+        ``u`` of :meth:`frames`. Rays on a division are gathered; the few
+        others (a sheet's vertex rays) are interpolated one by one."""
+        assert self.directions is not None
+        k, w = self._locate(theta)
+        u = self.directions.take(k, axis=0)
+        (off,) = w.nonzero()
+        if len(off) > _FEW:
+            u[off] = self.frames(np.asarray(theta, dtype=float)[off])[0]
+        else:
+            for j in off.tolist():
+                u[j] = self._frame1(int(k[j]), float(w[j]))[0]
+        return u
+
+    def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
+        """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats."""
+        assert self.thetas is not None
+        k = int(self.thetas.searchsorted(theta, side="right")) - 1
+        k = min(max(k, 0), len(self.thetas) - 2)
+        return self._frame1(k, theta - float(self.thetas[k]))
+
+    def _frame1(self, k: int, w: float) -> tuple[list[float], list[float]]:
+        """The slerp of triangle k at angle w, in plain Python (faster than
+        numpy for one ray)."""
+        assert self.directions is not None and self.gammas is not None
+        g = float(self.gammas[k])
+        sg = math.sin(g)
+        a0, a1 = math.sin(g - w) / sg, math.sin(w) / sg
+        b0, b1 = math.cos(g - w) / sg, math.cos(w) / sg
+        d0, d1 = self.directions[k].tolist(), self.directions[k + 1].tolist()
+        u = [a0 * p + a1 * q for p, q in zip(d0, d1, strict=True)]
+        e = [b1 * q - b0 * p for p, q in zip(d0, d1, strict=True)]
+        return u, e
+
+
+#: Up to this many rays are interpolated in plain Python by PaperFan.directions_at.
+_FEW = 8

@@ -1,0 +1,379 @@
+"""How a body meets the ground: toppling on samples, then the exact plane.
+
+The body (:class:`onefold_cad.geometry.body.Body`) is set down with the
+ground's upward normal ``g`` given in its own frame and let go: it tips about
+its lowest points (one, then an edge) towards its centre of mass until the
+centre of mass lies over the convex hull of three or more of them
+(quasi-static toppling on the convex hull of the samples, each step lowering
+the centre of mass: :func:`roll`). Then the ground is made exact: each
+contact is moved to the exact lowest point of its piece near it (a tangency
+of a boundary curve, a corner, the apex, a mitre vertex) and the plane is put
+through three of them, alternately, until it no longer moves (the points move
+along their curves, in the plane to first order: the plane converges
+quadratically; :func:`settle`). On two contacts, one of them a curved edge,
+the body rocks: the plane is then the one on which they balance the centre of
+mass (:func:`_rock`). :func:`lowest_points` finds the exact lowest points of
+every piece that comes near the ground, to check the plane.
+
+Points are in the body's frame (relative to the apex); lengths in the design
+unit.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from itertools import combinations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.hull import convex_hull_2d, edge_distances, polygon_area
+from onefold_cad.geometry.validate import cross3
+
+__all__ = [
+    "CONTACT_TOLERANCE",
+    "Samples",
+    "basis",
+    "features",
+    "holds",
+    "lowest_points",
+    "roll",
+    "sample_spacing",
+    "settle",
+    "touching",
+]
+
+Array = NDArray[np.float64]
+#: Heights within this fraction of the sheet's size count as touching the ground.
+CONTACT_TOLERANCE = 1e-9
+
+
+def basis(g: Array) -> tuple[Array, Array]:
+    """Two unit vectors completing ``g`` to a right-handed orthonormal frame."""
+    a = np.array([1.0, 0.0, 0.0]) if abs(g[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e1 = a - (a @ g) * g
+    e1 /= np.linalg.norm(e1)
+    return e1, cross3(g, e1)
+
+
+def _nearest_on_polygon(corners: Array) -> tuple[int, int, float]:
+    """The point of a convex polygon's boundary (or segment, or point)
+    ``(m, 2)`` nearest the origin: (i, j, distance), with i == j for a corner
+    and (i, j) the edge's corners otherwise."""
+    m = len(corners)
+    if m == 1:
+        return 0, 0, float(np.hypot(*corners[0]))
+    best = (0, 0, math.inf)
+    for i in range(m if m > 2 else 1):
+        j = (i + 1) % m
+        a, b = corners[i], corners[j]
+        d = b - a
+        t = float(np.clip(-(a @ d) / max(float(d @ d), 1e-300), 0.0, 1.0))
+        dist = float(np.hypot(*(a + t * d)))
+        if dist < best[2]:
+            best = (i, i, dist) if t <= 0.0 else (j, j, dist) if t >= 1.0 else (i, j, dist)
+    return best
+
+
+def roll(points: Array, com: Array, g: Array, tol: float) -> tuple[Array, NDArray[np.int64]]:
+    """:func:`_topple`, and if that goes on for long (rolling along a curved edge
+    goes sample by sample) on every 16th point from where it got, then on all
+    again; a form that balances falls to the side nearer the fold frame's
+    upright."""
+
+    def roll(pts: Array, g: Array, steps: int) -> tuple[Array, NDArray[np.int64], bool]:
+        g, on, state = _topple(pts, com, g, tol, steps=steps)
+        if state == "balanced":
+            ways = [_topple(pts, com, g, tol, push, steps) for push in (1.0, -1.0)]
+            g, on, state = ways[1] if ways[1][0][2] > ways[0][0][2] + 1e-12 else ways[0]
+        return g, on, state == "rests"
+
+    g, on, done = roll(points, g, 200)
+    if not done and len(points) > 256:
+        g, _, _ = roll(points[::16], g, 4000)
+    if not done:
+        g, on, _ = roll(points, g, 4000)
+    return g, on
+
+
+def _topple(
+    points: Array, com: Array, g: Array, tol: float, push: float = 0.0, steps: int = 4000
+) -> tuple[Array, NDArray[np.int64], str]:
+    """Tip the point set about its lowest points until the centre of mass
+    ``com`` lies over their hull. ``g`` is the ground's upward normal in the
+    body's frame. Returns the final normal, the indices of the contacts, and
+    how it ended: 'rests', 'balanced' (exactly above an edge or a point: an
+    unstable equilibrium, as symmetric forms meet it; a ``push`` of +1 or -1
+    then tips it to one side or the other) or 'rolling' (after ``steps``)."""
+    on = np.zeros(0, dtype=np.int64)
+    for _ in range(steps):
+        h = points @ g
+        on = np.flatnonzero(h <= h.min() + tol)
+        e1, e2 = basis(g)
+        rel = points[on] - com
+        q = np.column_stack([rel @ e1, rel @ e2])
+        hull = convex_hull_2d(q, tol)
+        corners = q[hull]
+        if len(hull) >= 3 and float(edge_distances([0.0, 0.0], corners).min()) > tol:
+            return g, on, "rests"  # the centre of mass is over the support polygon
+        i, j, _ = _nearest_on_polygon(corners)
+        p0 = points[on[hull[i]]]
+        w = com - p0
+        w -= (w @ g) * g
+        if i != j:  # tip about an edge: the horizontal offset across it
+            e = points[on[hull[j]]] - p0
+            e /= np.linalg.norm(e)
+            w -= (w @ e) * e
+        wn = float(np.linalg.norm(w))
+        if wn <= tol:  # balanced exactly above a contact or an edge
+            if push == 0.0:
+                return g, on, "balanced"
+            axis = points[on[hull[j]]] - p0 if i != j else e1
+            w = push * cross3(g, axis)
+            push, wn = 0.0, float(np.linalg.norm(w))
+        w /= wn
+        a = (points - p0) @ g
+        b = (points - p0) @ w
+        toward = b > tol
+        if not np.any(toward):
+            return g, on, "rests"
+        phi = float(np.min(np.arctan2(a[toward], b[toward])))
+        g = math.cos(phi) * g - math.sin(phi) * w
+        g /= np.linalg.norm(g)
+    return g, on, "rolling"
+
+
+@dataclass
+class _Feature:
+    """A contact being made exact: a fixed point, or a piece and a bracket."""
+
+    piece: int
+    lo: float
+    hi: float
+    point: Array
+
+
+@dataclass(frozen=True)
+class Samples:
+    """Points ``(N, 3)`` with the piece each lies on (-1: a fixed point) and
+    its parameter there."""
+
+    points: Array
+    owner: NDArray[np.int64]
+    param: Array
+
+    def plus(self, more: list[tuple[int, float, Array]]) -> Samples:
+        """These samples and more (piece, parameter, point)."""
+        if not more:
+            return self
+        return Samples(
+            np.vstack([self.points, np.array([p for _, _, p in more])]),
+            np.concatenate([self.owner, np.array([k for k, _, _ in more], dtype=np.int64)]),
+            np.concatenate([self.param, np.array([t for _, t, _ in more])]),
+        )
+
+
+def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Feature]:
+    """Group the sampled contacts ``on``: neighbouring samples of one piece are one."""
+    owner, param = samples.owner[on], samples.param[on]
+    out = [_Feature(-1, 0.0, 0.0, samples.points[i].copy()) for i in on[owner < 0]]
+    for k in np.unique(owner[owner >= 0]):
+        piece = body.pieces[int(k)]
+        ts = np.unique(param[owner == k])
+        idx = np.searchsorted(piece.grid, ts)
+        for grp in np.split(ts, np.flatnonzero(np.diff(idx) > 2) + 1):
+            lo, hi = piece.bracket(float(grp[0]), float(grp[-1]))
+            out.append(_Feature(int(k), lo, hi, np.zeros(3)))
+    return out
+
+
+def _locate(body: Body, f: _Feature, g: Array) -> Array:
+    """Move feature ``f`` to the exact lowest point of its bracket along ``g``,
+    widening the bracket while the lowest point sits on an end of it."""
+    if f.piece < 0:
+        return f.point
+    piece = body.pieces[f.piece]
+    for _ in range(8):
+        t, p = body.lowest(f.piece, f.lo, f.hi, g)
+        width = f.hi - f.lo
+        at_lo = t <= f.lo + 1e-3 * width and f.lo > piece.t0
+        at_hi = t >= f.hi - 1e-3 * width and f.hi < piece.t1
+        f.point = p
+        if not (at_lo or at_hi):
+            break
+        f.lo = max(piece.t0, t - width)
+        f.hi = min(piece.t1, t + width)
+    return f.point
+
+
+def _plane_through(pts: Array, com: Array, g: Array, tol: float) -> Array | None:
+    """The upward normal of the plane through three of ``pts`` ``(k, 3)`` that
+    has every point on or above it, preferring a triangle under the centre
+    of mass; None when there is no such plane."""
+    best: tuple[float, Array] | None = None
+    for i, j, k in combinations(range(len(pts)), 3):
+        n = cross3(pts[j] - pts[i], pts[k] - pts[i])
+        nn = float(np.linalg.norm(n))
+        if nn <= tol * tol:
+            continue
+        n = n / nn if n @ g > 0.0 else -n / nn
+        if float(np.min((pts - pts[i]) @ n)) < -tol:
+            continue
+        e1, e2 = basis(n)
+        tri = np.column_stack([(pts[[i, j, k]] - com) @ e1, (pts[[i, j, k]] - com) @ e2])
+        if polygon_area(tri) < 0.0:
+            tri = tri[::-1]
+        score = float(edge_distances([0.0, 0.0], tri).min())
+        if best is None or score > best[0]:
+            best = (score, n)
+    return None if best is None else best[1]
+
+
+def touching(
+    samples: Samples, lows: list[tuple[int, float, Array]], g: Array, level: float, tol: float
+) -> Array:
+    """The points ``(k, 3)`` that touch the ground at ``level`` along ``g``
+    within ``tol``: the exact lowest points, and samples of an edge that lies
+    along the ground."""
+    exact = [p for _, _, p in lows if float(p @ g) <= level + tol]
+    near = samples.points[samples.points @ g <= level + tol]
+    pts = np.vstack([np.array(exact).reshape(-1, 3), near])
+    if len(pts) > 8:  # many along an edge: its hull's corners say as much
+        e1, e2 = basis(g)
+        pts = pts[convex_hull_2d(np.column_stack([pts @ e1, pts @ e2]), tol)]
+    return _distinct(list(pts), tol)
+
+
+def _distinct(pts: list[Array], tol: float) -> Array:
+    out: list[Array] = []
+    for p in pts:
+        if all(float(np.linalg.norm(p - q)) > tol for q in out):
+            out.append(p)
+    return np.array(out).reshape(-1, 3)
+
+
+def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[Array, float, bool]:
+    """Make the ground plane through the features exact (see the module doc):
+    its upward normal, the features' lowest height along it, and whether it
+    rests on two features only (a curved edge touching along with a point or
+    another edge: the plane on which they balance the centre of mass,
+    :func:`_rock`)."""
+    tol = CONTACT_TOLERANCE * body.size
+    rocks = False
+    for _ in range(40):
+        pts = _distinct([_locate(body, f, g) for f in features], tol)
+        if len(pts) == 2:
+            g, rocks = _rock(body, features, com, g)
+            break
+        if len(pts) < 3:
+            break
+        n = _plane_through(pts, com, g, tol)
+        if n is None:
+            break
+        moved = float(np.linalg.norm(n - g))
+        g = n
+        if moved <= 1e-15:
+            break
+    pts = np.array([_locate(body, f, g) for f in features])
+    return g, float(np.min(pts @ g)), rocks
+
+
+def _rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[Array, bool]:
+    """The ground normal near ``g`` on which the body rests on two features
+    (one of them a curve it could rock on), with the centre of mass above the
+    line through their lowest points: Newton's method on the two conditions
+    (equal heights; centre of mass in the vertical plane through the line),
+    with a finite-difference Jacobian. Returns the normal and whether that
+    converged with the centre of mass between the two points (else ``g``
+    unchanged)."""
+    tol = CONTACT_TOLERANCE * body.size
+    pts = [_locate(body, f, g) for f in features]
+    first = pts[0]
+    far = max(range(len(pts)), key=lambda i: float(np.linalg.norm(pts[i] - first)))
+    pair = [features[0], features[far]]
+
+    def residual(gg: Array) -> Array:
+        q1, q2 = (_locate(body, f, gg) for f in pair)
+        e = q2 - q1
+        e /= max(float(np.linalg.norm(e)), 1e-300)
+        return np.array([gg @ (q2 - q1), (com - q1) @ cross3(gg, e)])
+
+    start = g
+    # the heights are flat at a tangency, so the point's place along the curve,
+    # and with it the balance, is known to about 1e-8 of the size only
+    eps = 1e-4
+    for _ in range(30):
+        f0 = residual(g)
+        if abs(f0[0]) <= 1e-3 * tol and abs(f0[1]) <= 1e-6 * body.size:
+            q1, q2 = (_locate(body, f, g) for f in pair)
+            span2 = float((q2 - q1) @ (q2 - q1))
+            along = float((com - q1) @ (q2 - q1)) / span2 if span2 > tol * tol else -1.0
+            return (g, True) if 0.0 < along < 1.0 else (start, False)
+        e1, e2 = basis(g)
+        jac = np.empty((2, 2))
+        for j, d in enumerate((e1, e2)):
+            gd = g + eps * d
+            jac[:, j] = (residual(gd / np.linalg.norm(gd)) - f0) / eps
+        try:
+            step = np.linalg.solve(jac, -f0)
+        except np.linalg.LinAlgError:
+            return start, False
+        length = float(np.linalg.norm(step))
+        if length > 0.02:  # stay near the samples' rest (the residual jumps elsewhere)
+            step *= 0.02 / length
+        g = g + step[0] * e1 + step[1] * e2
+        g /= np.linalg.norm(g)
+        if float(np.linalg.norm(g - start)) > 0.1:
+            return start, False
+    return start, False
+
+
+def lowest_points(
+    body: Body, samples: Samples, g: Array, band: float
+) -> list[tuple[int, float, Array]]:
+    """The exact lowest point along ``g`` of every piece (and fixed point)
+    whose samples come within ``band`` (length) of the lowest sample: a list
+    of (piece, parameter, point), the lowest first."""
+    h = samples.points @ g
+    floor = float(h.min())
+    found: list[tuple[int, float, Array]] = []
+    fixed = samples.owner < 0
+    for idx in np.flatnonzero(fixed & (h <= floor + band)):
+        found.append((-1, 0.0, samples.points[idx]))
+    for k in np.unique(samples.owner[~fixed & (h <= floor + band)]):
+        piece = body.pieces[int(k)]
+        corners = body.sections[int(k)]
+        hk = np.where(np.isnan(corners[..., 0]), np.inf, corners @ g).min(axis=1)
+        # the piece's sampled local minima within the band (a plateau counts once)
+        left = np.concatenate([[True], hk[1:] < hk[:-1]])
+        right = np.concatenate([hk[:-1] <= hk[1:], [True]])
+        for tj in piece.grid[(hk <= floor + band) & left & right]:
+            lo, hi = piece.bracket(float(tj), float(tj))
+            tb, p = body.lowest(int(k), lo, hi, g)
+            found.append((int(k), tb, p))
+    found.sort(key=lambda item: float(item[2] @ g))
+    return found
+
+
+def sample_spacing(body: Body) -> float:
+    """The largest distance between neighbouring samples of a piece (length),
+    in 3D or along the piece (on the flat sheet): no point of a piece lies
+    further than that from its nearest sample, but for the offsets of a thick
+    sheet (added: the thickness)."""
+    worst = 0.0
+    for piece, corners in zip(body.pieces, body.sections, strict=True):
+        steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
+        steps = steps[~np.isnan(steps)]
+        worst = max(worst, piece.step, float(steps.max()) if len(steps) else 0.0)
+    return worst + body.thickness
+
+
+def holds(contacts: Array, com: Array, g: Array, tol: float) -> bool:
+    """Whether the centre of mass lies over the hull of ``contacts`` ``(k, 3)``
+    by more than ``tol`` (length), seen along ``g``."""
+    e1, e2 = basis(g)
+    q = np.column_stack([(contacts - com) @ e1, (contacts - com) @ e2])
+    hull = convex_hull_2d(q, tol)
+    return len(hull) >= 3 and float(edge_distances([0.0, 0.0], q[hull]).min()) > tol

@@ -1,0 +1,218 @@
+"""The root search of the angle condition: F(h) = S(h) - pi = 0 past the maximum.
+
+F(0) = 0 and F rises from h = 0 (its slope there is sin(beta) (1/L+ + 1/L-)),
+then falls to -pi, so F > 0 below the root and F < 0 above it: every
+evaluation is a lower or an upper bound (should F be positive above a negative
+value, the larger root is the one sought). Heights are in units of R.
+
+The search evaluates several heights at once (one numpy pass each):
+
+1. a grid of 8 heights around the paper's lower bound l, where the root of
+   most designs lies; when it does not, grids further down or up, each
+   spanning the square of the last one's ratio (no floor, no ceiling but the
+   range of doubles), then grids inside a wide bracket;
+2. a cubic inverse interpolation through the two heights on each side of
+   the root;
+3. 5 heights spaced delta around that estimate, whose quartic inverse
+   interpolant is accurate to about (3 delta)^5 times the inverse function's
+   fifth derivative (delta = 5e-5 h: far below rounding), repeated until the
+   5 heights straddle the root and the estimate stays among them.
+
+An evaluation within 4 rounding bounds of 0 is repeated with the accurate
+evaluation (:meth:`DirectionSurface.excess_accurate`); if that too is zero
+within its error, the height is a root.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from onefold_cad.geometry.surface import EPS, DirectionSurface
+
+__all__ = ["SearchFailed", "Search", "find_root", "GRID"]
+
+#: First probe, as multiples of the paper's lower bound l: the root lies in
+#: [1.09 l, 2 l] for beta >= 30 deg and H not near an end.
+GRID = (0.95, 1.08, 1.22, 1.38, 1.56, 1.77, 2.0, 2.3)
+#: The 5-height probes' spacing around an estimate (relative).
+_SPACING = 5e-5
+#: Heights (units of R) outside which no root is searched.
+_H_MIN, _H_MAX = 1e-280, 1e12
+
+
+class SearchFailed(Exception):
+    """No sign change of S - 180 deg was found (a design beyond double precision)."""
+
+
+def _neville(fs: list[float], hs: list[float]) -> float:
+    """The polynomial through (fs[i], hs[i]) evaluated at 0 (inverse interpolation)."""
+    p = list(hs)
+    n = len(fs)
+    for k in range(1, n):
+        for i in range(n - k):
+            den = fs[i + k] - fs[i]
+            if den == 0.0:
+                return math.nan
+            p[i] = (fs[i + k] * p[i] - fs[i] * p[i + 1]) / den
+    return p[0]
+
+
+def _slope5(hs: list[float], fs: list[float], x: float) -> float:
+    """dF/dh at x from 5 equally spaced heights (finite differences about the
+    middle one, to fourth order: x lies within the stencil)."""
+    f0, f1, f2, f3, f4 = fs
+    step = 0.25 * (hs[4] - hs[0])
+    d1 = (f0 - 8.0 * f1 + 8.0 * f3 - f4) / (12.0 * step)
+    d2 = (-f0 + 16.0 * f1 - 30.0 * f2 + 16.0 * f3 - f4) / (12.0 * step * step)
+    d3 = (-f0 + 2.0 * f1 - 2.0 * f3 + f4) / (2.0 * step**3)
+    y = x - hs[2]
+    return d1 + y * (d2 + 0.5 * y * d3)
+
+
+class Search:
+    """The evaluations made and the bracket (lo, hi) they give.
+
+    Attributes:
+        surface: the direction-surface searched.
+        bound: the rounding bound of its fast evaluation (radians).
+        lo, flo: the largest height with F > 0 and F there (0, 0 when none).
+        hi, fhi: the smallest height above lo with F < 0 (inf, -pi when none).
+        exact: a height where F is zero within its error, if one was met.
+        evals: how many heights were evaluated.
+    """
+
+    __slots__ = ("surface", "bound", "hs", "fs", "lo", "flo", "hi", "fhi", "exact", "evals")
+
+    def __init__(self, surface: DirectionSurface) -> None:
+        self.surface = surface
+        self.bound = surface.excess_bound()
+        self.hs: list[float] = []
+        self.fs: list[float] = []
+        self.lo, self.flo = 0.0, 0.0
+        self.hi, self.fhi = math.inf, -math.pi
+        self.exact: float | None = None
+        self.evals = 0
+
+    def probe(self, heights: list[float]) -> list[float]:
+        """F at ``heights`` (several at once), recorded; returns the values."""
+        n = len(heights)
+        if n == 1:
+            fs = [self.surface.excess(heights[0])]
+        else:
+            fs = self.surface.excesses(np.array(heights)).tolist()
+        self.evals += n
+        small = 4.0 * self.bound
+        lo, hi = self.lo, self.hi
+        moved = False
+        for i in range(n):
+            f = fs[i]
+            if not (f > small or f < -small):
+                f = fs[i] = self._near_zero(heights[i], f, fs)
+            h = heights[i]
+            if f > 0.0:
+                if h > lo:
+                    lo, self.flo = h, f
+                    moved = moved or h >= hi
+            elif lo < h < hi:
+                hi, self.fhi = h, f
+        self.lo, self.hi = lo, hi
+        self.hs += heights
+        self.fs += fs
+        if moved:  # a positive value above the old upper bound: the larger root
+            self.hi, self.fhi = math.inf, -math.pi
+            for h, f in zip(self.hs, self.fs, strict=True):
+                if f <= 0.0 and self.lo < h < self.hi:
+                    self.hi, self.fhi = h, f
+        return fs
+
+    def _near_zero(self, h: float, f: float, probe: list[float]) -> float:
+        """F at h when the fast evaluation is within rounding of 0 (or not a number).
+
+        Among values of the same probe a million times larger, h is a root to
+        within rounding; otherwise (max S - pi itself tiny) F is evaluated to
+        a relative accuracy."""
+        if not math.isfinite(f):
+            raise SearchFailed(f"S(h) is not finite at h={h!r} R")
+        if max(map(abs, probe)) > 4e6 * self.bound:
+            if self.exact is None or abs(f) < abs(self.probe_value(self.exact)):
+                self.exact = h
+            return f
+        f, err = self.surface.excess_accurate(h)
+        self.evals += 1
+        if abs(f) <= err:
+            self.exact = h
+        return f
+
+    def probe_value(self, h: float) -> float:
+        """F at an evaluated height."""
+        return self.fs[self.hs.index(h)] if h in self.hs else math.inf
+
+    def around(self) -> tuple[list[float], list[float]]:
+        """The two evaluated heights nearest below the root and above it:
+        ``(F values, heights)``."""
+        pairs = sorted(zip(self.hs, self.fs, strict=True))
+        k = pairs.index((self.lo, self.flo))
+        pick = pairs[max(k - 1, 0) : k + 3]
+        return [f for _, f in pick], [h for h, _ in pick]
+
+
+def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, float]:
+    """The root (units of R), the search, and dF/dh there (per unit of R).
+
+    Raises:
+        SearchFailed: no height with S above or below 180 deg was found.
+    """
+    s = Search(surface)
+    s.probe([l0 * k for k in GRID])
+    span = 16.0
+    for _ in range(60):
+        if s.exact is not None or (s.lo > 0.0 and s.hi < math.inf):
+            break
+        if s.lo == 0.0:  # the root lies below every height tried
+            top = min(s.hs)
+            if top < _H_MIN:
+                raise SearchFailed("no height with S above 180 deg")
+            s.probe([max(top * span ** (-j / 8.0), 0.5 * _H_MIN) for j in range(1, 9)])
+        else:
+            if s.lo > _H_MAX:
+                raise SearchFailed("no height with S below 180 deg")
+            s.probe([min(s.lo * span ** (j / 8.0), 2.0 * _H_MAX) for j in range(1, 9)])
+        span = min(span * span, 1e30)
+    else:
+        raise SearchFailed("no sign change of S - 180 deg found")
+    while s.exact is None and s.hi > 1.2 * s.lo:  # a geometric grid inside a wide bracket
+        lo, hi = s.lo, s.hi
+        s.probe([lo * (hi / lo) ** (j / 9.0) for j in range(1, 9)])
+    if s.exact is not None:
+        return s.exact, s, _slope(s, s.exact)
+    fs, hs = s.around()
+    estimate = _neville(fs, hs)
+    if not s.lo < estimate < s.hi:
+        estimate = 0.5 * (s.lo + s.hi)
+    delta = _SPACING * estimate
+    for _ in range(60):
+        delta = max(min(delta, 0.25 * (s.hi - s.lo)), 4.0 * EPS * estimate)
+        hs = [estimate + delta * j for j in (-2, -1, 0, 1, 2)]
+        fs = s.probe(hs)
+        if s.exact is not None:
+            return s.exact, s, _slope5(hs, fs, s.exact)
+        new = _neville(fs, hs)
+        if not s.lo <= new <= s.hi:
+            new = 0.5 * (s.lo + s.hi)
+        if fs[0] > 0.0 > fs[4] and abs(new - estimate) <= 2.0 * delta <= 4.0 * _SPACING * new:
+            return new, s, _slope5(hs, fs, new)
+        # the root's position is known only to the rounding of F over its slope
+        noise = 4.0 * s.bound * abs((hs[4] - hs[0]) / (fs[4] - fs[0]))
+        if s.hi - s.lo <= max(8.0 * EPS * estimate, noise):
+            return new, s, _slope(s, new)
+        delta = min(max(abs(new - estimate), 0.5 * delta), _SPACING * new)
+        estimate = new
+    raise SearchFailed("the root search did not converge")
+
+
+def _slope(s: Search, h: float) -> float:
+    """dF/dh (per unit of R) at h, analytically (one more evaluation)."""
+    s.evals += 1
+    return s.surface.excess_and_slope(h)[1]

@@ -1,0 +1,146 @@
+"""The page in a real browser: Debian's Chromium (software WebGL) driven by playwright."""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+from collections.abc import Iterator
+from urllib.parse import urlencode
+
+import ezdxf
+import numpy as np
+import pytest
+from PIL import Image
+
+from onefold_cad.cli import main
+from tests.explore.conftest import get
+
+TIMEOUT_MS = 60_000
+
+
+class Page:
+    """A fresh tab on the explorer with the console's errors and the page's exceptions."""
+
+    def __init__(self, page, url: str) -> None:
+        self.page = page
+        self.errors: list[str] = []
+        self.foreign: list[str] = []  # requests to anywhere but the server: none (offline)
+        origin = url.rstrip("/")
+
+        def only_ours(route) -> None:
+            if route.request.url.startswith(origin + "/") or route.request.url.startswith("blob:"):
+                route.continue_()
+            else:
+                self.foreign.append(route.request.url)
+                route.abort()
+
+        page.route("**/*", only_ours)
+        page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        page.on("pageerror", lambda e: self.errors.append(f"page error: {e}"))
+        page.set_default_timeout(TIMEOUT_MS)
+        page.goto(url)
+        self.wait_for_update(1)
+
+    def updates(self) -> int:
+        return int(self.page.locator("body").get_attribute("data-updates") or 0)
+
+    def wait_for_update(self, n: int) -> None:
+        self.page.locator(f"body[data-updates='{n}']").wait_for(state="attached")
+
+    def change(self, selector: str, value: str) -> None:
+        """Set a control as a user would and wait until the page has drawn the answer."""
+        n = self.updates()
+        self.page.locator(selector).fill(value)
+        self.wait_for_update(n + 1)
+
+    def canvas(self) -> np.ndarray:
+        png = self.page.locator("#view").screenshot()
+        return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
+
+    def text(self, selector: str) -> str:
+        return self.page.locator(selector).inner_text()
+
+
+@pytest.fixture
+def tab(browser, server) -> Iterator[Page]:
+    context = browser.new_context(viewport={"width": 1400, "height": 860}, accept_downloads=True)
+    try:
+        yield Page(context.new_page(), server.url)
+    finally:
+        context.close()
+
+
+def test_the_page_loads_and_draws_without_errors_or_outside_requests(tab):
+    assert tab.errors == []
+    assert tab.foreign == []  # three.js and everything else come from the server: works offline
+    pixels = tab.canvas()
+    colours = np.unique(pixels.reshape(-1, 3), axis=0)
+    assert len(colours) > 100  # shaded form, ground and grid, not a blank canvas
+    assert tab.page.locator("#flat svg path.outline").count() == 1
+    assert tab.page.locator("#flat svg line.fold").count() == 2
+    assert "°" in tab.text("#fold-angles")
+    assert tab.text("#messages") == "none"
+
+
+def test_moving_alpha_changes_the_fold_angles_and_the_picture(tab, server):
+    before_text, before = tab.text("#fold-angles"), tab.canvas()
+    tab.change("#alpha", "52")
+    after_text, after = tab.text("#fold-angles"), tab.canvas()
+    assert tab.page.locator("#alpha-num").input_value() == "52"
+    assert after_text != before_text
+    # the text is the server's fold angle for alpha = 52 (the page computes none)
+    _, _, body = get(server, "/api/state?" + urlencode({"alpha": "52"}))
+    deg = json.loads(body)["numbers"]["fold_angles"]["plus_x"]["deg"]
+    assert f"{deg:.2f}°" in after_text
+    changed = np.any(np.abs(after - before) > 8, axis=-1).mean()
+    assert changed > 0.01  # more than 1 % of the canvas redrawn differently
+    assert tab.errors == []
+
+
+def test_a_bad_value_shows_the_clis_message_and_the_page_recovers(tab, capfd):
+    capfd.readouterr()
+    assert main(["solve", "--alpha", "95"]) == 2
+    cli = capfd.readouterr().err.strip().removeprefix("onefold: error: ")
+    good = tab.text("#fold-angles")
+    tab.change("#alpha-num", "95")
+    assert tab.text("#messages") == f"error: {cli}"
+    assert "invalid" in (tab.page.locator("#alpha-num").get_attribute("class") or "")
+    assert tab.page.locator("#download-dxf").get_attribute("aria-disabled") == "true"
+    tab.change("#alpha-num", "31")
+    assert tab.text("#messages") == "none"
+    assert tab.text("#fold-angles") != good
+    assert tab.errors == []
+
+
+def test_the_dxf_link_downloads_the_current_flat_pattern(tab, tmp_path):
+    tab.change("#beta", "36")
+    href = tab.page.locator("a#download-dxf").get_attribute("href")
+    assert href.startswith("/download/dxf?") and "beta=36" in href
+    with tab.page.expect_download(timeout=TIMEOUT_MS) as info:
+        tab.page.locator("a#download-dxf").click()
+    download = info.value
+    assert download.suggested_filename == "patkau-one-fold.dxf"
+    path = tmp_path / download.suggested_filename
+    download.save_as(path)
+    doc = ezdxf.readfile(path)
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace().query('LWPOLYLINE[layer=="CUT"]')) == 1
+    assert tab.errors == []
+
+
+def test_the_form_s_size_reads_as_onefold_solve_prints_it(tab, capfd):
+    """Height, span and footprint (width x depth) of the default design: the
+    page's text is the command's. The span is the footprint's width along the
+    fold line (what `onefold fit --span` aims at); depth differs from it here,
+    so a mix-up of the two would show."""
+    capfd.readouterr()
+    assert main(["solve"]) == 0
+    text = capfd.readouterr().out
+    m = re.search(r"height (\S+) mm, span (\S+) mm, footprint (\S+) x (\S+) mm", text)
+    height, span, width, depth = m.groups()
+    assert width == span != depth
+    assert tab.text("#form-height") == f"{height} mm"
+    assert tab.text("#form-span") == f"{span} mm"
+    assert tab.text("#form-footprint").startswith(f"{width} × {depth} mm, hull area ")
+    assert tab.errors == []

@@ -1,0 +1,146 @@
+"""One page state: the resting mesh, the crease, the numbers and the messages."""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+
+import numpy as np
+import pytest
+
+from onefold_cad.cli import main
+from onefold_cad.design import build_design
+from onefold_cad.explore.params import design_from_params
+from onefold_cad.explore.server import load_templates
+from onefold_cad.explore.state import MESH_ANGULAR, MESH_RADIAL, design_state
+from onefold_cad.export.report import design_report
+
+
+@pytest.fixture(scope="module")
+def templates():
+    return load_templates(None)
+
+
+def _decode(form):
+    pos = np.frombuffer(base64.b64decode(form["positions"]), dtype="<f4").reshape(-1, 3)
+    kind = {"uint16": "<u2", "uint32": "<u4"}[form["index_type"]]
+    idx = np.frombuffer(base64.b64decode(form["indices"]), dtype=kind).reshape(-1, 3)
+    return pos, idx
+
+
+@pytest.mark.parametrize("name", ["patkau-one-fold", "table1-row4", "star-polygon"])
+def test_the_form_is_the_folded_mesh_standing_as_it_rests(templates, name):
+    data, _ = templates
+    design = design_from_params({"template": name}, data, name)
+    state = design_state(design)
+    json.dumps(state, allow_nan=False)  # the page gets strict JSON
+    assert state["ok"] and state["messages"] == []
+    pos, idx = _decode(state["form"])
+    folded = build_design(design)
+    verts, faces = folded.mesh(MESH_ANGULAR, MESH_RADIAL)
+    expected = folded.resting.apply(verts)
+    size = float(np.ptp(expected, axis=0).max())
+    assert pos.shape == expected.shape == (state["form"]["vertex_count"], 3)
+    np.testing.assert_allclose(pos, expected, rtol=0, atol=2.0**-22 * size)  # float32
+    np.testing.assert_array_equal(idx, faces)
+    assert idx.max() < len(pos)
+
+
+def test_the_crease_halves_keep_their_flat_lengths(templates):
+    """A rectangle W x H folded along its diagonal with H at fraction f: the +x half
+    (towards the corner (W, H)) is (1 - f) * hypot(W, H) long, the -x half f * hypot(W, H),
+    on the folded form as on the flat sheet."""
+    data, key = templates
+    w, h, f = 1200.0, 2600.0, 0.35
+    params = {"width": str(w), "height": str(h), "apex_fraction": str(f), "alpha": "41"}
+    state = design_state(design_from_params(params, data, key))
+    lengths = {
+        c["half"]: math.dist(*c["points"]) for c in state["form"]["crease"]
+    }  # both start at the apex
+    diag = math.hypot(w, h)
+    assert lengths["plus_x"] == pytest.approx((1 - f) * diag, rel=1e-12)
+    assert lengths["minus_x"] == pytest.approx(f * diag, rel=1e-12)
+    for c in state["form"]["crease"]:
+        assert c["points"][0] == state["form"]["apex"]
+
+
+def test_the_numbers_are_the_reports(templates):
+    data, key = templates
+    design = design_from_params({"alpha": "37", "beta": "41"}, data, key)
+    n = design_state(design)["numbers"]
+    r = design_report(design, build_design(design))
+    assert n["units"] == "mm"
+    assert {k: v["deg"] for k, v in n["fold_angles"].items()} == r["fold_angles_deg"]
+    assert {k: v["bend"] for k, v in n["fold_angles"].items()} == r["bend"]
+    assert n["apex_height"] == r["direction_surface"]["apex_height"]
+    assert n["height"] == r["resting"]["height"]
+    assert n["span"] == r["resting"]["span"]
+    assert n["width"] == r["resting"]["footprint"]["width"]
+    assert n["depth"] == r["resting"]["footprint"]["depth"]
+    assert n["flat_size"] == r["flat_size"]
+
+
+def test_moving_alpha_moves_the_fold_angles(templates):
+    data, key = templates
+    a = design_state(design_from_params({"alpha": "30"}, data, key))["numbers"]["fold_angles"]
+    b = design_state(design_from_params({"alpha": "50"}, data, key))["numbers"]["fold_angles"]
+    assert a["plus_x"]["deg"] != b["plus_x"]["deg"]
+
+
+def test_a_design_the_flat_pattern_refuses_keeps_its_form_and_gets_the_builds_message(
+    capfd, tmp_path
+):
+    """Bend zones reaching the corners: no flat pattern, the CLI's words, the form still shown."""
+    data, key = load_templates("paper-square")
+    args = {"thickness": "5", "bend_radius": "150"}
+    capfd.readouterr()
+    status = main(
+        ["build", "paper-square", "--thickness", "5", "--bend-radius", "150", "-o", str(tmp_path)]
+    )
+    err = capfd.readouterr().err.strip().splitlines()
+    assert status == 2 and err[-1].startswith("onefold: error: ")
+    state = design_state(design_from_params(args, data, key))
+    assert state["ok"] and state["flat_svg"] is None
+    assert [m["text"] for m in state["messages"] if m["level"] == "error"] == [
+        err[-1][len("onefold: error: ") :]
+    ]
+    assert state["form"]["vertex_count"] > 0
+    assert state["numbers"]["fold_angles"]["plus_x"]["deg"] > 0.0
+
+
+@pytest.mark.parametrize(
+    ("name", "flags", "material", "params"),
+    [  # bend zones reaching the corners (page controls)
+        ("paper-square", ["--thickness", "5", "--bend-radius", "150"], {},
+         {"thickness": "5", "bend_radius": "150"}),
+        ("paper-square", ["--relief-hole", "300"], {"relief_hole": 300.0}, {}),
+        ("paper-square", ["--relief-hole", "3", "--kerf", "5"],
+         {"relief_hole": 3.0, "kerf": 5.0}, {}),
+        # the default hole max(3 t, 2 (t + r)) wider than the 3048 mm sheet: named after t
+        ("patkau-one-fold", ["--thickness", "1100"], {}, {"thickness": "1100"}),
+    ],
+    ids=["bend-limits", "relief-hole", "kerf", "default-hole"],
+)  # fmt: skip
+def test_a_refused_flat_pattern_is_one_message_the_builds(
+    capfd, tmp_path, name, flags, material, params
+):
+    """The refusal `onefold build` prints is shown once: as the error, not again as
+    the report's warning with a tail (`...; build refuses the DXF ...`)."""
+    capfd.readouterr()
+    assert main(["build", name, *flags, "-o", str(tmp_path), "-q"]) == 2
+    err = capfd.readouterr().err.strip().splitlines()[-1].removeprefix("onefold: error: ")
+    # the command names a value given by a flag after the flag (--kerf); the page,
+    # where the value came from the template, after the parameter (kerf)
+    err = err.removeprefix("--")
+    data, key = load_templates(name)
+    template = dict(data[key])
+    template["material"] = {**template["material"], **material}
+    state = design_state(design_from_params(params, {key: template}, key))
+    texts = [m["text"] for m in state["messages"]]
+    assert [m["text"] for m in state["messages"] if m["level"] == "error"] == [err]
+    core = err.split(" (", 1)[0]  # the problem, without its numbers' explanation
+    assert sum(core in t for t in texts) == 1, texts
+    # nor in other words: no other message about the same parameter or the hole
+    others = [t.split(":", 1)[0] for t in texts if t != err]
+    assert not {err.split(":", 1)[0], "relief_hole"} & set(others), texts

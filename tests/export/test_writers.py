@@ -1,0 +1,123 @@
+"""The --formats registry: names, order, refusals before writing, and a new writer."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, build_design
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.export import writers
+from onefold_cad.export.writers import (
+    WRITERS,
+    BuildContext,
+    Writer,
+    check_before_writing,
+    file_names,
+    parse_formats,
+    register,
+    write_design,
+)
+
+
+def context(**material) -> BuildContext:
+    d = Design(
+        "w", FrameCurve(40, 40), Sheet.rectangle(300, 200, 0.5), material=Material(**material)
+    )
+    return BuildContext(d, build_design(d))
+
+
+def test_default_is_every_writer_with_the_report_last():
+    every = ("step", "dxf", "cut", "bends", "fold", "glb", "png", "svg", "json")
+    assert parse_formats(None) == parse_formats("all") == every
+    assert parse_formats("json, DXF") == ("dxf", "json")
+    assert parse_formats("svg,step") == ("step", "svg")
+    assert file_names("w", ("step", "png", "json")) == ["w.step", "w-3d.png", "w.json"]
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        (
+            "step,pdf",
+            "unknown format 'pdf' "
+            "(allowed: step, dxf, cut, bends, fold, glb, png, svg, json, or all)",
+        ),
+        ("dxf,dxf", "'dxf' is named twice"),
+        (" , ", "names no format"),
+    ],
+)
+def test_bad_formats_name_the_flag_and_the_allowed_ones(text, words):
+    with pytest.raises(InvalidParameterError) as exc:
+        parse_formats(text)
+    assert exc.value.parameter == "--formats" and words in str(exc.value)
+
+
+def test_a_relief_hole_that_does_not_fit_is_refused_by_the_cut_part_s_writers_only():
+    ctx = context(relief_hole=500.0)  # the sheet's inradius about H is well below 250
+    for fmt in ("step", "dxf", "cut", "fold", "svg"):  # FOLD cuts the hole too
+        with pytest.raises(FabricationError) as exc:
+            check_before_writing(ctx, (fmt,))
+        assert exc.value.parameter == "relief_hole"
+    check_before_writing(ctx, ("png", "json"))  # previews of the form and the report: fine
+
+
+def test_a_flat_pattern_that_cannot_be_made_is_refused_before_writing():
+    d = Design(
+        "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
+        material=Material(thickness=3.57, bend_radius=6.0),
+    )  # fmt: skip
+    ctx = BuildContext(d, build_design(d))
+    with pytest.raises(FabricationError, match="^bend_radius: "):
+        check_before_writing(ctx, ("dxf", "json"))
+    with pytest.raises(FabricationError, match="^bend_radius: "):
+        check_before_writing(ctx, ("step", "json"))  # the default body is the solid
+    check_before_writing(ctx, ("png", "json"))
+    ctx.compensation = "none"
+    check_before_writing(ctx, ("dxf", "step", "json"))
+
+
+def test_a_registered_writer_is_written_timed_and_listed_in_the_report(tmp_path, monkeypatch):
+    monkeypatch.setattr(writers, "WRITERS", dict(WRITERS))
+    calls = []
+
+    def write_csv(ctx: BuildContext, path):
+        path.write_text(f"{ctx.design.name},{len(ctx.folded.crease)}\n")
+
+    register(Writer("csv", "-bends.csv", "bend table", write_csv))
+    formats = parse_formats("csv,json")
+    assert formats == ("csv", "json")
+    ctx = context()
+    files = write_design(ctx, tmp_path / "1", formats, lambda s, t: calls.append((s, t)))
+    assert [f.name for f in files] == ["w-bends.csv", "w.json"]
+    assert (tmp_path / "1" / "w-bends.csv").read_text() == "w,2\n"
+    assert [c[0] for c in calls] == ["bend table", "report"]
+    assert all(t >= 0 for _, t in calls)
+    rep = json.loads((tmp_path / "1" / "w.json").read_text())
+    assert rep["files"] == ["w-bends.csv", "w.json"]
+    assert set(rep["timings_s"]) >= {"csv"}
+
+
+def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
+    """An asymmetric fold whose one rigid blank is off by more than 0.1 t across its
+    halves: the flat pattern's writers refuse; the STEP solid (the designed part, no
+    blank) does not."""
+    d = Design(
+        "asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
+        material=Material(thickness=10.0, bend_radius=10.0),
+    )  # fmt: skip
+    ctx = BuildContext(d, build_design(d), body="solid")
+    for fmt in ("dxf", "cut", "bends", "svg"):
+        with pytest.raises(FabricationError, match="^hc: plus_x .* too wide across it"):
+            check_before_writing(ctx, (fmt,))
+    check_before_writing(ctx, ("step", "json"))
+
+
+def test_the_compensations_the_command_offers_are_the_bend_model_s():
+    from onefold_cad.cli import main
+    from onefold_cad.geometry.bend import Compensation
+
+    assert writers.COMPENSATIONS == tuple(c.value for c in Compensation)
+    assert writers.COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default
+    assert main(["build", "--compensation", "bent", "--formats", "json"]) == 2

@@ -1,0 +1,62 @@
+"""The body a form is written as: its minimiser, its pieces, its mass."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from onefold_cad import FrameCurve, Sheet, fold, solve
+from onefold_cad.geometry.body import Body, zoom_min
+from onefold_cad.geometry.thick_sheet import SideMap
+
+
+def test_zoom_min_finds_smooth_kinked_and_end_minima() -> None:
+    t, v = zoom_min(lambda x: (x - 0.3137) ** 2 + 2.0, 0.0, 1.0)
+    assert abs(t - 0.3137) <= 1e-7 and abs(v - 2.0) <= 1e-15
+    t, v = zoom_min(lambda x: np.abs(x - 0.7071), 0.0, 1.0)  # a kink
+    assert abs(t - 0.7071) <= 1e-12 and v <= 1e-12
+    t, v = zoom_min(lambda x: np.cos(x), 0.0, 2.0)  # at the bracket's end
+    assert t == 2.0 and v == math.cos(2.0)
+    t, v = zoom_min(lambda x: np.where(x < 0.5, np.inf, x), 0.0, 1.0)  # empty part
+    assert abs(t - 0.5) <= 1e-12
+
+
+@pytest.fixture(scope="module")
+def folded():
+    return fold(solve(FrameCurve(35.0, 45.0, 8.0, 100.0), "exact"), Sheet.rectangle(600, 400, 0.4))
+
+
+def test_shell_mass_is_the_area_and_its_centroid(folded) -> None:
+    area, com = Body(folded).mass_properties
+    assert abs(area - folded.sheet.area) <= 1e-10 * folded.sheet.area
+    # the centroid of a fine mesh of the surface, extrapolated in its step (h^2)
+    cents = []
+    for k in (1, 2):
+        v, f = folded.mesh(angular=200 * k, radial=20 * k)
+        tri = v[f]
+        w = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+        cents.append((w[:, None] * tri.mean(axis=1)).sum(axis=0) / w.sum() - folded.apex)
+    rich = (4.0 * cents[1] - cents[0]) / 3.0
+    assert np.linalg.norm(com - rich) <= 1e-6 * folded.sheet.size
+
+
+def test_arc_frames_are_the_cone_s(folded) -> None:
+    # the body's frames, straight from the arc, against the cone's and the
+    # solid's: directions and normals (SideMap), the geodesic curvature
+    # (thick_sheet's finite differences) and dtheta/dphi (central differences
+    # of the cone's own theta(phi))
+    from onefold_cad.geometry.body import _ArcFrames
+
+    cone, side = folded.solution.surface, SideMap(folded)
+    theta = np.linspace(0.05, side.total - 0.05, 41)
+    phi = cone.phi_of_theta(theta)
+    u, e, n, k, speed = _ArcFrames(folded).frames(phi, curvature=True)
+    su, se, sn = side.frames(theta)
+    for mine, theirs in ((u, su), (e, se), (n, sn)):
+        np.testing.assert_allclose(mine, theirs, atol=1e-12)
+    np.testing.assert_allclose(k, side.curvature(theta), rtol=1e-6, atol=1e-9)
+    h = 1e-5
+    slope = (cone.theta_of_phi(phi + h) - cone.theta_of_phi(phi - h)) / (2 * h)
+    np.testing.assert_allclose(speed, slope, rtol=1e-9)

@@ -1,0 +1,56 @@
+"""Toppling on samples: point sets whose resting faces are known by hand."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from onefold_cad.geometry.ground import holds, roll
+
+
+def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    k = axis / np.linalg.norm(axis)
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * (kx @ kx)
+
+
+@pytest.mark.parametrize("angle", [0.3, 0.7, 1.1, 2.0])
+def test_a_tilted_box_comes_to_rest_on_a_face(angle: float) -> None:
+    # a 1 x 2 x 3 box turned about a skew axis: it rests on one of its six
+    # faces (normal along one of its turned axes), on that face's 4 corners
+    rot = _rotation(np.array([1.0, 2.0, 0.5]), angle)
+    corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 2) for z in (0, 3)], dtype=float)
+    pts = corners @ rot.T
+    com = np.array([0.5, 1.0, 1.5]) @ rot.T
+    g, on = roll(pts, com, np.array([0.0, 0.0, 1.0]), 1e-12)
+    axes = rot.T  # rows: the box's axes in the turned frame
+    assert np.max(np.abs(axes @ g)) == pytest.approx(1.0, abs=1e-12)
+    assert len(on) == 4
+    assert holds(pts[on], com, g, 1e-12)
+    # the contacts are the lowest corners, level with each other
+    h = pts @ g
+    assert np.allclose(h[on], h.min(), atol=1e-12)
+
+
+def test_a_form_balanced_above_an_edge_falls_to_one_side() -> None:
+    # a triangular prism standing on its ridge: two lowest points in a line
+    # below the centre of mass; it must fall on one of its two slanted faces
+    pts = np.array(
+        [[-1, 0, 0], [1, 0, 0], [-1, -1, 1], [1, -1, 1], [-1, 1, 1], [1, 1, 1]], dtype=float
+    )
+    com = pts.mean(axis=0)
+    g, on = roll(pts, com, np.array([0.0, 0.0, 1.0]), 1e-12)
+    assert len(on) == 4 and holds(pts[on], com, g, 1e-12)
+    assert abs(abs(g[1]) - math.sqrt(0.5)) <= 1e-12 and g[2] == pytest.approx(math.sqrt(0.5))
+
+
+def test_a_tetrahedron_rests_on_a_face_under_its_centre() -> None:
+    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    com = pts.mean(axis=0)
+    tilt = _rotation(np.array([1.0, -1.0, 0.3]), 2.5)  # start it far off a face
+    g, on = roll(pts @ tilt.T, com @ tilt.T, np.array([0.0, 0.0, 1.0]), 1e-12)
+    assert len(on) == 3
+    normals = np.array([[0, 0, 1], [0, 1, 0], [1, 0, 0], [-1, -1, -1] / np.sqrt(3)]) @ tilt.T
+    assert np.max(normals @ g) == pytest.approx(1.0, abs=1e-12)
