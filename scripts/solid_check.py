@@ -39,13 +39,12 @@ from pathlib import Path
 import numpy as np
 
 from onefold_cad import Design, FrameCurve, Material, Sheet, SheetSurface, build_design
-from onefold_cad.design import relief_hole_diameter
+from onefold_cad.design import default_body, relief_hole_diameter
 from onefold_cad.errors import InvalidParameterError, NoSolutionError, OneFoldError
 from onefold_cad.export.measure import measure
 from onefold_cad.export.step import (
     build_shell,
     build_solid,
-    default_body,
     export_design_step,
     read_step,
 )

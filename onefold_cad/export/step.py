@@ -24,8 +24,13 @@ build123d model, show in a viewer, or export with build123d's other exporters
   is the default part of a design with thickness; its volume is checked
   against the volume integrated from the geometry.
 * The part is written as it stands (``placement="rest"``, the default):
-  moved by the design's resting placement so that its lowest point lies on
-  the ground z = 0; ``placement="frame"`` keeps the fold frame (apex above H).
+  moved by the design's resting placement
+  (:func:`onefold_cad.design.resting_placement`, the one the report, the GLB
+  and the previews use) so that its lowest point lies on the ground z = 0;
+  ``placement="frame"`` keeps the fold frame (apex above H).
+* A solid past the bend model's limits is refused (FabricationError,
+  :func:`onefold_cad.design.solid_bend_problem`) unless the compensation is
+  'none'; the shell, the designed surface, is always built.
 
 Every part carries ``fit_deviation`` (the largest deviation its fitted
 curves reached, length; 0 for the paper fan, which is exact) and
@@ -65,23 +70,27 @@ from OCP.gp import gp_Trsf, gp_Vec
 from OCP.Interface import Interface_Static
 from OCP.STEPControl import STEPControl_Controller
 
-from onefold_cad.design import Design, build_design, relief_hole_diameter, sheet_inradius
+from onefold_cad.design import (
+    Design,
+    build_design,
+    default_body,
+    relief_hole_diameter,
+    resting_placement,
+    sheet_inradius,
+    solid_bend_problem,
+    solid_min_relief_hole,
+)
 from onefold_cad.errors import ExportError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.brep import MAX_NODES, fan_shell, ruled_shell
 from onefold_cad.export.measure import measure
 from onefold_cad.export.solid import KernelBudget, thick_solid
+from onefold_cad.geometry.bend import Compensation
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.placement import RestingPlacement
-from onefold_cad.geometry.thick_sheet import (
-    SideMap,
-    Slab,
-    min_relief_hole,
-    mitre_reach,
-    sheet_offsets,
-)
+from onefold_cad.geometry.thick_sheet import SideMap, Slab, mitre_reach, sheet_offsets
 
 __all__ = [
     "measure",
@@ -89,8 +98,6 @@ __all__ = [
     "build_solid",
     "build_part",
     "place",
-    "default_body",
-    "min_relief_hole",
     "sheet_offsets",
     "export_design_step",
     "read_step",
@@ -215,7 +222,8 @@ def build_solid(
     The reference surface is the folded surface; the material lies on the side
     that ``material.sheet_surface`` names (:func:`sheet_offsets`). The relief
     hole, ``material.relief_hole_diameter``, is required: the cone's apex is
-    singular and its offsets fold over near it (:func:`min_relief_hole`).
+    singular and its offsets fold over near it
+    (:func:`onefold_cad.design.solid_min_relief_hole`).
     The two sides meet in a mitre on the fold's plane of symmetry; its
     faces, the sheet's two faces and the walls along the outline and the hole
     are built directly and sewn once (:mod:`onefold_cad.export.solid`, no
@@ -251,7 +259,7 @@ def build_solid(
         )
     hole = material.relief_hole_diameter
     limit = 2.0 * sheet_inradius(folded.sheet)
-    need = min_relief_hole(folded, material)
+    need = solid_min_relief_hole(folded, material)
     if need >= limit:
         raise InvalidParameterError(
             "thickness",
@@ -354,29 +362,24 @@ def _near_symmetric(slab: Slab) -> str:
     return ""
 
 
-def default_body(design: Design) -> str:
-    """'solid' for an exact-model design with thickness and a relief hole (the
-    default hole when thickness > 0), else 'shell' (the reference surface)."""
-    m = design.material
-    exact = design.model.value == "exact"
-    return "solid" if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else "shell"
-
-
-def _fabrication_limits(design: Design, folded: FoldedSheet) -> None:
-    """Where the solid refuses a design past the bend model's limits
-    (FabricationError: a bend zone reaching a sheet corner, a large set-back
-    beside the flanges, a fold near 180 deg). The bend model is the fab
-    engineer's ``onefold_cad.geometry.bend.check_bends(design, folded)``; the
-    lead wires that call in here. Nothing is checked until then."""
-    return None
+def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: str) -> None:
+    """Refuse a solid past the bend model's limits (FabricationError: a bend
+    zone reaching a sheet corner, a large set-back beside the flanges, a fold
+    near 180 deg) unless ``compensation`` is 'none':
+    :func:`onefold_cad.design.solid_bend_problem`, the check ``build`` also
+    makes before it writes anything."""
+    problem = solid_bend_problem(design, folded, compensation)
+    if problem is not None:
+        raise problem
 
 
 def place(part: bd.Shape, placement: RestingPlacement) -> bd.Shape:
     """``part`` moved by the rigid motion of ``placement`` (rotation, then
-    translation), then lifted or lowered so that its lowest point lies on the
-    ground z = 0 exactly (the placement's own height comes from sampled
-    points; the B-rep's lowest point, of the solid with its thickness too, is
-    found on its exact geometry). The one place where a part is stood up.
+    translation; :func:`onefold_cad.design.resting_placement`), then lifted or
+    lowered so that the B-rep's own lowest point lies on the ground z = 0
+    exactly: the placement stands the exact body there, and the B-rep's
+    curves lie within its ``fit_tolerance`` of it. The one place where a part
+    is stood up.
 
     Returns:
         A new shape (the geometry transformed), with the part's label and
@@ -404,6 +407,7 @@ def build_part(
     *,
     body: str | None = None,
     placement: str = "rest",
+    compensation: str = "sharp",
     budget: float | None = KERNEL_BUDGET,
 ) -> bd.Shape:
     """The design's part, labelled with its name.
@@ -415,15 +419,25 @@ def build_part(
         body: 'shell': the reference surface, with the relief hole of
             ``material.relief_hole_diameter``; 'solid': the sheet of
             ``material.thickness`` (:func:`build_solid`); None (default):
-            :func:`default_body`.
+            :func:`onefold_cad.design.default_body`.
         placement: 'rest' (default): standing on the ground, lowest point on
-            z = 0 (:func:`place` with ``folded.resting``); 'frame': the fold
-            frame (apex above H).
+            z = 0 (:func:`place` with
+            :func:`onefold_cad.design.resting_placement` of this body);
+            'frame': the fold frame (apex above H).
+        compensation: 'sharp' (default): a solid past the bend model's
+            limits is refused; 'none': built as designed (as ``build
+            --compensation``).
         budget: seconds the CAD kernel may take (None: no limit).
 
     Returns:
         The part, with ``fit_deviation`` and ``fit_tolerance`` (length; see
         :func:`build_shell`).
+
+    Raises:
+        InvalidParameterError: a bad ``body``, ``placement`` or
+            ``compensation``, or a solid the design cannot have.
+        FabricationError: a solid past the bend model's limits.
+        ExportError: the CAD kernel could not build the part.
     """
     body = default_body(design) if body is None else body
     if body not in ("shell", "solid"):
@@ -433,15 +447,18 @@ def build_part(
     folded = build_design(design) if folded is None else folded
     m = design.material
     m = m.with_changes(relief_hole=relief_hole_diameter(design, folded))
+    if body == "solid":
+        _fabrication_limits(design, folded, compensation)
+    else:
+        Compensation.parse(compensation)  # a bad value is an error whatever the body
     try:
         if body == "solid":
-            _fabrication_limits(design, folded)
             part: bd.Shape = build_solid(folded, m, budget=budget)
         else:
             part = build_shell(folded, relief_hole=m.relief_hole_diameter, budget=budget)
         part.label = design.name
         if placement == "rest":
-            part = place(part, folded.resting)
+            part = place(part, resting_placement(design, folded, body))
     except OneFoldError:
         raise
     except Exception as err:  # OCC's Standard_Failure family is not a RuntimeError
@@ -458,12 +475,13 @@ def export_design_step(
     *,
     body: str | None = None,
     placement: str = "rest",
+    compensation: str = "sharp",
     part: bd.Shape | None = None,
     budget: float | None = KERNEL_BUDGET,
 ) -> Path:
-    """Write the design's part (:func:`build_part`; ``body``, ``placement``
-    and ``budget`` as there, or ``part`` if already built) as STEP,
-    atomically.
+    """Write the design's part (:func:`build_part`; ``body``, ``placement``,
+    ``compensation`` and ``budget`` as there, or ``part`` if already built,
+    written as given) as STEP, atomically.
 
     The file is in the design's unit (mm, inch or foot), the product is named
     after the design, and the header timestamp is :data:`STEP_TIMESTAMP`, so
@@ -476,7 +494,14 @@ def export_design_step(
     """
     target = Path(path)
     if part is None:
-        part = build_part(design, folded, body=body, placement=placement, budget=budget)
+        part = build_part(
+            design,
+            folded,
+            body=body,
+            placement=placement,
+            compensation=compensation,
+            budget=budget,
+        )
     with atomic_output(target) as tmp, _step_unit(design.units):
         try:
             ok = bd.export_step(part, tmp, unit=_UNIT[design.units], timestamp=STEP_TIMESTAMP)

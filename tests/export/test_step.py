@@ -34,20 +34,26 @@ from onefold_cad import (
     Units,
     build_design,
 )
-from onefold_cad.design import relief_hole_diameter
+from onefold_cad.design import (
+    default_body,
+    relief_hole_diameter,
+    resting_placement,
+    solid_min_relief_hole,
+)
+from onefold_cad.errors import FabricationError
 from onefold_cad.export.flat_pattern import flat_pattern
 from onefold_cad.export.report import design_report
 from onefold_cad.export.step import (
     BOUNDARY_TOLERANCE,
+    SOLID_TOLERANCE,
     build_part,
     build_shell,
     build_solid,
-    default_body,
     export_design_step,
     measure,
-    min_relief_hole,
     sheet_offsets,
 )
+from onefold_cad.geometry.bend import bend_error, check_bends
 from onefold_cad.geometry.frame import arc_points
 from onefold_cad.geometry.thick_sheet import slab_volume
 
@@ -420,14 +426,56 @@ def test_step_stands_on_the_ground_moved_by_the_resting_placement(tmp_path, body
     on, below = _lowest(rest, size)
     assert on < 1e-7 * size
     assert below == pytest.approx(size, abs=1e-7 * size)
-    # the same part, turned by the resting rotation (and moved)
-    turned = _vertices(frame) @ folded.resting.rotation.T
+    # the same part moved by the design's resting placement of this body (the
+    # report's): rotation and translation, then at most a lift of the B-rep's
+    # own lowest point onto the ground, within the curves' fit tolerance
+    place = resting_placement(design, folded, body)
+    turned = _vertices(frame) @ place.rotation.T + place.translation
     moved = _vertices(rest)
     shift = moved.mean(axis=0) - turned.mean(axis=0)
     gap = np.linalg.norm(turned[:, None, :] + shift - moved[None, :, :], axis=2).min(axis=1)
     assert float(gap.max()) < 1e-9 * size
+    t = design.material.thickness
+    tol = min(SOLID_TOLERANCE * size, 1e-3 * t) if body == "solid" else BOUNDARY_TOLERANCE * size
+    assert np.all(np.abs(shift[:2]) < 1e-9 * size)
+    assert abs(shift[2]) <= tol
     with pytest.raises(InvalidParameterError, match="placement"):
         build_part(design, folded, placement="floor")
+
+
+def _corner_design() -> Design:
+    """A 40 x 100 sheet folded to about 160 deg, 3.57 mm thick, inside radius 6: the
+    bend's set-back is far beyond the flanges beside it (past the bend model's limits)."""
+    return Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
+                  material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
+
+
+def test_a_solid_past_the_bend_limits_is_refused_unless_compensation_none(tmp_path):
+    """The solid stands for the bent part only inside the bend model's limits: past
+    them build_part and export_design_step refuse it with the bend model's own error
+    (the same one ``build`` gives before writing) and leave no file; 'none' builds it
+    as designed; the shell, the designed surface, is never refused for it."""
+    design = _corner_design()
+    folded = build_design(design)
+    half = folded.crease[0]
+    t, r = design.material.thickness, design.material.bend_radius
+    # by hand: MID reference, so the set-back is (r + t / 2) tan(psi / 2)
+    setback = (r + t / 2) * math.tan(math.radians(half.fold_angle_deg) / 2)
+    expected = bend_error(tuple(q for q in check_bends(design, folded) if q.kind != "width"))
+    assert expected is not None
+    with pytest.raises(FabricationError) as err:
+        build_part(design, folded)  # the default body is the solid
+    assert str(err.value) == str(expected) and err.value.parameter == "bend_radius"
+    assert f"{half.name} (fold angle {half.fold_angle_deg:.2f} deg" in str(err.value)
+    assert f"set-back SB = {setback:.3g} mm" in str(err.value)
+    with pytest.raises(FabricationError, match="^bend_radius: "):
+        export_design_step(design, tmp_path / "corner.step", folded)
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(InvalidParameterError, match="compensation"):
+        build_part(design, folded, compensation="bent")
+    solid = build_part(design, folded, compensation="none")
+    assert isinstance(solid, bd.Solid) and solid.is_valid
+    assert isinstance(build_part(design, folded, body="shell"), bd.Shell)
 
 
 # -- the sheet as a solid of thickness t ------------------------------------
@@ -592,7 +640,7 @@ def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
     with pytest.raises(InvalidParameterError, match="faces"):
         build_shell(folded, faces="fan")
     thick = design.with_changes(material=Material(thickness=1.0))
-    need = min_relief_hole(folded, thick.material)
+    need = solid_min_relief_hole(folded, thick.material)
     assert 0.0 < need < thick.material.relief_hole_diameter  # the default hole is wide enough
     for hole in (0.0, 0.9 * need):  # no hole, or one too small for the mitre
         small = thick.with_changes(material=thick.material.with_changes(relief_hole=hole))
@@ -625,7 +673,7 @@ def test_default_relief_hole_fits_the_solid_and_every_export_cuts_it(tmp_path):
         material=Material(thickness=3.0, sheet_surface=SheetSurface.INSIDE)
     )
     folded = build_design(design)
-    need = min_relief_hole(folded, design.material)
+    need = solid_min_relief_hole(folded, design.material)
     hole = relief_hole_diameter(design, folded)
     assert design.material.relief_hole_diameter == 9.0 < need
     step = 10.0 ** (math.floor(math.log10(hole)) - 1)  # two significant digits

@@ -260,7 +260,7 @@ def _step_resting(design: Design, body: str):
     folded = build_design(design)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
     rest = rest_form(folded, material, body)
-    part = build_part(design, folded, body=body)
+    part = build_part(design, folded, body=body, placement="frame")  # placed here, by hand
     trsf = gp_Trsf()
     r, t = rest.rotation, rest.translation
     trsf.SetValues(*r[0], t[0], *r[1], t[1], *r[2], t[2])
