@@ -31,6 +31,7 @@ __all__ = ["CreaseHalf", "Developability", "FoldedSheet", "fold"]
 
 Array = NDArray[np.float64]
 _MIRROR = np.array([1.0, -1.0, 1.0])
+_TWO_PI = np.array(2.0 * math.pi)  # a 0-d array: cheaper than a float in a ufunc call
 
 
 @dataclass(frozen=True)
@@ -268,15 +269,16 @@ def _crease_half(
     """The crease half ``name`` from the ruling direction ``u`` and the in-surface
     direction ``e`` of the +y side on it (3-vectors as floats: few enough that
     plain Python beats numpy)."""
-    n = (u[1] * e[2] - u[2] * e[1], u[2] * e[0] - u[0] * e[2], u[0] * e[1] - u[1] * e[0])
-    o = (n[0], -n[1], n[2])  # the -y side's normal: the mirror image
-    c = (n[1] * o[2] - n[2] * o[1], n[2] * o[0] - n[0] * o[2], n[0] * o[1] - n[1] * o[0])
-    cosang = min(max(n[0] * o[0] + n[1] * o[1] + n[2] * o[2], -1.0), 1.0)
-    angle = math.degrees(math.atan2(math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), cosang))
-    into = e[0] * o[0] + e[1] * o[1] + e[2] * o[2]  # the +y side, entered from the crease
+    n0 = u[1] * e[2] - u[2] * e[1]  # the +y side's normal n = u x e
+    n1 = u[2] * e[0] - u[0] * e[2]
+    n2 = u[0] * e[1] - u[1] * e[0]
+    # the -y side's normal is the mirror image (n0, -n1, n2): the angle between
+    # the two is twice that of n from the xz-plane
+    angle = math.degrees(2.0 * math.atan2(abs(n1), math.hypot(n0, n2)))
+    into = e[0] * n0 - e[1] * n1 + e[2] * n2  # the +y side, entered from the crease
     if name == "minus_x":
         into = -into
-    end = np.array([length if name == "plus_x" else -length, 0.0])
+    end = np.array((length if name == "plus_x" else -length, 0.0))
     return CreaseHalf(name, length, end, end3.copy(), angle, "UP" if into > 0.0 else "DOWN")
 
 
@@ -449,41 +451,37 @@ def _measure(folded: FoldedSheet) -> Developability:
 
 def _fan_rays(
     surface: PaperFan, vertices: tuple[Array, Array], tol: float = 1e-12
-) -> tuple[Array, Array, Array]:
+) -> tuple[Array, Array, int]:
     """Both sides' ruling angles and the +y side's directions of their rays:
     the fan's division rays with every sheet vertex ray between them inserted
     (a vertex closer than ``tol`` to a division uses the division). Returns
-    ``(upper angles, lower angles, (m, 3) directions)``, the lower side's after
-    the upper side's."""
+    ``(angles (m,), directions (m, 3), mu)``: the upper side's ``mu`` rays,
+    then the lower side's, each from theta = 0 to pi."""
     assert surface.thetas is not None and surface.directions is not None
     fan, dirs = surface.thetas, surface.directions
-    n1 = len(fan)
-    if fan[-1] > math.pi:
-        fan = np.minimum(fan, math.pi)  # theta_0 = 0: only the top can overshoot
-    out: list[Array] = []
-    pieces: list[Array] = []
+    n = len(fan) - 1
+    top = fan[n]  # pi up to rounding; the -x crease is set to pi exactly
+    angles: list[Array | tuple[float]] = []
+    pieces: list[Array | tuple[list[float]]] = []
+    mu = 0
     for vert in vertices:
-        inner = vert[1:-1]
-        k_all = fan.searchsorted(inner).tolist()  # fan[k - 1] < v <= fan[k]
-        angles: list[Array] = []
         start = 0
-        for v, k in zip(inner.tolist(), k_all, strict=True):
-            k = min(k, n1 - 1)
-            lo, hi = float(fan[k - 1]), float(fan[k])
-            if v - lo <= tol or abs(hi - v) <= tol:
-                continue
-            angles += [fan[start:k], np.array((v,))]
-            pieces += [dirs[start:k], np.array([surface._frame1(k - 1, v - lo)[0]])]
-            start = k
-        if start:
-            angles.append(fan[start:])
-            side = np.concatenate(angles)
-        else:
-            side = fan.copy()
+        inner = vert[1:-1]
+        if len(inner):
+            for v, k in zip(inner.tolist(), fan.searchsorted(inner).tolist(), strict=True):
+                if k > n or top - v <= tol:  # at or past the last division
+                    continue
+                lo = fan.item(k - 1)
+                if v - lo <= tol or fan.item(k) - v <= tol:
+                    continue
+                angles += (fan[start:k], (v,))
+                pieces += (dirs[start:k], (surface._frame1(k - 1, v - lo)[0],))
+                start = k
+        angles += (fan[start:n], (math.pi,))
         pieces.append(dirs[start:])
-        side[-1] = max(float(side[-1]), float(vert[-1]))  # the -x crease at pi
-        out.append(side)
-    return out[0], out[1], np.concatenate(pieces)
+        if not mu:
+            mu = sum(map(len, angles))
+    return np.concatenate(angles), np.concatenate(pieces), mu
 
 
 def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> FoldedSheet:
@@ -506,22 +504,24 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
     fan = isinstance(surface, PaperFan)
     if fan:
         assert isinstance(surface, PaperFan)
-        up, lo, u = _fan_rays(surface, sheet._side_angles)
+        theta, u, mu = _fan_rays(surface, sheet._side_angles)
         g = surface.gammas
         assert g is not None
-        crease_frames = (surface._frame1(0, 0.0), surface._frame1(len(g) - 1, float(g[-1])))
-        theta = np.concatenate((up, lo))
+        n = len(g)
+        crease_frames = (surface._frame1(0, 0.0), surface._frame1(n - 1, g.item(n - 1)))
     else:
         vert_up, vert_lo = sheet._side_angles
-        up, lo = vert_up.copy(), vert_lo.copy()  # the sheet's are read-only
-        theta = np.concatenate((up, lo))
+        mu = len(vert_up)
+        theta = np.concatenate((vert_up, vert_lo))
         u = surface.directions_at(theta)
         crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
-    mu, m = len(up), len(up) + len(lo)
-    psi = theta
-    psi[mu:] *= -1.0  # the -y side's flat angles run clockwise
-    rho, cos, sin = sheet._rays(psi)
-    theta = None
+    m = len(theta)
+    # the flat polar angles in [0, 2 pi): the -y side's run clockwise from +x
+    ang = np.empty(m)
+    ang[:mu] = theta[:mu]
+    np.subtract(_TWO_PI, theta[mu:], out=ang[mu:])
+    ang[mu] = 0.0
+    rho, cos, sin = sheet._rays_at(ang)
     flat_r = np.zeros((m, 2, 2))
     np.multiply(rho, cos, out=flat_r[:, 1, 0])
     np.multiply(rho, sin, out=flat_r[:, 1, 1])
@@ -539,7 +539,14 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
     )
     elapsed = time.perf_counter() - t0
     folded = FoldedSheet(
-        solution, sheet, (up, lo), flat_r, rulings3, crease, elapsed, int(boundary_samples)
+        solution,
+        sheet,
+        (theta[:mu], theta[mu:]),
+        flat_r,
+        rulings3,
+        crease,
+        elapsed,
+        int(boundary_samples),
     )
     if fan:
         # the paper model's boundary is straight between the ruling ends: it is

@@ -338,13 +338,21 @@ class Sheet:
         any), with cos(psi) and sin(psi): three ``(k,)`` arrays. Exact: one line
         intersection per ray, ``rho = (v_k x e_k) / (d x e_k)`` with d the ray's
         unit direction and e_k the edge the ray meets."""
-        ang = np.asarray(psi, dtype=float) % _TWO_PI
+        return self._rays_at(np.asarray(psi, dtype=float) % _TWO_PI)
+
+    def _rays_at(
+        self, ang: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """:meth:`_rays` for polar angles ``ang`` already in [0, 2 pi) (fold
+        builds them so, which saves the reduction)."""
         # polar_angles is increasing from 0 and ang >= 0, so the index is in [0, n - 1]
         i = self.polar_angles.searchsorted(ang, side="right")
         i -= 1
         ex, ey, moment = self._edge_table
         c, s = np.cos(ang), np.sin(ang)
-        return moment.take(i) / (c * ey.take(i) - s * ex.take(i)), c, s
+        den = c * ey.take(i)
+        den -= s * ex.take(i)
+        return np.divide(moment.take(i), den, out=den), c, s
 
     def ray_lengths(self, psi: ArrayLike) -> NDArray[np.float64]:
         """Distance from H to the boundary along polar angles ``psi`` (radians, any).
