@@ -79,8 +79,10 @@ __all__ = [
     "fan_shell",
     "interpolate",
     "arc_length_nodes",
+    "probe_points",
     "DENSE",
     "MAX_NODES",
+    "PROBES",
 ]
 
 Convert_RationalC1 = Convert_ParameterisationType.Convert_RationalC1
@@ -228,6 +230,34 @@ DENSE = np.unique(
 MAX_NODES = 4000
 
 
+#: Where a fitted curve is checked between two neighbouring nodes, as fractions
+#: of the interval's length: at its quarters, not only its middle (a curve
+#: whose parameterisation has a kink, as the rational arc's C1 knots give the
+#: cone's pcurves, can meet the tolerance at an interval's middle and miss it
+#: beside it).
+PROBES = np.array([0.25, 0.5, 0.75])
+
+
+def probe_points(t: Array, at_length, length_at) -> Array:
+    """``(len(t) - 1, len(PROBES))`` parameters inside each interval of the
+    nodes ``t`` at the :data:`PROBES` fractions of its length (of its
+    parameter range where the length cannot place them inside)."""
+    lo, hi = length_at(t[:-1]), length_at(t[1:])
+    probe = at_length(lo[:, None] + (hi - lo)[:, None] * PROBES)
+    even = t[:-1, None] + (t[1:] - t[:-1])[:, None] * PROBES
+    inside = (probe > t[:-1, None]) & (probe < t[1:, None])
+    return np.where(inside, probe, even)
+
+
+def refine(probe: Array, err: Array, tol: float) -> tuple[Array, float]:
+    """The nodes to add (the worst probe of each interval that misses ``tol``)
+    and the largest deviation, from ``err`` at ``probe`` (both ``(n, p)``)."""
+    worst = np.argmax(err, axis=1)
+    rows = np.arange(len(err))
+    bad = err[rows, worst] > tol
+    return probe[rows[bad], worst[bad]], float(np.max(err))
+
+
 def arc_length_nodes(points: Array, params: Array, count: int) -> tuple[Array, object, object]:
     """``count`` parameters evenly spread along the polyline ``points`` ``(k, 3)``
     sampled at ``params`` ``(k,)``, and the maps length -> parameter and
@@ -254,11 +284,13 @@ def _fit_pcurve(
     patch: ConePatch, u0: float, u1: float, radius_at, tol: float
 ) -> tuple[Geom2d_BSplineCurve, float]:
     """A pcurve through the points at distance ``radius_at(phi)`` from A, for
-    u in [u0, u1]: interpolated at nodes spread evenly along the curve,
-    an interval split at its middle (by length) while the deviation there,
-    measured along the ruling, exceeds ``tol`` (length), up to
-    :data:`MAX_NODES` nodes. Returns ``(Geom2d curve, deviation reached)``
-    (the caller decides whether that is good enough)."""
+    u in [u0, u1]: interpolated at nodes spread evenly along the curve and at
+    the surface's knots inside [u0, u1] (where the rational arc's
+    parameterisation is only C1), an interval split at its worst
+    :data:`PROBES` point while the deviation there, measured along the
+    ruling, exceeds ``tol`` (length), up to :data:`MAX_NODES` nodes. Returns
+    ``(Geom2d curve, deviation reached)`` (the caller decides whether that is
+    good enough)."""
     dense = u0 + (u1 - u0) * DENSE
     dense[-1] = u1
     phi = patch.phi_of_u(dense)
@@ -267,20 +299,28 @@ def _fit_pcurve(
     t, at_length, length_at = arc_length_nodes(
         patch.apex + radius_at(phi)[:, None] * ray, dense, 17
     )
+    surf = patch.surface
+    knots = np.array([surf.UKnot(i) for i in range(2, surf.NbUKnots())])
+    knots = knots[(knots > u0) & (knots < u1)]
+    if len(knots):
+        span = float(length_at(np.array([u1]))[0])
+        gap = np.min(np.abs(length_at(t)[:, None] - length_at(knots)[None, :]), axis=1)
+        keep = (gap > 1e-3 * span / 16.0) | (t == u0) | (t == u1)
+        t = np.unique(np.concatenate([t[keep], knots]))
     while True:
         ph = patch.phi_of_u(t)
         uv = np.stack([t, patch.v_of(ph, radius_at(ph))], axis=1)
         curve = interpolate(uv, t, "a boundary curve on the cone")
-        mid = at_length(0.5 * (length_at(t[:-1]) + length_at(t[1:])))
-        mid = np.where((mid > t[:-1]) & (mid < t[1:]), mid, 0.5 * (t[:-1] + t[1:]))
-        got = np.array([[curve.Value(float(x)).X(), curve.Value(float(x)).Y()] for x in mid])
+        probe = probe_points(t, at_length, length_at)
+        flat = probe.ravel()
+        got = np.array([[curve.Value(float(x)).X(), curve.Value(float(x)).Y()] for x in flat])
         pm = patch.phi_of_u(got[:, 0])
         dist = patch.scale * np.linalg.norm(patch.arc(pm) - patch.apex, axis=1)
         err = np.abs(got[:, 1] - patch.v_of(pm, radius_at(pm))) * dist
-        bad = err > tol
-        if not np.any(bad) or len(t) + int(np.sum(bad)) > MAX_NODES:
-            return curve, float(np.max(err))
-        t = np.sort(np.concatenate([t, mid[bad]]))
+        new, worst = refine(probe, err.reshape(probe.shape), tol)
+        if not len(new) or len(t) + len(new) > MAX_NODES:
+            return curve, worst
+        t = np.sort(np.concatenate([t, new]))
 
 
 def _edge_line(edge_p0: Array, edge_p1: Array, psi: Array) -> Array:

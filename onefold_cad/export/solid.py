@@ -54,7 +54,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from onefold_cad.errors import ExportError
-from onefold_cad.export.brep import interpolate
+from onefold_cad.export.brep import PROBES, interpolate, probe_points, refine
 from onefold_cad.geometry.thick_sheet import Boundary, Patch, Slab
 
 __all__ = ["thick_solid", "KernelBudget"]
@@ -102,8 +102,9 @@ def fit_curve(
     """A B-spline through ``fn(theta)`` ``(k, 3)`` with theta as its parameter
     on [a, b] (so that ruled faces pair equal theta), interpolating it at
     nodes spread evenly along its length and exactly at ``nodes`` (where other
-    curves end on it); an interval whose midpoint (by length) deviates by more
-    than ``tol`` (length) is split there until none does.
+    curves end on it); an interval whose worst point of
+    :data:`~onefold_cad.export.brep.PROBES` (fractions of its length) deviates
+    by more than ``tol`` (length) is split there until none does.
 
     Returns:
         ``(curve, deviation reached)``.
@@ -131,18 +132,16 @@ def fit_curve(
         t = np.unique(np.concatenate([t[gap > 1e-3 * length / 16.0], keep]))
     while True:
         curve = interpolate(fn(t), t, what)
-        mid = at_length(0.5 * (length_at(t[:-1]) + length_at(t[1:])))
-        mid = np.where((mid > t[:-1]) & (mid < t[1:]), mid, 0.5 * (t[:-1] + t[1:]))
-        err = np.linalg.norm(_values(curve, mid) - fn(mid), axis=1)
-        bad = err > tol
-        if not np.any(bad):
-            return curve, float(np.max(err))
-        if len(t) + int(np.sum(bad)) > 4000:
+        probe = probe_points(t, at_length, length_at).ravel()
+        err = np.linalg.norm(_values(curve, probe) - fn(probe), axis=1)
+        new, worst = refine(probe.reshape(-1, len(PROBES)), err.reshape(-1, len(PROBES)), tol)
+        if not len(new):
+            return curve, worst
+        if len(t) + len(new) > 4000:
             raise ExportError(
-                f"{what} misses the tolerance {tol:.3g} (by {float(np.max(err)):.3g}) "
-                f"with {len(t)} points"
+                f"{what} misses the tolerance {tol:.3g} (by {worst:.3g}) with {len(t)} points"
             )
-        t = np.sort(np.concatenate([t, mid[bad]]))
+        t = np.sort(np.concatenate([t, new]))
 
 
 class _Vertices:

@@ -279,6 +279,9 @@ _ANGLE = st.floats(1e-6, 90.0 - 1e-6)
     hole=0.0,
 )
 @example(alpha=5.0, beta=89.9, frac=0.9, sides=[300.0, 50.0, 300.0, 50.0], hole=0.0)  # issue 11
+# the hole's curve on a face across the rational arc's C1 knot was 1.2e-4 off between the
+# fit's nodes while right at their midpoints (checked at the quarters since)
+@example(alpha=45.5, beta=89.0, frac=0.5625, sides=[50.0, 50.0, 50.0, 109.0], hole=10.0)
 def test_shell_of_random_designs_is_valid_and_develops_onto_the_sheet(
     alpha, beta, frac, sides, hole
 ):
