@@ -156,6 +156,10 @@ def _distance_to_boundary(p: np.ndarray, poly: np.ndarray) -> float:
 
 @SETTINGS
 @given(frame=frames(), sheet=sheets)
+@example(  # a side within 2e-6 deg of flat: 150 ruling ends on one plane (was O(k^4))
+    frame=FrameCurve(81.60226013002016, 89.99999821608623, -13.1430529826616, 100.0, 157),
+    sheet=Sheet.quadrilateral(24.435404656484586, 514.2228608084539, 361.19105109521, 322.408),
+)
 def test_paper_model_rests_on_ruling_ends(frame: FrameCurve, sheet: Sheet) -> None:
     # the paper fan is straight between its ruling ends: they and the apex are its corners
     folded = _fold(frame.with_changes(divisions=24), sheet, "paper")
