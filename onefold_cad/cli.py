@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 from onefold_cad import __version__
 from onefold_cad.errors import InvalidParameterError, OneFoldError
-from onefold_cad.export.writers import COMPENSATIONS, WRITERS, files_help
+from onefold_cad.export.writers import COMPENSATIONS, PLACEMENTS, WRITERS, files_help
 from onefold_cad.flags import (
     BODIES,
     DESIGN_FLAGS,
@@ -173,7 +173,14 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     out.add_argument(
         "--compensation", type=parse_choice(COMPENSATIONS), default=COMPENSATIONS[0],
         metavar="sharp|none", help="flat pattern: bend compensation of the sharp-crease "
-        "model (default), or none (the designed sheet uncompensated, said in the notes)",
+        "model (default), or none (the designed sheet uncompensated, said in the notes); "
+        "a STEP solid past the bend model's limits is written only with none",
+    )  # fmt: skip
+    out.add_argument(
+        "--placement", type=parse_choice(PLACEMENTS), default=PLACEMENTS[0],
+        metavar="rest|frame", help="where the STEP, GLB and 3D preview put the form: 'rest' "
+        "(default: standing on the ground z = 0 as the report's resting numbers say) or "
+        "'frame' (the fold frame: H at the origin, the fold line on x, the apex above H)",
     )  # fmt: skip
     out.add_argument(
         "-j", "--jobs", type=parse_int, default=1, metavar="N",
@@ -357,6 +364,7 @@ class _Task:
     folder: str
     quiet: bool
     warnings: tuple[str, ...] = ()
+    placement: str = PLACEMENTS[0]
 
 
 def _write_task(task: _Task) -> list[Path]:
@@ -368,7 +376,13 @@ def _write_task(task: _Task) -> list[Path]:
     progress = Progress(task.quiet)
     t0 = time.perf_counter()
     ctx = BuildContext(
-        d, build_design(d), task.body, task.compensation, task.job.sources, task.warnings
+        d,
+        build_design(d),
+        task.body,
+        task.compensation,
+        task.job.sources,
+        task.warnings,
+        placement=task.placement,
     )
 
     def stage(label: str, seconds: float) -> None:
@@ -457,7 +471,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
         for text in _material_text(d, folded, job):
             progress.line(i, n, d.name, text)
         progress.line(i, n, d.name, f"solve {time.perf_counter() - t0:.2f} s")
-        ctx = BuildContext(d, folded, body, ns.compensation, job.sources)
+        ctx = BuildContext(d, folded, body, ns.compensation, job.sources, placement=ns.placement)
         t0 = time.perf_counter()
         try:
             check_before_writing(ctx, formats)
@@ -492,7 +506,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
             _STATE["staging"] = staging
             tasks = [
                 _Task(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
-                      ns.quiet, found[i - 1])
+                      ns.quiet, found[i - 1], ns.placement)
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
             files = _write_all(tasks, ns.jobs)

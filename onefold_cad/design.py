@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from onefold_cad.errors import FabricationError, InvalidParameterError, OneFoldError
+from onefold_cad.geometry.bend import Compensation, bend_error, check_bends
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.params import FrameCurve, Model, check_design_divisions
@@ -40,6 +41,7 @@ __all__ = [
     "relief_hole_problem",
     "resting_placement",
     "sheet_inradius",
+    "solid_bend_problem",
     "solid_min_relief_hole",
 ]
 
@@ -311,6 +313,25 @@ def relief_hole_problem(
         f"= {hole:g} {u} must be < {limit}; set a relief_hole, or a smaller thickness or "
         "bend_radius",
     )
+
+
+def solid_bend_problem(
+    design: Design, folded: FoldedSheet, compensation: Compensation | str = Compensation.SHARP
+) -> FabricationError | None:
+    """The one check of a STEP solid against the bend model's limits
+    (:func:`~onefold_cad.geometry.bend.check_bends`): the refusal every
+    writer of the solid (STEP, GLB, the explorer's STEP download) gives, or
+    None. Past those limits the solid does not stand for the bent part; with
+    ``compensation`` 'none' the user asked for the design as it is, and the
+    blank's width limit is never the solid's (the solid is the designed part,
+    with no blank in it).
+
+    Raises:
+        InvalidParameterError: an unknown ``compensation``.
+    """
+    if Compensation.parse(compensation) is Compensation.NONE:
+        return None
+    return bend_error(tuple(q for q in check_bends(design, folded) if q.kind != "width"))
 
 
 def fabrication_warnings(design: Design, folded: FoldedSheet | None = None) -> list[str]:

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.design import Design, relief_hole_diameter
+from onefold_cad.design import Design, default_body, relief_hole_diameter
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.params import FrameCurve, Model
@@ -105,12 +105,10 @@ class OutOfReachError(InvalidParameterError):
 
 
 def _body_of(design: Design, folded: FoldedSheet) -> tuple[str, object]:
-    """The body the STEP holds and the material it is built with (the rule
-    of :func:`onefold_cad.export.step.default_body`)."""
+    """The body the STEP holds (:func:`onefold_cad.design.default_body`) and
+    the material it is built with."""
     m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
-    exact = design.model is Model.EXACT
-    solid = exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0
-    return ("solid" if solid else "shell"), m
+    return default_body(design), m
 
 
 def _frame(base: FrameCurve, x: np.ndarray, divisions: int | None = None) -> FrameCurve:

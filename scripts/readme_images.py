@@ -21,6 +21,7 @@ import textwrap
 from pathlib import Path
 
 from onefold_cad import build_design
+from onefold_cad.design import resting_placement
 from onefold_cad.export.dxf import draw_flat_pattern
 from onefold_cad.export.dxf_preview import render_preview
 from onefold_cad.export.flat_pattern import flat_pattern
@@ -84,9 +85,10 @@ def main() -> None:
     design = load_template(DEFAULT_TEMPLATE)
     folded = build_design(design)
     IMAGES.mkdir(parents=True, exist_ok=True)
-    render_folded_preview(
+    render_folded_preview(  # as `onefold build` draws it: the STEP's body as it rests
         folded,
         IMAGES / "readme-folded.png",
+        placement=resting_placement(design, folded),
         title=f"{design.name} (folded, resting on the ground)",
         units=design.units.value,
         size_px=(WIDTH_PX, 760),

@@ -381,8 +381,8 @@ def test_a_non_finite_report_is_an_error_naming_the_key(monkeypatch, capfd):
 
     real = report.resting_numbers
 
-    def broken(design, folded):
-        return {**real(design, folded), "height": float("nan")}
+    def broken(design, folded, body=None):
+        return {**real(design, folded, body), "height": float("nan")}
 
     monkeypatch.setattr(report, "resting_numbers", broken)
     for extra in ([], ["--json"]):
@@ -429,6 +429,34 @@ def test_every_template_builds_in_parallel_with_progress(tmp_path):
         rep = json.loads((tmp_path / f"{n}.json").read_text())
         assert rep["angle_condition_error_deg"] <= 1e-9
         assert rep["warnings"] == []
+
+
+def test_placement_frame_writes_the_part_in_the_fold_frame_and_rest_stands_it(tmp_path, cli):
+    """--placement frame: the STEP holds the folded sheet's corners where the fold puts
+    them (apex above H), the report says which part it wrote; by default the same part
+    stands on the ground (its lowest point at z = 0, no corner where the fold puts it)."""
+    import build123d as bd
+    import numpy as np
+
+    design = load_template("star-polygon")  # zero thickness: the shell, no relief hole
+    corners = build_design(design).map_points(design.sheet.vertices)
+    size = design.sheet.size
+    gaps = {}
+    for placement in ("frame", "rest"):
+        out = tmp_path / placement
+        rc, _, err = cli("build", "star-polygon", "--formats", "step,glb,png,json",
+                         "--placement", placement, "-o", str(out), "-q")  # fmt: skip
+        assert rc == 0, err
+        shape = bd.import_step(out / "star-polygon.step")
+        verts = np.array([tuple(v) for v in shape.vertices()])
+        gaps[placement] = np.linalg.norm(corners[:, None] - verts[None], axis=2).min(axis=1)
+        rep = json.loads((out / "star-polygon.json").read_text())
+        assert rep["step"]["placement"] == placement and rep["step"]["body"] == "shell"
+        low = shape.bounding_box(optimal=True).min.Z
+        if placement == "rest":
+            assert abs(low) <= 1e-6 * size
+    assert gaps["frame"].max() <= 1e-9 * size
+    assert gaps["rest"].min() > 1e-3 * size
 
 
 def test_formats_choose_the_files_and_quiet_prints_nothing(tmp_path):
@@ -530,6 +558,7 @@ SQUARE_150 = ("--alpha 45 --beta 85 --rectangle 150x150 --thickness 10 --bend-ra
 # Only build writes the blank and the solid, which refuse what the geometry allows.
 BUILD_ONLY = [
     (["--body", "mesh"], "body", "auto, solid, shell"),
+    (["--placement", "floor"], "--placement", "rest, frame"),
     (["--formats", "step,pdf"], "--formats", "unknown format 'pdf' (allowed: step, dxf"),
     (["--jobs", "0"], "--jobs", ">= 1"),
     (["--relief-hole", "1e6"], "relief_hole", "must be <"),

@@ -30,10 +30,7 @@ from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeEdge,
     BRepBuilderAPI_MakeFace,
-    BRepBuilderAPI_MakePolygon,
     BRepBuilderAPI_MakeVertex,
-    BRepBuilderAPI_MakeWire,
-    BRepBuilderAPI_Sewing,
 )
 from OCP.BRepLib import BRepLib
 from OCP.collections import (
@@ -47,22 +44,46 @@ from OCP.collections import (
 )
 from OCP.Convert import Convert_ParameterisationType
 from OCP.GC import GC_MakeArcOfCircle
-from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Circle, Geom_TrimmedCurve
+from OCP.Geom import (
+    Geom_BSplineCurve,
+    Geom_BSplineSurface,
+    Geom_Circle,
+    Geom_Line,
+    Geom_TrimmedCurve,
+)
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
 from OCP.Geom2dAPI import Geom2dAPI_Interpolate
 from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.GeomConvert import GeomConvert
-from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec
-from OCP.ShapeFix import ShapeFix_Shape
-from OCP.TopAbs import TopAbs_REVERSED
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Vertex
+from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopExp import TopExp
+from OCP.TopoDS import (
+    TopoDS,
+    TopoDS_Edge,
+    TopoDS_Face,
+    TopoDS_Shell,
+    TopoDS_Vertex,
+    TopoDS_Wire,
+)
 
 from onefold_cad.errors import ExportError
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 
-__all__ = ["ConePatch", "cone_patch", "ruled_faces", "fan_faces", "sew", "interpolate"]
+__all__ = [
+    "ConePatch",
+    "cone_patch",
+    "ruled_shell",
+    "fan_shell",
+    "interpolate",
+    "arc_length_nodes",
+    "probe_points",
+    "DENSE",
+    "MAX_NODES",
+    "PROBES",
+]
 
 Convert_RationalC1 = Convert_ParameterisationType.Convert_RationalC1
 Array = NDArray[np.float64]
@@ -198,27 +219,108 @@ def interpolate(points: Array, params: Array, what: str) -> Geom_BSplineCurve | 
     return interp.Curve()
 
 
+#: Relative parameters of the dense sample that places a curve's nodes:
+#: uniform, and graded towards both ends.
+DENSE = np.unique(
+    np.concatenate(
+        [np.linspace(0.0, 1.0, 257), np.geomspace(1e-9, 0.1, 64), 1.0 - np.geomspace(1e-9, 0.1, 64)]
+    )
+)
+#: The most nodes a fitted curve may have.
+MAX_NODES = 4000
+
+
+#: Where a fitted curve is checked between two neighbouring nodes, as fractions
+#: of the interval's length: at its quarters, not only its middle (a curve
+#: whose parameterisation has a kink, as the rational arc's C1 knots give the
+#: cone's pcurves, can meet the tolerance at an interval's middle and miss it
+#: beside it).
+PROBES = np.array([0.25, 0.5, 0.75])
+
+
+def probe_points(t: Array, at_length, length_at) -> Array:
+    """``(len(t) - 1, len(PROBES))`` parameters inside each interval of the
+    nodes ``t`` at the :data:`PROBES` fractions of its length (of its
+    parameter range where the length cannot place them inside)."""
+    lo, hi = length_at(t[:-1]), length_at(t[1:])
+    probe = at_length(lo[:, None] + (hi - lo)[:, None] * PROBES)
+    even = t[:-1, None] + (t[1:] - t[:-1])[:, None] * PROBES
+    inside = (probe > t[:-1, None]) & (probe < t[1:, None])
+    return np.where(inside, probe, even)
+
+
+def refine(probe: Array, err: Array, tol: float) -> tuple[Array, float]:
+    """The nodes to add (the worst probe of each interval that misses ``tol``)
+    and the largest deviation, from ``err`` at ``probe`` (both ``(n, p)``)."""
+    worst = np.argmax(err, axis=1)
+    rows = np.arange(len(err))
+    bad = err[rows, worst] > tol
+    return probe[rows[bad], worst[bad]], float(np.max(err))
+
+
+def arc_length_nodes(points: Array, params: Array, count: int) -> tuple[Array, object, object]:
+    """``count`` parameters evenly spread along the polyline ``points`` ``(k, 3)``
+    sampled at ``params`` ``(k,)``, and the maps length -> parameter and
+    parameter -> length."""
+    cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    length = float(cum[-1])
+
+    def at_length(x: Array) -> Array:
+        return np.interp(x, cum, params)
+
+    def length_at(t: Array) -> Array:
+        return np.interp(t, params, cum)
+
+    t = (
+        at_length(np.linspace(0.0, length, count))
+        if length > 0.0
+        else np.linspace(params[0], params[-1], count)
+    )
+    t[0], t[-1] = params[0], params[-1]
+    return t, at_length, length_at
+
+
 def _fit_pcurve(
     patch: ConePatch, u0: float, u1: float, radius_at, tol: float
-) -> tuple[object, float]:
+) -> tuple[Geom2d_BSplineCurve, float]:
     """A pcurve through the points at distance ``radius_at(phi)`` from A, for
-    u in [u0, u1], refined until its deviation along the rulings is below
-    ``tol`` (length). Returns ``(Geom2d curve, deviation reached)``."""
-    n = 9
+    u in [u0, u1]: interpolated at nodes spread evenly along the curve and at
+    the surface's knots inside [u0, u1] (where the rational arc's
+    parameterisation is only C1), an interval split at its worst
+    :data:`PROBES` point while the deviation there, measured along the
+    ruling, exceeds ``tol`` (length), up to :data:`MAX_NODES` nodes. Returns
+    ``(Geom2d curve, deviation reached)`` (the caller decides whether that is
+    good enough)."""
+    dense = u0 + (u1 - u0) * DENSE
+    dense[-1] = u1
+    phi = patch.phi_of_u(dense)
+    ray = patch.arc(phi) - patch.apex
+    ray /= np.linalg.norm(ray, axis=1)[:, None]
+    t, at_length, length_at = arc_length_nodes(
+        patch.apex + radius_at(phi)[:, None] * ray, dense, 17
+    )
+    surf = patch.surface
+    knots = np.array([surf.UKnot(i) for i in range(2, surf.NbUKnots())])
+    knots = knots[(knots > u0) & (knots < u1)]
+    if len(knots):
+        span = float(length_at(np.array([u1]))[0])
+        gap = np.min(np.abs(length_at(t)[:, None] - length_at(knots)[None, :]), axis=1)
+        keep = (gap > 1e-3 * span / 16.0) | (t == u0) | (t == u1)
+        t = np.unique(np.concatenate([t[keep], knots]))
     while True:
-        us = np.linspace(u0, u1, n)
-        phi = patch.phi_of_u(us)
-        uv = np.stack([us, patch.v_of(phi, radius_at(phi))], axis=1)
-        curve = interpolate(uv, us, "a boundary curve on the cone")
-        # deviation at the midpoints between the interpolation nodes
-        um = 0.5 * (us[:-1] + us[1:])
-        got = np.array([[curve.Value(float(t)).X(), curve.Value(float(t)).Y()] for t in um])
+        ph = patch.phi_of_u(t)
+        uv = np.stack([t, patch.v_of(ph, radius_at(ph))], axis=1)
+        curve = interpolate(uv, t, "a boundary curve on the cone")
+        probe = probe_points(t, at_length, length_at)
+        flat = probe.ravel()
+        got = np.array([[curve.Value(float(x)).X(), curve.Value(float(x)).Y()] for x in flat])
         pm = patch.phi_of_u(got[:, 0])
         dist = patch.scale * np.linalg.norm(patch.arc(pm) - patch.apex, axis=1)
-        err = float(np.max(np.abs(got[:, 1] - patch.v_of(pm, radius_at(pm))) * dist))
-        if err <= tol or n > 2000:
-            return curve, err
-        n = 2 * n - 1
+        err = np.abs(got[:, 1] - patch.v_of(pm, radius_at(pm))) * dist
+        new, worst = refine(probe, err.reshape(probe.shape), tol)
+        if not len(new) or len(t) + len(new) > MAX_NODES:
+            return curve, worst
+        t = np.sort(np.concatenate([t, new]))
 
 
 def _edge_line(edge_p0: Array, edge_p1: Array, psi: Array) -> Array:
@@ -236,10 +338,12 @@ def _outer_radius(
     return _edge_line(pa, pb, sgn * th)
 
 
-def ruled_faces(
-    folded: FoldedSheet, hole_radius: float, tol: float
-) -> tuple[list[TopoDS_Face], float]:
-    """The exact-cone faces, one per sheet edge per side (top normals outward).
+def ruled_shell(folded: FoldedSheet, hole_radius: float, tol: float) -> tuple[TopoDS_Shell, float]:
+    """The exact-cone faces, one per sheet edge per side, as one shell (top
+    normals outward), built with shared topology: each ruling between two
+    faces is one straight edge (the crease rulings shared by both sides),
+    all faces meet at one apex vertex when there is no hole, so no sewing
+    is needed.
 
     Args:
         folded: an exact-model fold.
@@ -247,91 +351,122 @@ def ruled_faces(
         tol: allowed deviation of the boundary curves along the cone (length).
 
     Returns:
-        ``(faces, deviation)``: the faces and the largest boundary deviation reached.
+        ``(shell, deviation)``: the shell and the largest deviation its
+        boundary curves reached (compare it with ``tol``: a curve that needs
+        more than :data:`MAX_NODES` nodes stops short of it).
     """
     cone = folded.solution.surface
     if not isinstance(cone, ExactCone):
         raise ExportError("ruled faces need the exact model's cone")
-    sheet = folded.sheet
-    faces: list[TopoDS_Face] = []
+    sheet, apex = folded.sheet, folded.apex
+    b = BRep_Builder()
+    shell = TopoDS_Shell()
+    b.MakeShell(shell)
+    apex_v = _vertex(apex) if hole_radius <= 0.0 else None
+    crease: dict[int, TopoDS_Edge] = {}  # ruling index (0 or last) -> edge, shared by the sides
     worst = 0.0
     for side, angles in enumerate(folded.ruling_angles):
         thetas = _sectors(angles)
         sgn = 1.0 if side == 0 else -1.0
         phis = cone.phi_of_theta(thetas)
         ends = sheet.ray_lengths(sgn * thetas)
-        for k in range(len(thetas) - 1):
+        mirror = np.array([1.0, sgn, 1.0])
+        rays = cone.directions_at(thetas) * mirror
+        last = len(thetas) - 1
+        rulings: list[TopoDS_Edge] = []
+        for k in range(len(thetas)):
+            key = 0 if k == 0 else (1 if k == last else None)
+            if key is not None and key in crease:
+                rulings.append(crease[key])
+                continue
+            r0 = hole_radius
+            v_in = apex_v if apex_v is not None else _vertex(apex + r0 * rays[k])
+            v_out = _vertex(apex + ends[k] * rays[k])
+            line = Geom_Line(_pnt(apex), gp_Dir(*map(float, rays[k])))
+            edge = BRepBuilderAPI_MakeEdge(line, v_in, v_out, float(r0), float(ends[k])).Edge()
+            rulings.append(edge)
+            if key is not None:
+                crease[key] = edge
+        for k in range(last):
             ta, tb = thetas[k], thetas[k + 1]
             pa = np.array([math.cos(ta), sgn * math.sin(ta)]) * ends[k]
             pb = np.array([math.cos(tb), sgn * math.sin(tb)]) * ends[k + 1]
             patch = cone_patch(cone, phis[k], phis[k + 1], side == 1, max(ends[k], ends[k + 1]))
-
             outer = partial(_outer_radius, cone, pa, pb, (ta, tb), sgn)
-            face, err = _patch_face(patch, outer, hole_radius, tol)
+            face, err = _patch_face(
+                patch, outer, hole_radius, tol, rulings[k], rulings[k + 1], (ends[k], ends[k + 1])
+            )
             tm = 0.5 * (ta + tb)
             top = folded.normals(np.array([[math.cos(tm), sgn * math.sin(tm)]]))[0]
             worst = max(worst, err)
-            faces.append(_orient(face, top))
-    return faces, worst
+            b.Add(shell, _orient(face, top))
+    BRepLib.SameParameter_s(shell, 1e-3 * tol, True)
+    return shell, worst
+
+
+def _vertex(p: Array) -> TopoDS_Vertex:
+    return BRepBuilderAPI_MakeVertex(_pnt(p)).Vertex()
+
+
+def _ruling_pcurve(patch: ConePatch, u: float, r0: float, r1: float) -> Geom2d_BSplineCurve:
+    """The ruling at surface parameter u as a curve on the patch whose
+    parameter is the distance from A (as on the ruling's straight edge)."""
+    phi = patch.phi_of_u(np.array([u]))
+    v0, v1 = (float(patch.v_of(phi, np.array([r]))[0]) for r in (r0, r1))
+    poles = HArray1_gp_Pnt2d(1, 2)
+    poles.SetValue(1, gp_Pnt2d(u, v0))
+    poles.SetValue(2, gp_Pnt2d(u, v1))
+    knots, mults = Array1_double(1, 2), Array1_int(1, 2)
+    knots.SetValue(1, float(r0))
+    knots.SetValue(2, float(r1))
+    mults.SetValue(1, 2)
+    mults.SetValue(2, 2)
+    return Geom2d_BSplineCurve(poles.Array1(), knots, mults, 1)
 
 
 def _patch_face(
-    patch: ConePatch, outer: Callable[[Array], Array], hole_radius: float, tol: float
+    patch: ConePatch,
+    outer: Callable[[Array], Array],
+    hole_radius: float,
+    tol: float,
+    first: TopoDS_Edge,
+    second: TopoDS_Edge,
+    ends: tuple[float, float],
 ) -> tuple[TopoDS_Face, float]:
-    """One trimmed cone face: hole arc (or the apex), ruling, outer edge, ruling."""
+    """One trimmed cone face between the ruling edges ``first`` (at u0) and
+    ``second`` (at u1), which it shares with its neighbours: hole arc (or the
+    apex), ruling, outer edge, ruling."""
+    b = BRep_Builder()
     surf = patch.surface
-    u0, m = patch.u0, patch.u1
-    c_out, err = _fit_pcurve(patch, u0, m, outer, tol)
-    phi_ends = patch.phi_of_u(np.array([u0, m]))
-    v_out = patch.v_of(phi_ends, outer(phi_ends))
+    u0, u1 = patch.u0, patch.u1
+    c_out, err = _fit_pcurve(patch, u0, u1, outer, tol)
     if hole_radius > 0.0:
-        c_in, err_in = _fit_pcurve(patch, u0, m, lambda p: np.full_like(p, hole_radius), tol)
+        c_in, err_in = _fit_pcurve(patch, u0, u1, lambda p: np.full_like(p, hole_radius), tol)
         err = max(err, err_in)
-        v_in = patch.v_of(phi_ends, np.full(2, hole_radius))
-    else:
-        v_in = np.zeros(2)
-
-    def vert(u: float, v: float) -> TopoDS_Vertex:
-        return BRepBuilderAPI_MakeVertex(surf.Value(u, v)).Vertex()
-
-    a_in, b_in = vert(u0, v_in[0]), vert(m, v_in[1])
-    a_out, b_out = vert(u0, v_out[0]), vert(m, v_out[1])
-    up = gp_Dir2d(0.0, 1.0)
-    edges = []
+    face = TopoDS_Face()
+    b.MakeFace(face, surf, 1e-7)
+    a_in, a_out = TopExp.FirstVertex_s(first), TopExp.LastVertex_s(first)
+    b_in, b_out = TopExp.FirstVertex_s(second), TopExp.LastVertex_s(second)
     if hole_radius > 0.0:
-        edges.append(BRepBuilderAPI_MakeEdge(c_in, surf, a_in, b_in, u0, m).Edge())
+        low = BRepBuilderAPI_MakeEdge(c_in, surf, a_in, b_in, u0, u1).Edge()
     else:
-        apex_v = a_in
-        b_in = apex_v
-        line = Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(1.0, 0.0))
-        deg = BRepBuilderAPI_MakeEdge(line, surf, apex_v, apex_v, u0, m).Edge()
-        BRep_Builder().Degenerated(deg, True)
-        edges.append(deg)
-    edges.append(
-        BRepBuilderAPI_MakeEdge(
-            Geom2d_Line(gp_Pnt2d(m, 0.0), up), surf, b_in, b_out, float(v_in[1]), float(v_out[1])
-        ).Edge()
-    )
-    e_out = BRepBuilderAPI_MakeEdge(c_out, surf, a_out, b_out, u0, m).Edge()
-    edges.append(TopoDS.Edge(e_out.Reversed()))
-    edges.append(
-        BRepBuilderAPI_MakeEdge(
-            Geom2d_Line(gp_Pnt2d(u0, 0.0), up), surf, a_in, a_out, float(v_in[0]), float(v_out[0])
-        )
-        .Edge()
-        .Reversed()
-    )
-    wire = BRepBuilderAPI_MakeWire()
-    for e in edges:
-        wire.Add(TopoDS.Edge(e))
-    if not wire.IsDone():
-        raise ExportError("could not close the boundary of a cone face")
-    mk = BRepBuilderAPI_MakeFace(surf, wire.Wire(), True)
-    if not mk.IsDone():
-        raise ExportError("could not make a cone face")
-    face = mk.Face()
+        low = TopoDS_Edge()
+        b.MakeEdge(low)
+        b.Degenerated(low, True)
+        b.Add(low, a_in.Oriented(TopAbs_FORWARD))
+        b.Add(low, a_in.Oriented(TopAbs_REVERSED))
+        b.UpdateEdge(low, Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(1.0, 0.0)), face, 1e-7)
+        b.Range(low, face, u0, u1)
+    high = BRepBuilderAPI_MakeEdge(c_out, surf, a_out, b_out, u0, u1).Edge()
+    for edge, u, r_out in ((first, u0, ends[0]), (second, u1, ends[1])):
+        b.UpdateEdge(edge, _ruling_pcurve(patch, u, hole_radius, r_out), face, 1e-7)
+        b.Range(edge, face, float(hole_radius), float(r_out))
+    wire = TopoDS_Wire()
+    b.MakeWire(wire)
+    for e in (low, second, high.Reversed(), first.Reversed()):
+        b.Add(wire, e)
+    b.Add(face, wire)
     BRepLib.BuildCurves3d_s(face, 1e-3 * tol, GeomAbs_C2, 8, 2000)
-    BRepLib.SameParameter_s(face, 1e-3 * tol, True)
     return face, err
 
 
@@ -360,10 +495,53 @@ def _sectors(thetas: Array) -> Array:
     return out
 
 
-def fan_faces(folded: FoldedSheet, hole_radius: float) -> list[TopoDS_Face]:
-    """The paper model's planar triangles (with an exact arc of the relief hole)."""
-    faces: list[TopoDS_Face] = []
+#: OCC's precision (Precision::Confusion): points closer are one point.
+PRECISION = 1e-7
+#: Ruling ends closer than 3 x NEAR (length) are one ruling (OCC cannot make
+#: an edge much shorter than 10 x its precision).
+NEAR = 1e-6
+
+
+def _distinct(points: Array, gap: float) -> NDArray[np.bool_]:
+    """Which of the rulings to keep so that no two kept neighbours' points
+    ``(n, 3)`` lie within ``gap`` (the first and last, on the crease, always
+    kept): a ruling closer than that to the last one kept is left out, and
+    the two triangles beside it become one."""
+    keep = np.zeros(len(points), dtype=bool)
+    keep[0] = True
+    last = 0
+    for k in range(1, len(points) - 1):
+        if np.linalg.norm(points[k] - points[last]) > gap:
+            keep[k], last = True, k
+    if len(points) > 2 and np.linalg.norm(points[-1] - points[last]) <= gap and last > 0:
+        keep[last] = False
+    keep[-1] = True
+    return keep
+
+
+def fan_shell(
+    folded: FoldedSheet, hole_radius: float, check: Callable[[], None] | None = None
+) -> TopoDS_Shell:
+    """The paper model's planar triangles (with an exact arc of the relief
+    hole) as one shell, built with shared topology: one vertex per ruling end
+    (and one apex), one edge per ruling shared by the triangles on either
+    side of it (the two crease rulings by both sides), so no sewing is
+    needed and the work grows linearly with the number of triangles. Face
+    normals are the top side's. ``check`` is called every 256 triangles (a
+    time budget that raises)."""
+    b = BRep_Builder()
     apex = folded.apex
+    tol = 1e-7
+
+    def vertex(p: Array, tolerance: float = tol) -> TopoDS_Vertex:
+        v = TopoDS_Vertex()
+        b.MakeVertex(v, _pnt(p), tolerance)
+        return v
+
+    def line(v0: TopoDS_Vertex, v1: TopoDS_Vertex) -> TopoDS_Edge:
+        return BRepBuilderAPI_MakeEdge(v0, v1).Edge()
+
+    sides = []
     for side, angles in enumerate(folded.ruling_angles):
         thetas = _sectors(angles)
         sgn = 1.0 if side == 0 else -1.0
@@ -371,39 +549,65 @@ def fan_faces(folded: FoldedSheet, hole_radius: float) -> list[TopoDS_Face]:
         rho = folded.sheet.ray_lengths(sgn * thetas)
         outer = folded.map_points(dirs * rho[:, None])
         unit = folded.map_points(dirs) - apex
-        for k in range(len(thetas) - 1):
+        keep = _distinct(outer, 3.0 * NEAR)
+        if hole_radius > 0.0:  # and the hole's points (arcs need a few x OCC's precision)
+            keep &= _distinct(apex + hole_radius * unit, 4.0 * PRECISION)
+        sides.append((outer[keep], unit[keep]))
+    # the crease rulings (first and last of each side) are shared by both sides
+    apex_v = vertex(apex) if hole_radius <= 0.0 else None
+    crease_ends = [vertex(sides[0][0][i]) for i in (0, -1)]
+    crease_inner = [
+        apex_v if apex_v is not None else vertex(apex + hole_radius * sides[0][1][i])
+        for i in (0, -1)
+    ]
+    crease_rulings = [line(crease_inner[i], crease_ends[i]) for i in (0, 1)]
+    shell = TopoDS_Shell()
+    b.MakeShell(shell)
+    for side, (outer, unit) in enumerate(sides):
+        n = len(outer)
+        ends = [crease_ends[0]] + [vertex(p) for p in outer[1:-1]] + [crease_ends[1]]
+        if apex_v is not None:
+            inner = [apex_v] * n
+        else:
+            inner = (
+                [crease_inner[0]]
+                + [vertex(apex + hole_radius * u) for u in unit[1:-1]]
+                + [crease_inner[1]]
+            )
+        rulings = (
+            [crease_rulings[0]]
+            + [line(inner[k], ends[k]) for k in range(1, n - 1)]
+            + [crease_rulings[1]]
+        )
+        for k in range(n - 1):
+            if check is not None and k % 256 == 255:
+                check()
             p, q = outer[k], outer[k + 1]
-            if hole_radius > 0.0:
+            arc_edge = apex_v is None
+            origin = apex
+            normal = np.cross(p - origin, q - origin)
+            if side == 1:
+                normal = -normal
+            edges = [rulings[k], line(ends[k], ends[k + 1]), rulings[k + 1].Reversed()]
+            if arc_edge:
                 hp, hq = apex + hole_radius * unit[k], apex + hole_radius * unit[k + 1]
                 axis = np.cross(p - apex, q - apex)
                 circle = gp_Circ(gp_Ax2(_pnt(apex), gp_Dir(*axis), gp_Dir(*unit[k])), hole_radius)
                 arc = GC_MakeArcOfCircle(circle, _pnt(hp), _pnt(hq), True).Value()
-                mw = BRepBuilderAPI_MakeWire()
-                mw.Add(BRepBuilderAPI_MakeEdge(arc).Edge())
-                for a, b in ((hq, q), (q, p), (p, hp)):
-                    mw.Add(BRepBuilderAPI_MakeEdge(_pnt(a), _pnt(b)).Edge())
-                wire = mw.Wire()
-            else:
-                wire = BRepBuilderAPI_MakePolygon(_pnt(apex), _pnt(p), _pnt(q), True).Wire()
-            mk = BRepBuilderAPI_MakeFace(wire, True)
+                edges.append(BRepBuilderAPI_MakeEdge(arc, inner[k], inner[k + 1]).Edge().Reversed())
+            if side == 1:  # the mirror image: the same loop, the other way round
+                edges = [e.Reversed() for e in reversed(edges)]
+            wire = TopoDS_Wire()
+            b.MakeWire(wire)
+            for e in edges:
+                b.Add(wire, e)
+            plane = gp_Pln(_pnt(origin), gp_Dir(*normal))
+            mk = BRepBuilderAPI_MakeFace(plane, wire, True)
             if not mk.IsDone():
                 raise ExportError("could not make a planar fan face")
-            tm = 0.5 * (thetas[k] + thetas[k + 1])
-            top = folded.normals(np.array([[math.cos(tm), sgn * math.sin(tm)]]))[0]
-            faces.append(_orient(mk.Face(), top))
-    return faces
-
-
-def sew(faces: list[TopoDS_Face], tol: float) -> TopoDS_Shape:
-    """Sew ``faces`` into one shell with sewing tolerance ``tol`` (length)."""
-    sewing = BRepBuilderAPI_Sewing(tol)
-    for f in faces:
-        sewing.Add(f)
-    sewing.Perform()
-    shape = sewing.SewedShape()
-    if sewing.NbFreeEdges() < 0 or shape.IsNull():
-        raise ExportError("sewing the faces failed")
-    fix = ShapeFix_Shape(shape)
-    fix.SetPrecision(tol * 1e-3)
-    fix.Perform()
-    return fix.Shape()
+            face = mk.Face()
+            for e in edges:
+                BRepLib.BuildPCurveForEdgeOnPlane_s(TopoDS.Edge(e), face)
+            b.Add(shell, face)
+    shell.Closed(False)
+    return shell

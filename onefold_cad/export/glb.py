@@ -1,19 +1,28 @@
 """NAME.glb: the folded form as binary glTF 2.0, for web viewers.
 
 The part is the design's STEP part (:func:`onefold_cad.export.step.build_part`:
-the solid when the design has thickness, else the sewn shell), stood on the
-ground as it rests (:attr:`FoldedSheet.resting`), tessellated and written by
-build123d's ``export_gltf`` (OCCT's RWGltf_CafWriter), which turns OCCT's
-z-up into glTF's y-up (a -90 deg turn about x in the root node) and the
-design's unit into metres, as glTF requires. So in the file the ground is
-y = 0 and the form stands on it (y >= 0).
+the solid when the design has thickness, else the shell), in the STEP's
+placement: by default standing on the ground as it rests
+(:func:`onefold_cad.design.resting_placement`, applied by
+:func:`onefold_cad.export.step.place`), or in the fold frame. ``build``
+passes the part it wrote as STEP, so the two files hold the same part in the
+same place. It is tessellated and written by build123d's ``export_gltf``
+(OCCT's RWGltf_CafWriter), which turns OCCT's z-up into glTF's y-up (a -90 deg
+turn about x in the root node) and the design's unit into metres, as glTF
+requires. So in the file the ground is y = 0 and the form stands on it
+(y >= 0).
 
 Tessellation: :data:`LINEAR_DEFLECTION` of the sheet's size and
-:data:`ANGULAR_DEFLECTION` radians. Every mesh vertex lies on the part's
+:data:`ANGULAR_DEFLECTION` radians (build123d hands the linear value to
+OCCT's mesher as relative to each edge's size, so the angular one decides;
+docs/formats.md states the known overlap on a solid's tapering faces). Every mesh vertex lies on the part's
 surface; the triangles are chords of it, each turning at most about the
-angular deflection from the surface, so the mesh's area falls short of the
-surface's by at most about ``ANGULAR_DEFLECTION ** 2 / 6`` (relative; a chord
-of half-angle a is shorter than its arc by a^2 / 6). The one material is
+angular deflection a from the surface, so the mesh's area is within about
+``ANGULAR_DEFLECTION ** 2 / 2`` of the surface's (relative): a chord of
+half-angle a is shorter than its arc by a^2 / 6, and a thin triangle tilted by
+up to a against the surface under it is larger than that surface by up to
+1 / cos(a) - 1, about a^2 / 2 (the solid's faces that taper to a point at
+the crease get such triangles; a shell's mesh falls short). The one material is
 double-sided, so a zero-thickness shell shows from both sides. The same part
 gives the same bytes.
 """
@@ -24,8 +33,6 @@ import os
 from pathlib import Path
 
 import build123d as bd
-from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
-from OCP.gp import gp_Trsf
 
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
@@ -34,7 +41,7 @@ from onefold_cad.export.step import build_part
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Units
 
-__all__ = ["ANGULAR_DEFLECTION", "LINEAR_DEFLECTION", "COLOUR", "stand_part", "write_glb"]
+__all__ = ["ANGULAR_DEFLECTION", "LINEAR_DEFLECTION", "COLOUR", "write_glb"]
 
 #: Largest distance between the mesh and the surface, relative to ``sheet.size``.
 LINEAR_DEFLECTION = 1e-4
@@ -46,25 +53,14 @@ COLOUR = (0.72, 0.74, 0.78)
 _UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
 
 
-def stand_part(part: bd.Shape, folded: FoldedSheet) -> bd.Shape:
-    """A copy of ``part`` (fold frame) moved by ``folded.resting``: standing on
-    z = 0. The motion is baked into the geometry (not left as a location),
-    because ``export_gltf`` composes its own z-up to y-up turn on the wrong
-    side of a shape's location."""
-    rest = folded.resting
-    trsf = gp_Trsf()
-    r, t = rest.rotation, rest.translation
-    trsf.SetValues(*r[0], t[0], *r[1], t[1], *r[2], t[2])
-    moved = bd.Shape.cast(BRepBuilderAPI_Transform(part.wrapped, trsf, True).Shape())
-    moved.label = part.label
-    return moved
-
-
 def write_glb(
     design: Design,
     folded: FoldedSheet,
     path: str | os.PathLike[str],
     part: bd.Shape | None = None,
+    *,
+    placement: str = "rest",
+    compensation: str = "sharp",
 ) -> Path:
     """Write the folded form, standing as it rests, as binary glTF (metres, y-up).
 
@@ -72,18 +68,29 @@ def write_glb(
         design: the design (its unit and material).
         folded: its fold.
         path: the ``.glb`` file to write (atomically).
-        part: the design's part in the fold frame if already built (e.g. for
-            the STEP), else :func:`build_part` builds it.
+        part: the design's part as the STEP holds it (:func:`build_part`,
+            already placed), written as given; None: built here with
+            ``placement`` and ``compensation`` (as :func:`build_part`).
+        placement: 'rest' (default, standing on the ground y = 0) or
+            'frame' (the fold frame), when the part is built here.
+        compensation: as :func:`build_part` ('none' builds a solid past the
+            bend model's limits), when the part is built here.
 
     Returns:
         The path written.
 
     Raises:
+        FabricationError: a solid past the bend model's limits.
         ExportError: the part could not be built or the file not written.
     """
     out = Path(path)
-    part = build_part(design, folded) if part is None else part
-    placed = stand_part(part, folded)
+    if part is None:
+        part = build_part(design, folded, placement=placement, compensation=compensation)
+    # a copy, so that the caller's part keeps its colour; the placement is in
+    # its geometry (export_gltf composes its own z-up to y-up turn on the
+    # wrong side of a shape's location)
+    placed = bd.Shape.cast(part.wrapped)
+    placed.label = part.label
     placed.color = bd.Color(*COLOUR)
     size = design.sheet.size
     with atomic_output(out) as tmp:

@@ -7,6 +7,9 @@ apex (H) as a dot; the form's outline on the ground (its shadow from above);
 the support polygon (the hull of the points that touch the ground) and the
 centre of mass with a plumb line to its ground point. Under the view: the fold
 angles and bend directions, the height and footprint, and whether it stands.
+With ``frame=True`` (``build --placement frame``, like the STEP and GLB) the
+form is drawn in the fold frame instead (apex above H), without the ground,
+support polygon and centre of mass; the caption still gives how it stands.
 
 matplotlib is imported only inside :func:`render_folded_preview` (and only
 when a preview is drawn), on the non-interactive Agg canvas, so the rest of
@@ -91,9 +94,10 @@ def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArra
     return np.concatenate([rgb, np.ones((len(rgb), 1))], axis=1)
 
 
-def _caption(folded: FoldedSheet, rest: RestingPlacement, units: str) -> str:
+def _caption(folded: FoldedSheet, rest: RestingPlacement, units: str, frame: bool = False) -> str:
     """The lines written under the view: fold angles, size, stability, read
-    from the placement (the report's ``resting`` section says the same)."""
+    from the placement (the report's ``resting`` section says the same); with
+    ``frame``, that the view is the fold frame."""
     u = f" {units}" if units else ""
     folds = ", ".join(
         f"{c.name.replace('_', ' ')} {c.fold_angle_deg:.1f}\N{DEGREE SIGN} {c.bend}"
@@ -105,9 +109,11 @@ def _caption(folded: FoldedSheet, rest: RestingPlacement, units: str) -> str:
         if rest.stable
         else "does NOT stand stably (no tipping margin)"
     )
+    where = "shown in the fold frame (apex above H); standing, " if frame else ""
     return (
         f"fold angles: {folds} (UP: the top faces end inside)\n"
-        f"height {rest.height:.4g}{u}, footprint {rest.width:.4g} x {rest.depth:.4g}{u} (x by y)\n"
+        f"{where}height {rest.height:.4g}{u}, footprint {rest.width:.4g} x {rest.depth:.4g}{u} "
+        "(x by y)\n"
         f"the {rest.body} {stands}; tilted {rest.tilt_deg:.1f}\N{DEGREE SIGN} from the fold frame"
     )
 
@@ -117,6 +123,7 @@ def render_folded_preview(
     path: str | os.PathLike[str],
     *,
     placement: RestingPlacement | None = None,
+    frame: bool = False,
     title: str = "",
     units: str = "",
     size_px: tuple[int, int] = (900, 700),
@@ -134,6 +141,9 @@ def render_folded_preview(
         placement: how the form stands (default ``folded.resting``;
             ``build`` passes :func:`onefold_cad.design.resting_placement`,
             the placement of the STEP's body).
+        frame: draw the form in the fold frame (apex above H) instead of
+            standing, without ground, support polygon and centre of mass;
+            the caption still says how it stands (``placement``).
         title: a caption (e.g. the design name).
         units: the length unit for the axis labels and the caption.
         size_px: image width and height in pixels.
@@ -154,11 +164,13 @@ def render_folded_preview(
 
     out = Path(path)
     rest = folded.resting if placement is None else placement
-    verts, faces = resting_mesh(folded, angular=_ANGULAR, radial=_RADIAL, placement=rest)
+    move = (lambda p: np.asarray(p, dtype=float)) if frame else rest.apply
+    verts, faces = folded.mesh(angular=_ANGULAR, radial=_RADIAL)
+    verts = move(verts)
     tri = verts[faces]
     e, a = np.radians(elev), np.radians(azim)
     view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
-    apex = rest.apply(folded.apex[None, :])[0]
+    apex = move(folded.apex[None, :])[0]
     support, centre = support_and_centre(rest)
 
     dpi = 100
@@ -168,23 +180,25 @@ def render_folded_preview(
     # and labels stay visible where the surface would hide them
     bottom = 60.0 / size_px[1]  # room for the three caption lines
     ax = fig.add_axes((0.0, bottom, 0.8, 0.99 - bottom), projection="3d", computed_zorder=False)
-    edge = rest.apply(folded.boundary_3d)
+    edge = move(folded.boundary_3d)
     edge = np.vstack([edge, edge[:1]])
-    ax.plot(edge[:, 0], edge[:, 1], np.zeros(len(edge)), color=_GROUND, lw=0.9, zorder=1)
-    if len(support) >= 3:
-        poly = Poly3DCollection([support], facecolors=_SUPPORT, alpha=0.35, zorder=2)
-        poly.set_edgecolor(_SUPPORT)
-        ax.add_collection3d(poly)
-    else:
-        ax.plot(*support.T, color=_SUPPORT, linewidth=1.5, zorder=2)
-    ax.plot(*np.stack([centre, centre * [1.0, 1.0, 0.0]]).T, color=_COM, lw=1.0, ls=":", zorder=2)
+    if not frame:
+        ax.plot(edge[:, 0], edge[:, 1], np.zeros(len(edge)), color=_GROUND, lw=0.9, zorder=1)
+        if len(support) >= 3:
+            poly = Poly3DCollection([support], facecolors=_SUPPORT, alpha=0.35, zorder=2)
+            poly.set_edgecolor(_SUPPORT)
+            ax.add_collection3d(poly)
+        else:
+            ax.plot(*support.T, color=_SUPPORT, linewidth=1.5, zorder=2)
+        com_line = np.stack([centre, centre * [1.0, 1.0, 0.0]]).T
+        ax.plot(*com_line, color=_COM, lw=1.0, ls=":", zorder=2)
     surface = Poly3DCollection(
         tri, facecolors=_face_colours(tri, view), edgecolors="none", antialiased=False
     )
     surface.set_zorder(3)
     ax.add_collection3d(surface)
     ax.plot(edge[:, 0], edge[:, 1], edge[:, 2], color="#333333", linewidth=0.7, zorder=4)
-    crease = rest.apply(np.array([[folded.apex, c.end_3d] for c in folded.crease]).reshape(-1, 3))
+    crease = move(np.array([[folded.apex, c.end_3d] for c in folded.crease]).reshape(-1, 3))
     crease = crease.reshape(-1, 2, 3)
     ax.add_collection3d(Line3DCollection(crease, colors=_CREASE, linewidths=1.8, zorder=4))
     for (p, q), half in zip(crease, folded.crease, strict=True):
@@ -197,14 +211,15 @@ def render_folded_preview(
             zorder=5,
             bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.75},
         )
-    ax.scatter(*centre, color=_COM, s=30, depthshade=False, zorder=6)
+    if not frame:
+        ax.scatter(*centre, color=_COM, s=30, depthshade=False, zorder=6)
     ax.scatter(*apex, color=_APEX, s=30, depthshade=False, zorder=6)
 
     lo, hi = verts.min(axis=0), verts.max(axis=0)
     span = np.maximum(hi - lo, 1e-9 * float(np.max(hi - lo)))
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
-    ax.set_zlim(0.0, hi[2])
+    ax.set_zlim(lo[2] if frame else 0.0, hi[2])
     ax.set_box_aspect(tuple(span), zoom=0.95)
     ax.view_init(elev=elev, azim=azim)
     unit = f" ({units})" if units else ""
@@ -221,12 +236,15 @@ def render_folded_preview(
         Patch(color=_BOTTOM, label="bottom face"),
         Line2D([], [], color=_CREASE, lw=1.8, label="crease, fold angle"),
         Line2D([], [], color=_APEX, marker="o", ls="", label="apex (H)"),
-        Line2D([], [], color=_GROUND, lw=0.9, label="outline on the ground"),
-        Patch(facecolor=_SUPPORT, alpha=0.5, edgecolor=_SUPPORT, label="support polygon"),
-        Line2D([], [], color=_COM, marker="o", ls=":", label="centre of mass"),
     ]
+    if not frame:
+        handles += [
+            Line2D([], [], color=_GROUND, lw=0.9, label="outline on the ground"),
+            Patch(facecolor=_SUPPORT, alpha=0.5, edgecolor=_SUPPORT, label="support polygon"),
+            Line2D([], [], color=_COM, marker="o", ls=":", label="centre of mass"),
+        ]
     fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
-    fig.text(0.015, 0.015, _caption(folded, rest, units), fontsize=8.5, va="bottom")
+    fig.text(0.015, 0.015, _caption(folded, rest, units, frame), fontsize=8.5, va="bottom")
 
     try:
         out.parent.mkdir(parents=True, exist_ok=True)

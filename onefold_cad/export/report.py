@@ -28,6 +28,7 @@ from onefold_cad.design import (
     fabrication_warnings,
     relief_hole_diameter,
     resting_placement,
+    solid_bend_problem,
     solid_min_relief_hole,
 )
 from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
@@ -67,15 +68,16 @@ def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def resting_numbers(design: Design, folded: FoldedSheet) -> dict[str, Any]:
-    """The report's ``resting`` section: how the body the STEP holds stands on
-    the ground (:func:`~onefold_cad.design.resting_placement`): its exact
+def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None) -> dict[str, Any]:
+    """The report's ``resting`` section: how the body the STEP holds (``body``,
+    default :func:`~onefold_cad.design.default_body`) stands on the ground
+    (:func:`~onefold_cad.design.resting_placement`): its exact
     bounding box, height, footprint (width along the resting frame's x axis,
     the fold line's direction, depth across it, and the area of its shadow),
     ``span`` (the footprint's width: what ``onefold fit --span`` aims at),
     apex, tilt, centre of mass, contacts, support polygon, tipping margin and
     edge, and the stability warnings. The 3D preview's caption reads it too."""
-    data = resting_placement(design, folded).to_data(folded.apex)
+    data = resting_placement(design, folded, body).to_data(folded.apex)
     data["span"] = data["footprint"]["width"]
     return data
 
@@ -173,9 +175,9 @@ def design_warnings(
             "designed outline; its notes say so) and the STEP as designed"
         )
     elif error is not None:
-        solid = any(q.kind != "width" for q in problems)  # the solid is the designed part
+        solid = solid_bend_problem(design, folded) is not None  # the writers' own check
         refused = "the DXF, cut DXF, bend sheet and flat preview" + (
-            " and a STEP solid" if solid else ""
+            " and a STEP solid and its GLB" if solid else ""
         )
         bends.append(
             f"{error}; build refuses {refused} (--compensation none writes the uncompensated blank)"
@@ -197,6 +199,8 @@ def design_report(
     timings: Mapping[str, float] | None = None,
     warnings: Iterable[str] = (),
     compensation: Compensation | str = Compensation.SHARP,
+    body: str | None = None,
+    step: Mapping[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Everything a fabricator or a test needs to know about one fold.
 
@@ -217,6 +221,12 @@ def design_report(
         compensation: the flat pattern's ('sharp' or 'none', as ``build
             --compensation``); past the bend model's limits a 'sharp' report
             gives the uncompensated pattern's numbers, with the warning.
+        body: the STEP's body ('solid', 'shell'; None: the default), which
+            the ``resting`` section places.
+        step: what the STEP writer built, when it did (``build``): ``body``,
+            ``placement`` and the part's ``fit_deviation`` and
+            ``fit_tolerance`` (length); the report itself never runs the CAD
+            kernel.
 
     Returns:
         A JSON-serialisable dict: ``inputs`` (the design as template data),
@@ -240,8 +250,8 @@ def design_report(
         vertices), ``surface_area`` (measured on the folded surface),
         ``mass`` (``{value, unit, density}`` or null), ``resting`` (the form
         standing on the ground: bounding box, height, span, footprint),
-        ``developability`` (measured errors), ``warnings``, ``timings_s``
-        and ``files``.
+        ``developability`` (measured errors), ``step`` (as given, or null),
+        ``warnings``, ``timings_s`` and ``files``.
     """
     sol, sheet, m = folded.solution, folded.sheet, folded.metrics
     comp = Compensation.parse(compensation)
@@ -289,7 +299,7 @@ def design_report(
             "vertices": _floats(sheet.vertices),
         },
         "surface_area": float(m.area_3d),
-        "resting": resting_numbers(design, folded),
+        "resting": resting_numbers(design, folded, body),
         "developability": {
             "max_ruling_length_error": float(m.max_ruling_length_error),
             "max_boundary_segment_error": float(m.max_boundary_segment_error),
@@ -300,6 +310,7 @@ def design_report(
             "area_3d": float(m.area_3d),
             "area_rel_error": float(m.area_rel_error),
         },
+        "step": None if step is None else dict(step),
         "warnings": list(dict.fromkeys(notes)),  # in order, each once
         "timings_s": stage_times,
         "files": [Path(f).name for f in files],

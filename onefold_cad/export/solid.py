@@ -1,317 +1,500 @@
-"""The sheet as a solid of thickness t (exact model), for the STEP adapter.
+"""The sheet as a solid of thickness t (exact model), built face by face.
 
-Each side of the fold is the slab between the offsets ``s = s0`` and
-``s = s1`` of the exact cone (:class:`onefold_cad.geometry.thick_sheet.SideMap`:
-``F(theta, r, s) = A + r u(theta) + s n(theta)``; ``sheet_surface`` INSIDE
-s in [-t, 0], OUTSIDE [0, t], MID [-t/2, t/2]). F is a straight line in r
-for fixed theta and s, and in s for fixed theta and r, so the slab, cut into
-sectors at the polygon's vertex directions, is bounded by ruled faces only:
+The boundary comes from :class:`onefold_cad.geometry.thick_sheet.Slab`: each
+side is ``F(theta, r, s) = A + r u(theta) + s n(theta)`` over the sheet (r
+from the relief hole to the cut edge, s over the thickness), continued past
+each crease half by a flat mitre block, and kept on the inner side of its
+cutting planes (the fold's plane of symmetry y = 0; past each crease half
+also the mitre plane that keeps the two halves' blocks apart); the -y side
+is the mirror image of the same construction on the mirrored sheet. Every
+face is ruled (F and the planes are linear in r and in s), so each is built
+as the ruled surface between two B-spline curves parameterised by theta
+(:class:`~onefold_cad.geometry.thick_sheet.Patch`): its rulings join points
+of equal theta exactly, and the curves carry the interpolation error
+(refined until their deviation is below a tolerance). The sheet's faces past
+a crease half are planar and each becomes one planar face. The outlines
+left open on the cutting planes (where the two sides' sections of y = 0
+differ because the sheet's edges at a crease end are not symmetric about
+it, and where the mitre planes cut the blocks) are closed by planar faces
+on those planes.
 
-* the two sheet faces, ruled between the relief hole's offset curve and the
-  sheet edge's offset curve;
-* the relief-hole wall and the cut edge's wall, ruled between the two faces'
-  curves (perpendicular to the sheet, as a laser or plasma cut leaves them).
-
-Those curves are B-splines interpolated through points of F with theta as
-their parameter, refined until their deviation at the midpoints is below a
-tolerance, so each ruling of a face joins the two curves' points of the same
-theta: the rulings are exact, the curves carry the interpolation error.
-
-The crease is mitred: past each crease half the slab continues as a flat
-block in the crease ruling's tangent plane (C1 with the cone), deep enough
-(:func:`~onefold_cad.geometry.thick_sheet.mitre_depth`) that cutting at the
-fold's plane of symmetry y = 0 leaves the whole mitre; the -y side is the
-mirror image of a slab built for the mirrored sheet. The volume is area x t
-for MID (the mid-surface of a developable slab) up to the mitre, and within
-about t / (2 x the surface's bend radius) otherwise.
+No boolean operation is involved: the faces are sewn once (curves that two
+faces share are the same B-spline, interpolating every point where another
+face ends on them, so a tolerance of 1e-9 of the sheet's size suffices) and
+made into a solid.
 
 Lengths are in the design unit; angles in radians.
 """
 
 from __future__ import annotations
 
-import copy
-import math
+import time
+from collections import defaultdict
 
 import build123d as bd
 import numpy as np
 from numpy.typing import NDArray
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import (
-    BRepBuilderAPI_MakeEdge,
     BRepBuilderAPI_MakeFace,
-    BRepBuilderAPI_MakePolygon,
     BRepBuilderAPI_MakeSolid,
     BRepBuilderAPI_MakeWire,
     BRepBuilderAPI_Sewing,
 )
-from OCP.BRepFill import BRepFill
-from OCP.GC import GC_MakeArcOfCircle
-from OCP.Geom import Geom_BSplineCurve
-from OCP.gp import gp_Pnt
+from OCP.BRepLib import BRepLib
+from OCP.collections import HSequence_TopoDS_Shape as TopTools_HSequenceOfShape
+from OCP.Geom import Geom_BSplineCurve, Geom_Line
+from OCP.Geom2d import Geom2d_Line
+from OCP.GeomFill import GeomFill_Generator
+from OCP.gp import gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
+from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds, ShapeAnalysis_ShapeTolerance
 from OCP.ShapeFix import ShapeFix_Solid
-from OCP.TopAbs import TopAbs_SHELL
-from OCP.TopoDS import TopoDS, TopoDS_Face
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SHELL, TopAbs_VERTEX
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from onefold_cad.errors import ExportError
-from onefold_cad.export.brep import interpolate
-from onefold_cad.export.measure import measure
-from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth
+from onefold_cad.export.brep import PROBES, interpolate, probe_points, refine
+from onefold_cad.geometry.thick_sheet import Boundary, Patch, Slab
 
-__all__ = ["thick_solid"]
+__all__ = ["thick_solid", "KernelBudget"]
 
 Array = NDArray[np.float64]
 
 
-def _curve_value(curve: Geom_BSplineCurve, t: Array) -> Array:
+class KernelBudget:
+    """A time budget (s) for the CAD kernel's work on one part; :meth:`check`
+    raises ExportError naming ``advice`` once it is spent."""
+
+    def __init__(self, seconds: float | None, advice: str) -> None:
+        self.deadline = None if seconds is None else time.perf_counter() + seconds
+        self.seconds = seconds
+        self.advice = advice
+
+    def check(self) -> None:
+        if self.deadline is not None and time.perf_counter() > self.deadline:
+            raise ExportError(
+                f"the CAD kernel's time budget of {self.seconds:g} s ran out; {self.advice}"
+            )
+
+
+def _values(curve: Geom_BSplineCurve, t: Array) -> Array:
     out = np.empty((len(t), 3))
-    for i, ti in enumerate(t):
-        p = curve.Value(float(ti))
+    for i, ti in enumerate(t.tolist()):
+        p = curve.Value(ti)
         out[i] = (p.X(), p.Y(), p.Z())
     return out
 
 
-def _fit(fn, phi0: float, phi1: float, tol: float) -> Geom_BSplineCurve:
-    """A B-spline through ``fn(phi)`` for phi in [phi0, phi1], parameter phi,
-    doubled in density until the midpoints deviate by at most ``tol``."""
-    n = 17
-    while True:
-        phi = np.linspace(phi0, phi1, n)
-        curve = interpolate(fn(phi), phi, "an edge curve of the thick sheet")
-        mid = 0.5 * (phi[:-1] + phi[1:])
-        err = float(np.max(np.linalg.norm(_curve_value(curve, mid) - fn(mid), axis=1)))
-        if err <= tol:
-            return curve
-        if n > 4000:
-            raise ExportError(
-                f"an edge curve of the thick sheet misses the tolerance {tol:.3g} "
-                f"(by {err:.3g}) with {n} points"
-            )
-        n = 2 * n - 1
+#: Relative parameters of the dense sample that places a curve's nodes:
+#: uniform, and graded towards both ends (a cut curve near a crease moves
+#: fast there).
+_DENSE = np.unique(
+    np.concatenate(
+        [np.linspace(0.0, 1.0, 257), np.geomspace(1e-9, 0.1, 64), 1.0 - np.geomspace(1e-9, 0.1, 64)]
+    )
+)
 
 
-def _side_faces(
-    side: SideMap,
-    hole: float,
-    s_range: tuple[float, float],
-    span: tuple[float, float],
-    tol: float,
-) -> list[TopoDS_Face]:
-    """Faces of the slab of one side over the flat angles ``span`` (radians,
-    within [0, pi]): ruled faces per sector between vertex directions and the
-    planar cross-sections at both ends."""
-    s0, s1 = s_range
-    t0, t1 = span
-    reach = _inner_reach(side, hole, s_range)
-    cand = np.concatenate([side.vertex_angles, [reach, side.total - reach]])
-    # small sectors next to the creases keep the faces that meet y = 0 small
-    cand = np.sort(cand[(cand > t0 + 1e-9) & (cand < t1 - 1e-9)])
-    cand = cand[np.concatenate([[True], np.diff(cand) > 1e-9])] if len(cand) else cand
-    breaks = np.concatenate([[t0], cand, [t1]])
-    faces: list[TopoDS_Face] = []
-    for a, b in zip(breaks[:-1], breaks[1:], strict=True):
+def fit_curve(
+    fn, a: float, b: float, tol: float, what: str, nodes: Array | None = None
+) -> tuple[Geom_BSplineCurve, float]:
+    """A B-spline through ``fn(theta)`` ``(k, 3)`` with theta as its parameter
+    on [a, b] (so that ruled faces pair equal theta), interpolating it at
+    nodes spread evenly along its length and exactly at ``nodes`` (where other
+    curves end on it); an interval whose worst point of
+    :data:`~onefold_cad.export.brep.PROBES` (fractions of its length) deviates
+    by more than ``tol`` (length) is split there until none does.
 
-        def inner(phi: Array, s: float) -> Array:
-            return side.points(phi, np.full(len(phi), hole), s)
+    Returns:
+        ``(curve, deviation reached)``.
 
-        def outer(phi: Array, s: float) -> Array:
-            return side.points(phi, side.edge_radius(phi), s)
-
-        edges = {}
-        for name, fn in (("in", inner), ("out", outer)):
-            for j, s in enumerate(s_range):
-                curve = _fit(lambda p, fn=fn, s=s: fn(p, s), a, b, tol)
-                edges[name, j] = BRepBuilderAPI_MakeEdge(curve).Edge()
-        faces.append(BRepFill.Face_s(edges["in", 0], edges["out", 0]))
-        faces.append(BRepFill.Face_s(edges["in", 1], edges["out", 1]))
-        faces.append(BRepFill.Face_s(edges["in", 0], edges["in", 1]))
-        faces.append(BRepFill.Face_s(edges["out", 0], edges["out", 1]))
-    for phi in span:
-        p = np.array([phi])
-        r_out = side.edge_radius(p)
-        corners = [
-            side.points(p, np.array([hole]), s0)[0],
-            side.points(p, r_out, s0)[0],
-            side.points(p, r_out, s1)[0],
-            side.points(p, np.array([hole]), s1)[0],
-        ]
-        faces.append(_polygon_face(corners))
-    return faces
-
-
-def _polygon_face(corners: list[Array]) -> TopoDS_Face:
-    poly = BRepBuilderAPI_MakePolygon()
-    for c in corners:
-        poly.Add(gp_Pnt(*map(float, c)))
-    poly.Close()
-    return BRepBuilderAPI_MakeFace(poly.Wire(), True).Face()
-
-
-def _mitre_block(
-    side: SideMap, hole: float, s_range: tuple[float, float], end: int
-) -> list[TopoDS_Face]:
-    """Faces of the flat block that continues the slab past crease half ``end``
-    (0: theta = 0, 1: theta = pi) in the crease ruling's tangent plane, as deep
-    as :func:`mitre_depth` (a closed solid's faces).
-
-    In that plane, x runs along the crease ruling and d away from the sheet;
-    the block spans the hole's circle to the crease's length in x, [0, depth]
-    in d and ``s_range`` along the normal.
+    Raises:
+        ExportError: the tolerance needs more than 4000 nodes.
     """
-    depth = mitre_depth(side, s_range)
-    theta = 0.0 if end == 0 else side.total
-    u, e, n = side.crease_frame(end)
-    away = -e if end == 0 else e  # past the crease, away from this side's sheet
-    length = float(side.edge_radius(np.array([theta]))[0])
-    if not depth < hole:
-        raise ExportError("the relief hole is too small to mitre the thick sheet at the crease")
-    x_in = math.sqrt(hole * hole - depth * depth)
-    half = 0.5 * math.asin(depth / hole)  # the middle of the hole's arc
+    dense = a + (b - a) * _DENSE
+    dense[-1] = b
+    pts = fn(dense)
+    cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    length = float(cum[-1])
 
-    def at(x: float, d: float, s: float) -> gp_Pnt:
-        return gp_Pnt(*map(float, side.apex + x * u + d * away + s * n))
+    def at_length(x: Array) -> Array:
+        return np.interp(x, cum, dense)
 
-    faces = []
-    arcs = []
-    for s in s_range:
-        arc = GC_MakeArcOfCircle(
-            at(hole, 0.0, s),
-            at(hole * math.cos(half), hole * math.sin(half), s),
-            at(x_in, depth, s),
-        ).Value()
-        arcs.append(BRepBuilderAPI_MakeEdge(arc).Edge())
-        lines = [
-            BRepBuilderAPI_MakeEdge(at(hole, 0.0, s), at(length, 0.0, s)).Edge(),
-            BRepBuilderAPI_MakeEdge(at(length, 0.0, s), at(length, depth, s)).Edge(),
-            BRepBuilderAPI_MakeEdge(at(length, depth, s), at(x_in, depth, s)).Edge(),
-        ]
-        wire = BRepBuilderAPI_MakeWire()
-        for edge in (*lines, arcs[-1]):
-            wire.Add(edge)
-        faces.append(BRepBuilderAPI_MakeFace(wire.Wire(), True).Face())
-    s0, s1 = s_range
-    faces.append(BRepFill.Face_s(arcs[0], arcs[1]))  # the hole's wall
-    crease = ((hole, 0.0, length, 0.0), (length, 0.0, length, depth), (length, depth, x_in, depth))
-    for x0, d0, x1, d1 in crease:
-        corners = [at(x0, d0, s0), at(x1, d1, s0), at(x1, d1, s1), at(x0, d0, s1)]
-        faces.append(_polygon_face([np.array([c.X(), c.Y(), c.Z()]) for c in corners]))
-    return faces
+    def length_at(t: Array) -> Array:
+        return np.interp(t, dense, cum)
+
+    t = at_length(np.linspace(0.0, length, 17)) if length > 0.0 else np.linspace(a, b, 17)
+    t[0], t[-1] = a, b
+    if nodes is not None and len(nodes):
+        keep = np.unique(np.clip(nodes, a, b))
+        gap = np.min(np.abs(length_at(t)[:, None] - length_at(keep)[None, :]), axis=1)
+        t = np.unique(np.concatenate([t[gap > 1e-3 * length / 16.0], keep]))
+    while True:
+        curve = interpolate(fn(t), t, what)
+        probe = probe_points(t, at_length, length_at).ravel()
+        err = np.linalg.norm(_values(curve, probe) - fn(probe), axis=1)
+        new, worst = refine(probe.reshape(-1, len(PROBES)), err.reshape(-1, len(PROBES)), tol)
+        if not len(new):
+            return curve, worst
+        if len(t) + len(new) > 4000:
+            raise ExportError(
+                f"{what} misses the tolerance {tol:.3g} (by {worst:.3g}) with {len(t)} points"
+            )
+        t = np.sort(np.concatenate([t, new]))
 
 
-def _inner_reach(side: SideMap, hole: float, s_range: tuple[float, float]) -> float:
-    """How far inside the cone (radians from either crease) the slab still
-    reaches below the plane y = 0: the concave side's mitre."""
-    reach = 0.0
-    for start, step in ((0.0, 1.0), (side.total, -1.0)):
-        for k in range(1, 158):
-            t = np.array([start + step * 0.01 * k])
-            r_out = float(side.edge_radius(t)[0])
-            y = min(side.points(t, np.array([r]), s)[0, 1] for r in (hole, r_out) for s in s_range)
-            if y > 0.0:
-                reach = max(reach, 0.01 * k)
-                break
-    return reach
+class _Vertices:
+    """Vertices by position: points closer than ``tol`` are one vertex."""
+
+    def __init__(self, tol: float) -> None:
+        self.tol = tol
+        self.points = np.empty((0, 3))
+        self.vertices: list[TopoDS_Vertex] = []
+        self.builder = BRep_Builder()
+
+    def at(self, p: Array) -> TopoDS_Vertex:
+        if len(self.points):
+            d = np.linalg.norm(self.points - p, axis=1)
+            k = int(np.argmin(d))
+            if d[k] <= self.tol:
+                return self.vertices[k]
+        v = TopoDS_Vertex()
+        self.builder.MakeVertex(v, gp_Pnt(*map(float, p)), self.tol)
+        self.points = np.vstack([self.points, p])
+        self.vertices.append(v)
+        return v
 
 
-def _solid_from_faces(faces: list[TopoDS_Face], tol: float) -> bd.Solid:
+def _pnt_xyz(p: gp_Pnt) -> Array:
+    return np.array([p.X(), p.Y(), p.Z()])
+
+
+class _Builder:
+    """Faces of the solid: ruled patches, planar pieces, and their curves."""
+
+    def __init__(self, slab: Slab, tol: float, budget: KernelBudget) -> None:
+        self.slab = slab
+        self.tol = tol
+        self.budget = budget
+        self.b = BRep_Builder()
+        # points meant to coincide do so to ~1e-13 of the sheet's size, distinct
+        # vertices lie > 1e-5 of it apart
+        self.verts = _Vertices(max(1e-10 * slab.sides[0].sheet.size, 1e-9))
+        self.sew_tol = max(10.0 * self.verts.tol, 1e-7)
+        self.curves: dict[tuple, tuple[float, float, Geom_BSplineCurve]] = {}
+        self.splits: dict[tuple, Array] = {}
+        self.deviation = 0.0
+
+    # -- curves --------------------------------------------------------------
+    def _key(self, b: Boundary, side: int) -> tuple:
+        return (b.kind, b.radius, b.level, b.plane, b.side if b.side >= 0 else -1)
+
+    def _kinks(self, b: Boundary, side: int) -> Array:
+        s = self.slab
+        if b.kind == "K":
+            return np.array([s.domain[0], 0.0, s.total, s.domain[1]])
+        return s.kinks(b.radius, side if b.side < 0 else b.side)
+
+    def prepare(self, patches: list[Patch]) -> None:
+        """Fit every boundary curve once, over all the theta its patches use,
+        and note where the patches split it (its edges' ends)."""
+        uses: dict[tuple, list[tuple[float, float]]] = defaultdict(list)
+        sides: dict[tuple, int] = {}
+        for p in patches:
+            for b in (p.low, p.high):
+                ks = self._kinks(b, p.side)
+                i = int(np.searchsorted(ks, 0.5 * (p.t0 + p.t1)))
+                key = (*self._key(b, p.side), i)
+                uses[key].append((p.t0, p.t1))
+                sides[key] = p.side
+        # one curve per connected run of uses (a curve may serve both creases)
+        runs: dict[tuple, list[tuple[float, float]]] = {}
+        for key, ranges in uses.items():
+            ranges.sort()
+            run, k = [ranges[0]], 0
+            for r in ranges[1:]:
+                if r[0] > max(q[1] for q in run):
+                    runs[(*key, k)] = run
+                    run, k = [r], k + 1
+                else:
+                    run.append(r)
+            runs[(*key, k)] = run
+        for rkey, ranges in runs.items():
+            key = rkey[:-1]
+            self.budget.check()
+            kind, radius, level, plane, side = key[:5]
+            own = sides[key]
+            a = min(r[0] for r in ranges)
+            z = max(r[1] for r in ranges)
+            b = Boundary(kind, radius, level, plane, side)
+
+            def fn(t: Array, b: Boundary = b, own: int = own) -> Array:
+                return self.slab.boundary_points(b, own, t)
+
+            splits = np.unique(np.array([t for r in ranges for t in r]))
+            # the two sides' ends closer than the sewing tolerance are one
+            # point: sewing joins their edges (a sheet symmetric up to rounding)
+            pts = fn(splits)
+            keep = [0]
+            for i in range(1, len(splits)):
+                if np.linalg.norm(pts[i] - pts[keep[-1]]) > self.sew_tol:
+                    keep.append(i)
+            splits = splits[keep]
+            what = "an edge curve of the thick sheet"
+            curve, err = fit_curve(fn, a, z, self.tol, what, splits)
+            self.deviation = max(self.deviation, err)
+            self.curves[rkey] = (a, z, curve)
+            self.splits[rkey] = splits
+
+    def _curve(
+        self, b: Boundary, side: int, t0: float, t1: float
+    ) -> tuple[tuple, Geom_BSplineCurve]:
+        ks = self._kinks(b, side)
+        i = int(np.searchsorted(ks, 0.5 * (t0 + t1)))
+        key = (*self._key(b, side), i)
+        k = 0
+        while True:
+            a, z, curve = self.curves[(*key, k)]
+            if a <= t0 and t1 <= z:
+                return (*key, k), curve
+            k += 1
+
+    def _point(self, curve: Geom_BSplineCurve, t: float) -> TopoDS_Vertex:
+        return self.verts.at(_pnt_xyz(curve.Value(float(t))))
+
+    def _edges_along(
+        self, key: tuple, curve: Geom_BSplineCurve, t0: float, t1: float
+    ) -> list[tuple[TopoDS_Edge, float, float]]:
+        """Edges on ``curve`` from t0 to t1, split where other patches end."""
+        cut = self.splits[key]
+        cut = cut[(cut > t0) & (cut < t1)]
+        if len(cut):  # none within the sewing tolerance of the ends
+            ends = _values(curve, np.array([t0, t1]))
+            at = _values(curve, cut)
+            far = np.minimum(*(np.linalg.norm(at - e, axis=1) for e in ends)) > self.sew_tol
+            cut = cut[far]
+        ts = np.concatenate([[t0], cut, [t1]])
+        out = []
+        for a, z in zip(ts[:-1], ts[1:], strict=True):
+            e = TopoDS_Edge()
+            self.b.MakeEdge(e, curve, self.tol)
+            self.b.Add(e, self._point(curve, a).Oriented(TopAbs_FORWARD))
+            self.b.Add(e, self._point(curve, z).Oriented(TopAbs_REVERSED))
+            self.b.Range(e, float(a), float(z))
+            out.append((e, float(a), float(z)))
+        return out
+
+    # -- faces ---------------------------------------------------------------
+    def ruled(self, p: Patch) -> TopoDS_Face:
+        """The ruled face of patch ``p``: its two curves (split where other
+        faces end on them) and the rulings at both ends (degenerate where the
+        curves meet)."""
+        ka, ca = self._curve(p.low, p.side, p.t0, p.t1)
+        kb, cb = self._curve(p.high, p.side, p.t0, p.t1)
+        sa, sb = ca.Copy(), cb.Copy()
+        sa.Segment(p.t0, p.t1)
+        sb.Segment(p.t0, p.t1)
+        gen = GeomFill_Generator()
+        gen.AddCurve(sa)
+        gen.AddCurve(sb)
+        gen.Perform(1e-12)
+        surf = gen.Surface()
+        face = TopoDS_Face()
+        self.b.MakeFace(face, surf, self.tol)
+        wire = TopoDS_Wire()
+        self.b.MakeWire(wire)
+        right = gp_Dir2d(1.0, 0.0)
+        for e, a, z in self._edges_along(ka, ca, p.t0, p.t1):
+            self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(0.0, 0.0), right), face, self.tol)
+            self.b.Range(e, face, a, z)
+            self.b.Add(wire, e)
+        self._ruling(wire, face, surf, p.t1, ca, cb, reverse=False)
+        for e, a, z in reversed(self._edges_along(kb, cb, p.t0, p.t1)):
+            self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(0.0, 1.0), right), face, self.tol)
+            self.b.Range(e, face, a, z)
+            self.b.Add(wire, e.Reversed())
+        self._ruling(wire, face, surf, p.t0, ca, cb, reverse=True)
+        self.b.Add(face, wire)
+        return face
+
+    def _ruling(
+        self,
+        wire: TopoDS_Wire,
+        face: TopoDS_Face,
+        surf,
+        t: float,
+        ca: Geom_BSplineCurve,
+        cb: Geom_BSplineCurve,
+        *,
+        reverse: bool,
+    ) -> None:
+        """The ruling at ``t`` from curve a to curve b (degenerate where they
+        meet), added to ``wire`` (reversed at the patch's start)."""
+        va, vb = self._point(ca, t), self._point(cb, t)
+        up = gp_Dir2d(0.0, 1.0)
+        e = TopoDS_Edge()
+        if va.IsSame(vb):
+            self.b.MakeEdge(e)
+            self.b.Degenerated(e, True)
+        else:
+            self.b.MakeEdge(e, surf.UIso(float(t)), self.tol)
+            self.b.Range(e, 0.0, 1.0)
+        self.b.Add(e, va.Oriented(TopAbs_FORWARD))
+        self.b.Add(e, vb.Oriented(TopAbs_REVERSED))
+        self.b.UpdateEdge(e, Geom2d_Line(gp_Pnt2d(t, 0.0), up), face, self.tol)
+        self.b.Range(e, face, 0.0, 1.0)
+        self.b.Add(wire, e.Reversed() if reverse else e)
+
+    def _line(self, p: Array, q: Array) -> TopoDS_Edge:
+        e = TopoDS_Edge()
+        d = q - p
+        line = Geom_Line(gp_Pnt(*map(float, p)), gp_Dir(*map(float, d)))
+        self.b.MakeEdge(e, line, self.tol)
+        self.b.Add(e, self.verts.at(p).Oriented(TopAbs_FORWARD))
+        self.b.Add(e, self.verts.at(q).Oriented(TopAbs_REVERSED))
+        self.b.Range(e, 0.0, float(np.linalg.norm(d)))
+        return e
+
+    def planar(self, patches: list[Patch]) -> TopoDS_Face:
+        """One planar face over consecutive patches of a sheet face past a crease half."""
+        ps = sorted(patches, key=lambda p: p.t0)
+        edges: list[TopoDS_Edge] = []
+        for p in ps:  # the low curves, theta increasing
+            key, c = self._curve(p.low, p.side, p.t0, p.t1)
+            edges += [e for e, _, _ in self._edges_along(key, c, p.t0, p.t1)]
+        last = ps[-1]
+        a_end = self._curve(last.low, last.side, last.t0, last.t1)[1].Value(last.t1)
+        b_end = self._curve(last.high, last.side, last.t0, last.t1)[1].Value(last.t1)
+        if a_end.Distance(b_end) > self.verts.tol:
+            edges.append(self._line(_pnt_xyz(a_end), _pnt_xyz(b_end)))
+        for p in reversed(ps):  # the high curves back
+            key, c = self._curve(p.high, p.side, p.t0, p.t1)
+            edges += [
+                TopoDS.Edge(e.Reversed())
+                for e, _, _ in reversed(self._edges_along(key, c, p.t0, p.t1))
+            ]
+        first = ps[0]
+        a0 = self._curve(first.low, first.side, first.t0, first.t1)[1].Value(first.t0)
+        b0 = self._curve(first.high, first.side, first.t0, first.t1)[1].Value(first.t0)
+        if a0.Distance(b0) > self.verts.tol:
+            edges.append(TopoDS.Edge(self._line(_pnt_xyz(a0), _pnt_xyz(b0)).Reversed()))
+        return self._face_of(edges)
+
+    def _face_of(self, edges: list[TopoDS_Edge]) -> TopoDS_Face:
+        mw = BRepBuilderAPI_MakeWire()
+        for e in edges:
+            mw.Add(e)
+        if not mw.IsDone():
+            raise ExportError("could not close the outline of a planar face of the thick sheet")
+        mk = BRepBuilderAPI_MakeFace(mw.Wire(), True)
+        if not mk.IsDone():
+            raise ExportError("a planar face of the thick sheet is not planar")
+        return _with_pcurves(mk.Face())
+
+
+def _with_pcurves(face: TopoDS_Face) -> TopoDS_Face:
+    """``face`` (planar) with its edges' curves on the plane stored (OCC would
+    compute them on the fly; its area integration needs them on slivers)."""
+    ex = TopExp_Explorer(face, TopAbs_EDGE)
+    while ex.More():
+        BRepLib.BuildPCurveForEdgeOnPlane_s(TopoDS.Edge(ex.Current()), face)
+        ex.Next()
+    return face
+
+
+def thick_solid(
+    slab: Slab, tol: float, budget: KernelBudget | None = None
+) -> tuple[bd.Solid, float]:
+    """The solid bounded by ``slab``'s faces, its curves within ``tol`` (length).
+
+    Returns:
+        ``(solid, deviation)``: one build123d Solid (not yet checked for
+        validity or volume) and the largest deviation of its edge curves.
+
+    Raises:
+        ExportError: a curve misses the tolerance, or the faces do not close
+            into one shell.
+    """
+    budget = budget or KernelBudget(None, "")
+    patches = slab.patches()
+    builder = _Builder(slab, tol, budget)
+    builder.prepare(patches)
+    # past a crease half, each sheet face is one planar face
+    planar: dict[tuple[int, str, int], list[Patch]] = defaultdict(list)
+    ruled: list[Patch] = []
+    for p in patches:
+        if p.face in ("s0", "s1") and (p.t1 <= 0.0 or p.t0 >= slab.total):
+            planar[p.side, p.face, 0 if p.t1 <= 0.0 else 1].append(p)
+        else:
+            ruled.append(p)
+    faces: list[TopoDS_Face] = []
+    for p in ruled:
+        budget.check()
+        faces.append(builder.ruled(p))
+    for group in planar.values():
+        faces.append(builder.planar(group))
+    shell = _sew(faces, builder.sew_tol, budget, slab)
+    stretched = ShapeAnalysis_ShapeTolerance().Tolerance(shell, 1, TopAbs_EDGE)
+    if stretched > max(tol, 1e-7):
+        raise ExportError(
+            f"sewing the thick sheet's faces stretched an edge's tolerance to {stretched:.2g} "
+            f"(the curves are within {tol:.2g}): a face is thinner than the kernel resolves"
+        )
+    solid = BRepBuilderAPI_MakeSolid(shell).Solid()
+    fix = ShapeFix_Solid(solid)
+    fix.Perform()
+    return bd.Solid(fix.Solid()), builder.deviation
+
+
+def _plane_of(wire: TopoDS_Wire, slab: Slab, tol: float) -> gp_Pln:
+    """The cutting plane (y = 0 or a mitre plane, both sides' coordinates)
+    that holds ``wire``'s vertices within ``tol``."""
+    pts = []
+    ex = TopExp_Explorer(wire, TopAbs_VERTEX)
+    while ex.More():
+        pts.append(_pnt_xyz(BRep_Tool.Pnt_s(TopoDS.Vertex(ex.Current()))))
+        ex.Next()
+    p = np.array(pts)
+    apex = slab.sides[0].apex
+    for w, c in slab.planes.values():  # symmetric in y: the -y side's are the same planes
+        origin = apex + c * w
+        if np.max(np.abs((p - origin) @ w)) <= tol:
+            return gp_Pln(gp_Pnt(*map(float, origin)), gp_Dir(*map(float, w)))
+    raise ExportError("the thick sheet's faces leave a gap that is not on a cutting plane")
+
+
+def _sew(faces: list[TopoDS_Face], tol: float, budget: KernelBudget, slab: Slab):
+    """Sew the faces into one shell, closing the outlines left open on the
+    cutting planes (where the two sides' sections of y = 0 differ, and where
+    the mitre planes cut the blocks past the creases) with planar faces."""
+    for f in faces:
+        BRepLib.SameParameter_s(f, tol)
     sewing = BRepBuilderAPI_Sewing(tol)
     for f in faces:
         sewing.Add(f)
     sewing.Perform()
-    shell = sewing.SewedShape()
-    if shell.ShapeType() != TopAbs_SHELL:
-        raise ExportError(f"sewing the thick sheet gave a {shell.ShapeType().name}")
-    mk = BRepBuilderAPI_MakeSolid(TopoDS.Shell(shell))
-    fix = ShapeFix_Solid(mk.Solid())
-    fix.Perform()
-    return bd.Solid(fix.Solid())
-
-
-#: The fold's plane of symmetry, facing the upper (+y) side.
-_SYMMETRY = bd.Plane(origin=(0.0, 0.0, 0.0), x_dir=(1.0, 0.0, 0.0), z_dir=(0.0, 1.0, 0.0))
-
-
-def _upper_half(solid: bd.Solid) -> bd.Solid:
-    """The part of ``solid`` on the +y side of the plane y = 0."""
-    kept = solid.split(_SYMMETRY, keep=bd.Keep.TOP)
-    solids = kept.solids() if kept is not None else []
-    if len(solids) != 1:
-        raise ExportError(f"cutting the thick sheet at the crease gave {len(solids)} solids")
-    return solids[0]
-
-
-def thick_solid(
-    folded: FoldedSheet, hole_diameter: float, s_range: tuple[float, float], tol: float
-) -> bd.Solid:
-    """The sheet between the offsets ``s_range`` of the reference surface, with a
-    relief hole of ``hole_diameter`` about the apex, mitred at the crease.
-
-    Per side: the cone's slab, and for each crease half a flat block that
-    continues it past the crease (:func:`_mitre_block`), all cut at the plane
-    of symmetry y = 0; each block is also cut at the plane through the apex
-    that bisects the two crease halves, keeping its own half's side (on sharp
-    folds the crease halves are only 13-40 deg apart and an uncut block would
-    reach through the other half's sheet next to the apex). The six pieces
-    are fused (the -y side built mirrored, then mirrored back).
-    """
-    pieces = []
-    hole = 0.5 * hole_diameter
-    for lower in (False, True):
-        side = SideMap(folded, lower=lower)
-        faces = _side_faces(side, hole, s_range, (0.0, side.total), tol)
-        kept = [_upper_half(_solid_from_faces(faces, 10 * tol))]
-        u0, u1 = side.crease_frame(0)[0], side.crease_frame(1)[0]
-        m = (u0 - u1) / np.linalg.norm(u0 - u1)  # normal of the crease halves' bisector
-        for end, normal in ((0, m), (1, -m)):
-            block = _solid_from_faces(_mitre_block(side, hole, s_range, end), 10 * tol)
-            for plane in (_SYMMETRY, _plane(side.apex, normal)):
-                block = _keep_top(block, plane) if block is not None else None
-            if block is not None:  # none when the convex side has no material
-                kept.append(block)
-        pieces += [k.mirror(bd.Plane.XZ) for k in kept] if lower else kept
-    return _union(pieces, 10 * tol)
-
-
-def _plane(origin: Array, normal: Array) -> bd.Plane:
-    return bd.Plane(origin=tuple(map(float, origin)), z_dir=tuple(map(float, normal)))
-
-
-def _keep_top(solid: bd.Solid, plane: bd.Plane) -> bd.Solid | None:
-    """The part of ``solid`` on the side of ``plane`` its normal points to,
-    or None when nothing is there."""
-    kept = solid.split(plane, keep=bd.Keep.TOP)
-    solids = kept.solids() if kept is not None else []
-    if len(solids) > 1:
-        raise ExportError(f"cutting a mitre of the thick sheet gave {len(solids)} solids")
-    return solids[0] if solids else None
-
-
-def _union(pieces: list[bd.Solid], tol: float) -> bd.Solid:
-    """One solid of the pieces: OCC's fuse, plain, with a fuzzy tolerance, or
-    side by side. Each can fail on some inputs, so the first whose result is
-    one valid solid holding the pieces' total volume is kept (they only touch:
-    across y = 0, at the creases' cross-sections, and the two mitres of a side
-    at the plane that bisects the crease halves)."""
-    total = sum(measure(p, "volume") for p in pieces)
-    attempts = (
-        lambda ps: ps[0].fuse(*ps[1:]),
-        lambda ps: ps[0].fuse(*ps[1:], tol=tol),
-        lambda ps: (
-            ps[0].fuse(*ps[1 : len(ps) // 2]).fuse(ps[len(ps) // 2].fuse(*ps[len(ps) // 2 + 1 :]))
-        ),
-    )
-    found = "no result"
-    for attempt in attempts:
-        try:  # on deep copies: a boolean may change its arguments' tolerances
-            solids = attempt([copy.deepcopy(p) for p in pieces]).clean().solids()
-        except Exception as err:  # OCC's StdFail_NotDone and friends
-            found = err.__class__.__name__
-            continue
-        if len(solids) != 1:
-            found = f"{len(solids)} solids"
-            continue
-        volume = measure(solids[0], "volume")
-        if solids[0].is_valid and abs(volume - total) <= 1e-5 * total:
-            return solids[0]
-        found = f"valid {solids[0].is_valid}, volume {volume:.6g} of {total:.6g}"
-    raise ExportError(f"fusing the pieces of the thick sheet failed ({found})")
+    budget.check()
+    shape = sewing.SewedShape()
+    if sewing.NbFreeEdges():
+        edges = TopTools_HSequenceOfShape()
+        for i in range(1, sewing.NbFreeEdges() + 1):
+            edges.Append(sewing.FreeEdge(i))
+        wires = TopTools_HSequenceOfShape()
+        ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(edges, tol, False, wires)
+        again = BRepBuilderAPI_Sewing(tol)
+        again.Add(shape)
+        for i in range(1, wires.Length() + 1):
+            w = TopoDS.Wire(wires.Value(i))
+            mk = BRepBuilderAPI_MakeFace(_plane_of(w, slab, 10.0 * tol), w, True)
+            if not mk.IsDone():
+                raise ExportError("could not close a gap in the thick sheet's faces")
+            again.Add(_with_pcurves(mk.Face()))
+        again.Perform()
+        budget.check()
+        shape = again.SewedShape()
+        if again.NbFreeEdges():
+            raise ExportError(f"the thick sheet's faces leave {again.NbFreeEdges()} open edges")
+    if shape.ShapeType() != TopAbs_SHELL:
+        raise ExportError(f"sewing the thick sheet gave a {shape.ShapeType().name}, not one shell")
+    return TopoDS.Shell(shape)

@@ -1,4 +1,4 @@
-"""STEP of the folded form: exact B-rep faces with build123d, one sewn shell, a solid.
+"""STEP of the folded form: exact B-rep faces with build123d, one shell, a solid.
 
 The folded surface becomes build123d objects that you can place in your own
 build123d model, show in a viewer, or export with build123d's other exporters
@@ -7,19 +7,34 @@ build123d model, show in a viewer, or export with build123d's other exporters
 * Exact model: one face per sheet edge per side, each a patch of the exact
   cone from the apex over the circular frame arc (a rational B-spline surface,
   degree 1 along the rulings), trimmed by the sheet's edge mapped onto the cone
-  (interpolated on the surface to ``1e-7 * sheet.size`` or better). The face
-  count does not depend on ``divisions``.
+  (interpolated on the surface to :data:`BOUNDARY_TOLERANCE` x sheet.size;
+  a fit that cannot reach it is an ExportError). The face count does not
+  depend on ``divisions``.
 * Paper model: the paper's fan of planar triangles (``faces="fan"``).
-* The faces are sewn into one shell: the two crease halves and the apex are
-  shared by both sides. A relief hole of a given diameter may be cut about the
-  apex (the default when the sheet has thickness).
+* Either way the faces form one shell built with shared topology (the two
+  crease rulings and the apex are shared by both sides, each ruling by its
+  two faces): no sewing, so a fan of 3000 divisions takes a second or two.
+  A relief hole of a given diameter may be cut about the apex (the default
+  when the sheet has thickness).
 * With thickness t > 0 (exact model): a solid of the sheet, offset from the
   reference surface according to ``material.sheet_surface`` (INSIDE: the
   material lies below the top face; OUTSIDE: above it; MID: half each way),
-  built from ruled faces (:mod:`onefold_cad.export.solid`), with the relief
-  hole through it and a mitre at the crease. It is the default part of a
-  design with thickness; its volume is checked against the volume
-  integrated from the geometry (0.1%).
+  built face by face (:mod:`onefold_cad.export.solid`, no boolean
+  operation), with the relief hole through it and a mitre at the crease. It
+  is the default part of a design with thickness; its volume is checked
+  against the volume integrated from the geometry.
+* The part is written as it stands (``placement="rest"``, the default):
+  moved by the design's resting placement
+  (:func:`onefold_cad.design.resting_placement`, the one the report, the GLB
+  and the previews use) so that its lowest point lies on the ground z = 0;
+  ``placement="frame"`` keeps the fold frame (apex above H).
+* A solid past the bend model's limits is refused (FabricationError,
+  :func:`onefold_cad.design.solid_bend_problem`) unless the compensation is
+  'none'; the shell, the designed surface, is always built.
+
+Every part carries ``fit_deviation`` (the largest deviation its fitted
+curves reached, length; 0 for the paper fan, which is exact) and
+``fit_tolerance`` (the deviation allowed) for the report.
 
 Lengths are in the design's unit.
 
@@ -30,11 +45,11 @@ Example::
     from onefold_cad.export.step import build_part, build_shell, export_design_step
 
     design = Design("demo", FrameCurve(50, 45), Sheet.quadrilateral(300, 300, 300, 300))
-    part = build_part(design)                      # a build123d Shell (thickness 0)
+    part = build_part(design)                      # a build123d Shell, resting on z = 0
     thick = design.with_changes(material=Material(thickness=3.0))
     solid = build_part(thick)                      # a Solid, relief hole 3 x 3 = 9
     export_design_step(design, "demo.step")        # deterministic STEP, in mm
-    shell = build_shell(build_design(design), relief_hole=10.0)
+    shell = build_shell(build_design(design), relief_hole=10.0)   # fold frame
     placed = bd.Pos(0, 0, 50) * shell              # use it in your own model
     bd.export_stl(part, "demo.stl")                # or any build123d exporter
 """
@@ -47,32 +62,50 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import build123d as bd
+import numpy as np
+from OCP.Bnd import Bnd_Box
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+from OCP.gp import gp_Trsf, gp_Vec
 from OCP.Interface import Interface_Static
 from OCP.STEPControl import STEPControl_Controller
-from OCP.TopAbs import TopAbs_SHELL
-from OCP.TopoDS import TopoDS
 
-from onefold_cad.design import Design, build_design, relief_hole_diameter, sheet_inradius
+from onefold_cad.design import (
+    Design,
+    build_design,
+    default_body,
+    relief_hole_diameter,
+    resting_placement,
+    sheet_inradius,
+    solid_bend_problem,
+    solid_min_relief_hole,
+)
 from onefold_cad.errors import ExportError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.brep import fan_faces, ruled_faces, sew
+from onefold_cad.export.brep import MAX_NODES, fan_shell, ruled_shell
 from onefold_cad.export.measure import measure
-from onefold_cad.export.solid import thick_solid
+from onefold_cad.export.solid import KernelBudget, thick_solid
+from onefold_cad.geometry.bend import Compensation
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, Units
-from onefold_cad.geometry.thick_sheet import min_relief_hole, sheet_offsets, slab_volume
+from onefold_cad.geometry.placement import RestingPlacement
+from onefold_cad.geometry.thick_sheet import SideMap, Slab, mitre_reach, sheet_offsets
 
 __all__ = [
     "measure",
     "build_shell",
     "build_solid",
     "build_part",
-    "default_body",
-    "min_relief_hole",
+    "place",
     "sheet_offsets",
     "export_design_step",
+    "read_step",
     "STEP_TIMESTAMP",
+    "BOUNDARY_TOLERANCE",
+    "SOLID_TOLERANCE",
+    "KERNEL_BUDGET",
+    "PLACEMENTS",
 ]
 
 #: The header timestamp of every STEP file written here (reproducible bytes).
@@ -82,12 +115,37 @@ _UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
 _STEP_UNIT_NAME = {Units.MM: "MM", Units.IN: "INCH", Units.FT: "FT"}
 #: Deviation allowed for the boundary curves on the cone, relative to sheet.size.
 BOUNDARY_TOLERANCE = 1e-7
+#: Deviation allowed for the solid's edge curves, relative to sheet.size (the
+#: rulings between them are exact) ...
+SOLID_TOLERANCE = 1e-6
+#: ... and relative to the thickness (a thin sheet on a big one).
+SOLID_THICKNESS_TOLERANCE = 1e-3
+#: Relative difference allowed between the solid's volume (OCC's
+#: Gauss-Kronrod rule to 1e-8) and the thick sheet's volume integrated from
+#: the geometry (:func:`~onefold_cad.geometry.thick_sheet.slab_volume`,
+#: about 1e-12). The edge curves' deviation (SOLID_TOLERANCE) moves the
+#: volume by a few 1e-6; a face missing or doubled by a wrong construction
+#: moves it by far more.
+SOLID_VOLUME_TOLERANCE = 1e-4
+#: Seconds the CAD kernel may spend on one part before the build gives up
+#: with a clear error (the solid takes well under 1 s, a shell of 3000
+#: divisions about 2 s).
+KERNEL_BUDGET = 60.0
+#: The smallest relief hole (diameter, design unit) the CAD kernel resolves:
+#: 1000 x its precision (Precision::Confusion, 1e-7).
+MIN_HOLE = 1e-4
+#: Where a part is written: as it stands on the ground, or in the fold frame.
+PLACEMENTS = ("rest", "frame")
 
 
 def build_shell(
-    folded: FoldedSheet, *, relief_hole: float = 0.0, faces: str | None = None
+    folded: FoldedSheet,
+    *,
+    relief_hole: float = 0.0,
+    faces: str | None = None,
+    budget: float | None = KERNEL_BUDGET,
 ) -> bd.Shell:
-    """The folded surface as one sewn build123d Shell (top side = face normals).
+    """The folded surface as one build123d Shell (top side = face normals).
 
     Args:
         folded: the fold of a design (:func:`onefold_cad.build_design`).
@@ -96,13 +154,19 @@ def build_shell(
         faces: 'ruled' (exact cone patches, exact model only) or 'fan' (the
             paper model's planar triangles, paper model only); None picks the
             one that matches the model.
+        budget: seconds the CAD kernel may take (None: no limit).
 
     Returns:
-        A valid build123d Shell in the fold frame (apex above H).
+        A valid build123d Shell in the fold frame (apex above H), with
+        ``fit_deviation`` (the largest deviation of its boundary curves from
+        the sheet's edges mapped onto the cone, length; 0 for the fan) and
+        ``fit_tolerance`` (``BOUNDARY_TOLERANCE * sheet.size``).
 
     Raises:
         InvalidParameterError: bad ``relief_hole`` or ``faces``.
-        ExportError: the CAD kernel could not build a valid shell.
+        ExportError: a boundary curve cannot reach the tolerance, the CAD
+            kernel could not build a valid shell, or it ran out of time (the
+            message says what to reduce).
     """
     exact = isinstance(folded.solution.surface, ExactCone)
     kind = faces if faces is not None else ("ruled" if exact else "fan")
@@ -117,43 +181,64 @@ def build_shell(
         raise InvalidParameterError(
             "relief_hole", f"diameter must be in [0, {limit:.6g}) (length), got {relief_hole:g}"
         )
-    size = folded.sheet.size
+    if 0.0 < relief_hole < MIN_HOLE:
+        raise ExportError(
+            f"a relief hole of diameter {relief_hole:.3g} is below what the CAD kernel "
+            f"resolves ({MIN_HOLE:g}): use none (--relief-hole 0) or one of at least {MIN_HOLE:g}"
+        )
+    tol = BOUNDARY_TOLERANCE * folded.sheet.size
     if kind == "ruled":
-        topo_faces, _ = ruled_faces(folded, 0.5 * relief_hole, BOUNDARY_TOLERANCE * size)
+        clock = KernelBudget(budget, "a sheet with fewer vertices may help")
+        topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
+        if deviation > tol:
+            raise ExportError(
+                f"the sheet's edges mapped onto the cone need more than {MAX_NODES} points "
+                f"to stay within {tol:.3g} (BOUNDARY_TOLERANCE x sheet size) of the exact "
+                f"curve; the closest fit is {deviation:.3g} off. Splitting the sheet's long "
+                "edges (more polygon vertices) or the paper model (--model paper) may help"
+            )
+        clock.check()
     else:
-        topo_faces = fan_faces(folded, 0.5 * relief_hole)
-    sewn = sew(topo_faces, 1e-6 * size)
-    if sewn.ShapeType() != TopAbs_SHELL:
-        raise ExportError(f"sewing gave a {sewn.ShapeType().name}, not one shell")
-    shell = bd.Shell(TopoDS.Shell(sewn))
+        triangles = sum(len(a) - 1 for a in folded.ruling_angles)
+        clock = KernelBudget(
+            budget, f"fewer divisions may help (this fan has {triangles} triangles)"
+        )
+        topo = fan_shell(folded, 0.5 * relief_hole, clock.check)
+        deviation = 0.0
+    shell = bd.Shell(topo)
     if not shell.is_valid:
-        raise ExportError("the sewn shell of the folded surface is not valid")
+        raise ExportError("the shell of the folded surface is not valid")
+    clock.check()
+    shell.fit_deviation = deviation
+    shell.fit_tolerance = tol if kind == "ruled" else 0.0
     return shell
 
 
-#: Deviation allowed for the solid's edge curves, relative to sheet.size (the
-#: rulings between them are exact).
-SOLID_TOLERANCE = 1e-6
-#: Relative difference allowed between the solid's volume (OCC) and the thick
-#: sheet's volume integrated from the geometry (:func:`slab_volume`). They
-#: agree to 3e-5 over 36 random designs (folds up to 170 deg); broken
-#: booleans were off by 0.1% to 50%.
-SOLID_VOLUME_TOLERANCE = 1e-3
-
-
-def build_solid(folded: FoldedSheet, material: Material) -> bd.Solid:
+def build_solid(
+    folded: FoldedSheet, material: Material, *, budget: float | None = KERNEL_BUDGET
+) -> bd.Solid:
     """The sheet as a solid of thickness ``material.thickness`` (> 0), exact model.
 
     The reference surface is the folded surface; the material lies on the side
     that ``material.sheet_surface`` names (:func:`sheet_offsets`). The relief
     hole, ``material.relief_hole_diameter``, is required: the cone's apex is
-    singular and its offsets fold over near it (:func:`min_relief_hole`).
-    Each side is bounded by ruled faces (see :mod:`onefold_cad.export.solid`),
-    and the two sides meet in a mitre at the crease.
+    singular and its offsets fold over near it
+    (:func:`onefold_cad.design.solid_min_relief_hole`).
+    The two sides meet in a mitre on the fold's plane of symmetry; its
+    faces, the sheet's two faces and the walls along the outline and the hole
+    are built directly and sewn once (:mod:`onefold_cad.export.solid`, no
+    boolean operation).
+
+    Args:
+        folded: an exact-model fold.
+        material: thickness, reference surface and relief hole.
+        budget: seconds the CAD kernel may take (None: no limit).
 
     Returns:
         One valid build123d Solid whose volume matches the thick sheet's volume
-        integrated from the geometry (:func:`slab_volume`) within 0.1%. For
+        integrated from the geometry (:func:`slab_volume`) within 1e-4; its
+        edge curves lie within min(1e-6 x sheet size, 1e-3 x t) of the exact
+        ones (``fit_tolerance``; ``fit_deviation`` the largest reached). For
         MID that is area x t up to the mitre; INSIDE and OUTSIDE differ from
         area x t by about t / (2 x the cone's radius of curvature), e.g. 0.3%
         for Table 1's square at t = 3, more on tightly curved cones.
@@ -162,8 +247,8 @@ def build_solid(folded: FoldedSheet, material: Material) -> bd.Solid:
         InvalidParameterError: thickness 0, the paper model, or a relief hole
             too small for the thickness.
         ExportError: the CAD kernel could not build one valid solid of that
-            volume (a larger relief hole usually helps; folds sharper than about
-            150 deg sometimes fail).
+            volume, or ran out of its time budget; the message says what to
+            change.
     """
     t = material.thickness
     if t <= 0.0:
@@ -174,12 +259,13 @@ def build_solid(folded: FoldedSheet, material: Material) -> bd.Solid:
         )
     hole = material.relief_hole_diameter
     limit = 2.0 * sheet_inradius(folded.sheet)
-    need = min_relief_hole(folded, material)
+    need = solid_min_relief_hole(folded, material)
     if need >= limit:
         raise InvalidParameterError(
             "thickness",
             f"{t:g} is too thick for a solid on this sheet: its relief hole would need a "
-            f"diameter > {need:.6g}, but the sheet allows < {limit:.6g} (length)",
+            f"diameter > {need:.6g}, but the sheet allows < {limit:.6g} (length); a thickness "
+            f"below about {t * limit / need:.3g}, or the shell (--body shell), would do",
         )
     if not need < hole < limit:
         raise InvalidParameterError(
@@ -187,11 +273,16 @@ def build_solid(folded: FoldedSheet, material: Material) -> bd.Solid:
             f"diameter must be in ({need:.6g}, {limit:.6g}) (length) for a solid of thickness "
             f"{t:g} ({material.sheet_surface.value}), got {hole:g}",
         )
+    _mitre_limits(folded, material)
     size = folded.sheet.size
-    expected = slab_volume(folded, material, hole)
-    hint = f"a larger relief_hole than {hole:g} (up to {limit:.6g}) or a thinner sheet may help"
+    tol = min(SOLID_TOLERANCE * size, SOLID_THICKNESS_TOLERANCE * t)
+    slab = Slab(folded, material, hole)
+    hint = _near_symmetric(slab) or (
+        f"a larger relief_hole than {hole:g} (up to {limit:.6g}) or a thinner sheet may help"
+    )
+    clock = KernelBudget(budget, f"a thinner sheet or a larger relief hole may help ({hint})")
     try:
-        solid = thick_solid(folded, hole, sheet_offsets(material), SOLID_TOLERANCE * size)
+        solid, deviation = thick_solid(slab, tol, clock)
     except ExportError as err:
         raise ExportError(f"no solid of thickness {t:g}: {err}; {hint}") from None
     except Exception as err:  # OCC's StdFail_NotDone and friends
@@ -199,26 +290,125 @@ def build_solid(folded: FoldedSheet, material: Material) -> bd.Solid:
             f"no solid of thickness {t:g}: the CAD kernel failed "
             f"({err.__class__.__name__}: {err}); {hint}"
         ) from None
-    volume = measure(solid, "volume")
-    if not solid.is_valid or abs(volume - expected) > SOLID_VOLUME_TOLERANCE * expected:
+    valid = solid.is_valid
+    volume = measure(solid, "volume", tol=1e-8) if valid else float("nan")
+    expected = slab.volume()
+    if not (valid and abs(volume - expected) <= SOLID_VOLUME_TOLERANCE * expected):
         raise ExportError(
             f"thickness {t:g} gave an invalid solid on this folded surface (valid "
-            f"{solid.is_valid}, volume {volume:.6g} vs {expected:.6g} computed from the "
+            f"{valid}, volume {volume:.9g} vs {expected:.9g} integrated from the "
             f"geometry); {hint}"
         )
+    clock.check()
+    solid.fit_deviation = deviation
+    solid.fit_tolerance = tol
     return solid
 
 
-def default_body(design: Design) -> str:
-    """'solid' for an exact-model design with thickness and a relief hole (the
-    default hole when thickness > 0), else 'shell' (the reference surface)."""
-    m = design.material
-    exact = design.model.value == "exact"
-    return "solid" if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else "shell"
+#: The smallest mitre (length past or into the crease, design unit) the CAD
+#: kernel resolves: 100 x its precision (Precision::Confusion, 1e-7) ...
+MIN_MITRE = 1e-5
+#: ... and relative to the crease half's length (thinner, the mitre's faces
+#: are slivers OCC cannot classify: 1.4 micrometres by 2.3 m fails).
+MIN_MITRE_REL = 1e-6
+#: The mitre may reach at most this fraction of a crease half's length into
+#: the sheet: beyond it the fold's two sides come within the sheet's
+#: thickness of each other over much of the crease (folds near 180 deg).
+MAX_MITRE_REACH = 0.5
+
+
+def _mitre_limits(folded: FoldedSheet, material: Material) -> None:
+    """Refuse a solid whose mitre the CAD kernel cannot resolve (a nearly flat
+    fold) or whose two sides overlap (a fold near 180 deg), naming the crease
+    half, its fold angle and what to change."""
+    t = material.thickness
+    side = SideMap(folded)
+    for half, (depth, reach) in zip(
+        folded.crease, mitre_reach(side, sheet_offsets(material)), strict=True
+    ):
+        least = max(MIN_MITRE, MIN_MITRE_REL * half.length)
+        if 0.0 < max(depth, reach) < least:
+            raise ExportError(
+                f"no solid of thickness {t:g}: the fold along {half.name} is nearly flat "
+                f"({half.fold_angle_deg:.3g} deg), its mitre only {max(depth, reach):.2g} deep, "
+                f"below what the CAD kernel resolves ({least:.2g}); write the shell "
+                "(--body shell) or fold it more (larger alpha or beta)"
+            )
+        if reach > MAX_MITRE_REACH * half.length:
+            raise ExportError(
+                f"no solid of thickness {t:g}: the fold along {half.name} is nearly closed "
+                f"({half.fold_angle_deg:.4g} deg): the two sides come within the thickness of "
+                f"each other {reach:.3g} into the sheet, more than half the crease "
+                f"({half.length:.3g}); a thinner sheet or a smaller fold angle (alpha, beta), "
+                "or the shell (--body shell)"
+            )
+
+
+def _near_symmetric(slab: Slab) -> str:
+    """Advice for a sheet whose edges at a crease half's end are mirror images
+    of each other to within a hair but not exactly: there the two sides'
+    mitre sections differ by a sliver below the CAD kernel's resolution.
+    '' when that is not the case."""
+    size = slab.sides[0].sheet.size
+    for end, name in ((0, "plus_x"), (1, "minus_x")):
+        t = np.linspace(0.0, 0.05, 11)
+        t = t if end == 0 else slab.total - t
+        gap = float(np.max(np.abs(slab.outer_radius(0, t) - slab.outer_radius(1, t))))
+        if 0.0 < gap < 1e-5 * size:
+            return (
+                f"the sheet's edges at the {name} end are symmetric about the crease to within "
+                f"{gap:.2g} but not exactly: make them exactly symmetric (or differ more)"
+            )
+    return ""
+
+
+def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: str) -> None:
+    """Refuse a solid past the bend model's limits (FabricationError: a bend
+    zone reaching a sheet corner, a large set-back beside the flanges, a fold
+    near 180 deg) unless ``compensation`` is 'none':
+    :func:`onefold_cad.design.solid_bend_problem`, the check ``build`` also
+    makes before it writes anything."""
+    problem = solid_bend_problem(design, folded, compensation)
+    if problem is not None:
+        raise problem
+
+
+def place(part: bd.Shape, placement: RestingPlacement) -> bd.Shape:
+    """``part`` moved by the rigid motion of ``placement`` (rotation, then
+    translation; :func:`onefold_cad.design.resting_placement`), then lifted or
+    lowered so that the B-rep's own lowest point lies on the ground z = 0
+    exactly: the placement stands the exact body there, and the B-rep's
+    curves lie within its ``fit_tolerance`` of it. The one place where a part
+    is stood up.
+
+    Returns:
+        A new shape (the geometry transformed), with the part's label and
+        attributes.
+    """
+    r, t = np.asarray(placement.rotation, dtype=float), np.asarray(placement.translation)
+    trsf = gp_Trsf()
+    trsf.SetValues(*r[0], t[0], *r[1], t[1], *r[2], t[2])
+    moved = BRepBuilderAPI_Transform(part.wrapped, trsf, True).Shape()
+    box = Bnd_Box()
+    BRepBndLib.AddOptimal_s(moved, box, False, False)
+    lift = gp_Trsf()
+    lift.SetTranslation(gp_Vec(0.0, 0.0, -box.CornerMin().Z()))
+    out = bd.Shape.cast(BRepBuilderAPI_Transform(moved, lift, True).Shape())
+    out.label = part.label
+    for name in ("fit_deviation", "fit_tolerance"):
+        if hasattr(part, name):
+            setattr(out, name, getattr(part, name))
+    return out
 
 
 def build_part(
-    design: Design, folded: FoldedSheet | None = None, *, body: str | None = None
+    design: Design,
+    folded: FoldedSheet | None = None,
+    *,
+    body: str | None = None,
+    placement: str = "rest",
+    compensation: str = "sharp",
+    budget: float | None = KERNEL_BUDGET,
 ) -> bd.Shape:
     """The design's part, labelled with its name.
 
@@ -226,29 +416,55 @@ def build_part(
         design: the design; its material gives thickness, reference surface
             and the relief hole.
         folded: its fold, if already computed (else it is built here).
-        body: 'shell': the sewn reference surface, with the relief hole of
+        body: 'shell': the reference surface, with the relief hole of
             ``material.relief_hole_diameter``; 'solid': the sheet of
             ``material.thickness`` (:func:`build_solid`); None (default):
-            :func:`default_body`.
+            :func:`onefold_cad.design.default_body`.
+        placement: 'rest' (default): standing on the ground, lowest point on
+            z = 0 (:func:`place` with
+            :func:`onefold_cad.design.resting_placement` of this body);
+            'frame': the fold frame (apex above H).
+        compensation: 'sharp' (default): a solid past the bend model's
+            limits is refused; 'none': built as designed (as ``build
+            --compensation``).
+        budget: seconds the CAD kernel may take (None: no limit).
+
+    Returns:
+        The part, with ``fit_deviation`` and ``fit_tolerance`` (length; see
+        :func:`build_shell`).
+
+    Raises:
+        InvalidParameterError: a bad ``body``, ``placement`` or
+            ``compensation``, or a solid the design cannot have.
+        FabricationError: a solid past the bend model's limits.
+        ExportError: the CAD kernel could not build the part.
     """
     body = default_body(design) if body is None else body
     if body not in ("shell", "solid"):
         raise InvalidParameterError("body", f"must be 'shell' or 'solid', got {body!r}")
+    if placement not in PLACEMENTS:
+        raise InvalidParameterError("placement", f"must be 'rest' or 'frame', got {placement!r}")
     folded = build_design(design) if folded is None else folded
     m = design.material
     m = m.with_changes(relief_hole=relief_hole_diameter(design, folded))
+    if body == "solid":
+        _fabrication_limits(design, folded, compensation)
+    else:
+        Compensation.parse(compensation)  # a bad value is an error whatever the body
     try:
         if body == "solid":
-            part: bd.Shape = build_solid(folded, m)
+            part: bd.Shape = build_solid(folded, m, budget=budget)
         else:
-            part = build_shell(folded, relief_hole=m.relief_hole_diameter)
+            part = build_shell(folded, relief_hole=m.relief_hole_diameter, budget=budget)
+        part.label = design.name
+        if placement == "rest":
+            part = place(part, resting_placement(design, folded, body))
     except OneFoldError:
         raise
     except Exception as err:  # OCC's Standard_Failure family is not a RuntimeError
         raise ExportError(
             f"the CAD kernel failed building the {body} ({err.__class__.__name__}: {err})"
         ) from None
-    part.label = design.name
     return part
 
 
@@ -258,20 +474,34 @@ def export_design_step(
     folded: FoldedSheet | None = None,
     *,
     body: str | None = None,
+    placement: str = "rest",
+    compensation: str = "sharp",
+    part: bd.Shape | None = None,
+    budget: float | None = KERNEL_BUDGET,
 ) -> Path:
-    """Write the design's part (:func:`build_part`; ``body`` as there) as STEP,
-    atomically.
+    """Write the design's part (:func:`build_part`; ``body``, ``placement``,
+    ``compensation`` and ``budget`` as there, or ``part`` if already built,
+    written as given) as STEP, atomically.
 
     The file is in the design's unit (mm, inch or foot), the product is named
     after the design, and the header timestamp is :data:`STEP_TIMESTAMP`, so
-    the same design gives the same bytes. Nothing is left at ``path`` (or
-    beside it) when building or writing fails.
+    the same design gives the same bytes. It is read back before it is moved
+    into place and refused (ExportError) unless it is one valid shape. Nothing
+    is left at ``path`` (or beside it) when building or writing fails.
 
     Returns:
         The path written.
     """
     target = Path(path)
-    part = build_part(design, folded, body=body)
+    if part is None:
+        part = build_part(
+            design,
+            folded,
+            body=body,
+            placement=placement,
+            compensation=compensation,
+            budget=budget,
+        )
     with atomic_output(target) as tmp, _step_unit(design.units):
         try:
             ok = bd.export_step(part, tmp, unit=_UNIT[design.units], timestamp=STEP_TIMESTAMP)
@@ -279,7 +509,30 @@ def export_design_step(
             raise ExportError(f"writing STEP failed ({err.__class__.__name__}: {err})") from None
         if not ok:
             raise ExportError("writing STEP failed")
+        _check_reads_back(tmp, part)
     return target
+
+
+def _check_reads_back(path: Path, part: bd.Shape) -> None:
+    """Refuse a STEP file that does not read back as one valid shape with the
+    part's faces (the file holds coordinates to a finite precision: a face
+    far thinner than the sheet may not survive it)."""
+    try:
+        shape = bd.import_step(path)
+        ok = shape.is_valid and len(shape.faces()) == len(part.faces())
+    except Exception:  # OCC's Standard_Failure family
+        ok = False
+    if not ok:
+        raise ExportError(
+            "the written STEP file does not read back as a valid shape (a face thinner than "
+            "the file's precision); a larger relief hole or another thickness may help"
+        )
+
+
+def read_step(path: str | os.PathLike[str]) -> bd.Shape:
+    """A STEP file read back with build123d (lengths in mm, whatever the
+    file's unit): for checking what was written."""
+    return bd.import_step(Path(path))
 
 
 @contextmanager

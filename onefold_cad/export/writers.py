@@ -8,7 +8,8 @@ ezdxf, matplotlib) only when it runs.
 
 The JSON report is written last (it lists the other files and their
 timings). Writers marked ``needs_flat_pattern`` refuse, before anything is
-written, a design whose flat pattern cannot be made.
+written, a design whose flat pattern cannot be made. The STEP and the GLB
+(``builds_part``) share one part, built once (:attr:`BuildContext.part`).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "COMPENSATIONS",
+    "PLACEMENTS",
     "WRITERS",
     "BuildContext",
     "Writer",
@@ -45,6 +47,12 @@ __all__ = [
 #: the command's parser needs no numpy).
 COMPENSATIONS = ("sharp", "none")
 
+#: ``--placement`` values, the default first: the STEP, GLB and 3D preview
+#: as the form stands on the ground, or in the fold frame (the values of
+#: :data:`onefold_cad.export.step.PLACEMENTS`, spelled out here so that the
+#: command's parser needs no build123d).
+PLACEMENTS = ("rest", "frame")
+
 
 @dataclass
 class BuildContext:
@@ -59,6 +67,8 @@ class BuildContext:
         warnings: warnings found before writing (for the report).
         files: every file of the design, in writing order (the report lists them).
         timings: seconds per stage, filled in as the writers finish.
+        placement: where the STEP, the GLB and the 3D preview put the form:
+            'rest' (standing on the ground) or 'frame' (the fold frame).
     """
 
     design: Design
@@ -69,6 +79,7 @@ class BuildContext:
     warnings: Sequence[str] = ()
     files: list[Path] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
+    placement: str = PLACEMENTS[0]
 
     @cached_property
     def pattern(self) -> FlatPattern:
@@ -78,11 +89,31 @@ class BuildContext:
         return flat_pattern(self.design, self.folded, self.compensation)
 
     @property
-    def placement(self) -> RestingPlacement:
+    def resting(self) -> RestingPlacement:
         """How the STEP's body stands (:func:`onefold_cad.design.resting_placement`)."""
         from onefold_cad.design import resting_placement
 
         return resting_placement(self.design, self.folded, self.body)
+
+    @cached_property
+    def part(self) -> Any:
+        """The STEP's part (build123d shape, :func:`onefold_cad.export.step.build_part`
+        with this body, placement and compensation), built once: the STEP and
+        the GLB writers write this one part."""
+        from onefold_cad.export.step import build_part
+
+        return build_part(
+            self.design,
+            self.folded,
+            body=self.body,
+            placement=self.placement,
+            compensation=self.compensation,
+        )
+
+    @property
+    def built_part(self) -> Any | None:
+        """:attr:`part` if a writer has built it already, else None (never builds)."""
+        return self.__dict__.get("part")
 
     @cached_property
     def drawing(self) -> Any:
@@ -106,6 +137,10 @@ class Writer:
             does not fit the sheet.
         needs_flat_pattern: refuse (before anything is written) when the
             flat pattern cannot be made.
+        builds_part: the file holds the STEP's part (:attr:`BuildContext.part`):
+            refuse (before anything is written) what the part's builder
+            refuses for fabrication (a relief hole that does not fit, a solid
+            past the bend model's limits).
         what: what the file is for, one line (``onefold build --help``).
     """
 
@@ -115,6 +150,7 @@ class Writer:
     write: Callable[[BuildContext, Path], Any]
     cuts_sheet: bool = False
     needs_flat_pattern: bool = False
+    builds_part: bool = False
     what: str = ""
 
 
@@ -131,7 +167,7 @@ def register(writer: Writer) -> Writer:
 def _step(ctx: BuildContext, path: Path) -> Any:
     from onefold_cad.export import step
 
-    return step.export_design_step(ctx.design, path, folded=ctx.folded, body=ctx.body)
+    return step.export_design_step(ctx.design, path, folded=ctx.folded, part=ctx.part)
 
 
 def _dxf(ctx: BuildContext, path: Path) -> Any:
@@ -163,7 +199,7 @@ def _fold(ctx: BuildContext, path: Path) -> Any:
 def _glb(ctx: BuildContext, path: Path) -> Any:
     from onefold_cad.export import glb
 
-    return glb.write_glb(ctx.design, ctx.folded, path)
+    return glb.write_glb(ctx.design, ctx.folded, path, part=ctx.part)
 
 
 def _png(ctx: BuildContext, path: Path) -> Any:
@@ -171,7 +207,12 @@ def _png(ctx: BuildContext, path: Path) -> Any:
 
     d = ctx.design
     return preview.render_folded_preview(
-        ctx.folded, path, placement=ctx.placement, title=d.name, units=d.units.value
+        ctx.folded,
+        path,
+        placement=ctx.resting,
+        frame=ctx.placement == "frame",
+        title=d.name,
+        units=d.units.value,
     )
 
 
@@ -197,8 +238,24 @@ def _json(ctx: BuildContext, path: Path) -> Any:
         timings=ctx.timings,
         warnings=ctx.warnings,
         compensation=ctx.compensation,
+        body=ctx.body,
+        step=_part_numbers(ctx),
     )
     return write_report(path, report)
+
+
+def _part_numbers(ctx: BuildContext) -> dict[str, Any] | None:
+    """The report's ``step`` section when a writer built the part (else None:
+    the report never runs the CAD kernel)."""
+    part = ctx.built_part
+    if part is None:
+        return None
+    return {
+        "body": ctx.body or _default_body(ctx.design),
+        "placement": ctx.placement,
+        "fit_deviation": float(part.fit_deviation),
+        "fit_tolerance": float(part.fit_tolerance),
+    }
 
 
 register(
@@ -208,6 +265,7 @@ register(
         "STEP",
         _step,
         cuts_sheet=True,
+        builds_part=True,
         what="the folded part for CAD: the sheet's solid, or its surface (--body)",
     )
 )
@@ -259,6 +317,7 @@ register(
         ".glb",
         "GLB",
         _glb,
+        builds_part=True,
         what="the folded form for web viewers and Blender (glTF, metres, y up)",
     )
 )
@@ -338,7 +397,8 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
     a relief hole that does not fit (:func:`~onefold_cad.design.relief_hole_problem`),
     the flat pattern (FabricationError or InvalidParameterError) and, with
     ``--compensation sharp``, a STEP solid past the bend model's limits."""
-    if any(WRITERS[n].cuts_sheet for n in formats):
+    part = any(WRITERS[n].builds_part for n in formats)
+    if part or any(WRITERS[n].cuts_sheet for n in formats):
         from onefold_cad.design import relief_hole_problem
 
         problem = relief_hole_problem(ctx.design, ctx.folded)
@@ -346,24 +406,22 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
             raise problem
     if any(WRITERS[n].needs_flat_pattern for n in formats):
         ctx.pattern  # noqa: B018 - computed (and cached) to raise now
-    if "step" in formats and ctx.compensation == "sharp":
+    if part:
         _check_solid_bends(ctx)
 
 
 def _check_solid_bends(ctx: BuildContext) -> None:
-    """The STEP solid stands for the bent part only inside the bend model's
-    limits (:func:`~onefold_cad.geometry.bend.check_bends`): past them it is
-    refused like the DXF (a shell, the designed surface, is always written).
-    The blank's width limit is not the solid's: the solid is the designed part."""
-    body = ctx.body or _default_body(ctx.design)
-    if body != "solid":
+    """The refusal the part's builder gives a solid past the bend model's
+    limits (:func:`onefold_cad.export.step.build_part`, through
+    :func:`~onefold_cad.design.solid_bend_problem`), raised before anything
+    is written; a shell, the designed surface, is always written."""
+    if (ctx.body or _default_body(ctx.design)) != "solid":
         return
-    from onefold_cad.geometry.bend import bend_error, check_bends
+    from onefold_cad.design import solid_bend_problem
 
-    problems = check_bends(ctx.design, ctx.folded)
-    error = bend_error(tuple(q for q in problems if q.kind != "width"))
-    if error is not None:
-        raise error
+    problem = solid_bend_problem(ctx.design, ctx.folded, ctx.compensation)
+    if problem is not None:
+        raise problem
 
 
 def write_design(

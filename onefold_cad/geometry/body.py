@@ -13,8 +13,10 @@ Two bodies, as the STEP adapter builds them (:mod:`onefold_cad.export.step`):
   :func:`~onefold_cad.geometry.thick_sheet.sheet_offsets`, where it lies on its
   own side of the fold's plane of symmetry; and past each crease half the
   mitre's flat block ``A + x u + d a + s n`` (a pointing away from the side's
-  sheet) cut at that plane and at the plane through the apex that bisects the
-  crease halves (:func:`onefold_cad.export.solid.thick_solid`).
+  sheet) cut at that plane and at its mitre plane, the plane through the
+  apex that bisects the crease halves moved a little towards its own half
+  (:func:`~onefold_cad.geometry.thick_sheet.mitre_planes`, as
+  :func:`onefold_cad.export.solid.thick_solid` builds it).
 
 For a fixed ruling the slab's section is a rectangle in (r, s), cut by one
 line, on which the point depends affinely: a linear function is extreme at
@@ -52,7 +54,7 @@ from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.frame import arc_points, arc_tangents
 from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth, sheet_offsets
+from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth, mitre_planes, sheet_offsets
 from onefold_cad.geometry.validate import cross3
 
 __all__ = ["Body", "Piece", "zoom_min", "BODIES"]
@@ -397,9 +399,7 @@ class Body:
         u, e, n = side.crease_frame(end)
         away = -e if end == 0 else e
         length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
-        u0, u1 = side.crease_frame(0)[0], side.crease_frame(1)[0]
-        m = (u0 - u1) / np.linalg.norm(u0 - u1)
-        m = m if end == 0 else -m
+        m, c = mitre_planes(side, s1 - s0)[end]
         basis = np.stack([u, away, n], axis=1)  # (x, d, s) -> offset from the apex
         x_in = math.sqrt(max(rho * rho - depth * depth, 0.0))
         # the polytope {a . (x, d, s) <= b}
@@ -412,10 +412,10 @@ class Body:
                 [0.0, 0.0, -1.0],
                 [0.0, 0.0, 1.0],
                 -(basis[1]),  # y >= 0
-                -(m @ basis),  # (p - A) . m >= 0
+                -(m @ basis),  # (p - A) . m >= c
             ]
         )
-        b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, 0.0])
+        b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
         triples = np.array(list(combinations(range(len(a)), 3)))
         mats = a[triples]
         ok = np.abs(np.linalg.det(mats)) > 1e-12
@@ -565,9 +565,7 @@ class Body:
         away = -e if end == 0 else e
         length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
         depth = mitre_depth(side, self.s_range)
-        u0, u1 = side.crease_frame(0)[0], side.crease_frame(1)[0]
-        m = (u0 - u1) / np.linalg.norm(u0 - u1)
-        m = m if end == 0 else -m
+        m, c = mitre_planes(side, s1 - s0)[end]
         xs, ws = np.polynomial.legendre.leggauss(8)
         xd, wd = np.polynomial.legendre.leggauss(48)
         vol = 0.0
@@ -584,8 +582,8 @@ class Body:
             wdd = wd * 0.5 * d_hi
             xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
             xb = np.full_like(d, length)
-            # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= 0
-            um, c0 = float(u @ m), d * float(away @ m) + si * float(n @ m)
+            # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
+            um, c0 = float(u @ m), d * float(away @ m) + si * float(n @ m) - c
             if um > 0.0:
                 xa = np.maximum(xa, -c0 / um)
             elif um < 0.0:

@@ -190,6 +190,9 @@ class FoldedSheet:
         point ``(k, 2)`` of that ruling at the point's distance along it, and
         the point's distance ``(k,)`` from the cone measured along the cone's
         normal on that ruling (first-order exact; lengths in the design unit).
+        The projection is well-conditioned while the apex stands clear of the
+        frame plane (its distance h cos(beta) well above the rounding of the
+        points): beta near 90 deg puts the apex in that plane.
 
         Raises:
             NotImplementedError: for the paper model (use the exact model).

@@ -208,12 +208,29 @@ def _locate(body: Body, f: _Feature, g: Array) -> Array:
     return f.point
 
 
+#: above this many points, the candidate triangles are the lower facets of
+#: their convex hull (Qhull) instead of every triple (O(k^4) work)
+_ALL_TRIPLES_MAX = 12
+
+
 def _plane_through(pts: Array, com: Array, g: Array, tol: float) -> Array | None:
     """The upward normal of the plane through three of ``pts`` ``(k, 3)`` that
     has every point on or above it, preferring a triangle under the centre
-    of mass; None when there is no such plane."""
+    of mass; None when there is no such plane.
+
+    Points that all lie in one plane within ``tol`` (a side lying flat on the
+    ground: hundreds of ruling ends) give that plane directly; many others
+    are searched among the lower facets of their convex hull."""
+    if len(pts) > 3:
+        common = _common_plane(pts, g, tol)
+        if common is not None:
+            return common
+    if len(pts) > _ALL_TRIPLES_MAX:
+        triples = _lower_facets(pts, g)
+    else:
+        triples = combinations(range(len(pts)), 3)
     best: tuple[float, Array] | None = None
-    for i, j, k in combinations(range(len(pts)), 3):
+    for i, j, k in triples:
         n = cross3(pts[j] - pts[i], pts[k] - pts[i])
         nn = float(np.linalg.norm(n))
         if nn <= tol * tol:
@@ -229,6 +246,33 @@ def _plane_through(pts: Array, com: Array, g: Array, tol: float) -> Array | None
         if best is None or score > best[0]:
             best = (score, n)
     return None if best is None else best[1]
+
+
+def _common_plane(pts: Array, g: Array, tol: float) -> Array | None:
+    """The upward unit normal of the plane that holds every point ``(k, 3)``
+    within ``tol`` (least squares through their centroid), or None."""
+    centred = pts - pts.mean(axis=0)
+    _, sv, vt = np.linalg.svd(centred, full_matrices=False)
+    if sv[1] <= tol:  # collinear: no plane
+        return None
+    n = vt[2]
+    if float(np.max(np.abs(centred @ n))) > tol:
+        return None
+    return n if float(n @ g) > 0.0 else -n
+
+
+def _lower_facets(pts: Array, g: Array) -> list[tuple[int, int, int]]:
+    """The triangles of the convex hull of ``pts`` ``(k, 3)`` that face down
+    along ``g`` (Qhull, imported here: only a form resting on many points
+    needs it); every triple when Qhull cannot build the hull."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        hull = ConvexHull(pts, qhull_options="Qt")
+    except QhullError:
+        return list(combinations(range(len(pts)), 3))
+    down = hull.equations[:, :3] @ g < 0.0
+    return [(int(a), int(b), int(c)) for a, b, c in hull.simplices[down]]
 
 
 def touching(

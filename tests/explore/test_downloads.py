@@ -69,3 +69,18 @@ def test_a_design_the_writer_refuses_gives_its_error_and_no_file(square):
     bad = square.with_changes(material=square.material.with_changes(thickness=5, bend_radius=150))
     with pytest.raises((InvalidParameterError, FabricationError), match="thickness"):
         make_download("dxf", bad)
+
+
+def test_the_step_of_a_solid_past_the_bend_limits_is_refused_as_build_refuses_it():
+    """The page's STEP is build's: a solid past the bend model's limits gets the
+    error build gives before writing (the page has no --compensation none)."""
+    from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+    from onefold_cad.design import solid_bend_problem
+
+    design = Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
+                    material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
+    expected = solid_bend_problem(design, build_design(design))
+    assert expected is not None
+    with pytest.raises(FabricationError) as err:
+        make_download("step", design)
+    assert str(err.value) == str(expected)

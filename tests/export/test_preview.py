@@ -157,6 +157,27 @@ def test_caption_gives_fold_angles_height_and_footprint(folded):
     assert margin > 5.0 and f"tipping margin of {margin:.1f}\N{DEGREE SIGN}" in text
 
 
+def test_the_fold_frame_view_says_so_and_keeps_the_standing_numbers(folded, tmp_path):
+    """frame=True (build --placement frame): drawn in the fold frame, a different
+    picture; the caption says it is the fold frame and still gives how it stands."""
+    from onefold_cad.export.preview import _caption
+
+    standing = _caption(folded, folded.resting, "mm")
+    text = _caption(folded, folded.resting, "mm", frame=True)
+    assert "shown in the fold frame (apex above H)" in text
+    assert "fold frame (apex" not in standing
+    rest = folded.resting
+    for words in (
+        f"height {rest.height:.4g} mm",
+        f"tipping margin of {rest.tipping_margin_deg:.1f}",
+    ):
+        assert words in text and words in standing
+    a = render_folded_preview(folded, tmp_path / "a.png", size_px=(300, 240))
+    b = render_folded_preview(folded, tmp_path / "b.png", size_px=(300, 240), frame=True)
+    assert _png_size(b.read_bytes()) == (300, 240)
+    assert a.read_bytes() != b.read_bytes()
+
+
 # -- the flat SVG: real units, true size, strokes that read -----------------------
 
 

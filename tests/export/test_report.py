@@ -222,7 +222,7 @@ def test_the_bend_warning_says_what_build_does_with_the_compensation():
     (none,) = design_warnings(design, folded, "none")
     assert sharp == (
         f"{error}; build refuses the DXF, cut DXF, bend sheet and flat preview and a STEP "
-        "solid (--compensation none writes the uncompensated blank)"
+        "solid and its GLB (--compensation none writes the uncompensated blank)"
     )
     assert none == (
         f"{error}; with --compensation none build writes the uncompensated blank (the "

@@ -1,4 +1,6 @@
-"""Round-trip tests of the STEP adapter: write, re-read with build123d, measure."""
+"""Round-trip tests of the STEP adapter: write, re-read with build123d, measure
+against values derived independently (flat area and perimeter, fold angles,
+the cone's equation, the integrated slab volume, area x t for MID)."""
 
 from __future__ import annotations
 
@@ -7,12 +9,15 @@ import math
 import build123d as bd
 import numpy as np
 import pytest
-from hypothesis import example, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from OCP.BRep import BRep_Tool
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.collections import (
     IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaceMap,
 )
+from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS
@@ -23,22 +28,32 @@ from onefold_cad import (
     FrameCurve,
     InvalidParameterError,
     Material,
+    NoSolutionError,
     Sheet,
     SheetSurface,
     Units,
     build_design,
 )
-from onefold_cad.design import relief_hole_diameter
+from onefold_cad.design import (
+    default_body,
+    relief_hole_diameter,
+    resting_placement,
+    solid_min_relief_hole,
+)
+from onefold_cad.errors import FabricationError
 from onefold_cad.export.flat_pattern import flat_pattern
 from onefold_cad.export.report import design_report
 from onefold_cad.export.step import (
+    BOUNDARY_TOLERANCE,
+    SOLID_TOLERANCE,
+    build_part,
     build_shell,
-    default_body,
+    build_solid,
     export_design_step,
     measure,
-    min_relief_hole,
     sheet_offsets,
 )
+from onefold_cad.geometry.bend import bend_error, check_bends
 from onefold_cad.geometry.frame import arc_points
 from onefold_cad.geometry.thick_sheet import slab_volume
 
@@ -48,6 +63,10 @@ TABLE1 = [  # (H_c, alpha, beta, divisions, Y+, Y-, X+, X-)
     (0, 32, 34, 90, 300, 300, 300, 300),
     (68, 32, 34, 90, 300, 96, 103, 201),
 ]
+#: Solid volume against the volume integrated from the geometry: the edge
+#: curves lie within 1e-6 of the sheet's size of the exact ones, and the
+#: volume they enclose agrees to a few 1e-6 (the build itself refuses 1e-4).
+SOLID_VOLUME_AGREEMENT = 2e-5
 
 
 def _star() -> Sheet:
@@ -82,18 +101,34 @@ def _face_edge_map(shape: bd.Shape) -> EdgeFaceMap:
     return m
 
 
+def _free_length(shape: bd.Shape) -> float:
+    m = _face_edge_map(shape)
+    return sum(
+        bd.Edge(m.FindKey(i)).length
+        for i in range(1, m.Extent() + 1)
+        if m.FindFromIndex(i).Size() == 1
+    )
+
+
+def _boundary_tolerance(design: Design) -> float:
+    """How far (length) the exact shell's boundary curves may lie from the
+    sheet's edges mapped onto the cone: the stated tolerance (0 for the fan,
+    which is exact)."""
+    return BOUNDARY_TOLERANCE * design.sheet.size if design.model.value == "exact" else 0.0
+
+
 @pytest.fixture(scope="module", params=sorted(CASES))
 def round_trip(request, tmp_path_factory):
     design, hole = CASES[request.param]
     folded = build_design(design)
     design = design.with_changes(material=Material(relief_hole=hole))
     path = tmp_path_factory.mktemp("step") / f"{design.name}.step"
-    export_design_step(design, path, folded)
+    export_design_step(design, path, folded, placement="frame")
     return design, folded, hole, bd.import_step(path)
 
 
-def test_valid_one_sewn_shell(round_trip):
-    design, folded, _, shape = round_trip
+def test_shell_reads_back_as_one_valid_shell(round_trip):
+    _, _, _, shape = round_trip
     assert shape.is_valid
     assert len(shape.shells()) == 1
     assert len(shape.solids()) == 0
@@ -113,20 +148,19 @@ def test_face_count_independent_of_divisions(round_trip):
 
 
 def test_area_equals_flat_area(round_trip):
+    """Developable: the folded area is the flat one; a boundary within ``tol``
+    of the exact curve moves it by at most tol x perimeter (OCC integrates
+    to 1e-9)."""
     design, _, hole, shape = round_trip
     flat = design.sheet.area - math.pi * hole**2 / 4.0
-    assert measure(shape) == pytest.approx(flat, rel=1e-5)
+    perimeter = design.sheet.perimeter + math.pi * hole
+    bound = _boundary_tolerance(design) * perimeter / flat + 1e-8
+    assert measure(shape) == pytest.approx(flat, rel=bound)
 
 
 def test_free_boundary_length_equals_flat_perimeter(round_trip):
     design, _, hole, shape = round_trip
-    m = _face_edge_map(shape)
-    free = 0.0
-    for i in range(1, m.Extent() + 1):
-        edge = bd.Edge(m.FindKey(i))
-        if m.FindFromIndex(i).Size() == 1:
-            free += edge.length
-    assert free == pytest.approx(design.sheet.perimeter + math.pi * hole, rel=1e-5)
+    assert _free_length(shape) == pytest.approx(design.sheet.perimeter + math.pi * hole, rel=1e-7)
 
 
 def test_crease_dihedral_equals_fold_angle(round_trip):
@@ -149,7 +183,7 @@ def test_crease_dihedral_equals_fold_angle(round_trip):
             n1 = np.array(tuple(f1.normal_at(bd.Vector(*mid))))
             n2 = np.array(tuple(f2.normal_at(bd.Vector(*mid))))
             ang = math.degrees(math.atan2(np.linalg.norm(np.cross(n1, n2)), np.dot(n1, n2)))
-            assert ang == pytest.approx(half.fold_angle_deg, abs=0.01)
+            assert ang == pytest.approx(half.fold_angle_deg, abs=1e-6)
             found += 1
     assert found == 2
 
@@ -172,9 +206,10 @@ def _cone_distance(design: Design, apex: np.ndarray, pts: np.ndarray) -> np.ndar
 
 
 def test_face_points_lie_on_the_surface(round_trip):
-    """Exact model: on the exact cone; paper model: on the fan plane through the apex."""
+    """Exact model: on the exact cone (a rational B-spline holds it to
+    rounding); paper model: on the fan's plane through the apex."""
     design, folded, _, shape = round_trip
-    tol = 1e-6 * design.sheet.size
+    tol = 1e-9 * design.sheet.size
     if design.model.value == "paper":
         for face in shape.faces():
             n = np.array(tuple(face.normal_at()))
@@ -216,17 +251,22 @@ def test_deterministic_bytes_units_and_name(tmp_path):
     # the re-read shape is in the file's unit converted to mm by the reader
     re_in = bd.import_step(c)
     re_mm = bd.import_step(a)
-    assert measure(re_in) == pytest.approx(measure(re_mm) * 25.4**2, rel=1e-6)
-    assert measure(bd.import_step(e)) == pytest.approx(measure(re_mm) * 304.8**2, rel=1e-6)
+    assert measure(re_in) == pytest.approx(measure(re_mm) * 25.4**2, rel=1e-9)
+    assert measure(bd.import_step(e)) == pytest.approx(measure(re_mm) * 304.8**2, rel=1e-9)
     # the writer's unit setting is restored: a mm file afterwards is in mm again
     assert export_design_step(design, tmp_path / "f.step").read_bytes() == a.read_bytes()
 
 
+#: (0, 90) deg up to 1e-6 deg from either end (below 1e-9 of the frame the
+#: solver refuses magnitudes double precision cannot fold: not a STEP matter)
+_ANGLE = st.floats(1e-6, 90.0 - 1e-6)
+
+
 @settings(max_examples=15, deadline=None)
 @given(
-    alpha=st.floats(5, 85),
-    beta=st.floats(5, 85),
-    frac=st.floats(-0.95, 0.95),
+    alpha=_ANGLE,
+    beta=_ANGLE,
+    frac=st.floats(-1.0, 1.0, exclude_min=True, exclude_max=True),
     sides=st.lists(st.floats(50, 500), min_size=4, max_size=4),
     hole=st.sampled_from([0.0, 10.0]),
 )
@@ -238,12 +278,22 @@ def test_deterministic_bytes_units_and_name(tmp_path):
     sides=[497.61656232, 353.07728238, 421.74139278, 421.74139278],
     hole=0.0,
 )
-def test_shell_of_random_designs_is_valid_with_the_flat_area(alpha, beta, frac, sides, hole):
+@example(alpha=5.0, beta=89.9, frac=0.9, sides=[300.0, 50.0, 300.0, 50.0], hole=0.0)  # issue 11
+# the hole's curve on a face across the rational arc's C1 knot was 1.2e-4 off between the
+# fit's nodes while right at their midpoints (checked at the quarters since)
+@example(alpha=45.5, beta=89.0, frac=0.5625, sides=[50.0, 50.0, 50.0, 109.0], hole=10.0)
+def test_shell_of_random_designs_is_valid_and_develops_onto_the_sheet(
+    alpha, beta, frac, sides, hole
+):
     h_c = frac * 100.0 * math.cos(math.radians(alpha))
     design = Design("r", FrameCurve(alpha, beta, h_c), Sheet.quadrilateral(*sides))
-    folded = build_design(design)
+    try:
+        folded = build_design(design)
+    except NoSolutionError:
+        assume(False)  # no fold to write (the solver's matter)
     shell = build_shell(folded, relief_hole=hole)
     assert shell.is_valid and len(shell.faces()) == 4
+    assert shell.fit_deviation <= shell.fit_tolerance == BOUNDARY_TOLERANCE * design.sheet.size
     # the free edges, unfolded, lie on the flat outline (or the hole's circle)
     v = design.sheet.vertices
     m = _face_edge_map(shell)
@@ -257,15 +307,184 @@ def test_shell_of_random_designs_is_valid_with_the_flat_area(alpha, beta, frac, 
         for a, b in zip(v, np.roll(v, -1, axis=0), strict=True):
             t = np.clip((flat - a) @ (b - a) / ((b - a) @ (b - a)), 0.0, 1.0)
             gap = np.minimum(gap, np.linalg.norm(flat - (a + t[:, None] * (b - a)), axis=1))
-        assert float(np.max(gap)) < 1e-6 * design.sheet.size
-    flat_area = design.sheet.area - math.pi * hole**2 / 4.0
-    assert measure(shell) == pytest.approx(flat_area, rel=1e-5)
+        assert float(np.max(gap)) < 2.0 * shell.fit_tolerance
+    perimeter = design.sheet.perimeter + math.pi * hole
+    assert _free_length(shell) == pytest.approx(perimeter, rel=1e-7)
+
+
+def test_unreachable_boundary_fit_is_an_export_error(monkeypatch):
+    """The shell never silently misses its stated tolerance: with too few
+    points allowed the fit cannot reach it, and the build says so."""
+    import onefold_cad.export.brep as brep
+
+    folded = build_design(CASES["star"][0])
+    monkeypatch.setattr(brep, "MAX_NODES", 20)
+    with pytest.raises(ExportError, match="more than .* points to stay within"):
+        build_shell(folded)
+
+
+@pytest.mark.parametrize("hole", [0.0, 4.0])
+def test_fan_shell_shares_its_topology(hole):
+    """1000 divisions: one apex vertex (or one hole vertex per ruling), every
+    ruling an edge of the two triangles beside it (the crease rulings of both
+    sides), the free edges the sheet's outline (and the hole)."""
+    frame = FrameCurve(50, 45, 20, 100, 1000)
+    design = Design("fan", frame, Sheet.quadrilateral(300, 200, 250, 150), model="paper")
+    folded = build_design(design)
+    shell = build_shell(folded, relief_hole=hole)
+    assert shell.is_valid
+    rulings = sum(len(a) for a in folded.ruling_angles) - 2  # the crease rulings once
+    triangles = sum(len(a) - 1 for a in folded.ruling_angles)
+    assert len(shell.faces()) == triangles
+    ends = rulings
+    assert len(shell.vertices()) == ends + (1 if hole == 0.0 else rulings)
+    m = _face_edge_map(shell)
+    uses = [m.FindFromIndex(i).Size() for i in range(1, m.Extent() + 1)]
+    assert uses.count(2) == rulings  # every ruling between two triangles
+    assert uses.count(1) == triangles * (2 if hole else 1)  # outline (and hole) pieces
+    assert _free_length(shell) == pytest.approx(
+        design.sheet.perimeter + math.pi * hole, rel=1e-12 if hole == 0.0 else 1e-6
+    )
+
+
+def _tiny_sharp_fan(scale: float) -> Design:
+    """A fan of 385 divisions folded almost flat onto itself (beta near 90
+    deg) on a sheet ``scale`` x a couple of millimetres: neighbouring ruling
+    ends and hole points come within micrometres (from the STEP corpus)."""
+    sheet = Sheet.quadrilateral(
+        1.278336 * scale, 1.568703 * scale, 1.781668 * scale, 0.869489 * scale
+    )
+    frame = FrameCurve(6.734977187126817, 89.98568127260206, 26.219145054933023, 100, 385)
+    return Design("tiny", frame, sheet, model="paper")
+
+
+@pytest.mark.parametrize(("scale", "hole"), [(0.01, 0.0), (1.0, 0.014)])
+def test_fan_leaves_out_rulings_closer_than_the_kernel_resolves(scale, hole):
+    """Ruling ends closer than 3 x NEAR, or hole points closer than 4 x OCC's
+    precision (1e-7), are one ruling (OCC cannot make edges that short): the
+    two triangles beside a left-out ruling become one, and the outline and
+    the hole's boundary shorten by less than twice those gaps per ruling."""
+    from onefold_cad.export.brep import NEAR, PRECISION
+
+    design = _tiny_sharp_fan(scale)
+    folded = build_design(design)
+    triangles = sum(len(a) - 1 for a in folded.ruling_angles)
+    shell = build_shell(folded, relief_hole=hole)
+    assert shell.is_valid
+    assert len(shell.faces()) < triangles  # some rulings left out
+    dropped = triangles - len(shell.faces())
+    outline = design.sheet.perimeter + math.pi * hole
+    # leaving out a point within g of the last kept one shortens a chain by < 2 g
+    gaps = 3 * NEAR + (4 * PRECISION if hole else 0.0)
+    assert _free_length(shell) == pytest.approx(outline, abs=2 * gaps * dropped)
+
+
+def test_relief_hole_below_the_kernel_resolution_is_refused_with_what_to_change():
+    with pytest.raises(ExportError, match=r"below what the CAD kernel resolves.*--relief-hole 0"):
+        build_shell(build_design(CASES["table1-0"][0]), relief_hole=5e-5)
+
+
+def test_kernel_time_budget_is_an_export_error_naming_what_to_reduce():
+    paper = Design("fan", FrameCurve(50, 45, 0, 100, 3000), Sheet.quadrilateral(300, 300, 300, 300))
+    folded = build_design(paper.with_changes(model="paper"))
+    with pytest.raises(ExportError, match="time budget .* fewer divisions"):
+        build_shell(folded, budget=0.0)
+    thick = CASES["table1-0"][0]
+    folded = build_design(thick)
+    m = Material(thickness=3.0, relief_hole=20.0)
+    with pytest.raises(ExportError, match="time budget .* thinner sheet"):
+        build_solid(folded, m, budget=0.0)
+
+
+# -- the part as it stands ----------------------------------------------------
+def _lowest(shape: bd.Shape, size: float) -> tuple[float, float]:
+    """Distances from ``shape`` to the planes z = 0 and z = -size (exact
+    extrema): 0 and ``size`` when its lowest point lies on z = 0."""
+    out = []
+    for z in (0.0, -size):
+        plane = BRepBuilderAPI_MakeFace(
+            gp_Pln(gp_Pnt(0.0, 0.0, z), gp_Dir(0.0, 0.0, 1.0)), -1e6, 1e6, -1e6, 1e6
+        ).Face()
+        out.append(BRepExtrema_DistShapeShape(shape.wrapped, plane).Value())
+    return out[0], out[1]
+
+
+def _vertices(shape: bd.Shape) -> np.ndarray:
+    return np.array([tuple(v) for v in shape.vertices()])
+
+
+@pytest.mark.parametrize("body", ["shell", "solid"])
+def test_step_stands_on_the_ground_moved_by_the_resting_placement(tmp_path, body):
+    design = CASES["table1-0"][0]
+    if body == "solid":
+        design = design.with_changes(material=Material(thickness=3.0))
+    folded = build_design(design)
+    rest = bd.import_step(export_design_step(design, tmp_path / "rest.step", folded, body=body))
+    frame = bd.import_step(
+        export_design_step(design, tmp_path / "frame.step", folded, body=body, placement="frame")
+    )
+    assert rest.is_valid and frame.is_valid
+    size = design.sheet.size
+    # the lowest point on the ground, nothing below it
+    on, below = _lowest(rest, size)
+    assert on < 1e-7 * size
+    assert below == pytest.approx(size, abs=1e-7 * size)
+    # the same part moved by the design's resting placement of this body (the
+    # report's): rotation and translation, then at most a lift of the B-rep's
+    # own lowest point onto the ground, within the curves' fit tolerance
+    place = resting_placement(design, folded, body)
+    turned = _vertices(frame) @ place.rotation.T + place.translation
+    moved = _vertices(rest)
+    shift = moved.mean(axis=0) - turned.mean(axis=0)
+    gap = np.linalg.norm(turned[:, None, :] + shift - moved[None, :, :], axis=2).min(axis=1)
+    assert float(gap.max()) < 1e-9 * size
+    t = design.material.thickness
+    tol = min(SOLID_TOLERANCE * size, 1e-3 * t) if body == "solid" else BOUNDARY_TOLERANCE * size
+    assert np.all(np.abs(shift[:2]) < 1e-9 * size)
+    assert abs(shift[2]) <= tol
+    with pytest.raises(InvalidParameterError, match="placement"):
+        build_part(design, folded, placement="floor")
+
+
+def _corner_design() -> Design:
+    """A 40 x 100 sheet folded to about 160 deg, 3.57 mm thick, inside radius 6: the
+    bend's set-back is far beyond the flanges beside it (past the bend model's limits)."""
+    return Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
+                  material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
+
+
+def test_a_solid_past_the_bend_limits_is_refused_unless_compensation_none(tmp_path):
+    """The solid stands for the bent part only inside the bend model's limits: past
+    them build_part and export_design_step refuse it with the bend model's own error
+    (the same one ``build`` gives before writing) and leave no file; 'none' builds it
+    as designed; the shell, the designed surface, is never refused for it."""
+    design = _corner_design()
+    folded = build_design(design)
+    half = folded.crease[0]
+    t, r = design.material.thickness, design.material.bend_radius
+    # by hand: MID reference, so the set-back is (r + t / 2) tan(psi / 2)
+    setback = (r + t / 2) * math.tan(math.radians(half.fold_angle_deg) / 2)
+    expected = bend_error(tuple(q for q in check_bends(design, folded) if q.kind != "width"))
+    assert expected is not None
+    with pytest.raises(FabricationError) as err:
+        build_part(design, folded)  # the default body is the solid
+    assert str(err.value) == str(expected) and err.value.parameter == "bend_radius"
+    assert f"{half.name} (fold angle {half.fold_angle_deg:.2f} deg" in str(err.value)
+    assert f"set-back SB = {setback:.3g} mm" in str(err.value)
+    with pytest.raises(FabricationError, match="^bend_radius: "):
+        export_design_step(design, tmp_path / "corner.step", folded)
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(InvalidParameterError, match="compensation"):
+        build_part(design, folded, compensation="bent")
+    solid = build_part(design, folded, compensation="none")
+    assert isinstance(solid, bd.Solid) and solid.is_valid
+    assert isinstance(build_part(design, folded, body="shell"), bd.Shell)
 
 
 # -- the sheet as a solid of thickness t ------------------------------------
 SOLID_CASES = {  # name: (case, thickness, sheet_surface, relief hole; None = default)
     "table1-0-mid": ("table1-0", 3.0, SheetSurface.MID, None),
-    "table1-0-inside": ("table1-0", 3.0, SheetSurface.INSIDE, 14.0),
+    "table1-0-inside": ("table1-0", 3.0, SheetSurface.INSIDE, 15.0),
     "table1-0-outside": ("table1-0", 3.0, SheetSurface.OUTSIDE, None),
     "table1-3-outside": ("table1-3", 2.0, SheetSurface.OUTSIDE, None),
     "rect-ft-in-mm-mid": ("rect-ft-in-mm", 3.57, SheetSurface.MID, None),
@@ -273,19 +492,35 @@ SOLID_CASES = {  # name: (case, thickness, sheet_surface, relief hole; None = de
 }
 
 
-@pytest.fixture(scope="module", params=sorted(SOLID_CASES))
+_SOLIDS: dict[str, tuple[Design, object, bd.Shape]] = {}
+
+
+def _solid_trip(name: str, tmp_path_factory) -> tuple[Design, object, bd.Shape]:
+    """Write solid case ``name`` as STEP (fold frame) and read it back, once."""
+    if name not in _SOLIDS:
+        case, t, surface, hole = SOLID_CASES[name]
+        design = CASES[case][0]
+        folded = build_design(design)
+        material = Material(thickness=t, sheet_surface=surface, relief_hole=hole)
+        design = design.with_changes(material=material)
+        path = tmp_path_factory.mktemp("solid") / f"{design.name}.step"
+        export_design_step(design, path, folded, placement="frame")  # default body: the solid
+        m = material.with_changes(relief_hole=relief_hole_diameter(design, folded))
+        _SOLIDS[name] = (design.with_changes(material=m), folded, bd.import_step(path))
+    return _SOLIDS[name]
+
+
+@pytest.fixture(params=sorted(SOLID_CASES))
 def solid_trip(request, tmp_path_factory):
-    case, t, surface, hole = SOLID_CASES[request.param]
-    design = CASES[case][0]
-    folded = build_design(design)
-    material = Material(thickness=t, sheet_surface=surface, relief_hole=hole)
-    design = design.with_changes(material=material)
-    path = tmp_path_factory.mktemp("solid") / f"{design.name}.step"
-    export_design_step(design, path, folded)  # default body: the solid
-    return design, folded, bd.import_step(path)
+    return _solid_trip(request.param, tmp_path_factory)
 
 
-def test_solid_is_one_valid_solid(solid_trip):
+@pytest.fixture(params=sorted(k for k, v in SOLID_CASES.items() if v[2] is SheetSurface.MID))
+def mid_trip(request, tmp_path_factory):
+    return _solid_trip(request.param, tmp_path_factory)
+
+
+def test_solid_reads_back_as_one_valid_closed_solid(solid_trip):
     _, _, shape = solid_trip
     assert shape.is_valid
     assert len(shape.solids()) == 1
@@ -296,16 +531,32 @@ def test_solid_is_one_valid_solid(solid_trip):
         assert m.FindFromIndex(i).Size() == 2 or BRep_Tool.Degenerated_s(edge)
 
 
-def test_solid_volume_is_area_times_thickness(solid_trip):
+def test_solid_volume_matches_the_volume_integrated_from_the_geometry(solid_trip):
     design, folded, shape = solid_trip
     m = design.material
-    area = measure(build_shell(folded, relief_hole=m.relief_hole_diameter))
-    volume = measure(shape, "volume")
-    assert volume == pytest.approx(area * m.thickness, rel=0.01)  # the issue's criterion
-    if m.sheet_surface is SheetSurface.MID:  # the mid-surface of a developable slab
-        assert volume == pytest.approx(area * m.thickness, rel=1e-3)
-    # the volume computed from the geometry (curvature of the offsets, mitre)
-    assert volume == pytest.approx(slab_volume(folded, m, m.relief_hole_diameter), rel=2e-3)
+    expected = slab_volume(folded, m, m.relief_hole_diameter)
+    assert measure(shape, "volume") == pytest.approx(expected, rel=SOLID_VOLUME_AGREEMENT)
+
+
+def test_mid_solid_volume_is_area_times_thickness_up_to_the_mitre(mid_trip):
+    """A developable mid-surface slab holds area x t; the mitre adds a wedge
+    on the convex side of each crease half and takes about as much off the
+    concave side, so the difference is less than those wedges:
+    2 sides x length x (t/2) x (t/2) tan(psi/2) / 2 per crease half."""
+    design, folded, shape = mid_trip
+    m = design.material
+    t = m.thickness
+    area = design.sheet.area - math.pi * m.relief_hole_diameter**2 / 4.0
+    wedges = sum(
+        2.0
+        * h.length
+        * (t / 2.0)
+        * (t / 2.0)
+        * math.tan(math.radians(h.fold_angle_deg) / 2.0)
+        / 2.0
+        for h in folded.crease
+    )
+    assert abs(measure(shape, "volume") - area * t) < wedges
 
 
 def test_solid_lies_on_the_side_sheet_surface_names(solid_trip):
@@ -317,24 +568,71 @@ def test_solid_lies_on_the_side_sheet_surface_names(solid_trip):
     t = m.thickness
     r_hole = 0.5 * m.relief_hole_diameter
     sheet = design.sheet
-    pts, checked = [], 0
-    for psi in np.concatenate([np.linspace(0.3, math.pi - 0.3, 5), -np.linspace(0.3, 2.8, 5)]):
+    pts = []
+    for psi, frac in zip(
+        np.concatenate([np.linspace(0.3, math.pi - 0.3, 3), -np.linspace(0.3, 2.8, 3)]),
+        (0.3, 0.7, 0.5, 0.7, 0.3, 0.5),
+        strict=True,
+    ):
         edge = float(sheet.ray_lengths(np.array([psi]))[0])
-        for frac in (0.3, 0.7):
-            r = r_hole + 3 * t + frac * (edge - r_hole - 6 * t)
-            pts.append([r * math.cos(psi), r * math.sin(psi)])
+        r = r_hole + 3 * t + frac * (edge - r_hole - 6 * t)
+        pts.append([r * math.cos(psi), r * math.sin(psi)])
     xy = np.array(pts)
-    base = folded.map_points(xy)
-    normal = folded.normals(xy)
-    for p, n in zip(base, normal, strict=True):
-        inside = [0.5 * (s0 + s1), s0 + 0.05 * t, s1 - 0.05 * t]
-        outside = [s0 - 0.1 * t, s1 + 0.1 * t]
-        for s in inside:
+    for p, n in zip(folded.map_points(xy), folded.normals(xy), strict=True):
+        for s in (0.5 * (s0 + s1), s0 + 0.05 * t, s1 - 0.05 * t):
             assert shape.is_inside(bd.Vector(*(p + s * n)))
-        for s in outside:
+        for s in (s0 - 0.1 * t, s1 + 0.1 * t):
             assert not shape.is_inside(bd.Vector(*(p + s * n)))
-        checked += 1
-    assert checked == 20
+
+
+def test_mid_solid_mitre_meets_on_the_plane_of_symmetry(mid_trip):
+    """On the plane y = 0, across a crease half, the two sides' slabs of
+    thickness t meet at the fold angle psi: the mitre reaches
+    (t / 2) / cos(psi / 2) from the crease line to either side."""
+    design, folded, shape = mid_trip
+    m = design.material
+    apex = folded.apex
+    for half in folded.crease:
+        u = (half.end_3d - apex) / np.linalg.norm(half.end_3d - apex)
+        w = np.cross(u, [0.0, 1.0, 0.0])
+        w /= np.linalg.norm(w)
+        reach = 0.5 * m.thickness / math.cos(math.radians(half.fold_angle_deg) / 2.0)
+        on_crease = apex + 0.5 * half.length * u
+        for sign in (1.0, -1.0):
+            assert shape.is_inside(bd.Vector(*(on_crease + sign * 0.9 * reach * w)))
+            assert not shape.is_inside(bd.Vector(*(on_crease + sign * 1.1 * reach * w)))
+
+
+@pytest.mark.parametrize("t", [0.5, 1.5, 6.0])
+def test_ten_by_twenty_four_foot_sheet_builds_its_solid(t):
+    """Issue 11: the 10 x 24 ft sheet at bend radius 1.5 for t from 0.5 to 6."""
+    design = Design(
+        "big",
+        FrameCurve(30, 30),
+        Sheet.rectangle(3048.0, 7315.2),
+        material=Material(thickness=t, bend_radius=1.5),
+    )
+    folded = build_design(design)
+    m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
+    solid = build_solid(folded, m)
+    assert solid.is_valid
+    expected = slab_volume(folded, m, m.relief_hole_diameter)
+    assert measure(solid, "volume") == pytest.approx(expected, rel=SOLID_VOLUME_AGREEMENT)
+
+
+def test_solid_past_the_mitre_limits_is_refused_with_what_to_change():
+    square = Sheet.quadrilateral(300, 300, 300, 300)
+    flat = Design("flat", FrameCurve(0.01, 0.01), square, material=Material(thickness=0.5))
+    folded = build_design(flat)
+    m = flat.material.with_changes(relief_hole=relief_hole_diameter(flat, folded))
+    with pytest.raises(ExportError, match=r"nearly flat .*--body shell"):
+        build_solid(folded, m)
+    closed = Design("shut", FrameCurve(89.0, 89.9), square, material=Material(thickness=0.3))
+    folded = build_design(closed)
+    assert min(h.fold_angle_deg for h in folded.crease) > 179.0
+    m = closed.material.with_changes(sheet_surface=SheetSurface.OUTSIDE, relief_hole=1.0)
+    with pytest.raises(ExportError, match=r"nearly closed .* thinner sheet"):
+        build_solid(folded, m)
 
 
 def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
@@ -345,7 +643,7 @@ def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
     with pytest.raises(InvalidParameterError, match="faces"):
         build_shell(folded, faces="fan")
     thick = design.with_changes(material=Material(thickness=1.0))
-    need = min_relief_hole(folded, thick.material)
+    need = solid_min_relief_hole(folded, thick.material)
     assert 0.0 < need < thick.material.relief_hole_diameter  # the default hole is wide enough
     for hole in (0.0, 0.9 * need):  # no hole, or one too small for the mitre
         small = thick.with_changes(material=thick.material.with_changes(relief_hole=hole))
@@ -358,6 +656,8 @@ def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
         export_design_step(paper, tmp_path / "thick.step", body="solid")
     with pytest.raises(InvalidParameterError, match="body"):
         export_design_step(thick, tmp_path / "thick.step", folded, body="mesh")
+    with pytest.raises(InvalidParameterError, match="placement"):
+        export_design_step(thick, tmp_path / "thick.step", folded, placement="frames")
     assert list(tmp_path.iterdir()) == []
     # a design with thickness but no hole falls back to the reference surface
     flat_hole = thick.with_changes(material=thick.material.with_changes(relief_hole=0.0))
@@ -368,22 +668,27 @@ def test_bad_input_is_a_clear_error_and_leaves_no_file(tmp_path):
 
 
 def test_default_relief_hole_fits_the_solid_and_every_export_cuts_it(tmp_path):
-    """INSIDE on Table 1's square at t = 3 needs a hole > 11.88; the default
-    max(3 t, 2 (t + r)) = 9 is raised to 1.1 x that, rounded up (14), and the
-    STEP, the DXF's flat pattern and the report all use it."""
+    """INSIDE on Table 1's square at t = 3: the default max(3 t, 2 (t + r)) =
+    9 is too small for the solid, so the hole is raised to 1.1 x the
+    smallest one, rounded up to two significant digits; the STEP, the DXF's
+    flat pattern and the report all use it."""
     design = CASES["table1-0"][0].with_changes(
         material=Material(thickness=3.0, sheet_surface=SheetSurface.INSIDE)
     )
     folded = build_design(design)
-    need = min_relief_hole(folded, design.material)
+    need = solid_min_relief_hole(folded, design.material)
     hole = relief_hole_diameter(design, folded)
-    assert design.material.relief_hole_diameter == 9.0 < need < hole == 14.0
+    assert design.material.relief_hole_diameter == 9.0 < need
+    step = 10.0 ** (math.floor(math.log10(hole)) - 1)  # two significant digits
+    assert 1.1 * need <= hole < 1.1 * need + step
+    assert hole / step == pytest.approx(round(hole / step), abs=1e-9)
     assert flat_pattern(design, folded).hole_diameter == hole
     assert design_report(design, folded)["relief_hole_diameter"] == hole
     shape = bd.import_step(export_design_step(design, tmp_path / "d.step", folded))
     assert shape.is_valid and len(shape.solids()) == 1
-    area = measure(build_shell(folded, relief_hole=hole))
-    assert measure(shape, "volume") == pytest.approx(area * 3.0, rel=0.01)
+    m = design.material.with_changes(relief_hole=hole)
+    expected = slab_volume(folded, m, hole)
+    assert measure(shape, "volume") == pytest.approx(expected, rel=SOLID_VOLUME_AGREEMENT)
     # an explicit hole is kept as it is (and this one is too small for a solid)
     fixed = design.with_changes(material=design.material.with_changes(relief_hole=9.0))
     assert relief_hole_diameter(fixed, folded) == 9.0
@@ -399,7 +704,7 @@ def test_kernel_failure_is_an_export_error_and_leaves_no_file(tmp_path, monkeypa
     monkeypatch.setattr(step, "thick_solid", broken)
     with pytest.raises(ExportError, match="simulated OCC failure"):
         export_design_step(design, tmp_path / "x.step")
-    monkeypatch.setattr(step, "ruled_faces", broken)
+    monkeypatch.setattr(step, "ruled_shell", broken)
     with pytest.raises(ExportError, match="simulated OCC failure"):
         export_design_step(design, tmp_path / "x.step", body="shell")
     assert list(tmp_path.iterdir()) == []

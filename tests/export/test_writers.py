@@ -99,6 +99,85 @@ def test_a_registered_writer_is_written_timed_and_listed_in_the_report(tmp_path,
     assert set(rep["timings_s"]) >= {"csv"}
 
 
+def test_a_solid_past_the_bend_limits_is_refused_for_the_step_and_the_glb_alike():
+    """The STEP and the GLB hold the same part: each alone is refused before writing,
+    with the error the part's builder gives (--compensation none writes both)."""
+    from onefold_cad.design import solid_bend_problem
+
+    d = Design(
+        "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
+        material=Material(thickness=3.57, bend_radius=6.0),
+    )  # fmt: skip
+    ctx = BuildContext(d, build_design(d))
+    expected = str(solid_bend_problem(d, ctx.folded))
+    for fmt in ("step", "glb"):
+        with pytest.raises(FabricationError) as exc:
+            check_before_writing(ctx, (fmt,))
+        assert str(exc.value) == expected
+    check_before_writing(BuildContext(d, ctx.folded, body="shell"), ("step", "glb"))
+    ctx.compensation = "none"
+    check_before_writing(ctx, ("step", "glb"))
+
+
+@pytest.mark.parametrize("placement", ["rest", "frame"])
+def test_the_step_and_the_glb_are_one_part_built_once_and_the_report_gives_its_fit(
+    tmp_path, monkeypatch, placement
+):
+    """build_part runs once for both files; the GLB's mesh (metres, y up, turned back)
+    fills the STEP's bounding box in the same placement; the report gives the part's
+    fit deviation and tolerance, which the STEP's curves meet."""
+    import build123d as bd
+    import numpy as np
+    import trimesh
+
+    from onefold_cad.export import step
+    from onefold_cad.export.glb import LINEAR_DEFLECTION
+
+    calls = []
+    real = step.build_part
+
+    def counted(*args, **kwargs):
+        calls.append(kwargs)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(step, "build_part", counted)
+    ctx = context()
+    ctx.placement = placement
+    write_design(ctx, tmp_path / "1", ("step", "glb", "json"))
+    assert len(calls) == 1 and calls[0]["placement"] == placement
+    box = bd.import_step(tmp_path / "1" / "w.step").bounding_box(optimal=True)
+    lo, hi = np.array(tuple(box.min)), np.array(tuple(box.max))
+    x, y, z = trimesh.load(tmp_path / "1" / "w.glb", force="mesh").vertices.T * 1000.0
+    mesh = np.stack([x, -z, y], axis=1)  # y up -> z up, mm
+    size = ctx.design.sheet.size
+    slack = 1e-6 * size
+    assert np.all(mesh.min(axis=0) >= lo - slack) and np.all(mesh.max(axis=0) <= hi + slack)
+    deflection = LINEAR_DEFLECTION * size
+    assert np.all(mesh.min(axis=0) <= lo + deflection)
+    assert np.all(mesh.max(axis=0) >= hi - deflection)
+    if placement == "rest":
+        assert abs(lo[2]) <= 1e-6 * size  # standing on the ground
+    else:  # the fold frame: the apex is a vertex of the shell, above H
+        verts = np.array([tuple(v) for v in bd.import_step(tmp_path / "1" / "w.step").vertices()])
+        assert np.min(np.linalg.norm(verts - ctx.folded.apex, axis=1)) <= 1e-9 * size
+    rep = json.loads((tmp_path / "1" / "w.json").read_text())
+    part = ctx.part
+    assert rep["step"] == {
+        "body": "shell",
+        "placement": placement,
+        "fit_deviation": part.fit_deviation,
+        "fit_tolerance": part.fit_tolerance,
+    }
+    assert 0.0 < rep["step"]["fit_deviation"] <= rep["step"]["fit_tolerance"]
+
+
+def test_the_report_runs_no_cad_kernel_when_no_part_was_built(tmp_path):
+    ctx = context()
+    write_design(ctx, tmp_path / "1", ("json",))
+    assert json.loads((tmp_path / "1" / "w.json").read_text())["step"] is None
+    assert ctx.built_part is None
+
+
 def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
     """An asymmetric fold whose one rigid blank is off by more than 0.1 t across its
     halves: the flat pattern's writers refuse; the STEP solid (the designed part, no

@@ -116,7 +116,7 @@ def _check_rigid(rest: RestingPlacement) -> None:
 
 @SETTINGS
 @given(frame=frames(), sheet=sheets)
-@example(  # a side within 1e-9 deg of lying flat touches the ground inside its outline
+@example(  # beta within 1e-9 deg of 90: the apex in the frame plane, unfold ill-conditioned
     frame=FrameCurve(1.0, 89.999999999, 0.0, 1.0, 90), sheet=Sheet.rectangle(10, 10, 0.5)
 )
 def test_shell_lowest_point_lies_exactly_on_the_ground(frame: FrameCurve, sheet: Sheet) -> None:
@@ -136,19 +136,15 @@ def test_shell_lowest_point_lies_exactly_on_the_ground(frame: FrameCurve, sheet:
     assert len(rest.contacts) >= 2
     assert np.all(np.abs(rest.contacts[:, 2]) <= 1e-9 * size)
     back = (rest.contacts - rest.translation) @ rest.rotation  # into the fold frame
-    if folded.apex[2] >= 1e-3 * size:  # unfold's central projection is well-conditioned
+    # unfold projects from the apex onto the frame plane: well-conditioned only
+    # while the apex stands clear of that plane (h cos(beta); beta within 1e-9
+    # deg of 90 puts it in the plane)
+    if folded.apex[2] * math.cos(math.radians(frame.beta)) >= 1e-3 * size:
         flat, off = folded.unfold(back)
         assert np.all(off <= 1e-9 * size)
         on_edge = np.array([_distance_to_boundary(p, sheet.vertices) for p in flat])
         at_apex = np.linalg.norm(back - folded.apex, axis=1)
-        # or a point inside, on a ruling that lies on the ground to the
-        # tolerance (a side nearly flat on the ground, beta within 1e-9 deg of
-        # 90): then the ruling's end on the boundary touches the ground too
-        psi = np.arctan2(flat[:, 1], flat[:, 0])
-        ends = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
-        end_z = rest.apply(folded.map_points(ends))[:, 2]
-        on_ruling = np.where(np.abs(end_z) <= 1e-9 * size, 0.0, np.inf)
-        assert np.all(np.minimum(np.minimum(on_edge, at_apex), on_ruling) <= 1e-9 * size)
+        assert np.all(np.minimum(on_edge, at_apex) <= 1e-9 * size)
     # stability values are finite; a stable form holds its centre of mass inside
     assert np.all(np.isfinite(rest.centre_of_mass))
     assert math.isfinite(rest.tipping_margin_deg)
@@ -165,6 +161,10 @@ def _distance_to_boundary(p: np.ndarray, poly: np.ndarray) -> float:
 
 @SETTINGS
 @given(frame=frames(), sheet=sheets)
+@example(  # a side within 2e-6 deg of flat: 150 ruling ends on one plane (was O(k^4))
+    frame=FrameCurve(81.60226013002016, 89.99999821608623, -13.1430529826616, 100.0, 157),
+    sheet=Sheet.quadrilateral(24.435404656484586, 514.2228608084539, 361.19105109521, 322.408),
+)
 def test_paper_model_rests_on_ruling_ends(frame: FrameCurve, sheet: Sheet) -> None:
     # the paper fan is straight between its ruling ends: they and the apex are its corners
     folded = _fold(frame.with_changes(divisions=24), sheet, "paper")
@@ -279,7 +279,7 @@ def _step_resting(design: Design, body: str):
     folded = build_design(design)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
     rest = rest_form(folded, material, body)
-    part = build_part(design, folded, body=body)
+    part = build_part(design, folded, body=body, placement="frame")  # placed here, by hand
     trsf = gp_Trsf()
     r, t = rest.rotation, rest.translation
     trsf.SetValues(*r[0], t[0], *r[1], t[1], *r[2], t[2])

@@ -19,9 +19,12 @@ from onefold_cad import (
     build_design,
 )
 from onefold_cad.geometry.thick_sheet import (
+    MITRE_CLEARANCE,
     SideMap,
+    Slab,
     min_relief_hole,
     mitre_depth,
+    mitre_planes,
     sheet_offsets,
     slab_volume,
 )
@@ -77,18 +80,107 @@ def test_sheet_offsets_follow_sheet_surface():
     }
 
 
-def test_mid_slab_volume_is_area_times_thickness():
+def test_mid_slab_volume_is_area_times_thickness_up_to_the_mitre():
+    """A developable mid-surface slab holds area x t; the mitre's wedges (a
+    convex one added and a concave one cut off per crease half and side, each
+    length x (t/2) x (t/2) tan(psi/2) / 2) nearly cancel."""
     folded = _fold()
     m = Material(thickness=3.0, sheet_surface=SheetSurface.MID)
     hole = 20.0
     area = folded.sheet.area - math.pi * hole**2 / 4
     v_mid = slab_volume(folded, m, hole)
-    assert v_mid == pytest.approx(area * 3.0, rel=1e-3)  # the mitre cancels to first order
-    assert slab_volume(folded, m, hole, samples=2400) == pytest.approx(v_mid, rel=1e-5)
+    wedges = sum(
+        2 * h.length * 1.5 * 1.5 * math.tan(math.radians(h.fold_angle_deg) / 2) / 2
+        for h in folded.crease
+    )
+    assert abs(v_mid - area * 3.0) < wedges
     # INSIDE and OUTSIDE differ from it in opposite directions
     v_in = slab_volume(folded, m.with_changes(sheet_surface=SheetSurface.INSIDE), hole)
     v_out = slab_volume(folded, m.with_changes(sheet_surface=SheetSurface.OUTSIDE), hole)
     assert (v_in - area * 3.0) * (v_out - area * 3.0) < 0
+
+
+def _clip(poly: list[tuple[float, float]], a: float, b: float, g: float) -> list:
+    """The polygon ``poly`` (r, s) clipped to a r + b s + g >= 0 (Sutherland-Hodgman)."""
+    out = []
+    for i, p in enumerate(poly):
+        q = poly[(i + 1) % len(poly)]
+        fp, fq = a * p[0] + b * p[1] + g, a * q[0] + b * q[1] + g
+        if fp >= 0:
+            out.append(p)
+        if (fp >= 0) != (fq >= 0):
+            x = fp / (fp - fq)
+            out.append((p[0] + x * (q[0] - p[0]), p[1] + x * (q[1] - p[1])))
+    return out
+
+
+def _polygon_integral(poly: list[tuple[float, float]], k: float) -> float:
+    """The integral of r - k s over a simple polygon in (r, s) (Green's formula)."""
+    total = 0.0
+    for i, (x0, y0) in enumerate(poly):
+        x1, y1 = poly[(i + 1) % len(poly)]
+        cross = x0 * y1 - x1 * y0
+        total += cross * ((x0 + x1) - k * (y0 + y1)) / 6.0
+    return total
+
+
+@pytest.mark.parametrize("surface", list(SheetSurface))
+def test_section_integral_matches_the_clipped_polygon(surface):
+    """The cross-section integral (Gauss-Legendre between the planes' crossings)
+    against the rectangle r in [r_in, r_out], s in s_range clipped by each
+    cutting plane as a polygon and integrated exactly: on the sheet, near a
+    crease where the plane y = 0 cuts, and on the mitre blocks past both
+    crease halves (a sharp fold: the mitre planes cut them)."""
+    folded = _fold(70, 60, 10.0)
+    m = Material(thickness=4.0, sheet_surface=surface)
+    slab = Slab(folded, m, 1.2 * min_relief_hole(folded, m))
+    s0, s1 = slab.s_range
+    lo, hi = slab.domain
+    theta = np.concatenate(
+        [np.linspace(lo, 0.0, 9)[1:-1], [1e-4, 0.002, 1.0, slab.total - 0.002, slab.total - 1e-4]]
+    )
+    theta = np.concatenate([theta, np.linspace(slab.total, hi, 9)[1:-1]])
+    u, _, n = slab.frames(theta)
+    k = slab.sides[0].curvature(theta)
+    for side in (0, 1):
+        exact = slab.section_integral(side, theta)
+        for i, t in enumerate(theta):
+            r_in = float(slab.inner_radius(np.array([t]))[0])
+            r_out = float(slab.outer_radius(side, np.array([t]))[0])
+            poly = [(r_in, s0), (r_out, s0), (r_out, s1), (r_in, s1)]
+            names = ["y"] + (["m0"] if t < 0.0 else ["m1"] if t > slab.total else [])
+            for name in names:
+                w, c = slab.planes[name]
+                poly = _clip(poly, float(u[i] @ w), float(n[i] @ w), -c) if poly else poly
+            expected = _polygon_integral(poly, float(k[i])) if len(poly) > 2 else 0.0
+            assert exact[i] == pytest.approx(expected, rel=1e-12, abs=1e-12 * r_out**2)
+
+
+def test_mitre_blocks_stay_clear_of_each_other():
+    """On a sharp fold the blocks past the two crease halves would overlap next
+    to the relief hole; each is cut MITRE_CLEARANCE x t short of the plane
+    that bisects the crease halves, on its own side."""
+    folded = _fold(70, 60, 10.0)
+    m = Material(thickness=4.0)
+    hole = 1.2 * min_relief_hole(folded, m)
+    slab = Slab(folded, m, hole)
+    rng = np.random.default_rng(0)
+    u0, u1 = slab.sides[0].crease_frame(0)[0], slab.sides[0].crease_frame(1)[0]
+    bisector = (u0 - u1) / np.linalg.norm(u0 - u1)
+    clear = MITRE_CLEARANCE * 4.0
+    kept = []
+    for end, (lo, hi) in enumerate(((slab.domain[0], 0.0), (slab.total, slab.domain[1]))):
+        t = rng.uniform(lo, hi, 20000)
+        r = rng.uniform(slab.inner_radius(t), slab.outer_radius(0, t))
+        s = rng.uniform(*slab.s_range, 20000)
+        u, _, n = slab.frames(t)
+        p = r[:, None] * u + s[:, None] * n
+        inside = p[:, 1] >= 0.0
+        w, c = slab.planes[f"m{end}"]
+        inside &= p @ w >= c
+        kept.append(p[inside] @ bisector)
+    assert len(kept[0]) and len(kept[1])
+    assert kept[0].min() >= clear - 1e-9 and kept[1].max() <= -clear + 1e-9
 
 
 def test_min_relief_hole_grows_with_thickness_and_covers_the_mitre():
@@ -101,6 +193,13 @@ def test_min_relief_hole_grows_with_thickness_and_covers_the_mitre():
     s_range = sheet_offsets(Material(thickness=2.0))
     regular = 2 * max(float(np.max(s * k)) for s in s_range)
     assert holes[1] >= regular * (1 - 1e-3) and holes[1] >= 2 * mitre_depth(side, s_range)
+    # and the crease rulings' sections (r >= hole, s from 0 to the convex
+    # face) clear the other crease half's mitre plane
+    for end, (w, c) in enumerate(mitre_planes(side, 2.0)):
+        u, _, n = side.crease_frame(end)
+        s_c = max(s_range, key=lambda x: x * n[1])
+        for s in (0.0, s_c):
+            assert (0.5 * holes[1] * u + s * n) @ w >= c
     # a hole below the minimum puts the sheet's face over the apex region: the
     # offset point at r just under s k lies on the other side of the ruling
     theta = np.linspace(0.01, side.total - 0.01, 400)
