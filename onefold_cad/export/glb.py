@@ -15,8 +15,9 @@ requires. So in the file the ground is y = 0 and the form stands on it
 Tessellation: :data:`LINEAR_DEFLECTION` of the sheet's size and
 :data:`ANGULAR_DEFLECTION` radians (build123d hands the linear value to
 OCCT's mesher as relative to each edge's size, so the angular one decides;
-docs/formats.md states the known overlap on a solid's tapering faces). Every mesh vertex lies on the part's
-surface; the triangles are chords of it, each turning at most about the
+docs/formats.md states the known overlap on a solid's tapering faces). Every
+mesh vertex lies on the part's surface; the triangles are chords of it, each
+turning at most about the
 angular deflection a from the surface, so the mesh's area is within about
 ``ANGULAR_DEFLECTION ** 2 / 2`` of the surface's (relative): a chord of
 half-angle a is shorter than its arc by a^2 / 6, and a thin triangle tilted by
