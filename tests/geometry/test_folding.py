@@ -9,17 +9,14 @@ from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve, NoSolutionError, Sheet, fold, solve
-from tests.angles import cos_deg, refused_below_bound
+from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
 
 from .conftest import frames, sheets
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-# alpha, beta from 0 (open; below the angle bound a frame is refused,
-# tests/angles.py) up to 90 - 1e-9 deg as before: nearer 90 FoldedSheet.unfold
-# and the exact metrics lose accuracy (beta = 90 - 3e-14 deg: unfold 4e-3 of
-# the sheet off, area 7e-10, a boundary segment 2e-9 off), and unfold is off
-# by 1e-6 of the sheet already at 90 - 1e-9 (left to the core's owners).
-ANGLE = st.floats(0.0, 90.0 - 1e-9, exclude_min=True)
+# alpha, beta over the whole of (0, 90) deg open (below the angle bound a
+# frame is refused, tests/angles.py)
+ANGLE = OPEN_ANGLE
 
 
 @st.composite
