@@ -14,6 +14,20 @@ import pytest
 SCRIPT = Path(__file__).resolve().parent.parent / "scripts" / "fuzz.py"
 
 
+#: a fuzz design record: Table 1's first frame and sheet as a 30-triangle paper fan
+SQUARE_30 = {
+    "model": "paper",
+    "alpha": 50.0,
+    "beta": 45.0,
+    "h_c": 0.0,
+    "radius": 100.0,
+    "divisions": 30,
+    "sheet": {"quadrilateral": dict.fromkeys(("x_plus", "x_minus", "y_plus", "y_minus"), 300.0)},
+    "thickness": 0.0,
+    "bend_radius": 0.0,
+}
+
+
 @pytest.fixture(scope="module")
 def fuzz() -> ModuleType:
     spec = importlib.util.spec_from_file_location("onefold_fuzz", SCRIPT)
@@ -62,19 +76,7 @@ def test_the_checks_can_fail(fuzz: ModuleType) -> None:
     # condition, and a polygon that winds the wrong way must not be "ok".
     from onefold_cad import build_design
 
-    p = {
-        "model": "paper",
-        "alpha": 50.0,
-        "beta": 45.0,
-        "h_c": 0.0,
-        "radius": 100.0,
-        "divisions": 30,
-        "sheet": {
-            "quadrilateral": dict.fromkeys(("x_plus", "x_minus", "y_plus", "y_minus"), 300.0)
-        },
-        "thickness": 0.0,
-        "bend_radius": 0.0,
-    }
+    p = dict(SQUARE_30)
     sol = build_design(fuzz.make_design(p)).solution
 
     class Off:
@@ -93,19 +95,7 @@ def test_the_solvers_claimed_angle_error_is_checked(fuzz: ModuleType) -> None:
 
     from onefold_cad import build_design
 
-    p = {
-        "model": "paper",
-        "alpha": 50.0,
-        "beta": 45.0,
-        "h_c": 0.0,
-        "radius": 100.0,
-        "divisions": 30,
-        "sheet": {
-            "quadrilateral": dict.fromkeys(("x_plus", "x_minus", "y_plus", "y_minus"), 300.0)
-        },
-        "thickness": 0.0,
-        "bend_radius": 0.0,
-    }
+    p = dict(SQUARE_30)
     sol = build_design(fuzz.make_design(p)).solution
     shift = math.radians(3e-10) / 2.0 / abs(sol.ds_dh)
 

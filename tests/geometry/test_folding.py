@@ -8,8 +8,9 @@ import numpy as np
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
-from onefold_cad import FrameCurve, NoSolutionError, Sheet, fold, solve
+from onefold_cad import FrameCurve, Sheet, fold, solve
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
+from tests.geometry.folds import fold_or_none
 
 from .conftest import frames, sheets
 
@@ -33,22 +34,6 @@ def open_frames(draw: st.DrawFn) -> FrameCurve:
 
     assume(not refused_below_bound(alpha, beta, make))  # the refusal is that draw's answer
     return make()
-
-
-def _fold(frame: FrameCurve, sheet: Sheet, model: str):
-    """The fold, or None for a design without a non-trivial apex (a clean
-    refusal), or one that double precision cannot solve to 1e-9 deg or whose
-    apex is the trivial root h = 0 (below 1e-9 R): today's solver returns
-    those unchecked instead of refusing them (beta below ~1e-9 deg, one
-    paper triangle), which issue 12 asks the solver to fix."""
-    try:
-        solution = solve(frame, model)
-    except NoSolutionError:
-        return None
-    ok = solution.angle_condition_error_deg <= 1e-9
-    if not (ok and solution.apex_height > 1e-9 * frame.radius):
-        return None
-    return fold(solution, sheet)
 
 
 def _angle(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -93,7 +78,7 @@ def _shoelace(poly: np.ndarray) -> float:
 @SETTINGS
 @given(frame=open_frames(), sheet=sheets)
 def test_paper_model_is_developable(frame: FrameCurve, sheet: Sheet) -> None:
-    folded = _fold(frame.with_changes(divisions=min(frame.divisions, 60)), sheet, "paper")
+    folded = fold_or_none(frame.with_changes(divisions=min(frame.divisions, 60)), sheet, "paper")
     if folded is None:
         return
     scale = sheet.size
@@ -140,7 +125,7 @@ def test_paper_model_is_developable(frame: FrameCurve, sheet: Sheet) -> None:
     sheet=Sheet.rectangle(10, 10, 0.5),
 )
 def test_exact_model_is_developable(frame: FrameCurve, sheet: Sheet) -> None:
-    folded = _fold(frame, sheet, "exact")
+    folded = fold_or_none(frame, sheet, "exact")
     if folded is None:
         return
     m = folded.metrics
@@ -221,7 +206,7 @@ def test_crease_fold_angle_is_the_tangent_planes_angle_from_both_sides(
     frame: FrameCurve, sheet: Sheet
 ) -> None:
     for model in ("paper", "exact"):
-        folded = _fold(frame.with_changes(divisions=min(frame.divisions, 60)), sheet, model)
+        folded = fold_or_none(frame.with_changes(divisions=min(frame.divisions, 60)), sheet, model)
         if folded is None:
             continue
         for half, want in zip(folded.crease, _expected_fold_angles(folded), strict=True):

@@ -15,7 +15,6 @@ from onefold_cad import (
     FrameCurve,
     InvalidParameterError,
     Material,
-    NoSolutionError,
     Sheet,
     build_design,
     fold,
@@ -31,6 +30,7 @@ from onefold_cad.geometry.placement import (
 )
 from onefold_cad.templates import find_template, load_template
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
+from tests.geometry.folds import fold_or_none
 
 from .conftest import sheets
 
@@ -53,22 +53,6 @@ def frames(draw: st.DrawFn) -> FrameCurve:
 
     assume(not refused_below_bound(alpha, beta, make))  # the refusal is that draw's answer
     return make()
-
-
-def _fold(frame: FrameCurve, sheet: Sheet, model: str):
-    """The fold, or None for a design without a non-trivial apex (a clean
-    refusal), or one that double precision cannot solve to 1e-9 deg or whose
-    apex is the trivial root h = 0 (below 1e-9 R): today's solver returns
-    those unchecked instead of refusing them (beta below ~1e-9 deg, one
-    paper triangle), which issue 12 asks the solver to fix."""
-    try:
-        solution = solve(frame, model)
-    except NoSolutionError:
-        return None
-    ok = solution.angle_condition_error_deg <= 1e-9
-    if not (ok and solution.apex_height > 1e-9 * frame.radius):
-        return None
-    return fold(solution, sheet)
 
 
 def _placed_height(rest: RestingPlacement, folded, a: np.ndarray, b: np.ndarray):
@@ -117,7 +101,7 @@ def _check_rigid(rest: RestingPlacement) -> None:
     frame=FrameCurve(1.0, 89.999999999, 0.0, 1.0, 90), sheet=Sheet.rectangle(10, 10, 0.5)
 )
 def test_shell_lowest_point_lies_exactly_on_the_ground(frame: FrameCurve, sheet: Sheet) -> None:
-    folded = _fold(frame, sheet, "exact")
+    folded = fold_or_none(frame, sheet, "exact")
     if folded is None:
         return
     rest = rest_form(folded)
@@ -164,7 +148,7 @@ def _distance_to_boundary(p: np.ndarray, poly: np.ndarray) -> float:
 )
 def test_paper_model_rests_on_ruling_ends(frame: FrameCurve, sheet: Sheet) -> None:
     # the paper fan is straight between its ruling ends: they and the apex are its corners
-    folded = _fold(frame.with_changes(divisions=24), sheet, "paper")
+    folded = fold_or_none(frame.with_changes(divisions=24), sheet, "paper")
     if folded is None:
         return
     rest = rest_form(folded)
