@@ -486,7 +486,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
 
             for text in bend_table(ctx.pattern, rulings=False).splitlines():
                 progress.line(i, n, d.name, text)
-        notes = tuple(design_warnings(d, folded, ns.compensation))
+        notes = tuple(design_warnings(d, folded, ns.compensation, body))
         for w in notes:
             warn(f"{d.name}: {w}")
         found.append(notes)

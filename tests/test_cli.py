@@ -262,9 +262,11 @@ def test_solve_always_answers_build_refuses():
     rep = json.loads(proc.stdout)
     assert rep["direction_surface"]["apex_height"] > 0
     assert rep["flat_pattern"]["compensation"] == "none"
-    (w,) = rep["warnings"]
+    # the bend warning, and this narrow solid's own: it rocks on a curved edge
+    rocks, w = rep["warnings"]
+    assert rep["resting"]["warnings"] == [rocks] and "rocks on a curved edge" in rocks
     assert w.startswith("bend_radius: ") and "build refuses the DXF" in w
-    assert proc.stderr.splitlines() == [f"onefold: warning: {w}"]
+    assert proc.stderr.splitlines() == [f"onefold: warning: {x}" for x in (rocks, w)]
     text = run("solve", *args)
     assert text.returncode == 0
     why = "(uncompensated: past the bend model's limits, see the warnings; build refuses the DXF)"
@@ -819,3 +821,22 @@ def test_staging_folders_of_dead_runs_are_removed_live_ones_kept(tmp_path):
         assert proc.returncode == 0, proc.stderr
         assert staging_dirs(out) == [live]
     assert visible(out) == ["table1-row1.json"]
+
+
+def test_solve_and_build_warn_below_five_degrees_of_tipping_margin(tmp_path, solve_json):
+    """Issue 17: a shell at alpha 35, beta 45, h_c 8 stands with a margin of
+    about 4 deg: `solve` (text and JSON) and `build` warn with the report's
+    margin; the default design (about 15.7 deg) gets no such warning."""
+    flags = ["--alpha", "35", "--beta", "45", "--hc", "8", "--thickness", "0"]
+    rep = solve_json(*flags)
+    margin = rep["resting"]["tipping_margin_deg"]
+    assert 0.0 < margin < 5.0
+    line = f"tipping margin of only {margin:.3g} deg (below 5 deg)"
+    assert [w for w in rep["warnings"] if line in w] == rep["resting"]["warnings"] != []
+    proc = run("solve", *flags)
+    assert proc.returncode == 0 and line in proc.stderr
+    proc = run("build", *flags, "--formats", "json", "-o", str(tmp_path), "-q")
+    assert proc.returncode == 0 and line in proc.stderr
+    default = solve_json()
+    assert default["resting"]["tipping_margin_deg"] > 5.0
+    assert not any("tipping margin" in w for w in default["warnings"])

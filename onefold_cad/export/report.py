@@ -31,10 +31,17 @@ from onefold_cad.design import (
     solid_bend_problem,
     solid_min_relief_hole,
 )
-from onefold_cad.errors import ExportError, FabricationError, InvalidParameterError, OneFoldError
+from onefold_cad.errors import (
+    ExportError,
+    FabricationError,
+    InvalidParameterError,
+    NoSolutionError,
+    OneFoldError,
+)
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.placement import stability_warnings
 from onefold_cad.templates import design_to_data
 
 if TYPE_CHECKING:
@@ -77,8 +84,10 @@ def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None
     ``span`` (the footprint's width: what ``onefold fit --span`` aims at),
     apex, tilt, centre of mass, contacts, support polygon, tipping margin and
     edge, and the stability warnings. The 3D preview's caption reads it too."""
-    data = resting_placement(design, folded, body).to_data(folded.apex)
+    rest = resting_placement(design, folded, body)
+    data = rest.to_data(folded.apex)
     data["span"] = data["footprint"]["width"]
+    data["warnings"] = stability_warnings(rest, design.units.value)  # worded as solve warns
     return data
 
 
@@ -156,11 +165,17 @@ def _pattern_keys(design: Design, fp: FlatPattern | None) -> dict[str, Any]:
 
 
 def design_warnings(
-    design: Design, folded: FoldedSheet, compensation: Compensation | str = Compensation.SHARP
+    design: Design,
+    folded: FoldedSheet,
+    compensation: Compensation | str = Compensation.SHARP,
+    body: str | None = None,
 ) -> list[str]:
     """What ``solve`` and ``build`` warn about before any writer runs, one
     line each: the solver's own warnings (when it gives any),
-    :func:`~onefold_cad.design.fabrication_warnings` and the bend model's
+    :func:`~onefold_cad.design.fabrication_warnings`, the resting form's
+    stability (a tipping margin below 5 deg,
+    :func:`~onefold_cad.geometry.placement.stability_warnings`, for ``body``
+    as :func:`resting_numbers` places it) and the bend model's
     limits (:func:`~onefold_cad.geometry.bend.check_bends`), worded for what
     ``build`` does with ``compensation`` ('sharp': refuses the flat pattern's
     files, and the STEP solid unless only the blank's width is off; 'none':
@@ -182,9 +197,14 @@ def design_warnings(
         bends.append(
             f"{error}; build refuses {refused} (--compensation none writes the uncompensated blank)"
         )
+    try:
+        stability = stability_warnings(resting_placement(design, folded, body), design.units.value)
+    except (InvalidParameterError, NoSolutionError):  # no such body: its writer says why
+        stability = []
     return [
         *getattr(folded.solution, "warnings", ()),
         *fabrication_warnings(design, folded),
+        *stability,
         *bends,
     ]
 
@@ -255,7 +275,7 @@ def design_report(
     """
     sol, sheet, m = folded.solution, folded.sheet, folded.metrics
     comp = Compensation.parse(compensation)
-    notes = [*warnings, *design_warnings(design, folded, comp)]
+    notes = [*warnings, *design_warnings(design, folded, comp, body)]
     fp = _flat_pattern(design, folded, notes, comp) if pattern is None else pattern
     own = sheet.to_sheet.apply(sheet.vertices)
     flat_size = own.max(axis=0) - own.min(axis=0)
