@@ -2,7 +2,8 @@
 
 Every number and every vertex the page shows comes from here; the page only
 draws. The 3D form is :meth:`FoldedSheet.mesh` moved by
-:attr:`FoldedSheet.resting` (standing as it rests on the ground, z up), the
+:func:`onefold_cad.design.resting_placement` (standing as the STEP's body
+rests on the ground, z up: the placement the report, STEP, GLB and previews use), the
 flat pattern is :func:`onefold_cad.export.flat_pattern.flat_pattern` drawn by
 :func:`onefold_cad.explore.flat_svg.flat_pattern_svg`, and the numbers are
 those of :func:`onefold_cad.export.report.design_report`.
@@ -21,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design, relief_hole_problem
+from onefold_cad.design import Design, build_design, relief_hole_problem, resting_placement
 from onefold_cad.errors import OneFoldError
 from onefold_cad.explore.flat_svg import flat_pattern_svg
 from onefold_cad.explore.params import PAGE_FLAGS, ParameterProblem, page_values
@@ -129,7 +130,7 @@ def design_state(design: Design) -> dict[str, Any]:
         return state
 
     verts, faces = folded.mesh(MESH_ANGULAR, MESH_RADIAL)
-    place = folded.resting
+    place = resting_placement(design, folded)
     pts = place.apply(verts)
     if not np.all(np.isfinite(pts)):
         messages.append(message("error", "design: the folded form has non-finite coordinates"))

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from onefold_cad.cli import main
-from onefold_cad.design import build_design
+from onefold_cad.design import build_design, resting_placement
 from onefold_cad.explore.params import design_from_params
 from onefold_cad.explore.server import load_templates
 from onefold_cad.explore.state import MESH_ANGULAR, MESH_RADIAL, design_state
@@ -39,8 +39,11 @@ def test_the_form_is_the_folded_mesh_standing_as_it_rests(templates, name):
     pos, idx = _decode(state["form"])
     folded = build_design(design)
     verts, faces = folded.mesh(MESH_ANGULAR, MESH_RADIAL)
-    expected = folded.resting.apply(verts)
+    place = resting_placement(design, folded)  # the STEP body's placement, as the report's
+    expected = place.apply(verts)
     size = float(np.ptp(expected, axis=0).max())
+    assert state["numbers"]["height"] == place.height
+    assert expected[:, 2].min() >= -1e-9 * size  # the sheet's surface lies in the body: not below
     assert pos.shape == expected.shape == (state["form"]["vertex_count"], 3)
     np.testing.assert_allclose(pos, expected, rtol=0, atol=2.0**-22 * size)  # float32
     np.testing.assert_array_equal(idx, faces)
