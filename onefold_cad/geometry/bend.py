@@ -37,6 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.errors import FabricationError, InvalidParameterError
+from onefold_cad.geometry.choice import Choice
 from onefold_cad.geometry.fan_folds import RulingFold, ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
@@ -86,7 +87,7 @@ class BendReference(StrEnum):
     OUTSIDE = "OUTSIDE"
 
 
-class Compensation(StrEnum):
+class Compensation(Choice):
     """How the flat blank accounts for the bends.
 
     SHARP: each side moves by the bend model's shift (refused past the limits).
@@ -95,18 +96,6 @@ class Compensation(StrEnum):
 
     SHARP = "sharp"
     NONE = "none"
-
-    @classmethod
-    def parse(cls, value: object) -> Compensation:
-        """The compensation named by ``value`` ('sharp' or 'none')."""
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            raise InvalidParameterError(
-                "compensation", f"must be one of sharp, none, got {value!r}"
-            ) from None
 
 
 @dataclass(frozen=True)

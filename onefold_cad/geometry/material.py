@@ -8,10 +8,10 @@ names follow build123d's sheet-metal vocabulary: ``thickness``,
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from enum import StrEnum
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.choice import Choice
 from onefold_cad.geometry.validate import closed_interval, finite
 
 if TYPE_CHECKING:
@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 __all__ = ["SheetSurface", "Units", "Material", "BendValues", "bend_values"]
 
 
-class SheetSurface(StrEnum):
+class SheetSurface(Choice):
     """Which face of the sheet the designed (reference) surface is.
 
     INSIDE: the top (+z) face; the material lies below it.
@@ -32,37 +32,13 @@ class SheetSurface(StrEnum):
     OUTSIDE = "OUTSIDE"
     MID = "MID"
 
-    @classmethod
-    def parse(cls, value: object) -> SheetSurface:
-        """The reference surface named by ``value`` (case-insensitive)."""
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).upper())
-        except ValueError:
-            raise InvalidParameterError(
-                "sheet_surface", f"must be one of INSIDE, OUTSIDE, MID, got {value!r}"
-            ) from None
 
-
-class Units(StrEnum):
+class Units(Choice):
     """Length unit of a design."""
 
     MM = "mm"
     IN = "in"
     FT = "ft"
-
-    @classmethod
-    def parse(cls, value: object) -> Units:
-        """The unit named by ``value`` ('mm', 'in' or 'ft')."""
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            raise InvalidParameterError(
-                "units", f"must be one of mm, in, ft, got {value!r}"
-            ) from None
 
     @property
     def mm(self) -> float:

@@ -8,10 +8,10 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, replace
-from enum import StrEnum
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.choice import Choice
 from onefold_cad.geometry.validate import finite, integer_at_least, length, open_interval
 
 __all__ = ["FrameCurve", "Model", "MAX_DESIGN_DIVISIONS", "MAX_DIVISIONS", "MIN_ANGLE_DEG"]
@@ -37,7 +37,7 @@ MAX_DIVISIONS = 100_000
 MAX_DESIGN_DIVISIONS = 10_000
 
 
-class Model(StrEnum):
+class Model(Choice):
     """Which direction-surface the solver uses.
 
     PAPER: the fan of ``divisions`` planar triangles over the division points
@@ -48,18 +48,6 @@ class Model(StrEnum):
 
     PAPER = "paper"
     EXACT = "exact"
-
-    @classmethod
-    def parse(cls, value: object) -> Model:
-        """Return the model named by ``value`` ('paper' or 'exact')."""
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            raise InvalidParameterError(
-                "model", f"must be one of 'exact', 'paper', got {value!r}"
-            ) from None
 
 
 @dataclass(frozen=True)

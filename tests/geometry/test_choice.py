@@ -1,0 +1,35 @@
+"""The design's named options read from text in any case; a bad name is an
+error naming the parameter as the API spells it and listing the allowed names."""
+
+from __future__ import annotations
+
+import pytest
+
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.bend import Compensation
+from onefold_cad.geometry.material import SheetSurface, Units
+from onefold_cad.geometry.params import Model
+
+CHOICES = [
+    (Model, "model", ["paper", "exact"]),
+    (Units, "units", ["mm", "in", "ft"]),
+    (SheetSurface, "sheet_surface", ["INSIDE", "OUTSIDE", "MID"]),
+    (Compensation, "compensation", ["sharp", "none"]),
+]
+
+
+@pytest.mark.parametrize(("cls", "parameter", "names"), CHOICES)
+def test_every_name_parses_in_any_case_to_its_member(cls, parameter, names):
+    assert [m.value for m in cls] == names
+    for name in names:
+        for text in (name, name.upper(), name.lower(), name.capitalize()):
+            assert cls.parse(text) is cls(name)
+        assert cls.parse(cls(name)) is cls(name)
+
+
+@pytest.mark.parametrize(("cls", "parameter", "names"), CHOICES)
+def test_a_bad_name_names_the_parameter_and_the_allowed_names(cls, parameter, names):
+    with pytest.raises(InvalidParameterError) as err:
+        cls.parse("bogus")
+    assert err.value.parameter == parameter
+    assert f"must be one of {', '.join(names)}, got 'bogus'" in str(err.value)
