@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.surface import EPS, DirectionSurface
 
@@ -40,6 +41,7 @@ __all__ = ["SearchFailed", "Search", "find_root", "GRID"]
 #: paper's Table 1 and for ~3 designs in 4 (eight heights and a cubic: ~1 in
 #: 3), saving a whole probe at the cost of four heights' elementwise work.
 GRID = tuple(0.95 * (2.3 / 0.95) ** (j / 11.0) for j in range(12))
+_GRID = np.array(GRID)
 #: The 5-height probes' spacing around an estimate (relative).
 _SPACING = 5e-5
 #: Heights (units of R) outside which no root is searched.
@@ -99,13 +101,15 @@ class Search:
         self.exact: float | None = None
         self.evals = 0
 
-    def probe(self, heights: list[float]) -> list[float]:
+    def probe(self, heights: list[float] | NDArray[np.float64]) -> list[float]:
         """F at ``heights`` (several at once), recorded; returns the values."""
         n = len(heights)
         if n == 1:
-            fs = [self.surface.excess(heights[0])]
+            fs = [self.surface.excess(float(heights[0]))]
         else:
-            fs = self.surface.excesses(np.array(heights)).tolist()
+            fs = self.surface.excesses(np.asarray(heights, dtype=float)).tolist()
+        if not isinstance(heights, list):
+            heights = heights.tolist()
         self.evals += n
         small = 4.0 * self.bound
         lo, flo, hi, fhi = self.lo, self.flo, self.hi, self.fhi
@@ -173,7 +177,7 @@ def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, floa
         SearchFailed: no height with S above or below 180 deg was found.
     """
     s = Search(surface)
-    s.probe([l0 * k for k in GRID])
+    s.probe(_GRID * l0)
     span = 16.0
     for _ in range(60):
         if s.exact is not None or (s.lo > 0.0 and s.hi < math.inf):
