@@ -15,7 +15,8 @@ their 25th-75th percentile spread):
 * ours, paper model: ``fold(solve(frame, "paper"), sheet)`` -- the apex
   (searched, then verified by an independent evaluation), the rulings flat and
   3D with one through every sheet vertex, both crease halves with fold angle
-  and bend direction, and the folded boundary; frame and sheet built beforehand;
+  and bend direction (the boundary, in ring order the ruling ends, is derived
+  on first access, as the paper's method has none); frame and sheet built beforehand;
 * ours, exact model (the cone, which the paper does not compute), for information.
 
 The speed-up quoted is the median of the per-round ratios (paper's method /
@@ -245,7 +246,7 @@ def render(rows: list[Row], extra: Row, scale: list, rounds: int) -> str:
         "ratios. Paper's method: bisection on [l, 2R] to 1e-6 R and the rulings, plain Python. "
         "Ours: `fold(solve(frame, model), sheet)`, frame and sheet built beforehand: the apex "
         "(searched, then verified by an independent evaluation), the rulings flat and 3D (one "
-        "through every sheet vertex), both crease halves and the folded boundary.",
+        "through every sheet vertex) and both crease halves.",
         "",
         "### Table 1: angle-condition error |sum of apex angles - 360| (deg)",
         "",

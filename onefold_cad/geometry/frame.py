@@ -82,7 +82,7 @@ def _cos_deg_decimal(deg: float) -> Decimal:
 def end_distances(frame: FrameCurve) -> tuple[float, float]:
     """Distances ``(L+, L-)`` from H to the f-line's +x and -x ends (length),
     R cos(alpha) - h_c and R cos(alpha) + h_c, each to a rounding error of
-    itself (however close H is to an end)."""
+    itself below R/16 (however close H is to an end), of R above."""
     g = arc_geometry(frame)
     return g.l_plus * frame.radius, g.l_minus * frame.radius
 

@@ -54,6 +54,10 @@ class SearchFailed(Exception):
 
 def _neville(fs: list[float], hs: list[float]) -> float:
     """The polynomial through (fs[i], hs[i]) evaluated at 0 (inverse interpolation)."""
+    if len(fs) == 6:
+        return _neville6(fs, hs)
+    if len(fs) == 5:
+        return _neville5(fs, hs)
     p = list(hs)
     n = len(fs)
     for k in range(1, n):
@@ -63,6 +67,50 @@ def _neville(fs: list[float], hs: list[float]) -> float:
                 return math.nan
             p[i] = (fs[i + k] * p[i] - fs[i] * p[i + 1]) / den
     return p[0]
+
+
+def _neville6(fs: list[float], hs: list[float]) -> float:
+    """:func:`_neville` for 6 points (the first estimate's), written out."""
+    f0, f1, f2, f3, f4, f5 = fs
+    p0, p1, p2, p3, p4, p5 = hs
+    try:
+        p0 = (f1 * p0 - f0 * p1) / (f1 - f0)
+        p1 = (f2 * p1 - f1 * p2) / (f2 - f1)
+        p2 = (f3 * p2 - f2 * p3) / (f3 - f2)
+        p3 = (f4 * p3 - f3 * p4) / (f4 - f3)
+        p4 = (f5 * p4 - f4 * p5) / (f5 - f4)
+        p0 = (f2 * p0 - f0 * p1) / (f2 - f0)
+        p1 = (f3 * p1 - f1 * p2) / (f3 - f1)
+        p2 = (f4 * p2 - f2 * p3) / (f4 - f2)
+        p3 = (f5 * p3 - f3 * p4) / (f5 - f3)
+        p0 = (f3 * p0 - f0 * p1) / (f3 - f0)
+        p1 = (f4 * p1 - f1 * p2) / (f4 - f1)
+        p2 = (f5 * p2 - f2 * p3) / (f5 - f2)
+        p0 = (f4 * p0 - f0 * p1) / (f4 - f0)
+        p1 = (f5 * p1 - f1 * p2) / (f5 - f1)
+        return (f5 * p0 - f0 * p1) / (f5 - f0)
+    except ZeroDivisionError:  # two equal values: no interpolant
+        return math.nan
+
+
+def _neville5(fs: list[float], hs: list[float]) -> float:
+    """:func:`_neville` for 5 points (the final probe's), written out: the same
+    operations in the same order, without the loops' indexing."""
+    f0, f1, f2, f3, f4 = fs
+    p0, p1, p2, p3, p4 = hs
+    try:
+        p0 = (f1 * p0 - f0 * p1) / (f1 - f0)
+        p1 = (f2 * p1 - f1 * p2) / (f2 - f1)
+        p2 = (f3 * p2 - f2 * p3) / (f3 - f2)
+        p3 = (f4 * p3 - f3 * p4) / (f4 - f3)
+        p0 = (f2 * p0 - f0 * p1) / (f2 - f0)
+        p1 = (f3 * p1 - f1 * p2) / (f3 - f1)
+        p2 = (f4 * p2 - f2 * p3) / (f4 - f2)
+        p0 = (f3 * p0 - f0 * p1) / (f3 - f0)
+        p1 = (f4 * p1 - f1 * p2) / (f4 - f1)
+        return (f4 * p0 - f0 * p1) / (f4 - f0)
+    except ZeroDivisionError:  # two equal values: no interpolant
+        return math.nan
 
 
 def _slope5(hs: list[float], fs: list[float], x: float) -> float:
