@@ -520,8 +520,7 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
         crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
     m = len(theta)
     # the flat polar angles in [0, 2 pi): the -y side's run clockwise from +x
-    ang = np.empty(m)
-    ang[:mu] = theta[:mu]
+    ang = theta.copy()
     np.subtract(_TWO_PI, theta[mu:], out=ang[mu:])
     ang[mu] = 0.0
     rho, cos, sin = sheet._rays_at(ang)
