@@ -234,13 +234,21 @@ def scaling(divisions: list[int], rounds: int) -> list[tuple[int, Stats, Stats, 
     return out
 
 
-def render(rows: list[Row], extra: Row, scale: list, rounds: int) -> str:
-    """The whole report as Markdown (also readable as plain text)."""
+def render(
+    rows: list[Row], extra: Row, scale: list, rounds: int, load: tuple[float, float] | None = None
+) -> str:
+    """The whole report as Markdown (also readable as plain text); ``load``: the
+    1-minute load average at the start and the end of the run."""
     info = machine_info()
     us = 1e6
+    busy = (
+        f" Load average (1 min) {load[0]:.1f} at the start, {load[1]:.1f} at the end of the run."
+        if load is not None
+        else ""
+    )
     lines = [
         f"Machine: {info['cpu']}, {info['cores']} cores, {info['os']}; Python {info['python']}, "
-        f"numpy {info['numpy']}. Each time is the median [25th, 75th percentile] of {rounds} "
+        f"numpy {info['numpy']}.{busy} Each time is the median [25th, 75th percentile] of {rounds} "
         "batches of CPU time per call, the cases interleaved in one process "
         "(`benchmarks/interleave.py`); the speed-up is the median [spread] of the per-round "
         "ratios. Paper's method: bisection on [l, 2R] to 1e-6 R and the rulings, plain Python. "
@@ -325,10 +333,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--max-divisions", type=int, default=10_000)
     ap.add_argument("--write-docs", action="store_true", help="update docs/benchmarks.md")
     args = ap.parse_args(argv)
+    load0 = os.getloadavg()[0]
     rows = [measure(r, args.rounds) for r in TABLE1]
     extra = measure(OUTSIDE, max(3, args.rounds // 4))
     scale = scaling([n for n in SCALING if n <= args.max_divisions], max(5, args.rounds // 3))
-    text = render(rows, extra, scale, args.rounds)
+    text = render(rows, extra, scale, args.rounds, (load0, os.getloadavg()[0]))
     print(text)
     if args.write_docs:
         cmd = "python benchmarks/bench_solver.py --write-docs"
