@@ -15,7 +15,8 @@ their 25th-75th percentile spread):
 * ours, paper model: ``fold(solve(frame, "paper"), sheet)`` -- the apex
   (searched, then verified by an independent evaluation), the rulings flat and
   3D with one through every sheet vertex, both crease halves with fold angle
-  and bend direction, and the folded boundary; frame and sheet built beforehand;
+  and bend direction (the boundary, in ring order the ruling ends, is derived
+  on first access, as the paper's method has none); frame and sheet built beforehand;
 * ours, exact model (the cone, which the paper does not compute), for information.
 
 The speed-up quoted is the median of the per-round ratios (paper's method /
@@ -233,19 +234,27 @@ def scaling(divisions: list[int], rounds: int) -> list[tuple[int, Stats, Stats, 
     return out
 
 
-def render(rows: list[Row], extra: Row, scale: list, rounds: int) -> str:
-    """The whole report as Markdown (also readable as plain text)."""
+def render(
+    rows: list[Row], extra: Row, scale: list, rounds: int, load: tuple[float, float] | None = None
+) -> str:
+    """The whole report as Markdown (also readable as plain text); ``load``: the
+    1-minute load average at the start and the end of the run."""
     info = machine_info()
     us = 1e6
+    busy = (
+        f" Load average (1 min) {load[0]:.1f} at the start, {load[1]:.1f} at the end of the run."
+        if load is not None
+        else ""
+    )
     lines = [
         f"Machine: {info['cpu']}, {info['cores']} cores, {info['os']}; Python {info['python']}, "
-        f"numpy {info['numpy']}. Each time is the median [25th, 75th percentile] of {rounds} "
+        f"numpy {info['numpy']}.{busy} Each time is the median [25th, 75th percentile] of {rounds} "
         "batches of CPU time per call, the cases interleaved in one process "
         "(`benchmarks/interleave.py`); the speed-up is the median [spread] of the per-round "
         "ratios. Paper's method: bisection on [l, 2R] to 1e-6 R and the rulings, plain Python. "
         "Ours: `fold(solve(frame, model), sheet)`, frame and sheet built beforehand: the apex "
         "(searched, then verified by an independent evaluation), the rulings flat and 3D (one "
-        "through every sheet vertex), both crease halves and the folded boundary.",
+        "through every sheet vertex) and both crease halves.",
         "",
         "### Table 1: angle-condition error |sum of apex angles - 360| (deg)",
         "",
@@ -324,10 +333,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--max-divisions", type=int, default=10_000)
     ap.add_argument("--write-docs", action="store_true", help="update docs/benchmarks.md")
     args = ap.parse_args(argv)
+    load0 = os.getloadavg()[0]
     rows = [measure(r, args.rounds) for r in TABLE1]
     extra = measure(OUTSIDE, max(3, args.rounds // 4))
     scale = scaling([n for n in SCALING if n <= args.max_divisions], max(5, args.rounds // 3))
-    text = render(rows, extra, scale, args.rounds)
+    text = render(rows, extra, scale, args.rounds, (load0, os.getloadavg()[0]))
     print(text)
     if args.write_docs:
         cmd = "python benchmarks/bench_solver.py --write-docs"

@@ -364,6 +364,19 @@ def default_body(design: Design) -> str:
     return "solid" if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else "shell"
 
 
+#: The fold of each live design object (a design is immutable, and so is its
+#: fold): ``build`` folds a design to check it and again to write it, and the
+#: results computed once per fold (resting placement, relief hole) then serve both.
+_FOLDS: weakref.WeakKeyDictionary[Design, FoldedSheet] = weakref.WeakKeyDictionary()
+
+
 def build_design(design: Design) -> FoldedSheet:
-    """Solve the direction-surface and fold the sheet of ``design``."""
-    return fold(solve(design.frame, design.model), design.sheet)
+    """Solve the direction-surface and fold the sheet of ``design`` (once per
+    design object: the same :class:`FoldedSheet` again afterwards)."""
+    with _PER_FOLD_LOCK:
+        folded = _FOLDS.get(design)
+    if folded is None:
+        folded = fold(solve(design.frame, design.model), design.sheet)
+        with _PER_FOLD_LOCK:
+            folded = _FOLDS.setdefault(design, folded)
+    return folded

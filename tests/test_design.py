@@ -299,10 +299,12 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
     thin = d.material.with_changes(thickness=1.0)
     design_module.solid_min_relief_hole(folded, thin)
     design_module.solid_min_relief_hole(folded, thin)
-    design_report(d, build_design(d))
+    assert build_design(d) is folded  # the same design object: the same fold
+    d2 = load_template("patkau-one-fold")  # another design object: a new fold
+    design_report(d2, build_design(d2))
     assert len(calls) == 3
     before = len(design_module._PER_FOLD)
-    del folded, pattern
+    del folded, pattern, d, d2  # a design holds its fold (build_design's cache)
     gc.collect()
     assert len(design_module._PER_FOLD) < before
 
@@ -330,3 +332,13 @@ def test_units_factor_table():
     assert Units.MM.factor_to("ft") == 1 / 304.8
     assert (Units.MM.mass_unit, Units.IN.mass_unit, Units.FT.mass_unit) == ("kg", "lb", "lb")
     assert Units.FT.mm == pytest.approx(12 * 25.4, rel=1e-15)
+
+
+def test_build_design_folds_each_design_object_once():
+    d = plate()
+    folded = build_design(d)
+    assert build_design(d) is folded  # the checks' fold is the writers' fold
+    other = plate()  # an equal design, another object: folded for itself
+    again = build_design(other)
+    assert again is not folded
+    assert again.solution.apex_height == folded.solution.apex_height

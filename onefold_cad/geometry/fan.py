@@ -42,15 +42,15 @@ class PaperFan(DirectionSurface):
         super().__init__(frame)
         g = self.geometry
         n = frame.divisions
-        x, d = division_points(g, n)
+        pts = division_points(g, n)  # rows x, d
+        x, d = pts
         # Speed (the paper model's whole solve + fold takes ~60 us at 90
         # divisions, ~0.2-0.4 us per numpy call): every call below works on
-        # contiguous 1D rows and writes into its output; scalars enter as 0-d
-        # arrays where they are used on arrays (a Python float costs a
-        # conversion per call).
-        x0, x1, d0, d1 = x[:-1], x[1:], d[:-1], d[1:]
-        ex = x1 - x0
-        ed = d1 - d0
+        # both rows (x, d) at once where it can, on contiguous rows, and
+        # writes into its output.
+        p0, p1 = pts[:, :-1], pts[:, 1:]
+        e = p1 - p0  # rows ex, ed
+        ex, ed = e
         self._x, self._d, self._ex, self._ed, self._n = x, d, ex, ed, n
         # The search's S(h): with c_i = p_i x e_i = P_i x e_i + h sin(beta) ex_i
         # (p = P - F, F = (0, h sin(beta)) the apex's foot in the arc's plane),
@@ -62,19 +62,19 @@ class PaperFan(DirectionSurface):
         sb, cb = g.sin_beta, g.cos_beta
         quad = np.empty((2, 3, n))
         rows = quad.reshape(6, n)
-        c0 = x0 * ed
-        c0 -= d0 * ex
-        c0[-1] = x[-1] * ed[-1]  # from the -x end (d_n = 0): P_n may lie close to H
+        t = p0 * e[::-1]  # rows x0 ed, d0 ex
+        c0 = np.subtract(t[0], t[1], out=rows[1])
+        c0[-1] = x.item(n) * ed.item(n - 1)  # from the -x end (d_n = 0): P_n may lie close to H
         np.multiply(c0, c0, out=rows[0])
-        xb = np.multiply(c0, ex, out=rows[1])
-        xb *= np.array(2.0 * sb)
-        xc = np.multiply(ed, ed, out=rows[2])
-        xc *= np.array(cb * cb)
-        xc += ex * ex
-        ya = np.multiply(x0, x1, out=rows[3])
-        ya += d0 * d1
-        yb = np.add(d0, d1, out=rows[4])
-        yb *= np.array(-sb)
+        c0 *= ex  # rows[1]: 2 sb c0 ex
+        c0 *= 2.0 * sb
+        e2 = e * e
+        xc = np.multiply(e2[1], cb * cb, out=rows[2])
+        xc += e2[0]
+        t = np.multiply(p0, p1, out=t)  # rows x0 x1, d0 d1
+        np.add(t[0], t[1], out=rows[3])
+        yb = np.add(d[:-1], d[1:], out=rows[4])
+        yb *= -sb
         rows[5].fill(1.0)
         self._quad = quad
         self._cs = np.array(((cb,), (sb,)))  # to place the points in space at once

@@ -498,9 +498,9 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
             paper model's boundary is exact: straight between ruling ends).
 
     Returns:
-        The :class:`FoldedSheet`: the rulings in 3D, the crease and (paper
-        model) the boundary computed now; the exact model's sampled boundary,
-        the metrics and the resting placement on first access.
+        The :class:`FoldedSheet`: the rulings (flat and in 3D) and the crease
+        computed now; the boundary (the paper model's: the ruling ends, in
+        order), the metrics and the resting placement on first access.
     """
     t0 = time.perf_counter()
     surface = solution.surface
@@ -520,8 +520,7 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
         crease_frames = (surface.frame_at(0.0), surface.frame_at(surface.total_angle))
     m = len(theta)
     # the flat polar angles in [0, 2 pi): the -y side's run clockwise from +x
-    ang = np.empty(m)
-    ang[:mu] = theta[:mu]
+    ang = theta.copy()
     np.subtract(_TWO_PI, theta[mu:], out=ang[mu:])
     ang[mu] = 0.0
     rho, cos, sin = sheet._rays_at(ang)
@@ -551,11 +550,4 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
         elapsed,
         int(boundary_samples),
     )
-    if fan:
-        # the paper model's boundary is straight between the ruling ends: it is
-        # part of the fold, so fill the cached properties' slots with it now
-        # (the +y side's ends from +x to -x, then the -y side's back; see _ring)
-        ends2 = flat_r[:, 1]
-        folded.__dict__["boundary_flat"] = np.concatenate((ends2[:mu], ends2[m - 2 : mu : -1]))
-        folded.__dict__["boundary_3d"] = np.concatenate((ends3[:mu], ends3[m - 2 : mu : -1]))
     return folded

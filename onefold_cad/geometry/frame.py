@@ -82,7 +82,7 @@ def _cos_deg_decimal(deg: float) -> Decimal:
 def end_distances(frame: FrameCurve) -> tuple[float, float]:
     """Distances ``(L+, L-)`` from H to the f-line's +x and -x ends (length),
     R cos(alpha) - h_c and R cos(alpha) + h_c, each to a rounding error of
-    itself (however close H is to an end)."""
+    itself below R/16 (however close H is to an end), of R above."""
     g = arc_geometry(frame)
     return g.l_plus * frame.radius, g.l_minus * frame.radius
 
@@ -139,9 +139,14 @@ def end_relative(g: ArcGeometry, s: Array, plus: bool | NDArray[np.bool_]) -> tu
     sn = np.sin(half)
     sn += sn
     ang = half - g.alpha
-    r = sn * np.sin(ang)
-    d = sn * np.cos(ang)
-    x = np.where(plus, g.l_plus - r, r - g.l_minus)
+    r = np.sin(ang)
+    r *= sn
+    d = np.cos(ang)
+    d *= sn
+    if plus is True or plus is False:  # one end for all: one branch only
+        x = g.l_plus - r if plus else r - g.l_minus
+    else:
+        x = np.where(plus, g.l_plus - r, r - g.l_minus)
     return x, d
 
 
@@ -187,24 +192,27 @@ def division_angles(frame: FrameCurve) -> Array:
     return phi
 
 
-def division_points(g: ArcGeometry, n: int) -> tuple[Array, Array]:
-    """In-plane coordinates ``(x, d)`` ``(n + 1,)`` each (units of R) of the
+def division_points(g: ArcGeometry, n: int) -> Array:
+    """In-plane coordinates ``(2, n + 1)`` (rows x and d, units of R) of the
     fan's division points, from the +x end to the -x end: the first half
     measured from the +x end, the rest from the -x end (the same arc
     parameters, k (pi + 2 alpha) / n, each from its nearer end)."""
-    m = np.arange(n // 2 + 1, dtype=float)
+    k = n // 2 + 1
+    m = np.arange(k, dtype=float)
     m *= 0.5 * g.span / n  # half the distance from the end
     sn = np.sin(m)
     sn += sn
     m -= g.alpha
-    r = sn * np.sin(m)
-    dh = sn * np.cos(m)
+    rd = np.empty((2, k))  # rows r = 2 sin(m) sin(m - alpha), d
+    np.sin(m, out=rd[0])
+    np.cos(m, out=rd[1])
+    rd *= sn
     back = (n + 1) // 2  # points measured from the -x end
-    x = np.empty(n + 1)
-    d = np.empty(n + 1)
     front = n + 1 - back
-    np.subtract(g.l_plus, r[:front], out=x[:front])
-    np.subtract(r[back - 1 :: -1], g.l_minus, out=x[front:])
-    d[:front] = dh[:front]
-    d[front:] = dh[back - 1 :: -1]
-    return x, d
+    p = np.empty((2, n + 1))
+    p[:, :front] = rd[:, :front]
+    p[:, front:] = rd[:, back - 1 :: -1]
+    x = p[0]
+    np.subtract(g.l_plus, x[:front], out=x[:front])
+    np.subtract(x[front:], g.l_minus, out=x[front:])
+    return p

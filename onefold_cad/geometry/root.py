@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.surface import EPS, DirectionSurface
 
@@ -40,6 +41,7 @@ __all__ = ["SearchFailed", "Search", "find_root", "GRID"]
 #: paper's Table 1 and for ~3 designs in 4 (eight heights and a cubic: ~1 in
 #: 3), saving a whole probe at the cost of four heights' elementwise work.
 GRID = tuple(0.95 * (2.3 / 0.95) ** (j / 11.0) for j in range(12))
+_GRID = np.array(GRID)
 #: The 5-height probes' spacing around an estimate (relative).
 _SPACING = 5e-5
 #: Heights (units of R) outside which no root is searched.
@@ -52,6 +54,10 @@ class SearchFailed(Exception):
 
 def _neville(fs: list[float], hs: list[float]) -> float:
     """The polynomial through (fs[i], hs[i]) evaluated at 0 (inverse interpolation)."""
+    if len(fs) == 6:
+        return _neville6(fs, hs)
+    if len(fs) == 5:
+        return _neville5(fs, hs)
     p = list(hs)
     n = len(fs)
     for k in range(1, n):
@@ -61,6 +67,50 @@ def _neville(fs: list[float], hs: list[float]) -> float:
                 return math.nan
             p[i] = (fs[i + k] * p[i] - fs[i] * p[i + 1]) / den
     return p[0]
+
+
+def _neville6(fs: list[float], hs: list[float]) -> float:
+    """:func:`_neville` for 6 points (the first estimate's), written out."""
+    f0, f1, f2, f3, f4, f5 = fs
+    p0, p1, p2, p3, p4, p5 = hs
+    try:
+        p0 = (f1 * p0 - f0 * p1) / (f1 - f0)
+        p1 = (f2 * p1 - f1 * p2) / (f2 - f1)
+        p2 = (f3 * p2 - f2 * p3) / (f3 - f2)
+        p3 = (f4 * p3 - f3 * p4) / (f4 - f3)
+        p4 = (f5 * p4 - f4 * p5) / (f5 - f4)
+        p0 = (f2 * p0 - f0 * p1) / (f2 - f0)
+        p1 = (f3 * p1 - f1 * p2) / (f3 - f1)
+        p2 = (f4 * p2 - f2 * p3) / (f4 - f2)
+        p3 = (f5 * p3 - f3 * p4) / (f5 - f3)
+        p0 = (f3 * p0 - f0 * p1) / (f3 - f0)
+        p1 = (f4 * p1 - f1 * p2) / (f4 - f1)
+        p2 = (f5 * p2 - f2 * p3) / (f5 - f2)
+        p0 = (f4 * p0 - f0 * p1) / (f4 - f0)
+        p1 = (f5 * p1 - f1 * p2) / (f5 - f1)
+        return (f5 * p0 - f0 * p1) / (f5 - f0)
+    except ZeroDivisionError:  # two equal values: no interpolant
+        return math.nan
+
+
+def _neville5(fs: list[float], hs: list[float]) -> float:
+    """:func:`_neville` for 5 points (the final probe's), written out: the same
+    operations in the same order, without the loops' indexing."""
+    f0, f1, f2, f3, f4 = fs
+    p0, p1, p2, p3, p4 = hs
+    try:
+        p0 = (f1 * p0 - f0 * p1) / (f1 - f0)
+        p1 = (f2 * p1 - f1 * p2) / (f2 - f1)
+        p2 = (f3 * p2 - f2 * p3) / (f3 - f2)
+        p3 = (f4 * p3 - f3 * p4) / (f4 - f3)
+        p0 = (f2 * p0 - f0 * p1) / (f2 - f0)
+        p1 = (f3 * p1 - f1 * p2) / (f3 - f1)
+        p2 = (f4 * p2 - f2 * p3) / (f4 - f2)
+        p0 = (f3 * p0 - f0 * p1) / (f3 - f0)
+        p1 = (f4 * p1 - f1 * p2) / (f4 - f1)
+        return (f4 * p0 - f0 * p1) / (f4 - f0)
+    except ZeroDivisionError:  # two equal values: no interpolant
+        return math.nan
 
 
 def _slope5(hs: list[float], fs: list[float], x: float) -> float:
@@ -99,13 +149,15 @@ class Search:
         self.exact: float | None = None
         self.evals = 0
 
-    def probe(self, heights: list[float]) -> list[float]:
+    def probe(self, heights: list[float] | NDArray[np.float64]) -> list[float]:
         """F at ``heights`` (several at once), recorded; returns the values."""
         n = len(heights)
         if n == 1:
-            fs = [self.surface.excess(heights[0])]
+            fs = [self.surface.excess(float(heights[0]))]
         else:
-            fs = self.surface.excesses(np.array(heights)).tolist()
+            fs = self.surface.excesses(np.asarray(heights, dtype=float)).tolist()
+        if not isinstance(heights, list):
+            heights = heights.tolist()
         self.evals += n
         small = 4.0 * self.bound
         lo, flo, hi, fhi = self.lo, self.flo, self.hi, self.fhi
@@ -173,7 +225,7 @@ def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, floa
         SearchFailed: no height with S above or below 180 deg was found.
     """
     s = Search(surface)
-    s.probe([l0 * k for k in GRID])
+    s.probe(_GRID * l0)
     span = 16.0
     for _ in range(60):
         if s.exact is not None or (s.lo > 0.0 and s.hi < math.inf):

@@ -271,7 +271,7 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
             "the sum of apex angles never exceeds 180 deg: a single triangle's apex "
             "angle is below 180 deg for every apex height (use 2 or more divisions)",
         )
-    surface = make_direction_surface(frame, m)
+    surface: DirectionSurface = PaperFan(frame) if m is Model.PAPER else ExactCone(frame)
     g = surface.geometry
     near = min(g.l_plus, g.l_minus)
     if near <= 0.0:
