@@ -304,16 +304,108 @@ def angle_sum(p: dict[str, Any], h: float) -> tuple[float, float]:
     return float(val), float(err) + 4.0 * np.finfo(float).eps * val
 
 
-def mp_angle_sum(p: dict[str, Any], h: Any, dps: int = 20, panels: int = 0) -> Any:
+def mp_angle_sum(p: dict[str, Any], h: Any, dps: int = 20, ref: float = 0.0) -> Any:
     """S(h) in mpmath at ``dps`` digits (the inputs taken as exact binary
-    floats): the fan summed, or the cone integrated by tanh-sinh on ``panels``
-    equal panels of the arc (0: doubled from 64 until two counts agree to
-    1e-16 rad, far below the 1e-9 deg = 1.7e-11 rad checked)."""
-    return _mp_angle_sum(p, h, dps, panels)[0]
+    floats): the fan summed, or the cone integrated by tanh-sinh on the
+    panels of :func:`_mp_nodes` for the apex at ``ref`` (0: at h)."""
+    return _mp_angle_sum(p, h, dps, ref)[0]
 
 
-def _mp_angle_sum(p: dict[str, Any], h: Any, dps: int, panels: int) -> tuple[Any, int]:
-    """:func:`mp_angle_sum` and the number of panels it used (0 for the fan)."""
+def mp_fan_rulings(p: dict[str, Any], h: float, pick: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The paper fan in mpmath (30 digits, the inputs exact): the flat angles
+    of the division rulings ``pick`` (the apex angles summed from the +x end)
+    and their unit directions from the apex (0, 0, h), as doubles."""
+    import mpmath as m
+
+    with m.workdps(30):
+        r, a, b = m.mpf(p["radius"]), m.radians(m.mpf(p["alpha"])), m.radians(m.mpf(p["beta"]))
+        hc, hh, n = m.mpf(p["h_c"]), m.mpf(h), p["divisions"]
+        vs = []
+        for i in range(n + 1):
+            phi = -a + (m.pi + 2 * a) * i / n
+            d = r * m.sin(a) + r * m.sin(phi)
+            v = (-hc + r * m.cos(phi), d * m.cos(b), d * m.sin(b) - hh)
+            norm = m.sqrt(sum(c * c for c in v))
+            vs.append([c / norm for c in v])
+        theta = [m.mpf(0)]
+        for u, w in zip(vs[:-1], vs[1:], strict=True):
+            cr = m.sqrt(
+                (u[1] * w[2] - u[2] * w[1]) ** 2
+                + (u[2] * w[0] - u[0] * w[2]) ** 2
+                + (u[0] * w[1] - u[1] * w[0]) ** 2
+            )
+            theta.append(theta[-1] + m.atan2(cr, sum(x * y for x, y in zip(u, w, strict=True))))
+        return (
+            np.array([float(theta[i]) for i in pick]),
+            np.array([[float(c) for c in vs[i]] for i in pick]),
+        )
+
+
+def _mp_cone(p: dict[str, Any], h: Any) -> tuple[Callable[[Any], Any], Any, Any]:
+    """In mpmath at the working precision: |u'(phi)| for the apex at (0, 0, h),
+    |P' x (P - A)| / |P - A|^2, and the arc's ends p0, p1."""
+    import mpmath as m
+
+    r, a, b = m.mpf(p["radius"]), m.radians(m.mpf(p["alpha"])), m.radians(m.mpf(p["beta"]))
+    hc, hh = m.mpf(p["h_c"]), m.mpf(h)
+    sa, cb, sb = m.sin(a), m.cos(b), m.sin(b)
+
+    def speed(phi: Any) -> Any:
+        d = r * sa + r * m.sin(phi)
+        v = (-hc + r * m.cos(phi), d * cb, d * sb - hh)
+        dp = (-r * m.sin(phi), r * m.cos(phi) * cb, r * m.cos(phi) * sb)
+        cr = (
+            dp[1] * v[2] - dp[2] * v[1],
+            dp[2] * v[0] - dp[0] * v[2],
+            dp[0] * v[1] - dp[1] * v[0],
+        )
+        return m.sqrt(sum(c * c for c in cr)) / sum(c * c for c in v)
+
+    return speed, -a, m.pi + a
+
+
+def _mp_nodes(p: dict[str, Any], h: Any, upto: Any = None, depth: int = 0) -> list[Any]:
+    """Panel edges on [p0, upto] (default the whole arc) for tanh-sinh: the
+    arc split at its ends, at ``upto``, at the arc point nearest the apex's
+    foot F = (0, h sin(beta)) in the frame plane, and (F outside the circle)
+    at the tangent points from F, each piece's panels halved ``depth`` times
+    towards both its ends (0: until the smallest panel is 2^-12 of the apex's
+    distance from the arc, over R). The integrand |u'| is analytic except
+    near those points (its complex singularities lie within about the apex's
+    distance from the arc of them: H near an f-line end puts one 1e-9 R from
+    the end, beta near 90 deg puts them near the arc), so every panel is at
+    least as far from a singularity as it is wide."""
+    import mpmath as m
+
+    r, a, b = m.mpf(p["radius"]), m.radians(m.mpf(p["alpha"])), m.radians(m.mpf(p["beta"]))
+    hc, hh = m.mpf(p["h_c"]), m.mpf(h)
+    p0, p1 = -a, m.pi + a
+    top = p1 if upto is None else upto
+    # F - C in the plane's (x, d) coordinates, C = (-h_c, R sin(alpha))
+    fx, fd = hc, hh * m.sin(b) - r * m.sin(a)
+    foot = m.atan2(fd, fx)
+    if foot < p0:
+        foot += 2 * m.pi
+    cuts = {p0, top, foot}
+    dist = m.hypot(fx, fd)
+    if dist > r:
+        off = m.acos(r / dist)
+        cuts |= {foot - off, foot + off, foot - off + 2 * m.pi, foot + off - 2 * m.pi}
+    cuts = sorted(c for c in cuts if p0 <= c <= top)
+    if not depth:  # the apex's distance from the circle, over R (at least 1e-40)
+        gap = m.hypot(dist - r, hh * m.cos(b)) / r + m.mpf(10) ** -40
+        depth = min(int(m.ceil(m.log(2 * m.pi / gap, 2))) + 12, 160)
+    nodes = [p0]
+    grade = [m.mpf(2) ** -k for k in range(depth, 0, -1)]
+    for lo, hi in zip(cuts[:-1], cuts[1:], strict=True):
+        w = (hi - lo) / 2
+        nodes += [lo + w * g for g in grade] + [lo + w] + [hi - w * g for g in reversed(grade)]
+        nodes.append(hi)
+    return sorted(set(nodes))
+
+
+def _mp_angle_sum(p: dict[str, Any], h: Any, dps: int, ref: float) -> tuple[Any, float]:
+    """:func:`mp_angle_sum` and the height whose panels it used (0 for the fan)."""
     import mpmath as m
 
     with m.workdps(dps):
@@ -339,28 +431,40 @@ def _mp_angle_sum(p: dict[str, Any], h: Any, dps: int, panels: int) -> tuple[Any
                 total += m.atan2(
                     m.sqrt(sum(c * c for c in cr)), sum(x * y for x, y in zip(u, w, strict=True))
                 )
-            return total, 0
+            return total, 0.0
+        ref = ref or float(h)
+        speed = _mp_cone(p, h)[0]
+        return m.quad(speed, _mp_nodes(p, ref)), ref
 
-        def speed(phi: Any) -> Any:
-            v = vec(phi)
-            dp = (-r * m.sin(phi), r * m.cos(phi) * cb, r * m.cos(phi) * sb)
-            cr = (
-                dp[1] * v[2] - dp[2] * v[1],
-                dp[2] * v[0] - dp[0] * v[2],
-                dp[0] * v[1] - dp[1] * v[0],
-            )
-            return m.sqrt(sum(c * c for c in cr)) / sum(c * c for c in v)
 
-        if panels:
-            return m.quad(speed, m.linspace(p0, p1, panels + 1)), panels
-        k, last = 64, m.quad(speed, m.linspace(p0, p1, 65))
-        while k < 2048:
-            k *= 2
-            val = m.quad(speed, m.linspace(p0, p1, k + 1))
-            if abs(val - last) < m.mpf(10) ** -(dps - 4):
-                break
-            last = val
-        return val, k
+def mp_developed_angle(p: dict[str, Any], h: float, u: np.ndarray, dps: int = 30) -> float:
+    """The developed angle (radians, from the arc's +x end) of the point where
+    the ray from the apex (0, 0, h) along ``u`` (a double unit vector, taken
+    as exact) meets the frame plane, all in mpmath at ``dps`` digits.
+
+    Why not doubles: near an f-line end the apex lies about L (the end's
+    distance from H) above the arc, and |u'| peaks at about R / L there; an
+    arc parameter phi near pi rounded to a double (4e-16) then moves the
+    developed angle by 4e-16 R / L (1e-9 rad at L = 4e-7 R), and scipy's
+    quad over [p0, phi] may step over a peak a millionth of the arc wide.
+    Here phi is the exact angle of the meeting point about the arc's centre,
+    and the integral runs on the graded panels of :func:`_mp_nodes`."""
+    import mpmath as m
+
+    with m.workdps(dps):
+        r, a, b = m.mpf(p["radius"]), m.radians(m.mpf(p["alpha"])), m.radians(m.mpf(p["beta"]))
+        hc, hh = m.mpf(p["h_c"]), m.mpf(h)
+        sa, cb, sb = m.sin(a), m.cos(b), m.sin(b)
+        uu = [m.mpf(float(c)) for c in u]
+        # the frame plane holds the points (x, d cb, d sb); its normal (0, -sb, cb)
+        t = -(hh * cb) / (-uu[1] * sb + uu[2] * cb)
+        x = uu[0] * t
+        d = uu[1] * t * cb + (hh + uu[2] * t) * sb
+        phi = m.atan2(d - r * sa, x + hc)
+        if phi < -a - m.mpf(10) ** -12:
+            phi += 2 * m.pi
+        speed = _mp_cone(p, hh)[0]
+        return float(m.quad(speed, _mp_nodes(p, hh, upto=phi)))
 
 
 def mp_root(p: dict[str, Any], h: float, resolve: float = 0.0) -> tuple[float, float, float]:
@@ -377,12 +481,12 @@ def mp_root(p: dict[str, Any], h: float, resolve: float = 0.0) -> tuple[float, f
     if resolve > 0.0:
         dps = min(60, max(20, math.ceil(-math.log10(resolve)) + 9))
     with m.workdps(dps):
-        s_h, panels = _mp_angle_sum(p, h, dps, 0)
+        s_h, ref = _mp_angle_sum(p, h, dps, 0.0)
         residual = float(s_h - m.pi)
     with m.workdps(dps + 10):
         x, d = m.mpf(h), m.mpf(10) ** -6
-        up = _mp_angle_sum(p, x * (1 + d), dps + 10, panels)[0]
-        down = _mp_angle_sum(p, x * (1 - d), dps + 10, panels)[0]
+        up = _mp_angle_sum(p, x * (1 + d), dps + 10, ref)[0]
+        down = _mp_angle_sum(p, x * (1 - d), dps + 10, ref)[0]
         slope = float((up - down) / (2 * d * x))
     return residual, (h - residual / slope if slope else h), abs(slope)
 
@@ -513,6 +617,16 @@ def check_solution(p: dict[str, Any], sol: Any, mp_sample: bool) -> dict[str, An
     half, err_half = angle_sum(p, 0.5 * h)
     double, err_double = angle_sum(p, 2.0 * h)
     if half - math.pi < -2.0 * err_half or double - math.pi > 2.0 * err_double:
+        # the double S fails near an f-line end (scipy's quad steps over |u'|'s
+        # peak, about L / R wide): mpmath on graded panels decides
+        import mpmath as m
+
+        with m.workdps(30):
+            half = math.pi + float(mp_angle_sum(p, 0.5 * h, dps=30) - m.pi)
+            double = math.pi + float(mp_angle_sum(p, 2.0 * h, dps=30) - m.pi)
+        err_half = err_double = 0.0
+        info["falling_root_mp"] = True
+    if half - math.pi < -2.0 * err_half or double - math.pi > 2.0 * err_double:
         raise Wrong(
             "falling root",
             f"S(h/2) - 180 = {math.degrees(half - math.pi):.3g} deg, S(2h) - 180 = "
@@ -615,6 +729,15 @@ def check_fold(p: dict[str, Any], design: Any, folded: Any, rng: np.random.Gener
     if p["model"] == "paper":
         dev = float(np.max(np.linalg.norm(u - want, axis=1)))
         if dev > 1e-9:
+            # near an f-line end the double division point's P - A loses digits
+            # (x = R cos(phi) - h_c to 1e-16 R, over |P - A| ~ L): mpmath decides
+            theta, want = mp_fan_rulings(p, float(apex[2]), pick)
+            theta = np.minimum(theta, total)
+            pts = np.stack([np.cos(theta), np.sin(theta)], axis=-1) * far
+            u = folded.map_points(np.asarray(pts)) - apex
+            u /= np.linalg.norm(u, axis=1)[:, None]
+            dev = float(np.max(np.linalg.norm(u - want, axis=1)))
+        if dev > 1e-9:
             raise Wrong("rulings", f"a division ruling is {dev:.3g} rad off its division point")
     else:
         b, r = math.radians(p["beta"]), p["radius"]
@@ -644,7 +767,15 @@ def check_fold(p: dict[str, Any], design: Any, folded: Any, rng: np.random.Gener
                     limit=400,
                 )
             if abs(dev - th) > 1e-9 + 2 * err:
-                raise Wrong("developed angle", f"ruling at {th!r} rad develops to {dev!r} rad")
+                # the double integral's phi and quad fail near an f-line end
+                # (see mp_developed_angle): mpmath at the same ruling decides
+                k = int(np.flatnonzero(theta == th)[0])
+                dev = mp_developed_angle(p, float(apex[2]), u[k])
+                if abs(dev - th) > 1e-9:
+                    raise Wrong(
+                        "developed angle",
+                        f"ruling at {float(th)!r} rad develops to {dev!r} rad (mpmath)",
+                    )
     # 2. distances from H survive the fold
     ring = ring_through(verts, rng.uniform(0.0, 2.0 * math.pi, 64))
     inner = ring * rng.uniform(0.0, 1.0, len(ring))[:, None]
