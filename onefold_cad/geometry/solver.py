@@ -358,8 +358,10 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
         err_f = min(err_f, abs(f_acc) + b_acc)
     h_err = (err_f / abs(slope) if slope != 0.0 else math.inf) + 4.0 * _EPS * h
     warnings: list[str] = []
+    peak: tuple[float, float] | None = None
     if h_err > _WARN_REL * h:
-        smax = _s_max(surface, h)[1]
+        peak = _s_max(surface, h)
+        smax = peak[1]
         warnings.append(
             f"ill-conditioned apex: the angle sum rises only {2 * math.degrees(smax):.3g} deg "
             f"above 360 deg before it falls to the root, so the apex height "
@@ -368,7 +370,7 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
     lo, hi = min(search.lo, h), max(search.hi, h)
     total = 2.0 * math.degrees(math.pi + res)
     elapsed = time.perf_counter() - t0
-    return Solution(
+    sol = Solution(
         frame=frame,
         model=m,
         apex_height=h_abs,
@@ -382,3 +384,6 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
         ds_dh=slope / r,
         warnings=tuple(warnings),
     )
+    if peak is not None:  # computed for the warning: Solution.s_max_* reuse it
+        sol.__dict__["_s_max"] = (peak[0] * r, peak[1])
+    return sol
