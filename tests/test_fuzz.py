@@ -132,6 +132,34 @@ def test_the_solvers_claimed_apex_height_error_is_checked(fuzz: ModuleType) -> N
     assert info["ds_dh_deviation"] == pytest.approx(1.0, rel=1e-12)
 
 
+@pytest.mark.parametrize(
+    ("index", "fallback"),
+    [
+        # seed-1 designs the double-precision checks called wrong (issue 12):
+        # H 6.6e-9 R from an end, the end division point's P - A lost 8 digits
+        (1523, None),
+        # H 2e-7 R from an end: the double fan sum said S(h/2) < 180 deg
+        (3129, "falling_root_mp"),
+    ],
+)
+def test_checks_near_an_f_line_end_are_decided_in_mpmath(
+    fuzz: ModuleType, index: int, fallback: str | None
+) -> None:
+    # the 30-digit fallbacks find these answers right (tests/geometry/
+    # test_solver.py and test_folding.py check the same answers against
+    # their own mpmath references); the double checks alone did not
+    import numpy as np
+
+    rng = np.random.default_rng(1)
+    for _ in range(index + 1):
+        p = fuzz.random_design(rng, 0.02)
+    p["step"] = p["reread_dxf"] = False
+    out = fuzz.run_design(p, 1_000_003 + index, mp_sample=False)
+    assert out["cls"] in ("ok", "refused") and out["stage"] != "checks", out
+    if fallback is not None:
+        assert out[fallback] is True
+
+
 def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> None:
     import dataclasses
 
