@@ -205,6 +205,30 @@ def _s_max(surface: DirectionSurface, root: float) -> tuple[float, float]:
     return h, surface.excess_accurate(h)[0]
 
 
+def _refine(
+    surface: DirectionSurface, search: Search, h: float, slope: float
+) -> tuple[float, float, float]:
+    """Newton steps on the accurate S (relative accuracy, see
+    :meth:`DirectionSurface.excess_accurate`) from the search's root h (units
+    of R) while they reduce |S - pi|: where max S - pi is tiny (beta near 0)
+    the fast S's rounding leaves h known only to ~1e-9 of itself, the
+    accurate S to ~1e-14. Returns (h, S(h) - pi, its error bound)."""
+    f, b = surface.excess_accurate(h)
+    search.evals += 1
+    for _ in range(4):
+        if abs(f) <= b:
+            break
+        x = h - f / slope
+        if x == h or not x > 0.0:
+            break
+        fx, bx = surface.excess_accurate(x)
+        search.evals += 1
+        if not abs(fx) < abs(f):
+            break
+        h, f, b = x, fx, bx
+    return h, f, b
+
+
 def _resolve(
     surface: DirectionSurface,
     frame: FrameCurve,
@@ -353,9 +377,20 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
     # the apex height's own uncertainty: from the most accurate evaluation at h
     err_f = abs(res) + bound
     if slope != 0.0 and err_f / abs(slope) > _WARN_REL * h:
-        f_acc, b_acc = surface.excess_accurate(h)
-        search.evals += 1
-        err_f = min(err_f, abs(f_acc) + b_acc)
+        h, f_acc, b_acc = _refine(surface, search, h, slope)
+        if h != h_abs / r:
+            # the refined height must meet the angle condition as verified
+            surface.set_apex(h * r)
+            r2, b2 = surface.verify(_TOL)
+            search.evals += 1
+            if abs(r2) + b2 <= _TOL:
+                h_abs, res, bound = h * r, r2, b2
+            else:
+                h = h_abs / r
+                surface.set_apex(h_abs)
+                f_acc, b_acc = surface.excess_accurate(h)
+                search.evals += 1
+        err_f = min(abs(res) + bound, abs(f_acc) + b_acc)
     h_err = (err_f / abs(slope) if slope != 0.0 else math.inf) + 4.0 * _EPS * h
     warnings: list[str] = []
     peak: tuple[float, float] | None = None

@@ -547,3 +547,31 @@ def test_exact_apex_near_an_end_is_bracketed_by_an_mpmath_angle_sum(
     # below, below it just above (the root past the maximum: S(h/2) > 180 deg)
     assert mp_ref.cone_excess(frame, h - err) > 0 > mp_ref.cone_excess(frame, h + err)
     assert mp_ref.cone_excess(frame, 0.5 * h) > 0 > mp_ref.cone_excess(frame, 2.0 * h)
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    alpha=ANGLES,
+    log_beta=st.floats(-4.0, -1.0),
+    place=PLACES,
+    n=st.integers(2, 12),
+)
+@example(alpha=0.24504128055861912, log_beta=math.log10(0.003121538276302003), place=0.2, n=5)
+def test_tiny_beta_apex_is_refined_on_the_accurate_angle_sum(
+    alpha: float, log_beta: float, place: float, n: int
+) -> None:
+    # beta 1e-4 .. 0.1 deg: the fast S's rounding left h known to ~1e-9 of
+    # itself (an "ill-conditioned apex" warning on 6 % of the fuzz's designs);
+    # Newton on the accurate S gives the 50-digit root to its stated error
+    frame = _frame(alpha, 10.0**log_beta, place, 100.0, n)
+    try:
+        sol = solve(frame, "paper")
+    except NoSolutionError:
+        assume(False)
+        raise
+    h, err = sol.apex_height, sol.apex_height_error
+    exact = float(mp_root(frame, h * (1 - 1e-6), h * (1 + 1e-6)))
+    assert abs(h - exact) <= err
+    assert sol.angle_condition_error_deg <= ANGLE_TOLERANCE_DEG
+    # known to 1e-9 of itself, or the warning says how well
+    assert err <= 1e-9 * h or any("ill-conditioned apex" in w for w in sol.warnings)
