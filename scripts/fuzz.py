@@ -369,8 +369,8 @@ def _mp_nodes(p: dict[str, Any], h: Any, upto: Any = None, depth: int = 0) -> li
     arc split at its ends, at ``upto``, at the arc point nearest the apex's
     foot F = (0, h sin(beta)) in the frame plane, and (F outside the circle)
     at the tangent points from F, each piece's panels halved ``depth`` times
-    towards both its ends (0: until the smallest panel is 2^-12 of the apex's
-    distance from the arc, over R). The integrand |u'| is analytic except
+    towards both its ends (0: until the smallest panel is a quarter of the
+    apex's distance from the arc, over R). The integrand |u'| is analytic except
     near those points (its complex singularities lie within about the apex's
     distance from the arc of them: H near an f-line end puts one 1e-9 R from
     the end, beta near 90 deg puts them near the arc), so every panel is at
@@ -394,7 +394,7 @@ def _mp_nodes(p: dict[str, Any], h: Any, upto: Any = None, depth: int = 0) -> li
     cuts = sorted(c for c in cuts if p0 <= c <= top)
     if not depth:  # the apex's distance from the circle, over R (at least 1e-40)
         gap = m.hypot(dist - r, hh * m.cos(b)) / r + m.mpf(10) ** -40
-        depth = min(int(m.ceil(m.log(2 * m.pi / gap, 2))) + 12, 160)
+        depth = min(int(m.ceil(m.log(2 * m.pi / gap, 2))) + 2, 160)
     nodes = [p0]
     grade = [m.mpf(2) ** -k for k in range(depth, 0, -1)]
     for lo, hi in zip(cuts[:-1], cuts[1:], strict=True):
