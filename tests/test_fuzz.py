@@ -160,6 +160,32 @@ def test_checks_near_an_f_line_end_are_decided_in_mpmath(
         assert out[fallback] is True
 
 
+def test_the_double_angle_sums_error_bound_covers_the_points_rounding(fuzz: ModuleType) -> None:
+    # seed-7 design 21: H 4.3e-5 R from an end, the double fan sum is off by
+    # 1.3e-11 rad (30-digit S), 26x its summation bound: placement_error covers it
+    import mpmath as m
+
+    p = {
+        **SQUARE_30,
+        "alpha": 0.20064945629695558,
+        "beta": 0.000426148281660903,
+        "h_c": -98.24940170709091,
+        "radius": 98.25359975238948,
+        "divisions": 179,
+    }
+    h = 0.5 * 7.38297356026899e-06  # half the apex height
+    s, err = fuzz.angle_sum(p, h)
+    with m.workdps(30):
+        true = fuzz.mp_angle_sum(p, h, dps=30)
+        off = abs(float(m.mpf(s) - true))
+    assert off > 1e-12  # the double S really is off here
+    assert off <= err
+    # and on Table 1's first row the bound leaves the double S decisive (below
+    # a tenth of the 1e-9 deg spec, where the checks would turn to mpmath)
+    err = fuzz.angle_sum(SQUARE_30, 100.0)[1]
+    assert 2.0 * m.degrees(err) <= 0.1 * fuzz.ANGLE_TOL_DEG
+
+
 def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> None:
     import dataclasses
 
