@@ -132,6 +132,60 @@ def test_the_solvers_claimed_apex_height_error_is_checked(fuzz: ModuleType) -> N
     assert info["ds_dh_deviation"] == pytest.approx(1.0, rel=1e-12)
 
 
+@pytest.mark.parametrize(
+    ("index", "fallback"),
+    [
+        # seed-1 designs the double-precision checks called wrong (issue 12):
+        # H 6.6e-9 R from an end, the end division point's P - A lost 8 digits
+        (1523, None),
+        # H 2e-7 R from an end: the double fan sum said S(h/2) < 180 deg
+        (3129, "falling_root_mp"),
+    ],
+)
+def test_checks_near_an_f_line_end_are_decided_in_mpmath(
+    fuzz: ModuleType, index: int, fallback: str | None
+) -> None:
+    # the 30-digit fallbacks find these answers right (tests/geometry/
+    # test_solver.py and test_folding.py check the same answers against
+    # their own mpmath references); the double checks alone did not
+    import numpy as np
+
+    rng = np.random.default_rng(1)
+    for _ in range(index + 1):
+        p = fuzz.random_design(rng, 0.02)
+    p["step"] = p["reread_dxf"] = False
+    out = fuzz.run_design(p, 1_000_003 + index, mp_sample=False)
+    assert out["cls"] in ("ok", "refused") and out["stage"] != "checks", out
+    if fallback is not None:
+        assert out[fallback] is True
+
+
+def test_the_double_angle_sums_error_bound_covers_the_points_rounding(fuzz: ModuleType) -> None:
+    # seed-7 design 21: H 4.3e-5 R from an end, the double fan sum is off by
+    # 1.3e-11 rad (30-digit S), 26x its summation bound: placement_error covers it
+    import mpmath as m
+
+    p = {
+        **SQUARE_30,
+        "alpha": 0.20064945629695558,
+        "beta": 0.000426148281660903,
+        "h_c": -98.24940170709091,
+        "radius": 98.25359975238948,
+        "divisions": 179,
+    }
+    h = 0.5 * 7.38297356026899e-06  # half the apex height
+    s, err = fuzz.angle_sum(p, h)
+    with m.workdps(30):
+        true = fuzz.mp_angle_sum(p, h, dps=30)
+        off = abs(float(m.mpf(s) - true))
+    assert off > 1e-12  # the double S really is off here
+    assert off <= err
+    # and on Table 1's first row the bound leaves the double S decisive (below
+    # a tenth of the 1e-9 deg spec, where the checks would turn to mpmath)
+    err = fuzz.angle_sum(SQUARE_30, 100.0)[1]
+    assert 2.0 * m.degrees(err) <= 0.1 * fuzz.ANGLE_TOL_DEG
+
+
 def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> None:
     import dataclasses
 

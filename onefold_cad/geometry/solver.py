@@ -104,11 +104,24 @@ class Solution:
         return None
 
     @cached_property
+    def _s_max(self) -> tuple[float, float]:
+        h, value = _s_max(self.surface, self.apex_height / self.frame.radius)
+        return h * self.frame.radius, value
+
+    @property
     def s_max_minus_pi(self) -> float:
         """max over h of S(h) - pi (radians, one side): how far the angle sum
-        rises above 180 deg before it falls to the root. Tiny values (beta
-        near 0) mean an ill-determined apex height. Computed on first access."""
-        return _s_max(self.surface, self.apex_height / self.frame.radius)[1]
+        rises above 180 deg before it falls to the root, to its evaluation's
+        error bound plus ~1e-14 of itself (see :func:`_s_max`). Tiny values
+        (beta near 0) mean an ill-determined apex height. Computed on first
+        access (a few ms to 0.2 s)."""
+        return self._s_max[1]
+
+    @property
+    def s_max_height(self) -> float:
+        """The apex height (length) at which S is largest (see
+        :attr:`s_max_minus_pi`), to 1e-7 of itself."""
+        return self._s_max[0]
 
 
 def make_direction_surface(frame: FrameCurve, model: Model | str) -> DirectionSurface:
@@ -145,25 +158,75 @@ def _unresolved(
     return err
 
 
+#: The grid on which :func:`_s_max` looks for the maximum: heights root * 2^(-j / 2),
+#: j = 0 .. 2 * _S_MAX_OCTAVES.
+_S_MAX_OCTAVES = 80
+
+
+def _excess_rel(surface: DirectionSurface, h: float, fast: float | None = None) -> float:
+    """S(h) - pi (radians, h in units of R) to a relative accuracy: the fast
+    value when it is far above its rounding bound, else the accurate one."""
+    if fast is not None and abs(fast) > 1e6 * surface.excess_bound():
+        return fast
+    return surface.excess_accurate(h)[0]
+
+
 def _s_max(surface: DirectionSurface, root: float) -> tuple[float, float]:
-    """(h, S(h) - pi) at the maximum of S on (0, root) (golden section on log h)."""
-    lo, hi = math.log(root) - 40.0, math.log(root)
+    """(h, S(h) - pi) at the maximum of S on (0, root] (h in units of R).
+
+    S - pi is evaluated on a grid of half-octave steps from 2^-80 root to
+    root (its value, not its rounding, decides: the accurate evaluation where
+    the fast one is within 1e6 of its rounding bound, as it is for every
+    height when beta is tiny), then the largest grid value is refined by
+    golden section on log h between its neighbours to 1e-7 of h. The value
+    returned is therefore the maximum to within its evaluation's error bound
+    plus about 1e-14 of itself (S is quadratic at its maximum), provided S
+    has no narrower peak between grid heights than half an octave."""
+    hs = root * 2.0 ** (-0.5 * np.arange(2 * _S_MAX_OCTAVES + 1))
+    fast = surface.excesses(hs)
+    vals = [_excess_rel(surface, float(h), float(f)) for h, f in zip(hs, fast, strict=True)]
+    k = int(np.argmax(vals))
+    lo = math.log(hs[min(k + 1, len(hs) - 1)])
+    hi = math.log(hs[max(k - 1, 0)])
     g = (math.sqrt(5.0) - 1.0) / 2.0
     a, b = hi - g * (hi - lo), lo + g * (hi - lo)
-    fa, fb = surface.excess(math.exp(a)), surface.excess(math.exp(b))
-    for _ in range(120):
+    fa, fb = _excess_rel(surface, math.exp(a)), _excess_rel(surface, math.exp(b))
+    while hi - lo > 1e-7:
         if fa < fb:
             lo, a, fa = a, b, fb
             b = lo + g * (hi - lo)
-            fb = surface.excess(math.exp(b))
+            fb = _excess_rel(surface, math.exp(b))
         else:
             hi, b, fb = b, a, fa
             a = hi - g * (hi - lo)
-            fa = surface.excess(math.exp(a))
-        if hi - lo < 1e-6:
-            break
-    h = math.exp(0.5 * (lo + hi))
+            fa = _excess_rel(surface, math.exp(a))
+    best = max((fa, a), (fb, b), (vals[k], math.log(hs[k])))
+    h = math.exp(best[1])
     return h, surface.excess_accurate(h)[0]
+
+
+def _refine(
+    surface: DirectionSurface, search: Search, h: float, slope: float
+) -> tuple[float, float, float]:
+    """Newton steps on the accurate S (relative accuracy, see
+    :meth:`DirectionSurface.excess_accurate`) from the search's root h (units
+    of R) while they reduce |S - pi|: where max S - pi is tiny (beta near 0)
+    the fast S's rounding leaves h known only to ~1e-9 of itself, the
+    accurate S to ~1e-14. Returns (h, S(h) - pi, its error bound)."""
+    f, b = surface.excess_accurate(h)
+    search.evals += 1
+    for _ in range(4):
+        if abs(f) <= b:
+            break
+        x = h - f / slope
+        if x == h or not x > 0.0:
+            break
+        fx, bx = surface.excess_accurate(x)
+        search.evals += 1
+        if not abs(fx) < abs(f):
+            break
+        h, f, b = x, fx, bx
+    return h, f, b
 
 
 def _resolve(
@@ -314,13 +377,26 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
     # the apex height's own uncertainty: from the most accurate evaluation at h
     err_f = abs(res) + bound
     if slope != 0.0 and err_f / abs(slope) > _WARN_REL * h:
-        f_acc, b_acc = surface.excess_accurate(h)
-        search.evals += 1
-        err_f = min(err_f, abs(f_acc) + b_acc)
+        h, f_acc, b_acc = _refine(surface, search, h, slope)
+        if h != h_abs / r:
+            # the refined height must meet the angle condition as verified
+            surface.set_apex(h * r)
+            r2, b2 = surface.verify(_TOL)
+            search.evals += 1
+            if abs(r2) + b2 <= _TOL:
+                h_abs, res, bound = h * r, r2, b2
+            else:
+                h = h_abs / r
+                surface.set_apex(h_abs)
+                f_acc, b_acc = surface.excess_accurate(h)
+                search.evals += 1
+        err_f = min(abs(res) + bound, abs(f_acc) + b_acc)
     h_err = (err_f / abs(slope) if slope != 0.0 else math.inf) + 4.0 * _EPS * h
     warnings: list[str] = []
+    peak: tuple[float, float] | None = None
     if h_err > _WARN_REL * h:
-        smax = _s_max(surface, h)[1]
+        peak = _s_max(surface, h)
+        smax = peak[1]
         warnings.append(
             f"ill-conditioned apex: the angle sum rises only {2 * math.degrees(smax):.3g} deg "
             f"above 360 deg before it falls to the root, so the apex height "
@@ -329,7 +405,7 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
     lo, hi = min(search.lo, h), max(search.hi, h)
     total = 2.0 * math.degrees(math.pi + res)
     elapsed = time.perf_counter() - t0
-    return Solution(
+    sol = Solution(
         frame=frame,
         model=m,
         apex_height=h_abs,
@@ -343,3 +419,6 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
         ds_dh=slope / r,
         warnings=tuple(warnings),
     )
+    if peak is not None:  # computed for the warning: Solution.s_max_* reuse it
+        sol.__dict__["_s_max"] = (peak[0] * r, peak[1])
+    return sol

@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import math
 
+import mpmath as mp
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve, Sheet, fold, solve
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
+from tests.geometry import mp_reference as mp_ref
 from tests.geometry.folds import fold_or_none
 
 from .conftest import frames, sheets
@@ -266,3 +269,65 @@ def test_fold_results_agree_with_the_fold_map(frame: FrameCurve, sheet: Sheet) -
             np.testing.assert_allclose(folded.map_points(b2), b3, rtol=0, atol=1e-9 * scale)
             area = 0.5 * np.sum(b2[:, 0] * np.roll(b2[:, 1], -1) - b2[:, 1] * np.roll(b2[:, 0], -1))
             assert abs(area - sheet.area) <= 1e-9 * sheet.area
+
+
+def _rays(frame: FrameCurve, folded: object, theta: np.ndarray, size: float) -> np.ndarray:
+    """Unit ruling directions of the fold at flat angles ``theta`` (the image
+    of points far out on the rays, minus the apex)."""
+    apex = np.array([0.0, 0.0, folded.solution.apex_height])  # type: ignore[attr-defined]
+    far = frame.radius + apex[2] + size
+    u = folded.map_points(np.stack([np.cos(theta), np.sin(theta)], -1) * far) - apex  # type: ignore[attr-defined]
+    return u / np.linalg.norm(u, axis=1)[:, None]
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        # fuzz 1445 and 2679: H 1.7e-7 R / 8e-8 R from the -x end, where |u'|
+        # peaks at ~R / L; the fuzz's double-precision check said 1.18 rad
+        (0.0008253550242080646, 0.021484404101585974, -0.21673787285004217, 0.21673788110477846),
+        (0.04489112187819657, 0.10030620582932163, -52.38931153092129, 52.3893315623602),
+    ],
+)
+def test_exact_rulings_near_an_f_line_end_develop_to_their_flat_angle(
+    args: tuple[float, ...],
+) -> None:
+    frame = FrameCurve(*args, 3)
+    folded = fold(solve(frame, "exact"), Sheet.quadrilateral(1.0, 1.0, 1.0, 1.0))
+    total = folded.solution.surface.total_angle
+    theta = np.array([5.0, 7.0]) / 8.0 * total  # near the end: the steep part
+    u = _rays(frame, folded, theta, 1.0)
+    for th, ui in zip(theta, u, strict=True):
+        assert abs(mp_ref.developed_angle(frame, folded.solution.apex_height, ui) - th) <= 1e-9
+
+
+def test_paper_division_rulings_near_an_f_line_end_point_at_the_division_points() -> None:
+    # fuzz 1523: H 6.6e-9 R from the +x end; the fuzz's double division point
+    # P0 - A had lost 8 digits (4.4e-9 rad); 30-digit points and angles decide
+    frame = FrameCurve(
+        0.0001379722215736352, 0.37129071316167944, 17.493217891904912, 17.493218007675736, 152
+    )
+    folded = fold(solve(frame, "paper"), Sheet.rectangle(231.5, 138.8, 0.36))
+    h = folded.solution.apex_height
+    pick = [0, 1, 2, 76, 151, 152]
+    with mp.workdps(30):
+        a = mp.mpf(frame.alpha) * mp.pi / 180
+        vs = []
+        for k in range(frame.divisions + 1):
+            p = mp_ref.point(frame, -a + (mp.pi + 2 * a) * k / frame.divisions)
+            v = (p[0], p[1], p[2] - mp.mpf(h))
+            n = mp.sqrt(sum(c * c for c in v))
+            vs.append([c / n for c in v])
+        theta = [mp.mpf(0)]
+        for u, w in zip(vs[:-1], vs[1:], strict=True):
+            cr = mp.sqrt(
+                (u[1] * w[2] - u[2] * w[1]) ** 2
+                + (u[2] * w[0] - u[0] * w[2]) ** 2
+                + (u[0] * w[1] - u[1] * w[0]) ** 2
+            )
+            theta.append(theta[-1] + mp.atan2(cr, sum(x * y for x, y in zip(u, w, strict=True))))
+        want = np.array([[float(c) for c in vs[k]] for k in pick])
+        th = np.array([float(theta[k]) for k in pick])
+    th = np.minimum(th, folded.solution.surface.total_angle)
+    u = _rays(frame, folded, th, 300.0)
+    assert float(np.max(np.linalg.norm(u - want, axis=1))) <= 1e-9

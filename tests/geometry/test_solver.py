@@ -27,6 +27,7 @@ from onefold_cad import (
     solve,
 )
 from onefold_cad.geometry.solver import ANGLE_TOLERANCE_DEG
+from tests.geometry import mp_reference as mp_ref
 
 # (H_c, alpha, beta, divisions, Y+, Y-, X+, X-) as printed in the paper's Table 1.
 TABLE_1 = [
@@ -469,3 +470,108 @@ def test_fast_frame_paths_agree_with_frames(model: str) -> None:
         # theta(phi(theta)) = theta
         phi = surf.phi_of_theta(theta)
         np.testing.assert_allclose(surf.theta_of_phi(phi), theta, rtol=0, atol=1e-14)
+
+
+# -- S_max - pi and the apex near an end of the f-line (issue 12's fuzz) ------------------
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(alpha=ANGLES, beta=ANGLES, place=PLACES, n=st.integers(2, 6))
+@example(alpha=0.003303354767010754, beta=0.00014072288249136213, place=0.3, n=3)  # fuzz 27
+@example(alpha=0.552622617407186, beta=0.0011683992612339642, place=-0.2, n=4)  # fuzz 44
+@example(alpha=89.99, beta=89.99, place=1 - 1e-9, n=2)
+def test_s_max_is_the_maximum_of_a_dense_independent_evaluation(
+    alpha: float, beta: float, place: float, n: int
+) -> None:
+    # the golden section on the fast S used to slide to the end of its window
+    # (S(h/2) above the reported maximum on 4 % of the fuzz's designs)
+    frame = _frame(alpha, beta, place, 100.0, n)
+    try:
+        sol = solve(frame, "paper")
+    except NoSolutionError:
+        assume(False)
+        raise
+    pts = mp_points(frame, 40)
+    ours = sol.s_max_minus_pi
+    # S at the reported height is the reported value (40-digit fan)
+    at = float(mp_fan_excess(pts, sol.s_max_height, 40))
+    assert abs(ours - at) <= 1e-9 * abs(at)
+    # and no height in (0, h*] does better: 4 heights per octave over 100 octaves
+    h = sol.apex_height
+    dense = max(float(mp_fan_excess(pts, h * 2.0 ** (-k / 4), 30)) for k in range(401))
+    assert dense <= ours * (1 + 1e-9)
+    assert ours > 0.0
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        # fuzz designs 26 and 53: the old golden section reported ~1e-27 rad
+        (0.08537086721355433, 0.0007174938754150563, 0.005981348000712058, 0.01583233240754774),
+        (22.218287755826626, 0.00019092765629149735, 30.0, 100.0),
+        (30.0, 60.0, 10.0, 100.0),
+    ],
+)
+def test_exact_s_max_matches_a_graded_mpmath_quadrature(args: tuple[float, ...]) -> None:
+    frame = FrameCurve(*args, 3)
+    sol = solve(frame, "exact")
+    ours, hm = sol.s_max_minus_pi, sol.s_max_height
+    at = float(mp_ref.cone_excess(frame, hm, 25))
+    assert abs(ours - at) <= 1e-9 * abs(at)
+    # a maximum: S is lower a little either side and at h*/2, h*/8
+    for k in (0.97, 1.03):
+        assert float(mp_ref.cone_excess(frame, hm * k, 25)) < at
+    for k in (0.5, 0.125):
+        assert float(mp_ref.cone_excess(frame, sol.apex_height * k, 25)) <= at
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        # fuzz 2420 (H 4.7e-9 R from the -x end, beta 3.6e-4 deg): the fuzz's
+        # double-precision S said -90 deg at h/2 and 2h; 40-digit S agrees with h
+        (0.0010776856690252387, 0.00035510688140030083, -19279.24166553085, 19279.241760057226),
+        # fuzz 2630 (H 5e-6 R from the +x end, alpha 2e-4 deg)
+        (0.0002122047003709951, 0.006733537557070799, 39.156073323376994, 39.15631853881259),
+    ],
+)
+def test_exact_apex_near_an_end_is_bracketed_by_an_mpmath_angle_sum(
+    args: tuple[float, ...],
+) -> None:
+    frame = FrameCurve(*args, 3)
+    sol = solve(frame, "exact")
+    h, err = sol.apex_height, sol.apex_height_error
+    assert sol.angle_condition_error_deg <= ANGLE_TOLERANCE_DEG
+    assert (
+        abs(float(mp_ref.cone_excess(frame, h))) <= math.radians(sol.angle_condition_error_deg) / 2
+    )
+    # the true root lies within the stated error of h: S above 180 deg just
+    # below, below it just above (the root past the maximum: S(h/2) > 180 deg)
+    assert mp_ref.cone_excess(frame, h - err) > 0 > mp_ref.cone_excess(frame, h + err)
+    assert mp_ref.cone_excess(frame, 0.5 * h) > 0 > mp_ref.cone_excess(frame, 2.0 * h)
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    alpha=ANGLES,
+    log_beta=st.floats(-4.0, -1.0),
+    place=PLACES,
+    n=st.integers(2, 12),
+)
+@example(alpha=0.24504128055861912, log_beta=math.log10(0.003121538276302003), place=0.2, n=5)
+def test_tiny_beta_apex_is_refined_on_the_accurate_angle_sum(
+    alpha: float, log_beta: float, place: float, n: int
+) -> None:
+    # beta 1e-4 .. 0.1 deg: the fast S's rounding left h known to ~1e-9 of
+    # itself (an "ill-conditioned apex" warning on 6 % of the fuzz's designs);
+    # Newton on the accurate S gives the 50-digit root to its stated error
+    frame = _frame(alpha, 10.0**log_beta, place, 100.0, n)
+    try:
+        sol = solve(frame, "paper")
+    except NoSolutionError:
+        assume(False)
+        raise
+    h, err = sol.apex_height, sol.apex_height_error
+    exact = float(mp_root(frame, h * (1 - 1e-6), h * (1 + 1e-6)))
+    assert abs(h - exact) <= err
+    assert sol.angle_condition_error_deg <= ANGLE_TOLERANCE_DEG
+    # known to 1e-9 of itself, or the warning says how well
+    assert err <= 1e-9 * h or any("ill-conditioned apex" in w for w in sol.warnings)
