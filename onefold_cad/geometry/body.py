@@ -289,10 +289,19 @@ class Body:
 
     # -- pieces -------------------------------------------------------------
     def _paper_pieces(self) -> list[Array]:
-        """The paper model's shell: straight between the ruling ends, whose
-        ends are its extremes; the hole's edge is a circular arc per triangle."""
+        """The paper model's shell: straight between the ruling ends and the
+        sheet's vertices, which are its extremes; the hole's edge is a circular
+        arc per triangle.
+
+        The vertices count on their own: a vertex within 1e-12 rad of a fan
+        division has no ruling of its own (the division's is used), and where
+        the edge beside it runs almost through H the division's ruling end
+        lies measurably short of the vertex (1.5e-7 of the size for an edge
+        passing 5e-10 of it from H): the folded corner, in that triangle's
+        plane, can be the lowest point."""
         folded, rho = self.folded, self.hole
-        fixed = list(folded.rulings_3d[:, 1] - folded.apex)
+        corners = folded.map_points(folded.sheet.vertices) - folded.apex
+        fixed = list(folded.rulings_3d[:, 1] - folded.apex) + list(corners)
         if rho <= 0.0:
             return [np.zeros(3), *fixed]
         for side, thetas in enumerate(folded.ruling_angles):

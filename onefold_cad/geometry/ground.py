@@ -36,6 +36,7 @@ __all__ = [
     "CONTACT_TOLERANCE",
     "Samples",
     "basis",
+    "exact_features",
     "features",
     "holds",
     "lowest_points",
@@ -186,6 +187,20 @@ def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Featu
         for grp in np.split(ts, np.flatnonzero(np.diff(idx) > 2) + 1):
             lo, hi = piece.bracket(float(grp[0]), float(grp[-1]))
             out.append(_Feature(int(k), lo, hi, np.zeros(3)))
+    return out
+
+
+def exact_features(body: Body, lows: list[tuple[int, float, Array]]) -> list[_Feature]:
+    """Features for exact lowest points (piece, parameter, point), as
+    :func:`lowest_points` finds them: a fixed point as it is, a piece's
+    point by the grid bracket around its parameter."""
+    out = []
+    for k, t, p in lows:
+        if k < 0:
+            out.append(_Feature(-1, 0.0, 0.0, p.copy()))
+        else:
+            lo, hi = body.pieces[k].bracket(t, t)
+            out.append(_Feature(k, lo, hi, p.copy()))
     return out
 
 

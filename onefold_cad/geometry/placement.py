@@ -32,6 +32,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.ground import (
     CONTACT_TOLERANCE,
     Samples,
+    exact_features,
     features,
     holds,
     lowest_points,
@@ -231,9 +232,19 @@ def rest_form(
     lows: list[tuple[int, float, Array]] = []
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
-        g, plane, rocks = settle(form, features(form, samples, on), com, g)
-        lows = lowest_points(form, samples, g, band)
-        level = float(lows[0][2] @ g)
+        found = features(form, samples, on)
+        for _ in range(4):
+            g, plane, rocks = settle(form, found, com, g)
+            lows = lowest_points(form, samples, g, band)
+            level = float(lows[0][2] @ g)
+            # the exact plane cuts the body: on its way there (rocking along
+            # two curved edges, say) the body met another point first, the
+            # apex or a corner the sampled rest kept clear; it rests on that
+            # too: settle again with it
+            below = [x for x in lows if float(x[2] @ g) < plane - contact_tol]
+            if not below:
+                break
+            found = found + exact_features(form, below)
         # roll on with the exact lowest points among the samples when the
         # exact body reaches below the plane between samples, or when the
         # exact contacts no longer hold the centre of mass (samples near an
