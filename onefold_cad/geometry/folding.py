@@ -406,7 +406,9 @@ def _edge_measures(folded: FoldedSheet) -> tuple[Array, Array]:
     chord sums and chord-fan areas of the folded edge at halving steps until
     two estimates agree to 1e-12 (the chord errors run in even powers of the
     step on each smooth piece of the edge). Pieces are graded towards the
-    edge's point nearest H; a piece that does not converge in
+    edge's point nearest H and towards its crossings with the rulings along
+    which the cone bends most sharply (:func:`_sharp_rays`: a fold of 180 deg
+    as beta nears 90 deg, which no chord may straddle); a piece that does not converge in
     :data:`_ROMBERG_LEVELS` halvings (the cone bends sharply there, as beta
     nears 90 deg) is cut in two and measured again, down to 1e-9 of its edge
     and :data:`_MAX_PIECES` pieces in all."""
