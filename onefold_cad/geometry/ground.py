@@ -13,7 +13,10 @@ along their curves, in the plane to first order: the plane converges
 quadratically; :func:`settle`). On two contacts, one of them a curved edge,
 the body rocks: the plane is then the one on which they balance the centre of
 mass (:func:`_rock`). :func:`lowest_points` finds the exact lowest points of
-every piece that comes near the ground, to check the plane.
+every piece that comes near the ground, to check the plane; a point below
+it (the apex, met while the body rocks along two curved edges towards their
+balance) joins the features and the plane is settled again
+(:func:`exact_features`, :func:`onefold_cad.geometry.placement.rest_form`).
 
 Points are in the body's frame (relative to the apex); lengths in the design
 unit.
