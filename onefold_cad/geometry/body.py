@@ -462,6 +462,19 @@ class Body:
         return [piece.points(piece.grid) for piece in self.pieces]
 
     @cached_property
+    def spacings(self) -> Array:
+        """Per piece ``(n,)``: the largest distance between neighbouring
+        samples (length), in 3D or along the piece (on the flat sheet), plus
+        the thickness: no point of the piece lies further than that from its
+        nearest sample (the thickness covers the offsets of a thick sheet)."""
+        out = np.zeros(len(self.pieces))
+        for i, (piece, corners) in enumerate(zip(self.pieces, self.sections, strict=True)):
+            steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
+            steps = steps[~np.isnan(steps)]
+            out[i] = max(piece.step, float(steps.max()) if len(steps) else 0.0)
+        return out + self.thickness
+
+    @cached_property
     def samples(self) -> tuple[Array, NDArray[np.int64], Array]:
         """Sample points ``(N, 3)`` of every piece and fixed point, with the
         piece each belongs to ``(N,)`` (-1: a fixed point) and its parameter."""

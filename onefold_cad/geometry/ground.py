@@ -403,23 +403,34 @@ def _rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[A
 def lowest_points(
     body: Body, samples: Samples, g: Array, band: float
 ) -> list[tuple[int, float, Array]]:
-    """The exact lowest point along ``g`` of every piece (and fixed point)
-    whose samples come within ``band`` (length) of the lowest sample: a list
-    of (piece, parameter, point), the lowest first."""
+    """The exact lowest point along ``g`` of every fixed point whose height
+    lies within ``band`` (length) of the lowest sample, and of every piece
+    whose samples come within ``band`` or twice its own sample spacing
+    (:attr:`Body.spacings`), the smaller, of it (no point of a piece lies
+    lower than its samples by more than that spacing): a list of (piece,
+    parameter, point), the lowest first.
+
+    A piece's own spacing, not the body's largest, keeps the work small on a
+    sheet of many vertices, where a long edge's samples lie far apart and
+    every other edge would come within the body's band."""
     h = samples.points @ g
     floor = float(h.min())
     found: list[tuple[int, float, Array]] = []
     fixed = samples.owner < 0
     for idx in np.flatnonzero(fixed & (h <= floor + band)):
         found.append((-1, 0.0, samples.points[idx]))
-    for k in np.unique(samples.owner[~fixed & (h <= floor + band)]):
+    reach = np.minimum(band, 2.0 * body.spacings + 1e-10 * body.size)
+    near = np.zeros(len(h), dtype=bool)
+    if len(reach):  # the paper shell without a hole has fixed points only
+        near[~fixed] = h[~fixed] <= floor + reach[samples.owner[~fixed]]
+    for k in np.unique(samples.owner[near]):
         piece = body.pieces[int(k)]
         corners = body.sections[int(k)]
         hk = np.where(np.isnan(corners[..., 0]), np.inf, corners @ g).min(axis=1)
-        # the piece's sampled local minima within the band (a plateau counts once)
+        # the piece's sampled local minima within reach (a plateau counts once)
         left = np.concatenate([[True], hk[1:] < hk[:-1]])
         right = np.concatenate([hk[:-1] <= hk[1:], [True]])
-        for tj in piece.grid[(hk <= floor + band) & left & right]:
+        for tj in piece.grid[(hk <= floor + reach[int(k)]) & left & right]:
             lo, hi = piece.bracket(float(tj), float(tj))
             tb, p = body.lowest(int(k), lo, hi, g)
             found.append((int(k), tb, p))
@@ -428,16 +439,10 @@ def lowest_points(
 
 
 def sample_spacing(body: Body) -> float:
-    """The largest distance between neighbouring samples of a piece (length),
-    in 3D or along the piece (on the flat sheet): no point of a piece lies
-    further than that from its nearest sample, but for the offsets of a thick
-    sheet (added: the thickness)."""
-    worst = 0.0
-    for piece, corners in zip(body.pieces, body.sections, strict=True):
-        steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
-        steps = steps[~np.isnan(steps)]
-        worst = max(worst, piece.step, float(steps.max()) if len(steps) else 0.0)
-    return worst + body.thickness
+    """The largest of the pieces' sample spacings (:attr:`Body.spacings`;
+    length): no point of a piece lies further than that from its nearest
+    sample; the thickness when there are no pieces."""
+    return float(body.spacings.max()) if len(body.spacings) else body.thickness
 
 
 def holds(contacts: Array, com: Array, g: Array, tol: float) -> bool:

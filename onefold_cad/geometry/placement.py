@@ -230,8 +230,16 @@ def rest_form(
     band = 2.0 * sample_spacing(form) + tol
     g = np.array([0.0, 0.0, 1.0])
     lows: list[tuple[int, float, Array]] = []
+    rolled: list[Array] = []
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
+        if any(float(np.linalg.norm(g - r)) <= 1e-12 for r in rolled):
+            # the samples' rest comes back while the exact plane leaves it (a
+            # body lying almost flat, whose lowest points jump along nearly
+            # straight edges at the slightest tilt): make that rest exact
+            g, lows, samples = _cut(form, samples, com, g, band, tol)
+            break
+        rolled.append(g)
         found = features(form, samples, on)
         for _ in range(4):
             g, plane, rocks = settle(form, found, com, g)
@@ -281,6 +289,26 @@ def rest_form(
         footprint,
         size,
     )
+
+
+def _cut(
+    form: Body, samples: Samples, com: Array, g: Array, band: float, tol: float
+) -> tuple[Array, list[tuple[int, float, Array]], Samples]:
+    """Cutting planes on the samples' rest along ``g``: the exact lowest
+    points below its plane (by more than the contact tolerance) join the
+    samples and the body rolls on them, until none is below. Returns the
+    normal, the exact lowest points there and the samples."""
+    contact_tol = CONTACT_TOLERANCE * form.size
+    lows: list[tuple[int, float, Array]] = []
+    for _ in range(8):
+        lows = lowest_points(form, samples, g, band)
+        floor = float(np.min(samples.points @ g))
+        below = [x for x in lows if float(x[2] @ g) < floor - contact_tol]
+        if not below:
+            break
+        samples = samples.plus(below)
+        g, _ = roll(samples.points, com, g, tol)
+    return g, lows, samples
 
 
 def _rotation_to_up(g: Array) -> Array:
