@@ -324,6 +324,7 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
     :func:`_rock`)."""
     tol = CONTACT_TOLERANCE * body.size
     rocks = False
+    least, stale = math.inf, 0
     for _ in range(40):
         pts = _distinct([_locate(body, f, g) for f in features], tol)
         if len(pts) == 2:
@@ -337,6 +338,12 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
         moved = float(np.linalg.norm(n - g))
         g = n
         if moved <= 1e-15:
+            break
+        # it converges quadratically; a plane that stops closing in (it hops
+        # between triangles of a body lying almost flat, whose lowest points
+        # jump along nearly straight edges) is left to the caller's check
+        least, stale = (moved, 0) if moved < 0.5 * least else (least, stale + 1)
+        if stale >= 4:
             break
     pts = np.array([_locate(body, f, g) for f in features])
     return g, float(np.min(pts @ g)), rocks
