@@ -180,7 +180,12 @@ def stability_warnings(rest: RestingPlacement, units: str = "") -> list[str]:
             f"the {rest.body} rests on two points only and rocks on a curved edge{edge}: "
             "it has no margin against tipping about the line through them"
         ]
-    if margin <= 0.0:
+    if margin == 0.0:
+        return [
+            f"the {rest.body} is balanced with its centre of mass above the support "
+            f"edge{edge}: it rocks, with no margin against tipping about that edge"
+        ]
+    if margin < 0.0:
         return [
             f"the {rest.body} does not stand stably: its centre of mass lies "
             f"{-margin:.3g} deg outside its support polygon{edge}"
@@ -231,6 +236,7 @@ def rest_form(
     g = np.array([0.0, 0.0, 1.0])
     lows: list[tuple[int, float, Array]] = []
     rolled: list[Array] = []
+    rocks = False
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
         if any(float(np.linalg.norm(g - r)) <= 1e-12 for r in rolled):
@@ -238,6 +244,7 @@ def rest_form(
             # body lying almost flat, whose lowest points jump along nearly
             # straight edges at the slightest tilt): make that rest exact
             g, lows, samples = _cut(form, samples, com, g, band, tol)
+            rocks = False
             break
         rolled.append(g)
         found = features(form, samples, on)
@@ -268,7 +275,10 @@ def rest_form(
     shift = np.array([-com_r[0], -com_r[1], -level])
     contacts = touching(samples, lows, g, level, contact_tol) @ rot.T + shift
     polygon = contacts[convex_hull_2d(contacts[:, :2], contact_tol), :2]
-    margin, edge = _tipping(polygon, com_r + shift, contact_tol)
+    # a rocking form balances its centre of mass over the line through two
+    # tangencies, whose places along their curves are known to about 1e-8 of
+    # the size (ground._rock settles for 1e-6 of it)
+    margin, edge = _tipping(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
     bounds = _bounds(form, samples, rot, shift, band)
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
@@ -329,7 +339,9 @@ def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, 
     polygon ``(m, 2)`` and the edge it is smallest about. Two corners (a form
     that rocks on a curved edge): 0 while the centre of mass lies over the
     segment within ``tol`` (length), else minus the tilt that brings it there;
-    one corner: minus the tilt that brings it over that point."""
+    one corner: minus the tilt that brings it over that point; three or more:
+    0 when it lies outside an edge by at most ``tol`` (a form balanced on its
+    rocking line that a third point also touches)."""
     z = max(float(com[2]), 0.0)
     m = len(polygon)
     if m == 0:
@@ -344,7 +356,10 @@ def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, 
         return 0.0 - math.degrees(math.atan2(max(off - tol, 0.0), z)), (0, 1)
     d = edge_distances(com[:2], polygon)
     i = int(np.argmin(d))
-    return math.degrees(math.atan2(float(d[i]), z)), (i, (i + 1) % m)
+    inside = float(d[i])
+    if -tol <= inside < 0.0:  # on the edge within tol: balanced on it
+        inside = 0.0
+    return math.degrees(math.atan2(inside, z)), (i, (i + 1) % m)
 
 
 def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, band: float) -> Array:

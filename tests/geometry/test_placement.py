@@ -448,3 +448,23 @@ def test_tipping_margin_agrees_with_the_written_part(step_case):
     if name == "shell-35-45-8":  # issue 17: "a tipping margin of only about 4 degrees"
         assert 3.5 <= rest.tipping_margin_deg <= 4.5
         assert len(stability_warnings(rest)) == 1
+
+
+def test_tipping_margin_is_zero_for_a_centre_of_mass_on_an_edge_within_tol() -> None:
+    # a right triangle (0,0), (4,0), (0,3) and a centre of mass at height 2
+    # below the middle of its hypotenuse, moved out across it by 0.5 and by
+    # 2 x tol: balanced on the edge (margin 0), then minus atan(2 tol / 2)
+    from onefold_cad.geometry.placement import _tipping
+
+    tri = np.array([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]])
+    tol = 1e-6
+    out = np.array([3.0, 4.0]) / 5.0  # the hypotenuse's outward normal
+    for shift, want in ((0.5 * tol, 0.0), (2.0 * tol, -math.degrees(math.atan(tol)))):
+        com = np.array([2.0, 1.5, 2.0]) + np.append(shift * out, 0.0)
+        margin, edge = _tipping(tri, com, tol)
+        assert set(edge) == {1, 2}
+        assert margin == pytest.approx(want, rel=1e-9, abs=0.0)
+    base = rest_form(build_design(load_template(find_template("patkau-one-fold"))))
+    balanced = RestingPlacement(**{**base.__dict__, "tipping_margin_deg": 0.0})
+    (warning,) = stability_warnings(balanced)
+    assert "rocks" in warning and "no margin" in warning and "does not stand" not in warning
