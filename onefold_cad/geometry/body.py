@@ -289,10 +289,19 @@ class Body:
 
     # -- pieces -------------------------------------------------------------
     def _paper_pieces(self) -> list[Array]:
-        """The paper model's shell: straight between the ruling ends, whose
-        ends are its extremes; the hole's edge is a circular arc per triangle."""
+        """The paper model's shell: straight between the ruling ends and the
+        sheet's vertices, which are its extremes; the hole's edge is a circular
+        arc per triangle.
+
+        The vertices count on their own: a vertex within 1e-12 rad of a fan
+        division has no ruling of its own (the division's is used), and where
+        the edge beside it runs almost through H the division's ruling end
+        lies measurably short of the vertex (1.5e-7 of the size for an edge
+        passing 5e-10 of it from H): the folded corner, in that triangle's
+        plane, can be the lowest point."""
         folded, rho = self.folded, self.hole
-        fixed = list(folded.rulings_3d[:, 1] - folded.apex)
+        corners = folded.map_points(folded.sheet.vertices) - folded.apex
+        fixed = list(folded.rulings_3d[:, 1] - folded.apex) + list(corners)
         if rho <= 0.0:
             return [np.zeros(3), *fixed]
         for side, thetas in enumerate(folded.ruling_angles):
@@ -451,6 +460,19 @@ class Body:
     def sections(self) -> list[Array]:
         """Per piece: the section corners ``(n, V, 3)`` at its grid."""
         return [piece.points(piece.grid) for piece in self.pieces]
+
+    @cached_property
+    def spacings(self) -> Array:
+        """Per piece ``(n,)``: the largest distance between neighbouring
+        samples (length), in 3D or along the piece (on the flat sheet), plus
+        the thickness: no point of the piece lies further than that from its
+        nearest sample (the thickness covers the offsets of a thick sheet)."""
+        out = np.zeros(len(self.pieces))
+        for i, (piece, corners) in enumerate(zip(self.pieces, self.sections, strict=True)):
+            steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
+            steps = steps[~np.isnan(steps)]
+            out[i] = max(piece.step, float(steps.max()) if len(steps) else 0.0)
+        return out + self.thickness
 
     @cached_property
     def samples(self) -> tuple[Array, NDArray[np.int64], Array]:

@@ -299,19 +299,74 @@ _ROMBERG_RTOL = 1e-12
 _MAX_PIECES = 256
 
 
-def _edge_pieces(a: Array, b: Array) -> Array:
+def _sharp_rays(folded: FoldedSheet) -> Array:
+    """Flat polar angles ``(k,)`` (radians, both sides: +theta and -theta) of
+    the exact cone's rulings where it bends most sharply: those through the
+    frame arc's points whose tangent line passes through the apex's
+    projection A' onto the frame plane. There u = (P - A) / |P - A| stalls
+    (|du/dphi| is the apex's distance from that tangent line over |P - A|^2):
+    as beta nears 90 deg the apex nears the plane and the cone folds back on
+    itself along such a ruling, a crease of 180 deg whose width in theta
+    shrinks like (h cos beta)^2. Chords that straddle it lose up to twice
+    their length, so the edge measures break there.
+
+    In the frame plane (x along the f-line, d across it) the arc is
+    P(phi) = C + R (cos phi, sin phi), C = (-h_c, R sin alpha), and
+    A' = (0, h sin beta); P - A' is tangent at cos(phi - psi) = -R / |C - A'|,
+    psi the direction of C - A' (no such point when A' lies inside the
+    circle)."""
+    frame = folded.solution.frame
+    cone = folded.solution.surface
+    r = frame.radius
+    wx = -frame.h_c
+    wd = r * math.sin(math.radians(frame.alpha)) - float(folded.apex[2]) * math.sin(
+        math.radians(frame.beta)
+    )
+    dist = math.hypot(wx, wd)
+    if dist <= r:
+        return np.zeros(0)
+    psi = math.atan2(wd, wx)
+    turn = math.acos(-r / dist)
+    p0, p1 = arc_range(frame)
+    phi = np.array([psi - turn, psi + turn])
+    phi = (phi - p0) % (2.0 * math.pi) + p0  # into [p0, p0 + 2 pi)
+    phi = phi[phi <= p1]
+    theta = cone.theta_of_phi(phi) if len(phi) else np.zeros(0)
+    theta = theta[(theta > 0.0) & (theta < cone.total_angle)]
+    return np.concatenate([theta, -theta])
+
+
+def _graded(marks: list[float], at: float, start: float) -> None:
+    """Append to ``marks`` the fractions at ± start, 2 start, 4 start ... (< 1)
+    around ``at``."""
+    step = max(start, 1e-12)
+    while step < 1.0:
+        marks += [at - step, at + step]
+        step *= 2.0
+
+
+def _edge_pieces(a: Array, b: Array, rays: Array | None = None) -> Array:
     """Break points (fractions of the edge from ``a`` to ``b``) graded towards
     the edge's point nearest H: the fold map varies on the scale of the
-    distance from H, so each piece is smooth on its own length."""
+    distance from H, so each piece is smooth on its own length. The edge is
+    also broken where it crosses a ray from H at a flat polar angle in
+    ``rays`` (:func:`_sharp_rays`), with pieces graded towards the crossing
+    from 1e-12 of the edge up."""
     d = b - a
     length2 = float(d @ d)
     foot = float(np.clip(-(a @ d) / length2, 0.0, 1.0))
     near = float(np.hypot(*(a + foot * d))) / math.sqrt(length2)  # distance from H / length
     marks = [0.0, 1.0, foot]
-    step = max(near, 1e-12)
-    while step < 1.0:
-        marks += [foot - step, foot + step]
-        step *= 2.0
+    _graded(marks, foot, near)
+    for ray in [] if rays is None else rays.tolist():
+        c, s = math.cos(ray), math.sin(ray)
+        across = d[0] * s - d[1] * c  # d x (cos, sin)
+        if across == 0.0:
+            continue
+        t = -(a[0] * s - a[1] * c) / across  # a + t d on the ray's line
+        if 0.0 < t < 1.0 and (a[0] + t * d[0]) * c + (a[1] + t * d[1]) * s > 0.0:
+            marks.append(t)
+            _graded(marks, t, 0.0)
     m = np.unique(np.clip(marks, 0.0, 1.0))
     return m[np.concatenate([[True], np.diff(m) > 1e-15])]
 
@@ -351,7 +406,9 @@ def _edge_measures(folded: FoldedSheet) -> tuple[Array, Array]:
     chord sums and chord-fan areas of the folded edge at halving steps until
     two estimates agree to 1e-12 (the chord errors run in even powers of the
     step on each smooth piece of the edge). Pieces are graded towards the
-    edge's point nearest H; a piece that does not converge in
+    edge's point nearest H and towards its crossings with the rulings along
+    which the cone bends most sharply (:func:`_sharp_rays`: a fold of 180 deg
+    as beta nears 90 deg, which no chord may straddle); a piece that does not converge in
     :data:`_ROMBERG_LEVELS` halvings (the cone bends sharply there, as beta
     nears 90 deg) is cut in two and measured again, down to 1e-9 of its edge
     and :data:`_MAX_PIECES` pieces in all."""
@@ -364,9 +421,10 @@ def _edge_measures(folded: FoldedSheet) -> tuple[Array, Array]:
         return _Piece(edge, p, q, p + frac[:, None] * (q - p), [])
 
     live: list[_Piece] = []
+    rays = _sharp_rays(folded)
     for k in range(len(v)):
         a, b = v[k], v[(k + 1) % len(v)]
-        m = _edge_pieces(a, b)
+        m = _edge_pieces(a, b, rays)
         ends = zip(m[:-1], m[1:], strict=True)
         live += [start(k, a + m0 * (b - a), a + m1 * (b - a)) for m0, m1 in ends]
     mapped = folded.map_points(np.concatenate([c.pts for c in live]))

@@ -13,7 +13,10 @@ along their curves, in the plane to first order: the plane converges
 quadratically; :func:`settle`). On two contacts, one of them a curved edge,
 the body rocks: the plane is then the one on which they balance the centre of
 mass (:func:`_rock`). :func:`lowest_points` finds the exact lowest points of
-every piece that comes near the ground, to check the plane.
+every piece that comes near the ground, to check the plane; a point below
+it (the apex, met while the body rocks along two curved edges towards their
+balance) joins the features and the plane is settled again
+(:func:`exact_features`, :func:`onefold_cad.geometry.placement.rest_form`).
 
 Points are in the body's frame (relative to the apex); lengths in the design
 unit.
@@ -36,6 +39,7 @@ __all__ = [
     "CONTACT_TOLERANCE",
     "Samples",
     "basis",
+    "exact_features",
     "features",
     "holds",
     "lowest_points",
@@ -189,6 +193,20 @@ def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Featu
     return out
 
 
+def exact_features(body: Body, lows: list[tuple[int, float, Array]]) -> list[_Feature]:
+    """Features for exact lowest points (piece, parameter, point), as
+    :func:`lowest_points` finds them: a fixed point as it is, a piece's
+    point by the grid bracket around its parameter."""
+    out = []
+    for k, t, p in lows:
+        if k < 0:
+            out.append(_Feature(-1, 0.0, 0.0, p.copy()))
+        else:
+            lo, hi = body.pieces[k].bracket(t, t)
+            out.append(_Feature(k, lo, hi, p.copy()))
+    return out
+
+
 def _locate(body: Body, f: _Feature, g: Array) -> Array:
     """Move feature ``f`` to the exact lowest point of its bracket along ``g``,
     widening the bracket while the lowest point sits on an end of it."""
@@ -306,6 +324,7 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
     :func:`_rock`)."""
     tol = CONTACT_TOLERANCE * body.size
     rocks = False
+    least, stale = math.inf, 0
     for _ in range(40):
         pts = _distinct([_locate(body, f, g) for f in features], tol)
         if len(pts) == 2:
@@ -319,6 +338,12 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
         moved = float(np.linalg.norm(n - g))
         g = n
         if moved <= 1e-15:
+            break
+        # it converges quadratically; a plane that stops closing in (it hops
+        # between triangles of a body lying almost flat, whose lowest points
+        # jump along nearly straight edges) is left to the caller's check
+        least, stale = (moved, 0) if moved < 0.5 * least else (least, stale + 1)
+        if stale >= 4:
             break
     pts = np.array([_locate(body, f, g) for f in features])
     return g, float(np.min(pts @ g)), rocks
@@ -344,17 +369,25 @@ def _rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[A
         e /= max(float(np.linalg.norm(e)), 1e-300)
         return np.array([gg @ (q2 - q1), (com - q1) @ cross3(gg, e)])
 
+    def balanced(gg: Array) -> tuple[Array, bool]:
+        q1, q2 = (_locate(body, f, gg) for f in pair)
+        span2 = float((q2 - q1) @ (q2 - q1))
+        along = float((com - q1) @ (q2 - q1)) / span2 if span2 > tol * tol else -1.0
+        return (gg, True) if 0.0 < along < 1.0 else (start, False)
+
     start = g
     # the heights are flat at a tangency, so the point's place along the curve,
-    # and with it the balance, is known to about 1e-8 of the size only
+    # and with it the balance, is known to about 1e-8 of the size only: aim
+    # for the contact tolerance, settle for the best within 1e-6 of the size
     eps = 1e-4
+    best: tuple[float, Array] | None = None
     for _ in range(30):
         f0 = residual(g)
-        if abs(f0[0]) <= 1e-3 * tol and abs(f0[1]) <= 1e-6 * body.size:
-            q1, q2 = (_locate(body, f, g) for f in pair)
-            span2 = float((q2 - q1) @ (q2 - q1))
-            along = float((com - q1) @ (q2 - q1)) / span2 if span2 > tol * tol else -1.0
-            return (g, True) if 0.0 < along < 1.0 else (start, False)
+        if abs(f0[0]) <= 1e-3 * tol:
+            if abs(f0[1]) <= tol:
+                return balanced(g)
+            if abs(f0[1]) <= 1e-6 * body.size and (best is None or abs(f0[1]) < best[0]):
+                best = (abs(f0[1]), g)
         e1, e2 = basis(g)
         jac = np.empty((2, 2))
         for j, d in enumerate((e1, e2)):
@@ -363,37 +396,48 @@ def _rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[A
         try:
             step = np.linalg.solve(jac, -f0)
         except np.linalg.LinAlgError:
-            return start, False
+            break
         length = float(np.linalg.norm(step))
         if length > 0.02:  # stay near the samples' rest (the residual jumps elsewhere)
             step *= 0.02 / length
         g = g + step[0] * e1 + step[1] * e2
         g /= np.linalg.norm(g)
         if float(np.linalg.norm(g - start)) > 0.1:
-            return start, False
-    return start, False
+            break
+    return balanced(best[1]) if best is not None else (start, False)
 
 
 def lowest_points(
     body: Body, samples: Samples, g: Array, band: float
 ) -> list[tuple[int, float, Array]]:
-    """The exact lowest point along ``g`` of every piece (and fixed point)
-    whose samples come within ``band`` (length) of the lowest sample: a list
-    of (piece, parameter, point), the lowest first."""
+    """The exact lowest point along ``g`` of every fixed point whose height
+    lies within ``band`` (length) of the lowest sample, and of every piece
+    whose samples come within ``band`` or twice its own sample spacing
+    (:attr:`Body.spacings`), the smaller, of it (no point of a piece lies
+    lower than its samples by more than that spacing): a list of (piece,
+    parameter, point), the lowest first.
+
+    A piece's own spacing, not the body's largest, keeps the work small on a
+    sheet of many vertices, where a long edge's samples lie far apart and
+    every other edge would come within the body's band."""
     h = samples.points @ g
     floor = float(h.min())
     found: list[tuple[int, float, Array]] = []
     fixed = samples.owner < 0
     for idx in np.flatnonzero(fixed & (h <= floor + band)):
         found.append((-1, 0.0, samples.points[idx]))
-    for k in np.unique(samples.owner[~fixed & (h <= floor + band)]):
+    reach = np.minimum(band, 2.0 * body.spacings + 1e-10 * body.size)
+    near = np.zeros(len(h), dtype=bool)
+    if len(reach):  # the paper shell without a hole has fixed points only
+        near[~fixed] = h[~fixed] <= floor + reach[samples.owner[~fixed]]
+    for k in np.unique(samples.owner[near]):
         piece = body.pieces[int(k)]
         corners = body.sections[int(k)]
         hk = np.where(np.isnan(corners[..., 0]), np.inf, corners @ g).min(axis=1)
-        # the piece's sampled local minima within the band (a plateau counts once)
+        # the piece's sampled local minima within reach (a plateau counts once)
         left = np.concatenate([[True], hk[1:] < hk[:-1]])
         right = np.concatenate([hk[:-1] <= hk[1:], [True]])
-        for tj in piece.grid[(hk <= floor + band) & left & right]:
+        for tj in piece.grid[(hk <= floor + reach[int(k)]) & left & right]:
             lo, hi = piece.bracket(float(tj), float(tj))
             tb, p = body.lowest(int(k), lo, hi, g)
             found.append((int(k), tb, p))
@@ -402,16 +446,10 @@ def lowest_points(
 
 
 def sample_spacing(body: Body) -> float:
-    """The largest distance between neighbouring samples of a piece (length),
-    in 3D or along the piece (on the flat sheet): no point of a piece lies
-    further than that from its nearest sample, but for the offsets of a thick
-    sheet (added: the thickness)."""
-    worst = 0.0
-    for piece, corners in zip(body.pieces, body.sections, strict=True):
-        steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
-        steps = steps[~np.isnan(steps)]
-        worst = max(worst, piece.step, float(steps.max()) if len(steps) else 0.0)
-    return worst + body.thickness
+    """The largest of the pieces' sample spacings (:attr:`Body.spacings`;
+    length): no point of a piece lies further than that from its nearest
+    sample; the thickness when there are no pieces."""
+    return float(body.spacings.max()) if len(body.spacings) else body.thickness
 
 
 def holds(contacts: Array, com: Array, g: Array, tol: float) -> bool:

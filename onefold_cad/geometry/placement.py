@@ -32,6 +32,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.ground import (
     CONTACT_TOLERANCE,
     Samples,
+    exact_features,
     features,
     holds,
     lowest_points,
@@ -179,7 +180,12 @@ def stability_warnings(rest: RestingPlacement, units: str = "") -> list[str]:
             f"the {rest.body} rests on two points only and rocks on a curved edge{edge}: "
             "it has no margin against tipping about the line through them"
         ]
-    if margin <= 0.0:
+    if margin == 0.0:
+        return [
+            f"the {rest.body} is balanced with its centre of mass above the support "
+            f"edge{edge}: it rocks, with no margin against tipping about that edge"
+        ]
+    if margin < 0.0:
         return [
             f"the {rest.body} does not stand stably: its centre of mass lies "
             f"{-margin:.3g} deg outside its support polygon{edge}"
@@ -229,11 +235,31 @@ def rest_form(
     band = 2.0 * sample_spacing(form) + tol
     g = np.array([0.0, 0.0, 1.0])
     lows: list[tuple[int, float, Array]] = []
+    rolled: list[Array] = []
+    rocks = False
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
-        g, plane, rocks = settle(form, features(form, samples, on), com, g)
-        lows = lowest_points(form, samples, g, band)
-        level = float(lows[0][2] @ g)
+        if any(float(np.linalg.norm(g - r)) <= 1e-12 for r in rolled):
+            # the samples' rest comes back while the exact plane leaves it (a
+            # body lying almost flat, whose lowest points jump along nearly
+            # straight edges at the slightest tilt): make that rest exact
+            g, lows, samples = _cut(form, samples, com, g, band, tol)
+            rocks = False
+            break
+        rolled.append(g)
+        found = features(form, samples, on)
+        for _ in range(4):
+            g, plane, rocks = settle(form, found, com, g)
+            lows = lowest_points(form, samples, g, band)
+            level = float(lows[0][2] @ g)
+            # the exact plane cuts the body: on its way there (rocking along
+            # two curved edges, say) the body met another point first, the
+            # apex or a corner the sampled rest kept clear; it rests on that
+            # too: settle again with it
+            below = [x for x in lows if float(x[2] @ g) < plane - contact_tol]
+            if not below:
+                break
+            found = found + exact_features(form, below)
         # roll on with the exact lowest points among the samples when the
         # exact body reaches below the plane between samples, or when the
         # exact contacts no longer hold the centre of mass (samples near an
@@ -249,7 +275,10 @@ def rest_form(
     shift = np.array([-com_r[0], -com_r[1], -level])
     contacts = touching(samples, lows, g, level, contact_tol) @ rot.T + shift
     polygon = contacts[convex_hull_2d(contacts[:, :2], contact_tol), :2]
-    margin, edge = _tipping(polygon, com_r + shift, contact_tol)
+    # a rocking form balances its centre of mass over the line through two
+    # tangencies, whose places along their curves are known to about 1e-8 of
+    # the size (ground._rock settles for 1e-6 of it)
+    margin, edge = _tipping(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
     bounds = _bounds(form, samples, rot, shift, band)
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
@@ -272,6 +301,26 @@ def rest_form(
     )
 
 
+def _cut(
+    form: Body, samples: Samples, com: Array, g: Array, band: float, tol: float
+) -> tuple[Array, list[tuple[int, float, Array]], Samples]:
+    """Cutting planes on the samples' rest along ``g``: the exact lowest
+    points below its plane (by more than the contact tolerance) join the
+    samples and the body rolls on them, until none is below. Returns the
+    normal, the exact lowest points there and the samples."""
+    contact_tol = CONTACT_TOLERANCE * form.size
+    lows: list[tuple[int, float, Array]] = []
+    for _ in range(8):
+        lows = lowest_points(form, samples, g, band)
+        floor = float(np.min(samples.points @ g))
+        below = [x for x in lows if float(x[2] @ g) < floor - contact_tol]
+        if not below:
+            break
+        samples = samples.plus(below)
+        g, _ = roll(samples.points, com, g, tol)
+    return g, lows, samples
+
+
 def _rotation_to_up(g: Array) -> Array:
     """The smallest rotation taking unit vector ``g`` to (0, 0, 1)."""
     target = np.array([0.0, 0.0, 1.0])
@@ -290,7 +339,9 @@ def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, 
     polygon ``(m, 2)`` and the edge it is smallest about. Two corners (a form
     that rocks on a curved edge): 0 while the centre of mass lies over the
     segment within ``tol`` (length), else minus the tilt that brings it there;
-    one corner: minus the tilt that brings it over that point."""
+    one corner: minus the tilt that brings it over that point; three or more:
+    0 when it lies outside an edge by at most ``tol`` (a form balanced on its
+    rocking line that a third point also touches)."""
     z = max(float(com[2]), 0.0)
     m = len(polygon)
     if m == 0:
@@ -305,7 +356,10 @@ def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, 
         return 0.0 - math.degrees(math.atan2(max(off - tol, 0.0), z)), (0, 1)
     d = edge_distances(com[:2], polygon)
     i = int(np.argmin(d))
-    return math.degrees(math.atan2(float(d[i]), z)), (i, (i + 1) % m)
+    inside = float(d[i])
+    if -tol <= inside < 0.0:  # on the edge within tol: balanced on it
+        inside = 0.0
+    return math.degrees(math.atan2(inside, z)), (i, (i + 1) % m)
 
 
 def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, band: float) -> Array:

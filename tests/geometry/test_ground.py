@@ -54,3 +54,53 @@ def test_a_tetrahedron_rests_on_a_face_under_its_centre() -> None:
     assert len(on) == 3
     normals = np.array([[0, 0, 1], [0, 1, 0], [1, 0, 0], [-1, -1, -1] / np.sqrt(3)]) @ tilt.T
     assert np.max(normals @ g) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_lowest_points_find_the_lowest_point_of_a_many_vertex_sheet() -> None:
+    # A 120-vertex star sheet with one long spike: its edge is sampled far
+    # more coarsely than the others (samples go by length), so a band of the
+    # body's largest spacing would take in every edge; each piece is refined
+    # within its own spacing instead. Expected, independently: the folded
+    # boundary's lowest point along g from 801 samples per edge and scipy's
+    # bounded Brent at each edge's sampled minimum.
+    from scipy.optimize import minimize_scalar
+
+    from onefold_cad import FrameCurve, Sheet, fold, solve
+    from onefold_cad.geometry.body import Body
+    from onefold_cad.geometry.ground import Samples, lowest_points, sample_spacing
+
+    rng = np.random.default_rng(7)
+    n = 120
+    angles = np.sort(rng.uniform(0.0, 2.0 * math.pi, n))
+    radii = rng.uniform(50.0, 120.0, n)
+    radii[n // 3] = 2000.0  # the spike
+    poly = np.column_stack([radii * np.cos(angles), radii * np.sin(angles)])
+    folded = fold(solve(FrameCurve(40.0, 60.0, 5.0, 100.0, 90), "exact"), Sheet.polygon(poly))
+    body = Body(folded)
+    samples = Samples(*body.samples)
+    size = body.size
+    band = 2.0 * sample_spacing(body) + 1e-10 * size
+    v = folded.sheet.vertices
+    for g in rng.normal(size=(4, 3)):
+        g /= np.linalg.norm(g)
+        lows = lowest_points(body, samples, g, band)
+        found = float(lows[0][2] @ g)
+        want = 0.0  # the apex (the body's origin), a point of the shell without a hole
+        for k in range(len(v)):
+            a, b = v[k], v[(k + 1) % len(v)]
+
+            def height(s, a=a, b=b, g=g):
+                q = a + np.atleast_1d(s)[:, None] * (b - a)
+                return (folded.map_points(q) - folded.apex) @ g
+
+            s = np.linspace(0.0, 1.0, 801)
+            z = height(s)
+            i = int(np.argmin(z))
+            res = minimize_scalar(
+                lambda t, h=height: float(h(t)[0]),
+                bounds=(s[max(i - 1, 0)], s[min(i + 1, 800)]),
+                method="bounded",
+                options={"xatol": 1e-14},
+            )
+            want = min(want, float(z[i]), float(res.fun))
+        assert abs(found - want) <= 1e-9 * size
