@@ -515,7 +515,8 @@ def _fan_rays(
 ) -> tuple[Array, Array, int]:
     """Both sides' ruling angles and the +y side's directions of their rays:
     the fan's division rays with every sheet vertex ray between them inserted
-    (a vertex closer than ``tol`` to a division uses the division). Returns
+    (a vertex closer than ``tol`` to a division gives that division its
+    flat angle). Returns
     ``(angles (m,), directions (m, 3), mu)``: the upper side's ``mu`` rays,
     then the lower side's, each from theta = 0 to pi."""
     assert surface.thetas is not None and surface.directions is not None
@@ -528,17 +529,27 @@ def _fan_rays(
     for vert in vertices:
         start = 0
         inner = vert[1:-1]
+        side = fan
         if len(inner):
             for v, k in zip(inner.tolist(), fan.searchsorted(inner).tolist(), strict=True):
                 if k > n or top - v <= tol:  # at or past the last division
                     continue
                 lo = fan.item(k - 1)
-                if v - lo <= tol or fan.item(k) - v <= tol:
+                near = k - 1 if v - lo <= tol else k if fan.item(k) - v <= tol else -1
+                if near >= 0:
+                    # the division's ruling ends at the vertex: its flat angle
+                    # is the vertex's (its direction, 1e-12 rad off, is kept),
+                    # so the ruling runs to the vertex, not to wherever the
+                    # outline meets the division 1e-12 rad away (far, where an
+                    # edge passes close to H)
+                    if 0 < near < n:
+                        side = side.copy() if side is fan else side
+                        side[near] = v
                     continue
-                angles += (fan[start:k], (v,))
+                angles += (side[start:k], (v,))
                 pieces += (dirs[start:k], (surface._frame1(k - 1, v - lo)[0],))
                 start = k
-        angles += (fan[start:n], (math.pi,))
+        angles += (side[start:n], (math.pi,))
         pieces.append(dirs[start:])
         if not mu:
             mu = sum(map(len, angles))

@@ -519,6 +519,11 @@ class Sheet:
         return out
 
     @cached_property
+    def _vertex_radii(self) -> NDArray[np.float64]:
+        """``(n,)`` each vertex's distance from H (length)."""
+        return np.hypot(self.vertices[:, 0], self.vertices[:, 1])
+
+    @cached_property
     def _edge_table(self) -> tuple[NDArray[np.float64], ...]:
         """Per edge k (vertex k to k + 1): its x and y extent and the cross
         product vertex_k x edge_k, for :meth:`_rays`."""
@@ -547,7 +552,14 @@ class Sheet:
         c, s = np.cos(ang), np.sin(ang)
         den = c * ey.take(i)
         den -= s * ex.take(i)
-        return np.divide(moment.take(i), den, out=den), c, s
+        rho = np.divide(moment.take(i), den, out=den)
+        # a ray at a vertex's own angle ends at the vertex: the edge from it may
+        # run almost along the ray (an edge passing 1e-9 of the size from H),
+        # where the intersection would lose up to 1e-7 of the size
+        at = self.polar_angles.take(i) == ang
+        if at.any():
+            rho[at] = self._vertex_radii.take(i[at])
+        return rho, c, s
 
     def ray_lengths(self, psi: ArrayLike) -> NDArray[np.float64]:
         """Distance from H to the boundary along polar angles ``psi`` (radians, any).

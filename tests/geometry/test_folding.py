@@ -277,6 +277,17 @@ def test_mesh_is_on_the_surface() -> None:
 
 @SETTINGS
 @given(frame=frames(), sheet=sheets)
+@example(
+    # fuzz 2329: the vertex (0, y_plus) lies 4.4e-16 rad from a fan division,
+    # the edges to (x_plus, 0) pass 4.8e-10 from H: along their rays the outline
+    # is ill-conditioned, so the rulings must end at the vertices themselves
+    # (a division's end missed (0, y_plus) by 4e-7, the ray at 2 pi - pi/2
+    # missed (0, -y_minus) by 9e-8 of the size)
+    frame=FrameCurve(87.6629202700267, 83.65787575517929, 0.0, 0.34394662800892756, 36),
+    sheet=Sheet.quadrilateral(
+        4.808818122518489e-10, 0.16252063456701793, 0.377742368613623, 0.2969066664200494
+    ),
+)
 def test_fold_results_agree_with_the_fold_map(frame: FrameCurve, sheet: Sheet) -> None:
     # fold() builds rulings, crease ends and (paper model) the boundary in bulk;
     # the general map of flat points gives the same points
