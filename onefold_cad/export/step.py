@@ -56,6 +56,7 @@ Example::
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -90,6 +91,7 @@ from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.placement import RestingPlacement
+from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.thick_sheet import SideMap, Slab, mitre_reach, sheet_offsets
 
 __all__ = [
@@ -188,6 +190,9 @@ def build_shell(
         )
     tol = BOUNDARY_TOLERANCE * folded.sheet.size
     if kind == "ruled":
+        problem = near_edge_problem(folded.sheet)
+        if problem is not None:
+            raise problem
         clock = KernelBudget(budget, "a sheet with fewer vertices may help")
         topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
         if deviation > tol:
@@ -212,6 +217,97 @@ def build_shell(
     shell.fit_deviation = deviation
     shell.fit_tolerance = tol if kind == "ruled" else 0.0
     return shell
+
+
+#: The shortest ruling (distance from H to a vertex of the sheet, crease
+#: ends included; design unit) the CAD kernel can make an edge of: its
+#: precision, Precision::Confusion (BRepLib_MakeEdge takes ends that close
+#: for one point and fails).
+MIN_RULING = 1e-7
+
+
+def _rectangle_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str]:
+    """The parameter and the change for a rectangle whose H lies too close to
+    a corner (``ruling``) or a side: H is at (f w, f h), min(f, 1 - f) x
+    hypot(w, h) from the nearest corner and min(f, 1 - f) x min(w, h) from
+    the nearest side; both must reach ``need``."""
+    w, h, f = (float(sheet.inputs[k]) for k in ("width", "height", "apex_fraction"))
+    least = need / (math.hypot(w, h) if ruling else min(w, h))
+    if least < 0.5:
+        return "apex_fraction", f"apex_fraction {f!r}: use one in [{least:.3g}, 1 - {least:.3g}]"
+    short = "width" if w < h else "height"
+    return short, f"{short} {min(w, h):.6g}: it must exceed {2.0 * need:.3g}"
+
+
+def _quadrilateral_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str]:
+    """The parameter and the change for a quadrilateral whose vertex
+    (``ruling``) or edge lies too close to H: the vertices are x_plus ...
+    from H, and the edge from (a, 0) to (0, b) passes a b / hypot(a, b) from
+    it; the shorter of the two sets that distance."""
+    values = {k: float(sheet.inputs[k]) for k in ("x_plus", "y_plus", "x_minus", "y_minus")}
+    if ruling:
+        name = min(values, key=values.__getitem__)
+        return name, f"{name} {values[name]!r}: it must exceed {need:.3g}"
+    pairs = [("x_plus", "y_plus"), ("x_minus", "y_plus"), ("x_minus", "y_minus")]
+    pairs.append(("x_plus", "y_minus"))
+    gap = [values[p] * values[q] / math.hypot(values[p], values[q]) for p, q in pairs]
+    pair = pairs[int(np.argmin(gap))]
+    small, big = sorted(pair, key=values.__getitem__)
+    if values[big] <= need:
+        return small, f"{small} and {big}: both must exceed {need:.3g}"
+    want = need * values[big] / math.sqrt(values[big] ** 2 - need**2)
+    return small, f"{small} {values[small]!r}: it must exceed {want:.3g}"
+
+
+def near_edge_problem(sheet: Sheet) -> ExportError | None:
+    """Why the exact model's shell cannot be built for ``sheet``, or None.
+
+    Two bounds, both on how close H lies to the sheet's boundary:
+
+    * a ruling (H to a vertex, crease ends included) no longer than
+      :data:`MIN_RULING` (the CAD kernel's precision, 1e-7 design units):
+      the kernel cannot make an edge that short;
+    * an edge passing closer to H than :data:`BOUNDARY_TOLERANCE` x the
+      sheet's size (the tolerance to which the faces' boundary curves are
+      fitted along the cone's rulings): the face between that edge and the
+      apex is narrower than its own boundary's tolerance, and the fitted
+      curve may cross the apex or its rulings.
+
+    The error names the parameter that puts H there (``apex_fraction``, the
+    shorter side, ``x_plus`` ..., or ``polygon``), the distance measured,
+    the bound and what to change.
+    """
+    v = sheet.vertices
+    ruling = float(np.min(np.hypot(v[:, 0], v[:, 1])))
+    edge_gap = sheet_inradius(sheet)
+    rel = BOUNDARY_TOLERANCE * sheet.size
+    if ruling <= MIN_RULING:
+        what = (
+            f"H lies {ruling:.3g} from a vertex of the sheet (a crease end or corner), no "
+            f"further than the shortest edge the CAD kernel can make ({MIN_RULING:g}, its "
+            "precision Precision::Confusion)"
+        )
+        need, short = MIN_RULING, True
+    elif edge_gap < rel:
+        what = (
+            f"an edge of the sheet passes {edge_gap:.3g} from H, less than the boundary "
+            f"tolerance {rel:.3g} (BOUNDARY_TOLERANCE {BOUNDARY_TOLERANCE:g} x the sheet's "
+            f"size {sheet.size:.6g}): the face between it and the apex would be narrower "
+            "than its own boundary curve's tolerance"
+        )
+        need, short = rel, False
+    else:
+        return None
+    if sheet.kind == "rectangle":
+        name, change = _rectangle_advice(sheet, short, need)
+    elif sheet.kind == "quadrilateral":
+        name, change = _quadrilateral_advice(sheet, short, need)
+    else:
+        name, change = "polygon", "polygon: move its vertices and edges further from H (0, 0)"
+    return ExportError(
+        f"no STEP of the exact model: {what}; change {change} (parameter {name}), or use "
+        "the paper model (--model paper)"
+    )
 
 
 def build_solid(
