@@ -76,6 +76,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 
 __all__ = [
     "ConePatch",
+    "FoldedBackError",
     "cone_patch",
     "ruled_shell",
     "fan_shell",
@@ -464,6 +465,15 @@ def _patch_face(
     b.MakeFace(face, surf, 1e-7)
     a_in, a_out = TopExp.FirstVertex_s(first), TopExp.LastVertex_s(first)
     b_in, b_out = TopExp.FirstVertex_s(second), TopExp.LastVertex_s(second)
+    for name, ends_v in (("the sheet's edge", (a_out, b_out)), ("the relief hole", (a_in, b_in))):
+        gap = BRep_Tool.Pnt_s(ends_v[0]).Distance(BRep_Tool.Pnt_s(ends_v[1]))
+        if (name == "the sheet's edge" or hole_radius > 0.0) and gap <= PRECISION:
+            raise FoldedBackError(
+                f"{name} between two rulings {patch.phi1 - patch.phi0:.3g} rad apart on the "
+                f"frame lands {gap:.3g} long on the cone, no more than the CAD kernel's "
+                f"precision ({PRECISION:g}; it cannot make an edge that short): the cone "
+                "folds back onto itself there"
+            )
     for curve, ends_v in (
         (c_out, (a_out, b_out)),
         *(((c_in, (a_in, b_in)),) if hole_radius > 0.0 else ()),
@@ -533,9 +543,10 @@ def _curves_3d(face: TopoDS_Face, edges: list[TopoDS_Edge], tol: float) -> float
     lo, hi = box.CornerMin(), box.CornerMax()
     extent = max(abs(lo.X()), abs(lo.Y()), abs(lo.Z()), abs(hi.X()), abs(hi.Y()), abs(hi.Z()))
     loose = 1e-3 * tol
-    target = max(min(loose, 0.1 * PRECISION), 2.0**-44 * extent)
+    target = max(min(loose, 0.1 * PRECISION), 2.0**-40 * extent)
     while True:
         for e in edges:
+            BRep_Builder().UpdateEdge(e, None, BRep_Tool.Tolerance_s(e))  # drop the last fit
             BRepLib.BuildCurve3d_s(e, target, GeomAbs_C2, 8, 2000)
         gap = max(_curve_gap(e, face) for e in edges)
         if gap <= 2.0 * target:
@@ -546,6 +557,13 @@ def _curves_3d(face: TopoDS_Face, edges: list[TopoDS_Edge], tol: float) -> float
                 f"(1e-3 x the boundary tolerance) of the cone; the closest was {gap:.3g} off"
             )
         target = min(10.0 * target, loose)
+
+
+class FoldedBackError(ExportError):
+    """A face's boundary edge whose two ends land within the kernel's
+    precision of each other although they are apart on the sheet: the cone
+    folds back onto itself (alpha and beta both near 90 deg, where the apex
+    lies in the frame's plane and the rulings turn back)."""
 
 
 def _reach(vertex: TopoDS_Vertex, point: gp_Pnt, limit: float) -> None:

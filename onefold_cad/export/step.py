@@ -83,7 +83,7 @@ from onefold_cad.design import (
 )
 from onefold_cad.errors import ExportError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.brep import MAX_NODES, fan_shell, ruled_shell
+from onefold_cad.export.brep import MAX_NODES, FoldedBackError, fan_shell, ruled_shell
 from onefold_cad.export.measure import measure
 from onefold_cad.export.solid import KernelBudget, thick_solid
 from onefold_cad.geometry.bend import Compensation
@@ -194,7 +194,15 @@ def build_shell(
         if problem is not None:
             raise problem
         clock = KernelBudget(budget, "a sheet with fewer vertices may help")
-        topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
+        try:
+            topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
+        except FoldedBackError as err:
+            fr = folded.solution.frame
+            raise ExportError(
+                f"no STEP of the exact model: {err} (alpha {fr.alpha!r}, beta {fr.beta!r} deg: "
+                "both near 90 put the apex in the frame's plane); a smaller alpha or beta, "
+                "or no relief hole (relief_hole 0)"
+            ) from None
         if deviation > tol:
             raise ExportError(
                 f"the sheet's edges mapped onto the cone need more than {MAX_NODES} points "
