@@ -220,7 +220,9 @@ def build_shell(
         deviation = 0.0
     shell = bd.Shell(topo)
     if not shell.is_valid:
-        raise ExportError("the shell of the folded surface is not valid")
+        raise ExportError(
+            "the shell of the folded surface is not valid" + _scale_hint(folded.sheet.size)
+        )
     clock.check()
     shell.fit_deviation = deviation
     shell.fit_tolerance = tol if kind == "ruled" else 0.0
@@ -315,6 +317,21 @@ def near_edge_problem(sheet: Sheet) -> ExportError | None:
     return ExportError(
         f"no STEP of the exact model: {what}; change {change} (parameter {name}), or use "
         "the paper model (--model paper)"
+    )
+
+
+def _scale_hint(size: float) -> str:
+    """Why a sheet of ``size`` (design unit) may be too big for the CAD
+    kernel, when it is: the last place of its coordinates is coarser than
+    the kernel's precision (1e-7), so the kernel's "same point" tests cannot
+    hold ('' below that)."""
+    ulp = math.ulp(size)
+    if ulp <= MIN_RULING:
+        return ""
+    return (
+        f"; on a sheet of size {size:.3g} the coordinates' last place is {ulp:.2g}, "
+        f"{ulp / MIN_RULING:.2g} x the CAD kernel's precision (1e-7): a larger unit "
+        "(parameter units: in or ft for a mm design) or a smaller sheet may help"
     )
 
 
@@ -613,11 +630,11 @@ def export_design_step(
             raise ExportError(f"writing STEP failed ({err.__class__.__name__}: {err})") from None
         if not ok:
             raise ExportError("writing STEP failed")
-        _check_reads_back(tmp, part)
+        _check_reads_back(tmp, part, design)
     return target
 
 
-def _check_reads_back(path: Path, part: bd.Shape) -> None:
+def _check_reads_back(path: Path, part: bd.Shape, design: Design) -> None:
     """Refuse a STEP file that does not read back as one valid shape with the
     part's faces (the file holds coordinates to a finite precision: a face
     far thinner than the sheet may not survive it)."""
@@ -627,9 +644,14 @@ def _check_reads_back(path: Path, part: bd.Shape) -> None:
     except Exception:  # OCC's Standard_Failure family
         ok = False
     if not ok:
+        sheet = design.sheet
+        gap = sheet_inradius(sheet)
         raise ExportError(
             "the written STEP file does not read back as a valid shape (a face thinner than "
-            "the file's precision); a larger relief hole or another thickness may help"
+            f"the file's precision: the sheet's edge nearest H passes {gap:.3g} from it, "
+            f"{gap / sheet.size:.2g} x its size); a larger relief hole (parameter "
+            "relief_hole), another thickness or an edge further from H may help"
+            + _scale_hint(sheet.size)
         )
 
 

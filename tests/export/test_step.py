@@ -774,7 +774,7 @@ def test_kernel_failure_is_an_export_error_and_leaves_no_file(tmp_path, monkeypa
 
 
 # -- H near the sheet's edge: what the CAD kernel can hold, and the refusals --
-def _corner_design(frame: FrameCurve, w: float, h: float, gap: float) -> Design:
+def _h_near_side(frame: FrameCurve, w: float, h: float, gap: float) -> Design:
     """A w x h rectangle with H on its diagonal ``gap`` from the nearest side
     (H at (f w, f h): 1 - f = gap / h, h the shorter side)."""
     sheet = Sheet.rectangle(width=w, height=h, apex_fraction=1.0 - gap / h)
@@ -798,7 +798,7 @@ def test_an_edge_just_outside_the_boundary_tolerance_of_h_writes_the_sheet(frame
     size / (w h) = 6e-7). These failed the re-read before the boundary
     curves' 3D curves were fitted to a tenth of the kernel's precision."""
     w, h = 9000.0, 5000.0
-    design = _corner_design(frame, w, h, 1.2 * BOUNDARY_TOLERANCE * math.hypot(w, h))
+    design = _h_near_side(frame, w, h, 1.2 * BOUNDARY_TOLERANCE * math.hypot(w, h))
     bound = 2.0 * (w + h) * BOUNDARY_TOLERANCE * design.sheet.size
     assert _reread_area(design, tmp_path) == pytest.approx(w * h, abs=bound)
 
@@ -810,7 +810,7 @@ def test_an_edge_within_the_boundary_tolerance_of_h_is_refused_naming_apex_fract
     works (the bound / the shorter side from each end)."""
     w, h = 9000.0, 5000.0
     bound = BOUNDARY_TOLERANCE * math.hypot(w, h)  # H lies 1e-3 of the diagonal from a corner
-    design = _corner_design(FrameCurve(50.0, 45.0, 100.0, 300.0, 32), w, h, 0.9 * bound)
+    design = _h_near_side(FrameCurve(50.0, 45.0, 100.0, 300.0, 32), w, h, 0.9 * bound)
     with pytest.raises(ExportError) as err:
         build_shell(build_design(design))
     msg = str(err.value)
@@ -824,7 +824,7 @@ def test_a_ruling_just_longer_than_the_kernel_precision_writes_the_sheet(tmp_pat
     (1e-7); the STEP reads back with the area 1e-4 (boundary tolerance 1e-7
     x size along the perimeter: 4e-2 x 1.4e-9)."""
     frame = FrameCurve(50.0, 45.0, 0.01, 0.03, 32)
-    design = _corner_design(frame, 0.01, 0.01, 1.05e-7 / math.sqrt(2.0))
+    design = _h_near_side(frame, 0.01, 0.01, 1.05e-7 / math.sqrt(2.0))
     assert design.sheet.crease_lengths[0] == pytest.approx(1.05e-7, rel=1e-6)
     bound = 4.0 * 0.01 * BOUNDARY_TOLERANCE * design.sheet.size
     assert _reread_area(design, tmp_path) == pytest.approx(1e-4, abs=bound)
@@ -836,7 +836,7 @@ def test_a_ruling_no_longer_than_the_kernel_precision_is_refused_naming_apex_fra
     naming apex_fraction, the distance, the bound 1e-07 and the range that
     works (1e-7 / the diagonal from each end)."""
     frame = FrameCurve(50.0, 45.0, 0.01, 0.03, 32)
-    design = _corner_design(frame, 0.01, 0.01, 0.95e-7 / math.sqrt(2.0))
+    design = _h_near_side(frame, 0.01, 0.01, 0.95e-7 / math.sqrt(2.0))
     with pytest.raises(ExportError) as err:
         build_shell(build_design(design))
     msg = str(err.value)
