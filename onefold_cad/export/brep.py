@@ -704,7 +704,12 @@ def fan_shell(
             p, q = outer[k], outer[k + 1]
             arc_edge = apex_v is None
             origin = apex
-            normal = np.cross(p - origin, q - origin)
+            # (p - A) x (q - p), not (p - A) x (q - A): the same normal, but a
+            # thin triangle's two long sides cancel in the latter, leaving its
+            # far vertex off the plane by |q| eps / (its angle at A) (2.5e-6 on
+            # a sheet of 1.3e7 with 1e-3 rad triangles, 25 x the kernel's
+            # precision); the short side is nearly square to the ruling
+            normal = np.cross(p - origin, q - p)
             if side == 1:
                 normal = -normal
             edges = [rulings[k], line(ends[k], ends[k + 1]), rulings[k + 1].Reversed()]

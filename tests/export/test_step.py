@@ -902,3 +902,35 @@ def test_a_sheet_of_a_million_kilometres_writes_a_valid_step(tmp_path):
     perimeter = math.hypot(xp, yp) + math.hypot(xm, yp) + math.hypot(xm, ym) + math.hypot(xp, ym)
     bound = 4.0 * BOUNDARY_TOLERANCE * design.sheet.size
     assert _free_length(shape) == pytest.approx(perimeter, abs=bound)
+
+
+def test_a_fan_of_thin_triangles_on_a_sheet_of_1e7_is_valid():
+    """Fuzz design 3511 (paper model, 511 divisions, a sheet of 1.3e7 on a
+    frame of radius 112): its triangles are 1e-3 rad wide at H and 1.3e7
+    long. Every vertex of every face lies on the face's plane within the
+    kernel's precision (1e-7; it was 2.5e-6 off with the plane's normal
+    taken across the two long sides), so the shell is valid, and its free
+    boundary is the polygon's perimeter (the fan is exact)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+
+    poly = [
+        (-383014.91274084913, 12231228.219835917),
+        (-7416516.922856208, 424421.826311926),
+        (-5203073.697731906, -6372384.160051148),
+        (82049.69568494378, -3283727.0419761064),
+        (5993217.290928922, -3088386.0653263675),
+        (10499212.943356015, 7938938.989467105),
+    ]
+    frame = FrameCurve(84.17911518845554, 0.41783426718076844, 0.0, 111.90718552242929, 511)
+    design = Design("big-fan", frame, Sheet.polygon(poly), model="paper")
+    shell = build_shell(build_design(design))
+    assert shell.is_valid
+    worst = 0.0
+    for face in shell.faces():
+        plane = BRepAdaptor_Surface(face.wrapped).Plane()
+        for v in face.vertices():
+            worst = max(worst, plane.Distance(gp_Pnt(*tuple(v))))
+    assert worst < PRECISION
+    pts = np.array(poly)
+    perimeter = float(np.sum(np.linalg.norm(pts - np.roll(pts, -1, axis=0), axis=1)))
+    assert _free_length(shell) == pytest.approx(perimeter, rel=1e-12)
