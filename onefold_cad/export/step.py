@@ -168,7 +168,11 @@ def build_shell(
         InvalidParameterError: bad ``relief_hole`` or ``faces``.
         ExportError: a boundary curve cannot reach the tolerance, the CAD
             kernel could not build a valid shell, or it ran out of time (the
-            message says what to reduce).
+            message says what to reduce); exact model: H too close to the
+            sheet's boundary for the kernel (:func:`near_edge_problem`, before
+            any kernel call), or the cone folded back onto itself so that a
+            face's edge would be no longer than the kernel's precision (alpha
+            and beta both near 90 with a relief hole).
     """
     exact = isinstance(folded.solution.surface, ExactCone)
     kind = faces if faces is not None else ("ruled" if exact else "fan")
