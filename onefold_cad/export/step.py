@@ -249,6 +249,11 @@ def _rectangle_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str
     least = need / (math.hypot(w, h) if ruling else min(w, h))
     if least < 0.5:
         return "apex_fraction", f"apex_fraction {f!r}: use one in [{least:.3g}, 1 - {least:.3g}]"
+    if ruling:
+        return (
+            "width",
+            f"width and height: the diagonal {math.hypot(w, h):.3g} must exceed {2.0 * need:.3g}",
+        )
     short = "width" if w < h else "height"
     return short, f"{short} {min(w, h):.6g}: it must exceed {2.0 * need:.3g}"
 
