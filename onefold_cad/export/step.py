@@ -197,6 +197,7 @@ def build_shell(
         problem = near_edge_problem(folded.sheet)
         if problem is not None:
             raise problem
+        _hole_arcs(folded.sheet, relief_hole)
         clock = KernelBudget(budget, "a sheet with fewer vertices may help")
         try:
             topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
@@ -238,6 +239,28 @@ def build_shell(
 #: precision, Precision::Confusion (BRepLib_MakeEdge takes ends that close
 #: for one point and fails).
 MIN_RULING = 1e-7
+
+
+def _hole_arcs(sheet: Sheet, diameter: float) -> None:
+    """Refuse a relief hole whose arc between the rulings to two neighbouring
+    vertices (crease ends included) is no longer than the CAD kernel's
+    precision on the sheet: a chord of d sin(dtheta / 2) for vertices dtheta
+    apart as seen from H."""
+    if diameter <= 0.0:
+        return
+    ang = np.sort(np.mod(sheet.polar_angles, 2.0 * math.pi))
+    step = np.diff(np.concatenate([ang, ang[:1] + 2.0 * math.pi]))
+    step = step[step > 1e-12]  # the exact shell merges rulings closer than that
+    least = float(np.min(step))
+    chord = diameter * math.sin(0.5 * least)
+    if chord <= MIN_RULING:
+        need = MIN_RULING / math.sin(0.5 * least)
+        raise ExportError(
+            f"no STEP of the exact model: the relief hole's arc between two vertices "
+            f"{least:.3g} rad apart as seen from H is {chord:.3g} long, no longer than the "
+            f"shortest edge the CAD kernel can make ({MIN_RULING:g}); a relief hole over "
+            f"{need:.3g} across or none (parameter relief_hole)"
+        )
 
 
 def _rectangle_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str]:
@@ -290,7 +313,9 @@ def near_edge_problem(sheet: Sheet) -> ExportError | None:
       sheet's size (the tolerance to which the faces' boundary curves are
       fitted along the cone's rulings): the face between that edge and the
       apex is narrower than its own boundary's tolerance, and the fitted
-      curve may cross the apex or its rulings.
+      curve may cross the apex or its rulings;
+    * a sheet edge (between neighbouring vertices, crease ends included) no
+      longer than :data:`MIN_RULING`.
 
     The error names the parameter that puts H there (``apex_fraction``, the
     shorter side, ``x_plus`` ..., or ``polygon``), the distance measured,
@@ -298,6 +323,7 @@ def near_edge_problem(sheet: Sheet) -> ExportError | None:
     """
     v = sheet.vertices
     ruling = float(np.min(np.hypot(v[:, 0], v[:, 1])))
+    sides = np.hypot(*(np.roll(v, -1, axis=0) - v).T)
     edge_gap = sheet_inradius(sheet)
     rel = BOUNDARY_TOLERANCE * sheet.size
     if ruling <= MIN_RULING:
@@ -315,6 +341,15 @@ def near_edge_problem(sheet: Sheet) -> ExportError | None:
             "than its own boundary curve's tolerance"
         )
         need, short = rel, False
+    elif float(np.min(sides)) <= MIN_RULING:
+        k = int(np.argmin(sides))
+        return ExportError(
+            f"no STEP of the exact model: the sheet's edge {k} (from {v[k].tolist()} to "
+            f"{v[(k + 1) % len(v)].tolist()}, the crease's ends counted as vertices) is "
+            f"{sides[k]:.3g} long, no longer than the shortest edge the CAD kernel can make "
+            f"({MIN_RULING:g}, its precision Precision::Confusion); make it longer or drop "
+            "the vertex (parameter polygon)"
+        )
     else:
         return None
     if sheet.kind == "rectangle":

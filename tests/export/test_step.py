@@ -934,3 +934,47 @@ def test_a_fan_of_thin_triangles_on_a_sheet_of_1e7_is_valid():
     pts = np.array(poly)
     perimeter = float(np.sum(np.linalg.norm(pts - np.roll(pts, -1, axis=0), axis=1)))
     assert _free_length(shell) == pytest.approx(perimeter, rel=1e-12)
+
+
+def test_a_sheet_edge_no_longer_than_the_kernel_precision_is_refused_naming_polygon():
+    """A polygon whose vertex lies 0.95e-7 from the crease's +x end (fuzz
+    design 2402 had 2.7e-8): the kernel cannot make that edge; 1.05e-7
+    builds, and its free boundary is the polygon's perimeter."""
+    frame = FrameCurve(50.0, 45.0, 20.0, 100.0, 32)
+
+    def poly(gap: float) -> Sheet:
+        return Sheet.polygon(
+            [(100.0, 0.0), (100.0 - gap, gap), (0.0, 80.0), (-90.0, 0.0), (0.0, -70.0)]
+        )
+
+    with pytest.raises(ExportError, match=r"9\.5e-08 long.*\(parameter polygon\)"):
+        build_shell(build_design(Design("p", frame, poly(0.95e-7 / math.sqrt(2.0)))))
+    design = Design("p", frame, poly(1.05e-7 / math.sqrt(2.0)))
+    shell = build_shell(build_design(design))
+    assert shell.is_valid
+    pts = design.sheet.vertices
+    perimeter = float(np.sum(np.linalg.norm(pts - np.roll(pts, -1, axis=0), axis=1)))
+    assert _free_length(shell) == pytest.approx(perimeter, abs=len(pts) * shell.fit_tolerance)
+
+
+def test_a_relief_hole_arc_no_longer_than_the_kernel_precision_is_refused():
+    """Two vertices 1e-3 rad apart as seen from H: a hole of diameter d has an
+    arc chord d sin(5e-4) between their rulings; at 0.95e-7 it is refused
+    naming relief_hole and the diameter that works (1e-7 / sin(5e-4))."""
+    frame = FrameCurve(50.0, 45.0, 20.0, 100.0, 32)
+    t = 1e-3
+    sheet = Sheet.polygon(
+        [
+            (100.0, 0.0),
+            (60.0 * math.cos(0.8), 60.0 * math.sin(0.8)),
+            (80.0 * math.cos(0.8 + t), 80.0 * math.sin(0.8 + t)),
+            (-90.0, 0.0),
+            (0.0, -70.0),
+        ]
+    )
+    folded = build_design(Design("h", frame, sheet))
+    need = 1e-7 / math.sin(0.5 * t)
+    with pytest.raises(ExportError, match=r"\(parameter relief_hole\)") as err:
+        build_shell(folded, relief_hole=0.95 * need)
+    assert f"over {need:.3g} across" in str(err.value)
+    assert build_shell(folded, relief_hole=1.05 * need).is_valid
