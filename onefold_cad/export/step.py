@@ -217,6 +217,13 @@ def build_shell(
             )
         clock.check()
     else:
+        lengths = [
+            folded.sheet.ray_lengths(s * a)
+            for s, a in zip((1.0, -1.0), folded.ruling_angles, strict=True)
+        ]
+        problem = near_edge_problem(folded.sheet, np.concatenate(lengths))
+        if problem is not None:
+            raise problem
         triangles = sum(len(a) - 1 for a in folded.ruling_angles)
         clock = KernelBudget(
             budget, f"fewer divisions may help (this fan has {triangles} triangles)"
@@ -301,8 +308,12 @@ def _quadrilateral_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str,
     return small, f"{small} {values[small]!r}: it must exceed {want:.3g}"
 
 
-def near_edge_problem(sheet: Sheet) -> ExportError | None:
+def near_edge_problem(sheet: Sheet, fan_rulings: np.ndarray | None = None) -> ExportError | None:
     """Why the exact model's shell cannot be built for ``sheet``, or None.
+
+    ``fan_rulings``: the paper model's ruling lengths (its fan of planar
+    triangles): then only the first bound applies, to them (the fan fits no
+    curves and merges ruling ends closer than the kernel resolves).
 
     Two bounds, both on how close H lies to the sheet's boundary:
 
@@ -322,17 +333,21 @@ def near_edge_problem(sheet: Sheet) -> ExportError | None:
     the bound and what to change.
     """
     v = sheet.vertices
-    ruling = float(np.min(np.hypot(v[:, 0], v[:, 1])))
+    fan = fan_rulings is not None
+    ruling = float(np.min(fan_rulings if fan else np.hypot(v[:, 0], v[:, 1])))
     sides = np.hypot(*(np.roll(v, -1, axis=0) - v).T)
     edge_gap = sheet_inradius(sheet)
     rel = BOUNDARY_TOLERANCE * sheet.size
+    model = "paper" if fan else "exact"
     if ruling <= MIN_RULING:
         what = (
-            f"H lies {ruling:.3g} from a vertex of the sheet (a crease end or corner), no "
-            f"further than the shortest edge the CAD kernel can make ({MIN_RULING:g}, its "
+            f"a ruling from H is {ruling:.3g} long (H that close to the sheet's boundary), no "
+            f"longer than the shortest edge the CAD kernel can make ({MIN_RULING:g}, its "
             "precision Precision::Confusion)"
         )
         need, short = MIN_RULING, True
+    elif fan:
+        return None
     elif edge_gap < rel:
         what = (
             f"an edge of the sheet passes {edge_gap:.3g} from H, less than the boundary "
@@ -358,9 +373,9 @@ def near_edge_problem(sheet: Sheet) -> ExportError | None:
         name, change = _quadrilateral_advice(sheet, short, need)
     else:
         name, change = "polygon", "polygon: move its vertices and edges further from H (0, 0)"
+    other = "" if fan else ", or use the paper model (--model paper)"
     return ExportError(
-        f"no STEP of the exact model: {what}; change {change} (parameter {name}), or use "
-        "the paper model (--model paper)"
+        f"no STEP of the {model} model: {what}; change {change} (parameter {name}){other}"
     )
 
 

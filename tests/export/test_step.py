@@ -978,3 +978,20 @@ def test_a_relief_hole_arc_no_longer_than_the_kernel_precision_is_refused():
         build_shell(folded, relief_hole=0.95 * need)
     assert f"over {need:.3g} across" in str(err.value)
     assert build_shell(folded, relief_hole=1.05 * need).is_valid
+
+
+def test_a_paper_fan_with_a_ruling_no_longer_than_the_kernel_precision_is_refused():
+    """Fuzz design 6794 (a paper-model sheet of 4e-8): the fan's crease
+    ruling 0.95e-7 long is refused naming apex_fraction; with H 1e-3 from
+    the corner the fan builds, its free boundary the square's perimeter."""
+    frame = FrameCurve(50.0, 45.0, 0.01, 0.03, 64)
+
+    def design(gap: float) -> Design:
+        d = _h_near_side(frame, 0.01, 0.01, gap / math.sqrt(2.0))
+        return d.with_changes(model="paper")
+
+    with pytest.raises(ExportError, match=r"paper model.*\(parameter apex_fraction\)"):
+        build_shell(build_design(design(0.95e-7)))
+    shell = build_shell(build_design(design(1e-3)))
+    assert shell.is_valid
+    assert _free_length(shell) == pytest.approx(0.04, rel=1e-12)
