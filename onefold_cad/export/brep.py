@@ -25,8 +25,10 @@ from functools import partial
 
 import numpy as np
 from numpy.typing import NDArray
-from OCP.BRep import BRep_Builder
-from OCP.BRepAdaptor import BRepAdaptor_Surface
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeEdge,
     BRepBuilderAPI_MakeFace,
@@ -74,6 +76,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 
 __all__ = [
     "ConePatch",
+    "FoldedBackError",
     "cone_patch",
     "ruled_shell",
     "fan_shell",
@@ -281,7 +284,12 @@ def arc_length_nodes(points: Array, params: Array, count: int) -> tuple[Array, o
 
 
 def _fit_pcurve(
-    patch: ConePatch, u0: float, u1: float, radius_at, tol: float
+    patch: ConePatch,
+    u0: float,
+    u1: float,
+    radius_at,
+    tol: float,
+    end_radii: tuple[float, float] | None = None,
 ) -> tuple[Geom2d_BSplineCurve, float]:
     """A pcurve through the points at distance ``radius_at(phi)`` from A, for
     u in [u0, u1]: interpolated at nodes spread evenly along the curve and at
@@ -290,7 +298,12 @@ def _fit_pcurve(
     :data:`PROBES` point while the deviation there, measured along the
     ruling, exceeds ``tol`` (length), up to :data:`MAX_NODES` nodes. Returns
     ``(Geom2d curve, deviation reached)`` (the caller decides whether that is
-    good enough)."""
+    good enough). ``end_radii``: the curve's distances from A at u0 and u1
+    where they are known exactly (the ruling edges' ends): the curve starts
+    and ends there, not at ``radius_at`` of the arc parameter read back from
+    the surface, which may miss by far more than the kernel's precision
+    where the curve runs nearly along a ruling (a sheet edge passing close
+    by H: d r / d phi is then r / the angle between them)."""
     dense = u0 + (u1 - u0) * DENSE
     dense[-1] = u1
     phi = patch.phi_of_u(dense)
@@ -309,7 +322,10 @@ def _fit_pcurve(
         t = np.unique(np.concatenate([t[keep], knots]))
     while True:
         ph = patch.phi_of_u(t)
-        uv = np.stack([t, patch.v_of(ph, radius_at(ph))], axis=1)
+        r = radius_at(ph)
+        if end_radii is not None:
+            r[0], r[-1] = end_radii
+        uv = np.stack([t, patch.v_of(ph, r)], axis=1)
         curve = interpolate(uv, t, "a boundary curve on the cone")
         probe = probe_points(t, at_length, length_at)
         flat = probe.ravel()
@@ -383,6 +399,8 @@ def ruled_shell(folded: FoldedSheet, hole_radius: float, tol: float) -> tuple[To
             v_in = apex_v if apex_v is not None else _vertex(apex + r0 * rays[k])
             v_out = _vertex(apex + ends[k] * rays[k])
             line = Geom_Line(_pnt(apex), gp_Dir(*map(float, rays[k])))
+            _reach(v_in, line.Value(float(r0)), tol)
+            _reach(v_out, line.Value(float(ends[k])), tol)
             edge = BRepBuilderAPI_MakeEdge(line, v_in, v_out, float(r0), float(ends[k])).Edge()
             rulings.append(edge)
             if key is not None:
@@ -439,7 +457,7 @@ def _patch_face(
     b = BRep_Builder()
     surf = patch.surface
     u0, u1 = patch.u0, patch.u1
-    c_out, err = _fit_pcurve(patch, u0, u1, outer, tol)
+    c_out, err = _fit_pcurve(patch, u0, u1, outer, tol, ends)
     if hole_radius > 0.0:
         c_in, err_in = _fit_pcurve(patch, u0, u1, lambda p: np.full_like(p, hole_radius), tol)
         err = max(err, err_in)
@@ -447,6 +465,22 @@ def _patch_face(
     b.MakeFace(face, surf, 1e-7)
     a_in, a_out = TopExp.FirstVertex_s(first), TopExp.LastVertex_s(first)
     b_in, b_out = TopExp.FirstVertex_s(second), TopExp.LastVertex_s(second)
+    for name, ends_v in (("the sheet's edge", (a_out, b_out)), ("the relief hole", (a_in, b_in))):
+        gap = BRep_Tool.Pnt_s(ends_v[0]).Distance(BRep_Tool.Pnt_s(ends_v[1]))
+        if (name == "the sheet's edge" or hole_radius > 0.0) and gap <= PRECISION:
+            raise FoldedBackError(
+                f"{name} between two rulings {patch.phi1 - patch.phi0:.3g} rad apart on the "
+                f"frame lands {gap:.3g} long on the cone, no more than the CAD kernel's "
+                f"precision ({PRECISION:g}; it cannot make an edge that short): the cone "
+                "folds back onto itself there"
+            )
+    for curve, ends_v in (
+        (c_out, (a_out, b_out)),
+        *(((c_in, (a_in, b_in)),) if hole_radius > 0.0 else ()),
+    ):
+        for v, u in zip(ends_v, (u0, u1), strict=True):
+            q = curve.Value(u)
+            _reach(v, surf.Value(q.X(), q.Y()), tol)
     if hole_radius > 0.0:
         low = BRepBuilderAPI_MakeEdge(c_in, surf, a_in, b_in, u0, u1).Edge()
     else:
@@ -466,8 +500,93 @@ def _patch_face(
     for e in (low, second, high.Reversed(), first.Reversed()):
         b.Add(wire, e)
     b.Add(face, wire)
-    BRepLib.BuildCurves3d_s(face, 1e-3 * tol, GeomAbs_C2, 8, 2000)
+    _curves_3d(face, [high, low] if hole_radius > 0.0 else [high], tol)
     return face, err
+
+
+#: Samples per edge at which a 3D curve is checked against its pcurve.
+CURVE_SAMPLES = 65
+
+
+def _curve_gap(edge: TopoDS_Edge, face: TopoDS_Face) -> float:
+    """Largest distance between ``edge``'s 3D curve and its pcurve on ``face``
+    mapped onto the surface, at :data:`CURVE_SAMPLES` common parameters."""
+    c3 = BRepAdaptor_Curve(edge)
+    c2 = BRepAdaptor_Curve2d(edge, face)
+    surf = BRepAdaptor_Surface(face, False)
+    worst = 0.0
+    for t in np.linspace(c3.FirstParameter(), c3.LastParameter(), CURVE_SAMPLES):
+        q = c2.Value(float(t))
+        worst = max(worst, c3.Value(float(t)).Distance(surf.Value(q.X(), q.Y())))
+    return worst
+
+
+def _curves_3d(face: TopoDS_Face, edges: list[TopoDS_Edge], tol: float) -> float:
+    """Build the 3D curves of ``edges`` (boundary curves of ``face`` given as
+    pcurves) and return their largest measured distance from the pcurves.
+
+    The 3D curves are fitted to a tenth of the kernel's precision where the
+    coordinates allow it (``max(min(1e-3 x tol, PRECISION / 10), 2^-44 x
+    the face's size)``), so that the edges keep the precision as their
+    tolerance: a STEP file holds no tolerance per edge, and a reader that
+    takes its global one (1e-7) finds an edge fitted only to ``1e-3 x tol``
+    (1e-6 on a sheet of 1e4) invalid. The kernel's fit can miss its
+    target (and then returns a wrong curve); each fit is measured
+    (:func:`_curve_gap`) and loosened tenfold until it is within twice its
+    target, up to ``1e-3 x tol``.
+
+    Raises:
+        ExportError: no fit within ``1e-3 x tol``.
+    """
+    box = Bnd_Box()
+    BRepBndLib.Add_s(face, box)
+    lo, hi = box.CornerMin(), box.CornerMax()
+    extent = max(abs(lo.X()), abs(lo.Y()), abs(lo.Z()), abs(hi.X()), abs(hi.Y()), abs(hi.Z()))
+    loose = 1e-3 * tol
+    target = max(min(loose, 0.1 * PRECISION), 2.0**-40 * extent)
+    while True:
+        for e in edges:
+            BRep_Builder().UpdateEdge(e, None, BRep_Tool.Tolerance_s(e))  # drop the last fit
+            BRepLib.BuildCurve3d_s(e, target, GeomAbs_C2, 8, 2000)
+        gap = max(_curve_gap(e, face) for e in edges)
+        if gap <= 2.0 * target:
+            return gap
+        if target >= loose:
+            raise ExportError(
+                f"a boundary curve's 3D curve could not be fitted within {loose:.3g} "
+                f"(1e-3 x the boundary tolerance) of the cone; the closest was {gap:.3g} off"
+            )
+        target = min(10.0 * target, loose)
+
+
+class FoldedBackError(ExportError):
+    """A face's boundary edge whose two ends land within the kernel's
+    precision of each other although they are apart on the sheet: the cone
+    folds back onto itself (alpha and beta both near 90 deg, where the apex
+    lies in the frame's plane and the rulings turn back)."""
+
+
+def _reach(vertex: TopoDS_Vertex, point: gp_Pnt, limit: float) -> None:
+    """Grow ``vertex``'s tolerance to reach ``point`` (the end of a curve
+    that meets it), when that is more than the tolerance it has and at most
+    ``limit`` (length, the boundary curves' stated tolerance). The vertex
+    and the curve's end are two computations of one point; they agree to a
+    few units in the last place of the coordinates, which on a part of 1e8
+    or more exceeds the kernel's precision (1e-7): the vertex then carries
+    the gap as its tolerance, as the kernel's tolerance model has it.
+
+    Raises:
+        ExportError: the gap is above ``limit``.
+    """
+    gap = BRep_Tool.Pnt_s(vertex).Distance(point)
+    if gap <= BRep_Tool.Tolerance_s(vertex):
+        return
+    if gap > limit:
+        raise ExportError(
+            f"a boundary curve ends {gap:.3g} from its vertex, more than the "
+            f"boundary tolerance {limit:.3g}"
+        )
+    BRep_Builder().UpdateVertex(vertex, 1.01 * gap)
 
 
 def _orient(face: TopoDS_Face, top: Array) -> TopoDS_Face:
@@ -585,7 +704,12 @@ def fan_shell(
             p, q = outer[k], outer[k + 1]
             arc_edge = apex_v is None
             origin = apex
-            normal = np.cross(p - origin, q - origin)
+            # (p - A) x (q - p), not (p - A) x (q - A): the same normal, but a
+            # thin triangle's two long sides cancel in the latter, leaving its
+            # far vertex off the plane by |q| eps / (its angle at A) (2.5e-6 on
+            # a sheet of 1.3e7 with 1e-3 rad triangles, 25 x the kernel's
+            # precision); the short side is nearly square to the ruling
+            normal = np.cross(p - origin, q - p)
             if side == 1:
                 normal = -normal
             edges = [rulings[k], line(ends[k], ends[k + 1]), rulings[k + 1].Reversed()]

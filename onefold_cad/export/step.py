@@ -56,6 +56,7 @@ Example::
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -82,7 +83,7 @@ from onefold_cad.design import (
 )
 from onefold_cad.errors import ExportError, InvalidParameterError, OneFoldError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.brep import MAX_NODES, fan_shell, ruled_shell
+from onefold_cad.export.brep import MAX_NODES, FoldedBackError, fan_shell, ruled_shell
 from onefold_cad.export.measure import measure
 from onefold_cad.export.solid import KernelBudget, thick_solid
 from onefold_cad.geometry.bend import Compensation
@@ -90,6 +91,7 @@ from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, Units
 from onefold_cad.geometry.placement import RestingPlacement
+from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.thick_sheet import SideMap, Slab, mitre_reach, sheet_offsets
 
 __all__ = [
@@ -166,7 +168,11 @@ def build_shell(
         InvalidParameterError: bad ``relief_hole`` or ``faces``.
         ExportError: a boundary curve cannot reach the tolerance, the CAD
             kernel could not build a valid shell, or it ran out of time (the
-            message says what to reduce).
+            message says what to reduce); exact model: H too close to the
+            sheet's boundary for the kernel (:func:`near_edge_problem`, before
+            any kernel call), or the cone folded back onto itself so that a
+            face's edge would be no longer than the kernel's precision (alpha
+            and beta both near 90 with a relief hole).
     """
     exact = isinstance(folded.solution.surface, ExactCone)
     kind = faces if faces is not None else ("ruled" if exact else "fan")
@@ -188,8 +194,20 @@ def build_shell(
         )
     tol = BOUNDARY_TOLERANCE * folded.sheet.size
     if kind == "ruled":
+        problem = near_edge_problem(folded.sheet)
+        if problem is not None:
+            raise problem
+        _hole_arcs(folded.sheet, relief_hole)
         clock = KernelBudget(budget, "a sheet with fewer vertices may help")
-        topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
+        try:
+            topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
+        except FoldedBackError as err:
+            fr = folded.solution.frame
+            raise ExportError(
+                f"no STEP of the exact model: {err} (alpha {fr.alpha!r}, beta {fr.beta!r} deg: "
+                "both near 90 put the apex in the frame's plane); a smaller alpha or beta, "
+                "or no relief hole (relief_hole 0)"
+            ) from None
         if deviation > tol:
             raise ExportError(
                 f"the sheet's edges mapped onto the cone need more than {MAX_NODES} points "
@@ -199,6 +217,13 @@ def build_shell(
             )
         clock.check()
     else:
+        lengths = [
+            folded.sheet.ray_lengths(s * a)
+            for s, a in zip((1.0, -1.0), folded.ruling_angles, strict=True)
+        ]
+        problem = near_edge_problem(folded.sheet, np.concatenate(lengths))
+        if problem is not None:
+            raise problem
         triangles = sum(len(a) - 1 for a in folded.ruling_angles)
         clock = KernelBudget(
             budget, f"fewer divisions may help (this fan has {triangles} triangles)"
@@ -207,11 +232,166 @@ def build_shell(
         deviation = 0.0
     shell = bd.Shell(topo)
     if not shell.is_valid:
-        raise ExportError("the shell of the folded surface is not valid")
+        raise ExportError(
+            "the shell of the folded surface is not valid" + _scale_hint(folded.sheet.size)
+        )
     clock.check()
     shell.fit_deviation = deviation
     shell.fit_tolerance = tol if kind == "ruled" else 0.0
     return shell
+
+
+#: The shortest ruling (distance from H to a vertex of the sheet, crease
+#: ends included; design unit) the CAD kernel can make an edge of: its
+#: precision, Precision::Confusion (BRepLib_MakeEdge takes ends that close
+#: for one point and fails).
+MIN_RULING = 1e-7
+
+
+def _hole_arcs(sheet: Sheet, diameter: float) -> None:
+    """Refuse a relief hole whose arc between the rulings to two neighbouring
+    vertices (crease ends included) is no longer than the CAD kernel's
+    precision on the sheet: a chord of d sin(dtheta / 2) for vertices dtheta
+    apart as seen from H."""
+    if diameter <= 0.0:
+        return
+    ang = np.sort(np.mod(sheet.polar_angles, 2.0 * math.pi))
+    step = np.diff(np.concatenate([ang, ang[:1] + 2.0 * math.pi]))
+    step = step[step > 1e-12]  # the exact shell merges rulings closer than that
+    least = float(np.min(step))
+    chord = diameter * math.sin(0.5 * least)
+    if chord <= MIN_RULING:
+        need = MIN_RULING / math.sin(0.5 * least)
+        raise ExportError(
+            f"no STEP of the exact model: the relief hole's arc between two vertices "
+            f"{least:.3g} rad apart as seen from H is {chord:.3g} long, no longer than the "
+            f"shortest edge the CAD kernel can make ({MIN_RULING:g}); a relief hole over "
+            f"{need:.3g} across or none (parameter relief_hole)"
+        )
+
+
+def _rectangle_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str]:
+    """The parameter and the change for a rectangle whose H lies too close to
+    a corner (``ruling``) or a side: H is at (f w, f h), min(f, 1 - f) x
+    hypot(w, h) from the nearest corner and min(f, 1 - f) x min(w, h) from
+    the nearest side; both must reach ``need``."""
+    w, h, f = (float(sheet.inputs[k]) for k in ("width", "height", "apex_fraction"))
+    least = need / (math.hypot(w, h) if ruling else min(w, h))
+    if least < 0.5:
+        return "apex_fraction", f"apex_fraction {f!r}: use one in [{least:.3g}, 1 - {least:.3g}]"
+    if ruling:
+        return (
+            "width",
+            f"width and height: the diagonal {math.hypot(w, h):.3g} must exceed {2.0 * need:.3g}",
+        )
+    short = "width" if w < h else "height"
+    return short, f"{short} {min(w, h):.6g}: it must exceed {2.0 * need:.3g}"
+
+
+def _quadrilateral_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str]:
+    """The parameter and the change for a quadrilateral whose vertex
+    (``ruling``) or edge lies too close to H: the vertices are x_plus ...
+    from H, and the edge from (a, 0) to (0, b) passes a b / hypot(a, b) from
+    it; the shorter of the two sets that distance."""
+    values = {k: float(sheet.inputs[k]) for k in ("x_plus", "y_plus", "x_minus", "y_minus")}
+    if ruling:
+        name = min(values, key=values.__getitem__)
+        return name, f"{name} {values[name]!r}: it must exceed {need:.3g}"
+    pairs = [("x_plus", "y_plus"), ("x_minus", "y_plus"), ("x_minus", "y_minus")]
+    pairs.append(("x_plus", "y_minus"))
+    gap = [values[p] * values[q] / math.hypot(values[p], values[q]) for p, q in pairs]
+    pair = pairs[int(np.argmin(gap))]
+    small, big = sorted(pair, key=values.__getitem__)
+    if values[big] <= need:
+        return small, f"{small} and {big}: both must exceed {need:.3g}"
+    want = need * values[big] / math.sqrt(values[big] ** 2 - need**2)
+    return small, f"{small} {values[small]!r}: it must exceed {want:.3g}"
+
+
+def near_edge_problem(sheet: Sheet, fan_rulings: np.ndarray | None = None) -> ExportError | None:
+    """Why the exact model's shell cannot be built for ``sheet``, or None.
+
+    ``fan_rulings``: the paper model's ruling lengths (its fan of planar
+    triangles): then only the first bound applies, to them (the fan fits no
+    curves and merges ruling ends closer than the kernel resolves).
+
+    Two bounds, both on how close H lies to the sheet's boundary:
+
+    * a ruling (H to a vertex, crease ends included) no longer than
+      :data:`MIN_RULING` (the CAD kernel's precision, 1e-7 design units):
+      the kernel cannot make an edge that short;
+    * an edge passing closer to H than :data:`BOUNDARY_TOLERANCE` x the
+      sheet's size (the tolerance to which the faces' boundary curves are
+      fitted along the cone's rulings): the face between that edge and the
+      apex is narrower than its own boundary's tolerance, and the fitted
+      curve may cross the apex or its rulings;
+    * a sheet edge (between neighbouring vertices, crease ends included) no
+      longer than :data:`MIN_RULING`.
+
+    The error names the parameter that puts H there (``apex_fraction``, the
+    shorter side, ``x_plus`` ..., or ``polygon``), the distance measured,
+    the bound and what to change.
+    """
+    v = sheet.vertices
+    fan = fan_rulings is not None
+    ruling = float(np.min(fan_rulings if fan else np.hypot(v[:, 0], v[:, 1])))
+    sides = np.hypot(*(np.roll(v, -1, axis=0) - v).T)
+    edge_gap = sheet_inradius(sheet)
+    rel = BOUNDARY_TOLERANCE * sheet.size
+    model = "paper" if fan else "exact"
+    if ruling <= MIN_RULING:
+        what = (
+            f"a ruling from H is {ruling:.3g} long (H that close to the sheet's boundary), no "
+            f"longer than the shortest edge the CAD kernel can make ({MIN_RULING:g}, its "
+            "precision Precision::Confusion)"
+        )
+        need, short = MIN_RULING, True
+    elif fan:
+        return None
+    elif edge_gap < rel:
+        what = (
+            f"an edge of the sheet passes {edge_gap:.3g} from H, less than the boundary "
+            f"tolerance {rel:.3g} (BOUNDARY_TOLERANCE {BOUNDARY_TOLERANCE:g} x the sheet's "
+            f"size {sheet.size:.6g}): the face between it and the apex would be narrower "
+            "than its own boundary curve's tolerance"
+        )
+        need, short = rel, False
+    elif float(np.min(sides)) <= MIN_RULING:
+        k = int(np.argmin(sides))
+        return ExportError(
+            f"no STEP of the exact model: the sheet's edge {k} (from {v[k].tolist()} to "
+            f"{v[(k + 1) % len(v)].tolist()}, the crease's ends counted as vertices) is "
+            f"{sides[k]:.3g} long, no longer than the shortest edge the CAD kernel can make "
+            f"({MIN_RULING:g}, its precision Precision::Confusion); make it longer or drop "
+            "the vertex (parameter polygon)"
+        )
+    else:
+        return None
+    if sheet.kind == "rectangle":
+        name, change = _rectangle_advice(sheet, short, need)
+    elif sheet.kind == "quadrilateral":
+        name, change = _quadrilateral_advice(sheet, short, need)
+    else:
+        name, change = "polygon", "polygon: move its vertices and edges further from H (0, 0)"
+    other = "" if fan else ", or use the paper model (--model paper)"
+    return ExportError(
+        f"no STEP of the {model} model: {what}; change {change} (parameter {name}){other}"
+    )
+
+
+def _scale_hint(size: float) -> str:
+    """Why a sheet of ``size`` (design unit) may be too big for the CAD
+    kernel, when it is: the last place of its coordinates is coarser than
+    the kernel's precision (1e-7), so the kernel's "same point" tests cannot
+    hold ('' below that)."""
+    ulp = math.ulp(size)
+    if ulp <= MIN_RULING:
+        return ""
+    return (
+        f"; on a sheet of size {size:.3g} the coordinates' last place is {ulp:.2g}, "
+        f"{ulp / MIN_RULING:.2g} x the CAD kernel's precision (1e-7): a larger unit "
+        "(parameter units: in or ft for a mm design) or a smaller sheet may help"
+    )
 
 
 def build_solid(
@@ -509,11 +689,11 @@ def export_design_step(
             raise ExportError(f"writing STEP failed ({err.__class__.__name__}: {err})") from None
         if not ok:
             raise ExportError("writing STEP failed")
-        _check_reads_back(tmp, part)
+        _check_reads_back(tmp, part, design)
     return target
 
 
-def _check_reads_back(path: Path, part: bd.Shape) -> None:
+def _check_reads_back(path: Path, part: bd.Shape, design: Design) -> None:
     """Refuse a STEP file that does not read back as one valid shape with the
     part's faces (the file holds coordinates to a finite precision: a face
     far thinner than the sheet may not survive it)."""
@@ -523,9 +703,14 @@ def _check_reads_back(path: Path, part: bd.Shape) -> None:
     except Exception:  # OCC's Standard_Failure family
         ok = False
     if not ok:
+        sheet = design.sheet
+        gap = sheet_inradius(sheet)
         raise ExportError(
             "the written STEP file does not read back as a valid shape (a face thinner than "
-            "the file's precision); a larger relief hole or another thickness may help"
+            f"the file's precision: the sheet's edge nearest H passes {gap:.3g} from it, "
+            f"{gap / sheet.size:.2g} x its size); a larger relief hole (parameter "
+            "relief_hole), another thickness or an edge further from H may help"
+            + _scale_hint(sheet.size)
         )
 
 
