@@ -85,10 +85,11 @@ class RestingPlacement:
         footprint: ``(p, 2)`` the convex hull of the body's shadow on the
             ground, counter-clockwise, from samples of its extreme curves.
         size: the sheet's size (length), the scale of the tolerances.
-        com_outside: 0, or how far (length) the thick sheet's centre of mass
-            lies outside the convex hull of the body's points (a sheet
-            narrower across than its thickness): no rest of the body holds
-            it, so the form is stood and rated with the zero-thickness
+        com_outside: 0, or a lower bound on how far (length) the thick
+            sheet's centre of mass lies outside the convex hull of the
+            body's points (the thickness reaches beyond them, e.g. on a
+            sheet narrower across than it is thick): no rest of the body
+            holds it, so the form is stood and rated with the zero-thickness
             reference surface's centre of mass (``centre_of_mass`` is that
             one), with a warning (:func:`stability_warnings`).
         settled: False when toppling on the samples and making the ground
@@ -182,8 +183,9 @@ def stability_warnings(rest: RestingPlacement, units: str = "") -> list[str]:
     if rest.com_outside > 0.0:
         out.append(
             f"the centre of mass of the thick sheet lies at least {rest.com_outside:.3g}{u} "
-            f"outside the convex hull of the {rest.body} (the sheet is narrower across than its "
-            "thickness): no rest of it holds that centre of mass, so it is placed and "
+            f"outside the convex hull of the {rest.body} (the thickness reaches beyond its "
+            "reference surface, as on a sheet narrower across than it is thick): no rest of "
+            "it holds that centre of mass, so it is placed and "
             "its stability rated with the centre of mass of the zero-thickness "
             "reference surface"
         )
