@@ -512,11 +512,13 @@ class Body:
             mirror = _MIRROR if lower else np.ones(3)
             up, lo = folded.sheet._side_angles
             breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-            if self.thickness > 0.0:  # the cut at the crease: graded towards both ends
-                grade = 0.5 ** np.arange(3, 31)
-                near = breaks[1] * grade
-                far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
-                breaks = np.unique(np.concatenate([breaks, near, far]))
+            # graded towards both crease ends: the cut at the crease (thick
+            # sheet), and a sheet edge passing near H (r = d / sin(theta + psi):
+            # a peak of width psi at theta = 0 or pi, e.g. a needle's tip)
+            grade = 0.5 ** np.arange(3, 31)
+            near = breaks[1] * grade
+            far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
+            breaks = np.unique(np.concatenate([breaks, near, far]))
             if self.exact:
                 # the rule runs in the arc's phi (no inversion at every node):
                 # dtheta = |du/dphi| dphi, theta being u's arc length
@@ -630,10 +632,11 @@ def _sector_rule(breaks: Array) -> tuple[Array, Array]:
     sectors between consecutive ``breaks`` (the edge radius is smooth within
     each): up to 8 panels per sector, in proportion to its width.
 
-    For a thick sheet the caller also grades the breaks towards the crease
-    (halving the distance 28 times): the cut at the fold's plane of symmetry
-    leaves only r > C / theta of the concave side there, a feature on every
-    scale from the hole's radius to the sheet's edge."""
+    The caller also grades the breaks towards the crease (halving the
+    distance 28 times): the cut at the fold's plane of symmetry leaves only
+    r > C / theta of a thick sheet's concave side there, a feature on every
+    scale from the hole's radius to the sheet's edge; and a sheet edge that
+    passes near H along the crease peaks there on the scale of its angle."""
     lo, hi = breaks[:-1], breaks[1:]
     keep = hi > lo
     lo, hi = lo[keep], hi[keep]

@@ -39,6 +39,8 @@ __all__ = [
     "CONTACT_TOLERANCE",
     "Samples",
     "basis",
+    "com_depth",
+    "com_outside",
     "exact_features",
     "features",
     "holds",
@@ -85,14 +87,17 @@ def roll(points: Array, com: Array, g: Array, tol: float) -> tuple[Array, NDArra
     """:func:`_topple`, and if that goes on for long (rolling along a curved edge
     goes sample by sample) on every 16th point from where it got, then on all
     again; a form that balances falls to the side nearer the fold frame's
-    upright."""
+    upright. It stops as soon as a topple ends: at a rest, with the centre of
+    mass below the lowest point (outside the points' hull: no rest exists,
+    :func:`com_depth` says by how much) or when the centre of mass no longer
+    comes down (rounding decides the steps); at most 8200 steps in all."""
 
     def roll(pts: Array, g: Array, steps: int) -> tuple[Array, NDArray[np.int64], bool]:
         g, on, state = _topple(pts, com, g, tol, steps=steps)
         if state == "balanced":
             ways = [_topple(pts, com, g, tol, push, steps) for push in (1.0, -1.0)]
             g, on, state = ways[1] if ways[1][0][2] > ways[0][0][2] + 1e-12 else ways[0]
-        return g, on, state == "rests"
+        return g, on, state in _DONE
 
     g, on, done = roll(points, g, 200)
     if not done and len(points) > 256:
@@ -100,6 +105,32 @@ def roll(points: Array, com: Array, g: Array, tol: float) -> tuple[Array, NDArra
     if not done:
         g, on, _ = roll(points, g, 4000)
     return g, on
+
+
+#: how a topple may end without 'rolling' on: no further step would be honest
+_DONE = ("rests", "outside", "stalled")
+#: steps without a new lowest centre of mass after which a topple has stalled
+_STALL_STEPS = 64
+
+
+def com_depth(points: Array, com: Array, g: Array) -> float:
+    """How far (length) the centre of mass ``com`` lies below the lowest of
+    ``points`` ``(N, 3)`` along the upward normal ``g``: positive only when it
+    lies outside their convex hull, where no rest on them can hold it."""
+    return float(np.min(points @ g) - com @ g)
+
+
+def com_outside(points: Array, com: Array) -> float:
+    """A lower bound (length) on how far ``com`` lies outside the convex hull
+    of ``points`` ``(N, 3)``: its largest :func:`com_depth` along the points'
+    principal axes (both ways) and the way from their centroid to it; 0 when
+    none of these shows it outside (a needle's few nanometres across are its
+    two thin axes)."""
+    centred = points - points.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    off = com - points.mean(axis=0)
+    ways = [*vt, off / max(float(np.linalg.norm(off)), 1e-300)]
+    return max(0.0, *(com_depth(points, com, s * w) for w in ways for s in (1.0, -1.0)))
 
 
 def _topple(
@@ -110,11 +141,26 @@ def _topple(
     body's frame. Returns the final normal, the indices of the contacts, and
     how it ended: 'rests', 'balanced' (exactly above an edge or a point: an
     unstable equilibrium, as symmetric forms meet it; a ``push`` of +1 or -1
-    then tips it to one side or the other) or 'rolling' (after ``steps``)."""
+    then tips it to one side or the other), 'outside' (the centre of mass
+    lies more than ``tol`` below the lowest point: outside the points' hull,
+    which no tipping mends), 'stalled' (the centre of mass came no lower in
+    :data:`_STALL_STEPS` steps: each step lowers it, so rounding, not the
+    body, decides them) or 'rolling' (after ``steps``)."""
     on = np.zeros(0, dtype=np.int64)
+    lowest, since = math.inf, 0
     for _ in range(steps):
         h = points @ g
-        on = np.flatnonzero(h <= h.min() + tol)
+        floor = float(h.min())
+        on = np.flatnonzero(h <= floor + tol)
+        height = float(com @ g) - floor
+        if height < -tol:
+            return g, on, "outside"
+        if height < lowest:
+            lowest, since = height, 0
+        else:
+            since += 1
+            if since >= _STALL_STEPS:
+                return g, on, "stalled"
         e1, e2 = basis(g)
         rel = points[on] - com
         q = np.column_stack([rel @ e1, rel @ e2])
@@ -140,10 +186,14 @@ def _topple(
         w /= wn
         a = (points - p0) @ g
         b = (points - p0) @ w
+        # the contacts are on the ground: one lumped in by the tolerance can
+        # lie a little below p0 and just across the edge (a support polygon
+        # a few tolerances wide, a needle's), and would tip the body back
         toward = b > tol
+        toward[on] = False
         if not np.any(toward):
             return g, on, "rests"
-        phi = float(np.min(np.arctan2(a[toward], b[toward])))
+        phi = max(float(np.min(np.arctan2(a[toward], b[toward]))), 0.0)
         g = math.cos(phi) * g - math.sin(phi) * w
         g /= np.linalg.norm(g)
     return g, on, "rolling"

@@ -32,6 +32,8 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.ground import (
     CONTACT_TOLERANCE,
     Samples,
+    com_depth,
+    com_outside,
     exact_features,
     features,
     holds,
@@ -84,6 +86,17 @@ class RestingPlacement:
         footprint: ``(p, 2)`` the convex hull of the body's shadow on the
             ground, counter-clockwise, from samples of its extreme curves.
         size: the sheet's size (length), the scale of the tolerances.
+        com_outside: 0, or a lower bound on how far (length) the thick
+            sheet's centre of mass lies outside the convex hull of the
+            body's points (the thickness reaches beyond them, e.g. on a
+            sheet narrower across than it is thick): no rest of the body
+            holds it, so the form is stood and rated with the zero-thickness
+            reference surface's centre of mass (``centre_of_mass`` is that
+            one), with a warning (:func:`stability_warnings`).
+        settled: False when toppling on the samples and making the ground
+            plane exact did not come to agree (the exact plane leaves the
+            contacts' hull short of the centre of mass, or cuts the body):
+            the form stands where they stopped, with a warning.
     """
 
     rotation: Array
@@ -98,6 +111,8 @@ class RestingPlacement:
     bounds: Array
     footprint: Array
     size: float
+    com_outside: float = 0.0
+    settled: bool = True
 
     def apply(self, points: ArrayLike) -> Array:
         """Move fold-frame points ``(k, 3)`` into the resting placement."""
@@ -161,13 +176,37 @@ class RestingPlacement:
 
 def stability_warnings(rest: RestingPlacement, units: str = "") -> list[str]:
     """The warnings (one line each) a resting form deserves: none when its
-    tipping margin is at least :data:`TIPPING_WARNING_DEG`."""
+    tipping margin is at least :data:`TIPPING_WARNING_DEG` and its centre of
+    mass lies within its body's hull (else :attr:`RestingPlacement.com_outside`
+    says the reference surface's centre of mass stood in)."""
+    u = f" {units}" if units else ""
+    out: list[str] = []
+    if rest.com_outside > 0.0:
+        out.append(
+            f"the centre of mass of the thick sheet lies at least {rest.com_outside:.3g}{u} "
+            f"outside the convex hull of the {rest.body} (the thickness reaches beyond its "
+            "reference surface, as on a sheet narrower across than it is thick): no rest of "
+            "it holds that centre of mass, so it is placed and "
+            "its stability rated with the centre of mass of the zero-thickness "
+            "reference surface"
+        )
+    if not rest.settled:
+        out.append(
+            f"the {rest.body}'s rest is not settled: toppling on its samples and the exact "
+            "ground plane did not agree within the contact tolerance (1e-9 of the sheet's "
+            "size); it stands where they stopped"
+        )
+    return out + _tipping_warnings(rest, u)
+
+
+def _tipping_warnings(rest: RestingPlacement, u: str) -> list[str]:
+    """The stability warning of :func:`stability_warnings` (``u``: the units
+    suffix of lengths)."""
     margin = rest.tipping_margin_deg
     if margin >= TIPPING_WARNING_DEG:
         return []
     i, j = rest.tipping_edge
     poly = rest.support_polygon
-    u = f" {units}" if units else ""
     if len(poly) >= 2:
         a, b = poly[i], poly[j]
         edge = (
@@ -235,16 +274,26 @@ def rest_form(
     band = 2.0 * sample_spacing(form) + tol
     g = np.array([0.0, 0.0, 1.0])
     lows: list[tuple[int, float, Array]] = []
+    # the thick sheet's centre of mass can lie outside the hull of the body's
+    # points (a sheet narrower across than its thickness): no rest holds it;
+    # the body is then stood by its reference surface's (a warning says so)
+    outside = com_outside(samples.points, com)
+    if outside > tol:
+        com = _surface_centre(folded, material)
     rolled: list[Array] = []
-    rocks = False
+    rocks = settled = False
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
+        depth = com_depth(samples.points, com, g)
+        if depth > tol and outside <= tol:  # the topple found it outside
+            outside, com = depth, _surface_centre(folded, material)
+            g, on = roll(samples.points, com, np.array([0.0, 0.0, 1.0]), tol)
         if any(float(np.linalg.norm(g - r)) <= 1e-12 for r in rolled):
             # the samples' rest comes back while the exact plane leaves it (a
             # body lying almost flat, whose lowest points jump along nearly
             # straight edges at the slightest tilt): make that rest exact
             g, lows, samples = _cut(form, samples, com, g, band, tol)
-            rocks = False
+            rocks, settled = False, True
             break
         rolled.append(g)
         found = features(form, samples, on)
@@ -267,6 +316,7 @@ def rest_form(
         samples = samples.plus([x for x in lows if float(x[2] @ g) <= level + band])
         on_ground = touching(samples, lows, g, level, contact_tol)
         if level >= plane - contact_tol and (rocks or holds(on_ground, com, g, tol)):
+            settled = True
             break
     rot = _rotation_to_up(g)
     level = float(lows[0][2] @ g)
@@ -298,6 +348,8 @@ def rest_form(
         bounds,
         footprint,
         size,
+        outside if outside > tol else 0.0,
+        settled,
     )
 
 
@@ -319,6 +371,13 @@ def _cut(
         samples = samples.plus(below)
         g, _ = roll(samples.points, com, g, tol)
     return g, lows, samples
+
+
+def _surface_centre(folded: FoldedSheet, material: Material | None) -> Array:
+    """The centre of mass ``(3,)`` of the zero-thickness reference surface
+    (relative to the apex, as :attr:`Body.mass_properties`)."""
+    thin = None if material is None else material.with_changes(thickness=0.0, bend_radius=0.0)
+    return Body(folded, thin, "shell").mass_properties[1]
 
 
 def _rotation_to_up(g: Array) -> Array:

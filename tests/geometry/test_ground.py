@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from onefold_cad.geometry.ground import holds, roll
+from onefold_cad.geometry.ground import com_depth, com_outside, holds, roll
 
 
 def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
@@ -104,3 +104,33 @@ def test_lowest_points_find_the_lowest_point_of_a_many_vertex_sheet() -> None:
             )
             want = min(want, float(z[i]), float(res.fun))
         assert abs(found - want) <= 1e-9 * size
+
+
+def test_a_needle_with_an_offset_centre_rolls_onto_its_heavy_side() -> None:
+    # a cylinder 1 long and 2e-7 across (a folded needle's proportions), 1000
+    # points round each end: the tolerance 1e-10 is a few point spacings
+    # (6e-10) across its ends. Its centre of mass sits 0.9 of the radius off
+    # the axis: it can only rest with that side down, the centre of mass
+    # 0.1 r above the ground (less the sagitta of the sampled ends)
+    r, n = 1e-7, 1000
+    t = 2.0 * math.pi * np.arange(n) / n
+    ring = np.column_stack([np.zeros(n), r * np.cos(t), r * np.sin(t)])
+    pts = np.vstack([ring, ring + [1.0, 0.0, 0.0]])
+    com = np.array([0.5, 0.9 * r * math.cos(2.0), 0.9 * r * math.sin(2.0)])
+    tilt = _rotation(np.array([0.2, 1.0, 0.4]), 1.3)
+    pts, com = pts @ tilt.T, com @ tilt.T
+    g, on = roll(pts, com, np.array([0.0, 0.0, 1.0]), 1e-10)
+    height = float(com @ g - np.min(pts @ g))
+    sagitta = r * (1.0 - math.cos(math.pi / n))
+    assert 0.1 * r - sagitta - 1e-10 <= height <= 0.1 * r + 1e-10
+    assert holds(pts[on], com, g, 1e-10)
+
+
+def test_a_centre_of_mass_outside_the_points_stops_the_topple() -> None:
+    # a flat square with its centre of mass 1 below it: no rest can hold it;
+    # the topple ends (it does not roll on) and com_depth says it lies outside
+    pts = np.array([[x, y, 0.0] for x in np.linspace(0, 1, 9) for y in np.linspace(0, 1, 9)])
+    com = np.array([0.3, 0.6, -1.0])
+    assert com_outside(pts, com) >= 1.0 - 1e-12
+    g, _ = roll(pts, com, np.array([0.3, 0.1, 1.0]) / math.hypot(0.3, 0.1, 1.0), 1e-12)
+    assert com_depth(pts, com, g) > 1e-12

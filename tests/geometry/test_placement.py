@@ -22,6 +22,7 @@ from onefold_cad import (
 )
 from onefold_cad.design import relief_hole_diameter
 from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.placement import (
     TIPPING_WARNING_DEG,
     RestingPlacement,
@@ -297,6 +298,53 @@ def test_tiny_sheet_on_a_huge_frame_gives_finite_numbers() -> None:
     assert np.all(np.isfinite(values))
     assert abs(rest.bounds[0, 2]) <= 1e-9 * sheet.size
     assert rest.height > 0.0 and len(rest.contacts) >= 2
+
+
+def _fan_centre(folded: FoldedSheet) -> np.ndarray:
+    """The paper fan's centre of mass by hand: its triangles (apex, two
+    consecutive ruling ends of a side), area-weighted centroids."""
+    apex, ends = folded.apex, folded.rulings_3d[:, 1]
+    first = len(folded.ruling_angles[0])
+    area, moment = 0.0, np.zeros(3)
+    for side in (ends[:first], ends[first:]):
+        for a, b in zip(side[:-1], side[1:], strict=True):
+            w = 0.5 * float(np.linalg.norm(np.cross(a - apex, b - apex)))
+            area, moment = area + w, moment + w * (apex + a + b) / 3.0
+    return moment / area
+
+
+def test_needle_thicker_than_wide_lies_on_its_side_with_a_warning() -> None:
+    # fuzz design 6849 (issue 12; it rolled for ever), rounded, 60 divisions: a
+    # kite 5.5e-5 long and 1.7e-11 wide folded into a needle, 6.9e-8 thick.
+    # The thick sheet's centre of mass lies ~1.4e-8 off the shell (its slab
+    # is cut at the crease): no rest of the shell holds it, so the shell is
+    # stood by its own centre of mass, with a warning
+    frame = FrameCurve(88.58212537094371, 52.20096833699451, 1.915087505793e-4, 0.0185922706, 60)
+    sheet = Sheet.quadrilateral(5.525791810518125e-05, 4.9e-12, 1.58399228367015e-11, 9.6e-13)
+    folded = fold(solve(frame, "paper"), sheet)
+    rest = rest_form(folded, Material(thickness=6.85136721461188e-08, relief_hole=0.0))
+    size = sheet.size
+    # the fan's corners (ruling ends, apex) bound it: none below the ground
+    corners = np.vstack([folded.rulings_3d[:, 1], folded.apex])
+    placed = rest.apply(corners)
+    assert -1e-9 * size <= placed[:, 2].min() <= 1e-9 * size
+    assert len(rest.contacts) >= 3
+    assert np.all(np.abs(rest.contacts[:, 2]) <= 1e-9 * size)
+    for c in rest.contacts:
+        assert np.min(np.linalg.norm(placed - c, axis=1)) <= 1e-9 * size
+    # it stands by the surface's centre of mass, computed here by hand
+    centre = _fan_centre(folded)
+    assert np.all(np.abs(rest.apply(centre[None, :])[0] - rest.centre_of_mass) <= 1e-9 * size)
+    height = float(rest.centre_of_mass[2])
+    # lying on either wide side (the corners' thinnest principal axes) puts the
+    # centre of mass no lower: 5e-12 to 1.4e-11 there, 5.5e-5 long
+    _, _, vt = np.linalg.svd(corners - corners.mean(axis=0))
+    sides = [s * n for n in vt[1:] for s in (1.0, -1.0)]
+    lying = min(float(centre @ n - np.min(corners @ n)) for n in sides)
+    assert 0.0 < height <= lying
+    assert rest.stable and rest.settled
+    assert rest.com_outside > 1e3 * lying
+    assert any("outside the convex hull" in w for w in stability_warnings(rest))
 
 
 def test_stability_warning_below_five_degrees_only() -> None:
