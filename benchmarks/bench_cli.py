@@ -20,6 +20,7 @@ both in wall time. PASS/FAIL is printed, never asserted.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import tempfile
 from dataclasses import dataclass
@@ -69,14 +70,19 @@ def build_cases(outdir: str) -> list[Case]:
 
 def measure(cases: list[Case], rounds: int) -> dict[str, list[ProcessRun]]:
     """``rounds`` runs of every case, interleaved with the order rotated each round
-    (one untimed warm-up run of each first: file caches, .pyc files)."""
+    (one untimed warm-up run of each first: file caches, .pyc files, written
+    even where the caller's environment sets PYTHONDONTWRITEBYTECODE)."""
     runs: dict[str, list[ProcessRun]] = {c.name: [] for c in cases}
+    # bytecode caching on, as in any install: with PYTHONDONTWRITEBYTECODE
+    # (set on some CI machines) the warm-up writes no .pyc and every timed
+    # run would recompile each module of the package it imports
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     for c in cases:
-        run_process(c.argv)
+        run_process(c.argv, env=env)
     for i in range(rounds):
         order = cases[i % len(cases) :] + cases[: i % len(cases)]
         for c in order:
-            r = run_process(c.argv)
+            r = run_process(c.argv, env=env)
             if r.returncode != 0:
                 raise SystemExit(f"{c.name} exited with {r.returncode}")
             runs[c.name].append(r)
