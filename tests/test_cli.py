@@ -20,6 +20,7 @@ from onefold_cad import ExportError, build_design
 from onefold_cad.cli import main
 from onefold_cad.export.report import design_report
 from onefold_cad.templates import list_templates, load_template
+from tests.processes import interruptible
 
 REPO = Path(__file__).resolve().parent.parent
 BIN = Path(sys.executable).parent / "onefold"
@@ -746,6 +747,7 @@ def start_paused(out: Path, point: str, *extra: str) -> subprocess.Popen[bytes]:
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         env={**os.environ, "ONEFOLD_TEST_PAUSE": point},
+        preexec_fn=interruptible,
     )
     assert proc.stderr is not None
     line = proc.stderr.readline().decode()

@@ -15,6 +15,7 @@ import pytest
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.explore.server import MAX_TARGET, STATIC, make_server
 from tests.explore.conftest import get
+from tests.processes import interruptible
 
 
 def test_it_listens_on_loopback_only(server):
@@ -197,6 +198,7 @@ def test_the_command_serves_until_interrupted():
         + ["--port", "0"],
         stderr=subprocess.PIPE,
         text=True,
+        preexec_fn=interruptible,
     )
     try:
         line = proc.stderr.readline()
