@@ -49,22 +49,24 @@ def test_seeded_slice_has_no_crash_hang_or_wrong_answer(fuzz: ModuleType) -> Non
     assert all(r["cls"] == "refused" for _, _, r in run["cli"]), text
 
 
+#: a plain exact-model design (quadrilateral sheet, no thickness) as the fuzz spells it
+EXACT_QUAD = {
+    "model": "exact",
+    "alpha": 35.0,
+    "beta": 40.0,
+    "h_c": 7.0,
+    "radius": 100.0,
+    "divisions": 90,
+    "sheet": {
+        "quadrilateral": {"x_plus": 180.0, "x_minus": 150.0, "y_plus": 120.0, "y_minus": 160.0}
+    },
+    "thickness": 0.0,
+    "bend_radius": 0.0,
+}
+
+
 def test_one_step_build_is_valid_when_read_back(fuzz: ModuleType) -> None:
-    p = {
-        "model": "exact",
-        "alpha": 35.0,
-        "beta": 40.0,
-        "h_c": 7.0,
-        "radius": 100.0,
-        "divisions": 90,
-        "sheet": {
-            "quadrilateral": {"x_plus": 180.0, "x_minus": 150.0, "y_plus": 120.0, "y_minus": 160.0}
-        },
-        "thickness": 0.0,
-        "bend_radius": 0.0,
-        "step": True,
-        "reread_dxf": True,
-    }
+    p = {**EXACT_QUAD, "step": True, "reread_dxf": True}
     res = fuzz.run_design(p, 1, True)
     assert res["cls"] == "ok", res
     assert res["stage"] == "step"
@@ -194,19 +196,7 @@ def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> Non
     from onefold_cad import build_design
     from onefold_cad.design import resting_placement
 
-    p = {
-        "model": "exact",
-        "alpha": 35.0,
-        "beta": 40.0,
-        "h_c": 7.0,
-        "radius": 100.0,
-        "divisions": 90,
-        "sheet": {
-            "quadrilateral": {"x_plus": 180.0, "x_minus": 150.0, "y_plus": 120.0, "y_minus": 160.0}
-        },
-        "thickness": 0.0,
-        "bend_radius": 0.0,
-    }
+    p = dict(EXACT_QUAD)
     design = fuzz.make_design(p)
     folded = build_design(design)
     rest = resting_placement(design, folded)
