@@ -345,7 +345,7 @@ class PaperFan(DirectionSurface):
             u[off] = self.frames(np.asarray(theta, dtype=float)[off])[0]
         else:
             for j in off.tolist():
-                u[j] = self._frame1(int(k[j]), float(w[j]))[0]
+                u[j] = self.direction1(int(k[j]), float(w[j]))
         return u
 
     def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
@@ -357,17 +357,44 @@ class PaperFan(DirectionSurface):
 
     def _frame1(self, k: int, w: float) -> tuple[list[float], list[float]]:
         """The slerp of triangle k at angle w, in plain Python (faster than
-        numpy for one ray; written out, as a comprehension costs a call)."""
+        numpy for one ray)."""
         assert self.directions is not None and self.gammas is not None
-        g = self.gammas.item(k)
-        sg = math.sin(g)
-        a0, a1 = math.sin(g - w) / sg, math.sin(w) / sg
-        b0, b1 = math.cos(g - w) / sg, math.cos(w) / sg
-        p0, p1, p2 = self.directions[k].tolist()
-        q0, q1, q2 = self.directions[k + 1].tolist()
-        u = [a0 * p0 + a1 * q0, a0 * p1 + a1 * q1, a0 * p2 + a1 * q2]
-        e = [b1 * q0 - b0 * p0, b1 * q1 - b0 * p1, b1 * q2 - b0 * p2]
-        return u, e
+        d = self.directions
+        return _slerp(self.gammas.item(k), w, d[k].tolist(), d[k + 1].tolist())
+
+    def direction1(self, k: int, w: float) -> list[float]:
+        """The ``u`` of :meth:`_frame1` alone."""
+        assert self.directions is not None and self.gammas is not None
+        d = self.directions
+        return _slerp(self.gammas.item(k), w, d[k].tolist(), d[k + 1].tolist(), False)[0]
+
+    def crease_frames(self) -> tuple[tuple[list[float], list[float]], ...]:
+        """``u`` and ``e`` of :meth:`frames` on the two crease halves (theta =
+        0 and the total angle), as floats."""
+        assert self.directions is not None and self.gammas is not None
+        n = self._n
+        p, q, r, s = self.directions.take((0, 1, n - 1, n), axis=0).tolist()
+        g = self.gammas
+        last = g.item(n - 1)
+        return _slerp(g.item(0), 0.0, p, q), _slerp(last, last, r, s)
+
+
+def _slerp(
+    g: float, w: float, p: list[float], q: list[float], tangent: bool = True
+) -> tuple[list[float], list[float]]:
+    """In a triangle of apex angle ``g`` between the unit directions ``p`` and
+    ``q``, the ray at angle ``w`` from ``p``: ``u`` and (``tangent``) ``e``
+    (see :meth:`PaperFan.frames`), written out in plain Python (a
+    comprehension costs a call)."""
+    sg = math.sin(g)
+    a0, a1 = math.sin(g - w) / sg, math.sin(w) / sg
+    p0, p1, p2 = p
+    q0, q1, q2 = q
+    u = [a0 * p0 + a1 * q0, a0 * p1 + a1 * q1, a0 * p2 + a1 * q2]
+    if not tangent:
+        return u, []
+    b0, b1 = math.cos(g - w) / sg, math.cos(w) / sg
+    return u, [b1 * q0 - b0 * p0, b1 * q1 - b0 * p1, b1 * q2 - b0 * p2]
 
 
 #: Up to this many rays are interpolated in plain Python by PaperFan.directions_at.

@@ -522,14 +522,11 @@ def _fan_rays(
     assert surface.thetas is not None and surface.directions is not None
     fan, dirs = surface.thetas, surface.directions
     n = len(fan) - 1
-    top = fan[n]  # pi up to rounding; the -x crease is set to pi exactly
-    angles: list[Array | tuple[float]] = []
-    pieces: list[Array | tuple[list[float]]] = []
-    mu = 0
+    top = fan.item(n)  # pi up to rounding; the -x crease is set to pi exactly
+    sides: list[tuple[Array, list[tuple[int, float, list[float]]]]] = []
     for vert in vertices:
-        start = 0
+        side, rays = fan, []
         inner = vert[1:-1]
-        side = fan
         if len(inner):
             for v, k in zip(inner.tolist(), fan.searchsorted(inner).tolist(), strict=True):
                 if k > n or top - v <= tol:  # at or past the last division
@@ -546,14 +543,27 @@ def _fan_rays(
                         side = side.copy() if side is fan else side
                         side[near] = v
                     continue
-                angles += (side[start:k], (v,))
-                pieces += (dirs[start:k], (surface._frame1(k - 1, v - lo)[0],))
-                start = k
-        angles += (side[start:n], (math.pi,))
-        pieces.append(dirs[start:])
-        if not mu:
-            mu = sum(map(len, angles))
-    return np.concatenate(angles), np.concatenate(pieces), mu
+                rays.append((k, v, surface.direction1(k - 1, v - lo)))
+        sides.append((side, rays))
+    mu = n + 1 + len(sides[0][1])
+    m = mu + n + 1 + len(sides[1][1])
+    angles, directions = np.empty(m), np.empty((m, 3))
+    at = 0  # the next row to fill
+    for side, rays in sides:
+        start = 0  # the next division to copy
+        for k, v, u in rays:
+            stop = at + k - start
+            angles[at:stop] = side[start:k]
+            directions[at:stop] = dirs[start:k]
+            angles[stop] = v
+            directions[stop] = u
+            at, start = stop + 1, k
+        stop = at + n + 1 - start
+        angles[at:stop] = side[start:]
+        directions[at:stop] = dirs[start:]
+        angles[stop - 1] = math.pi
+        at = stop
+    return angles, directions, mu
 
 
 def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> FoldedSheet:
@@ -577,10 +587,7 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
     if fan:
         assert isinstance(surface, PaperFan)
         theta, u, mu = _fan_rays(surface, sheet._side_angles)
-        g = surface.gammas
-        assert g is not None
-        n = len(g)
-        crease_frames = (surface._frame1(0, 0.0), surface._frame1(n - 1, g.item(n - 1)))
+        crease_frames = surface.crease_frames()
     else:
         vert_up, vert_lo = sheet._side_angles
         mu = len(vert_up)
@@ -598,11 +605,12 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
     np.multiply(rho, sin, out=flat_r[:, 1, 1])
     h = solution.apex_height
     rulings3 = np.empty((m, 2, 3))
-    rulings3[:, 0] = (0.0, 0.0, h)
+    rulings3[:, 0] = 0.0
     ends3 = rulings3[:, 1]
     np.multiply(rho[:, None], u, out=ends3)
-    ends3[mu:, 1] *= -1.0  # the -y side: the mirror image
-    ends3[:, 2] += h
+    lower = ends3[mu:, 1]
+    np.negative(lower, out=lower)  # the -y side: the mirror image
+    rulings3[:, :, 2] += h  # from the apex (0, 0, h)
     xp, xm = sheet.crease_lengths
     crease = (
         _crease_half("plus_x", xp, ends3[0], *crease_frames[0]),

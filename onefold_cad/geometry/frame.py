@@ -21,6 +21,7 @@ is then exact to a rounding error of its own distance from the end.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from decimal import Decimal, localcontext
@@ -114,7 +115,11 @@ class ArcGeometry:
 
 def arc_geometry(frame: FrameCurve) -> ArcGeometry:
     """The :class:`ArcGeometry` of ``frame`` (a few microseconds; a decimal
-    evaluation of L when H is within R/16 of an end)."""
+    evaluation of L when H is within R/16 of an end). A validated
+    :class:`FrameCurve` keeps the one its validation computed."""
+    kept = frame.__dict__.get("_geometry")
+    if kept is not None:
+        return kept
     sa, ca = _sin_cos_deg(frame.alpha)
     sb, cb = _sin_cos_deg(frame.beta)
     r = frame.radius
@@ -197,22 +202,28 @@ def division_points(g: ArcGeometry, n: int) -> Array:
     fan's division points, from the +x end to the -x end: the first half
     measured from the +x end, the rest from the -x end (the same arc
     parameters, k (pi + 2 alpha) / n, each from its nearer end)."""
-    k = n // 2 + 1
-    m = np.arange(k, dtype=float)
-    m *= 0.5 * g.span / n  # half the distance from the end
+    steps, front = _end_steps(n)
+    m = steps * (0.5 * g.span / n)  # half the distance from the nearer end
     sn = np.sin(m)
     sn += sn
     m -= g.alpha
-    rd = np.empty((2, k))  # rows r = 2 sin(m) sin(m - alpha), d
-    np.sin(m, out=rd[0])
-    np.cos(m, out=rd[1])
-    rd *= sn
-    back = (n + 1) // 2  # points measured from the -x end
-    front = n + 1 - back
-    p = np.empty((2, n + 1))
-    p[:, :front] = rd[:, :front]
-    p[:, front:] = rd[:, back - 1 :: -1]
+    p = np.empty((2, n + 1))  # rows r = 2 sin(m) sin(m - alpha), then x; d
+    np.sin(m, out=p[0])
+    np.cos(m, out=p[1])
+    p *= sn
     x = p[0]
     np.subtract(g.l_plus, x[:front], out=x[:front])
     np.subtract(x[front:], g.l_minus, out=x[front:])
     return p
+
+
+@functools.lru_cache(maxsize=64)
+def _end_steps(n: int) -> tuple[Array, int]:
+    """Each division point's number of steps from its nearer end of the arc,
+    ``(n + 1,)`` floats (read-only; 0, 1, ... from the +x end for the first
+    ``front`` points, then ... 1, 0 to the -x end), and ``front``."""
+    back = (n + 1) // 2
+    front = n + 1 - back
+    steps = np.concatenate((np.arange(front), np.arange(back - 1, -1, -1))).astype(float)
+    steps.setflags(write=False)
+    return steps, front

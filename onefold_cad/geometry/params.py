@@ -93,6 +93,8 @@ class FrameCurve:
         from onefold_cad.geometry.frame import arc_geometry  # (it imports this module)
 
         g = arc_geometry(self)
+        # kept for the solver (every direction-surface starts from it); not a field
+        set_(self, "_geometry", g)
         if not min(g.l_plus, g.l_minus) > 0.0:
             half = 0.5 * (g.l_plus + g.l_minus) * self.radius
             raise InvalidParameterError(

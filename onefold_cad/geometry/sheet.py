@@ -524,12 +524,23 @@ class Sheet:
         return np.hypot(self.vertices[:, 0], self.vertices[:, 1])
 
     @cached_property
-    def _edge_table(self) -> tuple[NDArray[np.float64], ...]:
-        """Per edge k (vertex k to k + 1): its x and y extent and the cross
-        product vertex_k x edge_k, for :meth:`_rays`."""
+    def _ray_table(self) -> NDArray[np.float64]:
+        """``(5, n + 1)`` per edge k (vertex k to k + 1), in column k + 1: its x
+        and y extent, the cross product vertex_k x edge_k, the polar angle of
+        vertex k and its distance from H, for :meth:`_rays_at` (column 0
+        repeats edge 0; ``polar_angles.searchsorted(angle, 'right')`` indexes
+        it). Read-only."""
         v = self.vertices
         e = np.roll(v, -1, axis=0) - v
-        return e[:, 0].copy(), e[:, 1].copy(), _cross(v, e)
+        table = np.empty((5, len(v) + 1))
+        rows = table[:, 1:]
+        rows[0], rows[1] = e[:, 0], e[:, 1]
+        rows[2] = _cross(v, e)
+        rows[3] = self.polar_angles
+        rows[4] = self._vertex_radii
+        table[:, 0] = rows[:, 0]
+        table.setflags(write=False)
+        return table
 
     def _rays(
         self, psi: ArrayLike
@@ -545,20 +556,19 @@ class Sheet:
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """:meth:`_rays` for polar angles ``ang`` already in [0, 2 pi) (fold
         builds them so, which saves the reduction)."""
-        # polar_angles is increasing from 0 and ang >= 0, so the index is in [0, n - 1]
-        i = self.polar_angles.searchsorted(ang, side="right")
-        i -= 1
-        ex, ey, moment = self._edge_table
+        # polar_angles is increasing from 0 and ang >= 0: the edge index is in
+        # [0, n - 1], and the table's column is one more
+        ex, ey, moment, start, radius = self._ray_table.take(
+            self.polar_angles.searchsorted(ang, side="right"), axis=1
+        )
         c, s = np.cos(ang), np.sin(ang)
-        den = c * ey.take(i)
-        den -= s * ex.take(i)
-        rho = np.divide(moment.take(i), den, out=den)
+        den = c * ey
+        den -= s * ex
+        rho = np.divide(moment, den, out=den)
         # a ray at a vertex's own angle ends at the vertex: the edge from it may
         # run almost along the ray (an edge passing 1e-9 of the size from H),
         # where the intersection would lose up to 1e-7 of the size
-        at = self.polar_angles.take(i) == ang
-        if at.any():
-            rho[at] = self._vertex_radii.take(i[at])
+        np.copyto(rho, radius, where=start == ang)
         return rho, c, s
 
     def ray_lengths(self, psi: ArrayLike) -> NDArray[np.float64]:
