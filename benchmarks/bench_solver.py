@@ -47,6 +47,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import paper_method as pm  # noqa: E402
 from interleave import Stats, interleave, paired_ratio  # noqa: E402
+from numpy_floor import floor_solve_fold  # noqa: E402
 
 from onefold_cad import FrameCurve, Model, Sheet, fold, solve  # noqa: E402
 
@@ -141,6 +142,9 @@ class Row:
             independently (50 digits).
         times: case -> per-call time :class:`Stats` (s).
         speedup: paper's method / ours (paper model), per-round ratios.
+        speedup_exact: the same for the exact model.
+        speedup_floor: the same for :func:`numpy_floor.floor_solve_fold` (the
+            paper model's arithmetic alone; NaN where its apex differs from ours).
     """
 
     label: str
@@ -153,6 +157,7 @@ class Row:
     times: dict[str, Stats]
     speedup: Stats
     speedup_exact: Stats
+    speedup_floor: Stats
 
 
 def measure(
@@ -172,6 +177,7 @@ def measure(
         "paper's method": lambda: pm.paper_method(a, b, hc, RADIUS, n, quad),
         "ours, paper model": lambda: fold(solve(frame, Model.PAPER), sheet),
         "ours, exact model": lambda: fold(solve(frame, Model.EXACT), sheet),
+        "numpy floor": lambda: floor_solve_fold(frame, sheet),
     }
     times = interleave(cases, rounds=rounds, batch_time=batch_time)
     res = pm.paper_method(a, b, hc, RADIUS, n, quad)
@@ -180,6 +186,7 @@ def measure(
         s = solve(frame, model)
         ours[model.value] = (s.apex_height, s.angle_condition_error_deg, times[key].median)
     true_h = ours["paper"][0]
+    floor_ok = abs(floor_solve_fold(frame, sheet)[0] - true_h) <= 1e-12 * true_h
     lo, hi = res.bracket
     return Row(
         label=f"({hc:g}, {a:g}, {b:g}, {n}, {yp:g}, {ym:g}, {xp:g}, {xm:g})",
@@ -192,6 +199,11 @@ def measure(
         times=times,
         speedup=paired_ratio(times, "paper's method", "ours, paper model"),
         speedup_exact=paired_ratio(times, "paper's method", "ours, exact model"),
+        speedup_floor=(
+            paired_ratio(times, "paper's method", "numpy floor")
+            if floor_ok
+            else Stats(math.nan, math.nan, math.nan, 0, ())
+        ),
     )
 
 
@@ -254,7 +266,10 @@ def render(
         "ratios. Paper's method: bisection on [l, 2R] to 1e-6 R and the rulings, plain Python. "
         "Ours: `fold(solve(frame, model), sheet)`, frame and sheet built beforehand: the apex "
         "(searched, then verified by an independent evaluation), the rulings flat and 3D (one "
-        "through every sheet vertex) and both crease halves.",
+        "through every sheet vertex) and both crease halves. Numpy floor: the same "
+        "arithmetic with every check, record and Python layer around it removed "
+        "(`benchmarks/numpy_floor.py`, division rays only): as fast as this numpy "
+        "arithmetic can be.",
         "",
         "### Table 1: angle-condition error |sum of apex angles - 360| (deg)",
         "",
@@ -273,9 +288,10 @@ def render(
         "### Table 1: time per call (us) and speed-up, interleaved",
         "",
         "| input | paper's Table 1 (Rhino), total | paper's method, this run | ours, paper "
-        "model | ours, exact model | speed-up, paper model | speed-up, exact model "
-        f"| >= {SPEEDUP_REQUIRED:g}x and <= {ERROR_REQUIRED_DEG:g} deg |",
-        "|---|---|---|---|---|---|---|---|",
+        "model | ours, exact model | numpy floor | speed-up, paper model | speed-up, exact "
+        f"model | speed-up, numpy floor | >= {SPEEDUP_REQUIRED:g}x and <= "
+        f"{ERROR_REQUIRED_DEG:g} deg |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r, (_, pdv, pfs) in zip(rows, PAPER_TABLE1, strict=True):
         t = r.times
@@ -284,7 +300,8 @@ def render(
         lines.append(
             f"| {r.label} | {(pdv + pfs) * us:.3g} | {paper_t.fmt(us)} | "
             f"{t['ours, paper model'].fmt(us)} | {t['ours, exact model'].fmt(us)} | "
-            f"{r.speedup.fmt(digits=3)}x | {r.speedup_exact.fmt(digits=3)}x | {ok} |"
+            f"{t['numpy floor'].fmt(us)} | {r.speedup.fmt(digits=3)}x | "
+            f"{r.speedup_exact.fmt(digits=3)}x | {r.speedup_floor.fmt(digits=3)}x | {ok} |"
         )
     lines += ["", f"OVERALL: {overall(rows)}"]
     lo = (RADIUS + RADIUS * math.sin(math.radians(85))) * math.sin(math.radians(85))

@@ -70,6 +70,24 @@ def test_paper_rulings_match_our_fold_of_the_same_fan():
     np.testing.assert_allclose(ends, folded.map_points(flat), atol=1e-5)
 
 
+@pytest.mark.parametrize("row", [*ROWS, bench_solver.OUTSIDE], ids=lambda r: f"a{r[1]:g}-b{r[2]:g}")
+def test_numpy_floor_computes_our_apex_and_division_rulings(row):
+    # the floor is only timed where it does the same arithmetic as ours
+    from numpy_floor import floor_solve_fold
+
+    hc, a, b, n, yp, ym, xp, xm = row
+    frame = FrameCurve(a, b, hc, 100.0, n)
+    sheet = Sheet.quadrilateral(x_plus=xp, x_minus=xm, y_plus=yp, y_minus=ym)
+    h, flat, ends = floor_solve_fold(frame, sheet)
+    folded = fold(solve(frame, Model.PAPER), sheet)
+    assert h == folded.solution.apex_height
+    # its rulings are ours on the division rays (ours add one per sheet vertex)
+    for got, ref in ((flat, folded.rulings_flat[:, 1]), (ends, folded.rulings_3d[:, 1])):
+        dist = np.linalg.norm(got[:, None, :] - ref[None, :, :], axis=2).min(axis=1)
+        assert dist.max() <= 1e-12 * sheet.size
+    assert len(flat) == 2 * (n + 1)
+
+
 def test_outside_bracket_paper_method_returns_a_wrong_apex():
     hc, a, b, n, yp, ym, xp, xm = bench_solver.OUTSIDE
     res = pm.paper_method(a, b, hc, 100.0, n, (xp, xm, yp, ym))

@@ -359,14 +359,14 @@ class PaperFan(DirectionSurface):
         """The slerp of triangle k at angle w, in plain Python (faster than
         numpy for one ray)."""
         assert self.directions is not None and self.gammas is not None
-        d = self.directions
-        return _slerp(self.gammas.item(k), w, d[k].tolist(), d[k + 1].tolist())
+        p, q = self.directions[k : k + 2].tolist()
+        return _slerp(self.gammas.item(k), w, p, q)
 
     def direction1(self, k: int, w: float) -> list[float]:
         """The ``u`` of :meth:`_frame1` alone."""
         assert self.directions is not None and self.gammas is not None
-        d = self.directions
-        return _slerp(self.gammas.item(k), w, d[k].tolist(), d[k + 1].tolist(), False)[0]
+        p, q = self.directions[k : k + 2].tolist()
+        return _slerp(self.gammas.item(k), w, p, q, False)[0]
 
     def crease_frames(self) -> tuple[tuple[list[float], list[float]], ...]:
         """``u`` and ``e`` of :meth:`frames` on the two crease halves (theta =

@@ -522,11 +522,14 @@ def _fan_rays(
     assert surface.thetas is not None and surface.directions is not None
     fan, dirs = surface.thetas, surface.directions
     n = len(fan) - 1
-    top = fan.item(n)  # pi up to rounding; the -x crease is set to pi exactly
-    sides: list[tuple[Array, list[tuple[int, float, list[float]]]]] = []
+    top = fan[n]  # pi up to rounding; the -x crease is set to pi exactly
+    angles: list[Array | tuple[float]] = []
+    pieces: list[Array | tuple[list[float]]] = []
+    mu = 0
     for vert in vertices:
-        side, rays = fan, []
+        start = 0
         inner = vert[1:-1]
+        side = fan
         if len(inner):
             for v, k in zip(inner.tolist(), fan.searchsorted(inner).tolist(), strict=True):
                 if k > n or top - v <= tol:  # at or past the last division
@@ -543,27 +546,14 @@ def _fan_rays(
                         side = side.copy() if side is fan else side
                         side[near] = v
                     continue
-                rays.append((k, v, surface.direction1(k - 1, v - lo)))
-        sides.append((side, rays))
-    mu = n + 1 + len(sides[0][1])
-    m = mu + n + 1 + len(sides[1][1])
-    angles, directions = np.empty(m), np.empty((m, 3))
-    at = 0  # the next row to fill
-    for side, rays in sides:
-        start = 0  # the next division to copy
-        for k, v, u in rays:
-            stop = at + k - start
-            angles[at:stop] = side[start:k]
-            directions[at:stop] = dirs[start:k]
-            angles[stop] = v
-            directions[stop] = u
-            at, start = stop + 1, k
-        stop = at + n + 1 - start
-        angles[at:stop] = side[start:]
-        directions[at:stop] = dirs[start:]
-        angles[stop - 1] = math.pi
-        at = stop
-    return angles, directions, mu
+                angles += (side[start:k], (v,))
+                pieces += (dirs[start:k], (surface.direction1(k - 1, v - lo),))
+                start = k
+        angles += (side[start:n], (math.pi,))
+        pieces.append(dirs[start:])
+        if not mu:
+            mu = sum(map(len, angles))
+    return np.concatenate(angles), np.concatenate(pieces), mu
 
 
 def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> FoldedSheet:

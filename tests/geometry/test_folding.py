@@ -11,6 +11,7 @@ from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve, Sheet, fold, solve
+from onefold_cad.errors import NoSolutionError
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
 from tests.geometry import mp_reference as mp_ref
 from tests.geometry.folds import fold_or_none
@@ -310,6 +311,31 @@ def test_fold_results_agree_with_the_fold_map(frame: FrameCurve, sheet: Sheet) -
             np.testing.assert_allclose(folded.map_points(b2), b3, rtol=0, atol=1e-9 * scale)
             area = 0.5 * np.sum(b2[:, 0] * np.roll(b2[:, 1], -1) - b2[:, 1] * np.roll(b2[:, 0], -1))
             assert abs(area - sheet.area) <= 1e-9 * sheet.area
+
+
+@SETTINGS
+@given(frame=open_frames())
+def test_fan_crease_frames_and_vertex_directions_are_the_fans_slerp(frame: FrameCurve) -> None:
+    # fold takes the crease halves' frames and the vertex rays' directions one
+    # at a time in plain Python; PaperFan.frames evaluates the same slerp for
+    # many angles at once in numpy (a separate code path)
+    try:
+        surface = solve(frame, "paper").surface
+    except NoSolutionError:
+        assume(False)
+    total = surface.total_angle
+    (u0, e0), (u1, e1) = surface.crease_frames()
+    u, e = surface.frames(np.array([0.0, total]))
+    np.testing.assert_allclose([u0, u1], u, rtol=0, atol=1e-15)
+    np.testing.assert_allclose([e0, e1], e, rtol=0, atol=1e-12)
+    k = frame.divisions // 2
+    w = 0.3 * surface.gammas[k]
+    np.testing.assert_allclose(
+        surface.direction1(k, w),
+        surface.frames(np.array([surface.thetas[k] + w]))[0][0],
+        rtol=0,
+        atol=1e-15,
+    )
 
 
 def _rays(frame: FrameCurve, folded: object, theta: np.ndarray, size: float) -> np.ndarray:

@@ -22,6 +22,7 @@ from onefold_cad import (
     build_design,
 )
 from onefold_cad.design import relief_hole_problem
+from onefold_cad.geometry.frame import arc_geometry
 from onefold_cad.geometry.params import MAX_DESIGN_DIVISIONS, MAX_DIVISIONS, MIN_ANGLE_DEG
 from onefold_cad.geometry.validate import (
     MAX_LENGTH,
@@ -76,6 +77,17 @@ def test_good_frame_is_kept() -> None:
     assert f.half_chord == pytest.approx(100 * math.cos(math.radians(50)))
     with pytest.raises(InvalidParameterError, match="alpha"):
         f.with_changes(alpha=95)
+
+
+def test_a_changed_frame_solves_with_the_geometry_of_its_new_values() -> None:
+    # the frame keeps the geometry its validation computed: a copy with other
+    # values must not carry the old one (L+ = R cos(alpha) - h_c by hand)
+    f = FrameCurve(50, 45, 10, 100, 20).with_changes(alpha=60, h_c=-20, radius=50)
+    g = arc_geometry(f)
+    assert g.alpha == math.radians(60) and g.radius == 50
+    assert g.l_plus == pytest.approx((50 * 0.5 + 20) / 50, rel=1e-15)
+    assert g.l_minus == pytest.approx((50 * 0.5 - 20) / 50, rel=1e-15)
+    assert g.sin_beta == pytest.approx(math.sqrt(0.5), rel=1e-15)
 
 
 @pytest.mark.parametrize(
