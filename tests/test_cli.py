@@ -145,6 +145,22 @@ def test_solve_templates_and_help_import_no_cad_library(argv):
         assert "numpy" not in modules  # --help and templates need no numpy at all
 
 
+def test_solve_loads_none_of_the_writers_standard_modules():
+    """solve writes no file: the atomic writer's tempfile and shutil, the bend
+    sheet's csv and the derived names' hashlib (with OpenSSL, the slowest of
+    them) stay unloaded, and so does json for the text summary."""
+    code = (
+        "import io, contextlib, sys\n"
+        "from onefold_cad.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    rc = main(['solve', 'patkau-one-fold'])\n"
+        "print(rc, *sorted(m for m in ('tempfile', 'shutil', 'csv', 'hashlib', 'json')"
+        " if m in sys.modules))\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.stdout.split() == ["0"], proc.stderr
+
+
 def test_python_dash_m_is_the_same_command():
     proc = subprocess.run(
         [sys.executable, "-m", "onefold_cad", "templates"], capture_output=True, text=True
