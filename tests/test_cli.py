@@ -145,17 +145,19 @@ def test_solve_templates_and_help_import_no_cad_library(argv):
         assert "numpy" not in modules  # --help and templates need no numpy at all
 
 
-def test_solve_loads_none_of_the_writers_standard_modules():
+@pytest.mark.parametrize("template", ["patkau-one-fold", "table1-row4"])
+def test_solve_loads_none_of_the_writers_standard_modules(template):
     """solve writes no file: the atomic writer's tempfile and shutil, the bend
     sheet's csv and the derived names' hashlib (with OpenSSL, the slowest of
-    them) stay unloaded, and so does json for the text summary."""
+    them) stay unloaded, and so do json for the text summary and numpy.ma
+    (np.unique loads it: the core uses validate.sorted_unique)."""
     code = (
         "import io, contextlib, sys\n"
         "from onefold_cad.cli import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
-        "    rc = main(['solve', 'patkau-one-fold'])\n"
-        "print(rc, *sorted(m for m in ('tempfile', 'shutil', 'csv', 'hashlib', 'json')"
-        " if m in sys.modules))\n"
+        f"    rc = main(['solve', {template!r}])\n"
+        "unwanted = ('tempfile', 'shutil', 'csv', 'hashlib', 'json', 'numpy.ma')\n"
+        "print(rc, *sorted(m for m in unwanted if m in sys.modules))\n"
     )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert proc.stdout.split() == ["0"], proc.stderr

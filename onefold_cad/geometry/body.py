@@ -55,7 +55,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.frame import arc_points, arc_tangents
 from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth, mitre_planes, sheet_offsets
-from onefold_cad.geometry.validate import cross3
+from onefold_cad.geometry.validate import cross3, sorted_unique
 
 __all__ = ["Body", "Piece", "zoom_min", "BODIES"]
 
@@ -345,7 +345,7 @@ class Body:
             psi = np.where(a[1] + b[1] < 0.0, -ang, ang)
             ray = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
             along = np.clip((ray - a) @ (b - a) / length**2, 0.0, 1.0)
-            s_all = np.unique(np.concatenate([np.linspace(0.0, 1.0, n), along]))
+            s_all = sorted_unique(np.concatenate([np.linspace(0.0, 1.0, n), along]))
             q = a + s_all[:, None] * (b - a)
             flat_params.append((a, b))
             thetas.append(np.abs(np.arctan2(q[:, 1], q[:, 0])))  # the side's own flat angle
@@ -518,7 +518,7 @@ class Body:
             grade = 0.5 ** np.arange(3, 31)
             near = breaks[1] * grade
             far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
-            breaks = np.unique(np.concatenate([breaks, near, far]))
+            breaks = sorted_unique(np.concatenate([breaks, near, far]))
             if self.exact:
                 # the rule runs in the arc's phi (no inversion at every node):
                 # dtheta = |du/dphi| dphi, theta being u's arc length

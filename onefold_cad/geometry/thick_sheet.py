@@ -34,6 +34,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, SheetSurface
+from onefold_cad.geometry.validate import sorted_unique
 
 __all__ = [
     "SideMap",
@@ -290,7 +291,7 @@ def slab_volume(folded: FoldedSheet, material: Material, hole_diameter: float) -
 _GL8 = np.polynomial.legendre.leggauss(8)
 _GL2 = np.polynomial.legendre.leggauss(2)
 #: Panel ends within a piece between breaks (as fractions), graded to both ends.
-_PANELS = np.unique(
+_PANELS = sorted_unique(
     np.concatenate([[0.0, 1.0], np.geomspace(1e-9, 0.5, 12), 1.0 - np.geomspace(1e-9, 0.5, 12)])
 )
 
@@ -523,7 +524,7 @@ class Slab:
         at, where = np.unique(theta, return_inverse=True)
         u, _, n = self.frames(at)
         u, n = u[where], n[where]
-        for i in np.unique(label).tolist():
+        for i in sorted_unique(label).tolist():
             spec = specs[i]
             m = label == i
             t, um, nm = theta[m], u[m], n[m]
@@ -781,7 +782,7 @@ def _merge(
 #: towards both ends (the cuts at y = 0 lie within about t / (crease length)
 #: of the creases). The kinks themselves are left out: there a function may
 #: vanish exactly (the face s = 0 on a crease ruling) and its sign is noise.
-_GRID = np.unique(
+_GRID = sorted_unique(
     np.concatenate(
         [
             np.linspace(0.0, 1.0, 129)[1:-1],
