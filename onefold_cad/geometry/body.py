@@ -279,6 +279,7 @@ class Body:
                 )
         self.s_range = sheet_offsets(material) if material is not None else (0.0, 0.0)
         self._tol = 1e-12 * self.size
+        self._lowest: dict[tuple[int, float, float, bytes], tuple[float, Array]] = {}
         self.pieces: list[Piece] = []
         fixed: list[Array] = []
         if not self.exact:
@@ -490,10 +491,19 @@ class Body:
 
     def lowest(self, piece: int, lo: float, hi: float, g: Array) -> tuple[float, Array]:
         """The lowest point ``(3,)`` along ``g`` of piece ``piece`` for
-        parameters in [lo, hi], and its parameter."""
-        p = self.pieces[piece]
-        t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
-        return t, p.lowest(t, g)
+        parameters in [lo, hi], and its parameter.
+
+        Asked again for the same piece, bracket and direction (the ground
+        plane's last look at its features, then its lowest points, then the
+        bounds along it), it gives the first answer without zooming again."""
+        # by value (+ 0.0: a zero's sign changes no height it compares)
+        key = (piece, float(lo), float(hi), (np.asarray(g, dtype=float) + 0.0).tobytes())
+        known = self._lowest.get(key)
+        if known is None:
+            p = self.pieces[piece]
+            t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
+            known = self._lowest[key] = (t, p.lowest(t, g))
+        return known[0], known[1].copy()
 
     # -- mass -----------------------------------------------------------------
     @cached_property
@@ -562,7 +572,7 @@ class Body:
         cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
         cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
         out = np.zeros((len(theta), 4))
-        nodes, weights = np.polynomial.legendre.leggauss(3)  # exact: degree 4 in s
+        nodes, weights = _GL3  # exact: degree 4 in s
         for j in range(3):
             lo, half = cuts[:, j], 0.5 * (cuts[:, j + 1] - cuts[:, j])
             for x, w in zip(nodes, weights, strict=True):
@@ -590,8 +600,7 @@ class Body:
         length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
         depth = mitre_depth(side, self.s_range)
         m, c = mitre_planes(side, s1 - s0)[end]
-        xs, ws = np.polynomial.legendre.leggauss(8)
-        xd, wd = np.polynomial.legendre.leggauss(48)
+        (xs, ws), (xd, wd) = _GL8, _GL48
         vol = 0.0
         mom = np.zeros(3)
         for si, wsi in zip(s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0), strict=True):
@@ -623,6 +632,10 @@ class Body:
 
 
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(16)
+#: The rules of a slab's section in s and of a mitre block in s and d.
+_GL3 = np.polynomial.legendre.leggauss(3)
+_GL8 = np.polynomial.legendre.leggauss(8)
+_GL48 = np.polynomial.legendre.leggauss(48)
 #: Panels of the 16-point Gauss-Legendre rule per sector between vertex rays.
 _PANELS = 8
 

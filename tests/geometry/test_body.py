@@ -60,3 +60,28 @@ def test_arc_frames_are_the_cone_s(folded) -> None:
     h = 1e-5
     slope = (cone.theta_of_phi(phi + h) - cone.theta_of_phi(phi - h)) / (2 * h)
     np.testing.assert_allclose(speed, slope, rtol=1e-9)
+
+
+def test_lowest_asked_again_answers_the_same_without_zooming(folded, monkeypatch) -> None:
+    # a repeated (piece, bracket, direction) gives the first zoom's answer, a
+    # copy (callers keep and move their points); a new direction zooms anew
+    import onefold_cad.geometry.body as body_mod
+
+    body = Body(folded)
+    zooms = []
+    real = body_mod.zoom_min
+
+    def counting(f, lo, hi):
+        zooms.append((lo, hi))
+        return real(f, lo, hi)
+
+    monkeypatch.setattr(body_mod, "zoom_min", counting)
+    piece = body.pieces[0]
+    g = np.array([0.0, 0.3, -1.0]) / math.hypot(0.3, 1.0)
+    t1, p1 = body.lowest(0, piece.t0, piece.t1, g)
+    p1[:] = np.nan  # the caller's copy
+    t2, p2 = body.lowest(0, piece.t0, piece.t1, g * 1.0 + 0.0)
+    assert len(zooms) == 1 and t2 == t1 and np.all(np.isfinite(p2))
+    np.testing.assert_array_equal(p2, piece.lowest(t1, g))
+    body.lowest(0, piece.t0, piece.t1, -g)
+    assert len(zooms) == 2
