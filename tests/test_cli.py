@@ -860,3 +860,28 @@ def test_solve_and_build_warn_below_five_degrees_of_tipping_margin(tmp_path, sol
     default = solve_json()
     assert default["resting"]["tipping_margin_deg"] > 5.0
     assert not any("tipping margin" in w for w in default["warnings"])
+
+
+@pytest.mark.parametrize("as_process", [True, False])
+def test_only_the_program_freezes_the_garbage_collector(tmp_path, as_process):
+    """``onefold`` as its own process (main() without argv) moves what a
+    writer's library imported out of the collector's way and freezes the rest
+    at the end; main(argv), as other programs call it, leaves the collector
+    as it was. The files are the same either way."""
+    out = tmp_path / "out"
+    argv = ["build", "paper-square", "--formats", "png,json", "-o", str(out), "-q"]
+    call = "main()" if as_process else f"main({argv!r})"
+    code = (
+        "import gc, sys, io, contextlib\n"
+        f"sys.argv = ['onefold', *{argv!r}]\n"
+        "from onefold_cad import cli\n"
+        "seen = []\n"
+        "real = cli._freeze_imports\n"
+        "cli._freeze_imports = lambda done: (real(done), seen.append(gc.get_freeze_count()))\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    rc = cli.{call}\n"
+        "print(rc, bool(seen) and min(seen) > 0, gc.get_freeze_count() > 0)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.stdout.split() == ["0", str(as_process), str(as_process)], proc.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["paper-square-3d.png", "paper-square.json"]
