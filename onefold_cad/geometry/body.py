@@ -167,22 +167,25 @@ def _clipped_rectangle(
     ``cr r + cs s >= 0``: the four corners that satisfy it and the line's
     crossings with the four sides (NaN where absent)."""
     k = len(r0)
-    z = np.full((k, 8, 2), np.nan)
-    sa, sb = np.full(k, s0), np.full(k, s1)
-    corners = ((r0, sa), (r1, sa), (r1, sb), (r0, sb))
+    r = np.empty((k, 8))
+    s = np.empty((k, 8))
+    ok = np.empty((k, 8), dtype=bool)
+    r[:, 0], r[:, 1], r[:, 2], r[:, 3] = r0, r1, r1, r0  # the corners
+    s[:, :2], s[:, 2:4] = s0, s1
     slack = tol * np.hypot(cr, cs)
-    for j, (r, s) in enumerate(corners):
-        ok = cr * r + cs * s >= -slack
-        z[ok, j, 0], z[ok, j, 1] = r[ok], s[ok]
+    ok[:, :4] = cr[:, None] * r[:, :4] + cs[:, None] * s[:, :4] >= -slack[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
-        for j, s in enumerate((s0, s1)):  # sides s = s0, s1: r = -cs s / cr
-            r = -cs * s / cr
-            ok = (cr != 0.0) & (r >= r0) & (r <= r1)
-            z[ok, 4 + j, 0], z[ok, 4 + j, 1] = r[ok], s
-        for j, r in enumerate((r0, r1)):  # sides r = r0, r1: s = -cr r / cs
-            s = -cr * r / cs
-            ok = (cs != 0.0) & (s >= s0) & (s <= s1)
-            z[ok, 6 + j, 0], z[ok, 6 + j, 1] = r[ok], s[ok]
+        for j, sj in enumerate((s0, s1)):  # sides s = s0, s1: r = -cs s / cr
+            r[:, 4 + j] = rj = -cs * sj / cr
+            s[:, 4 + j] = sj
+            ok[:, 4 + j] = (cr != 0.0) & (rj >= r0) & (rj <= r1)
+        for j, rj in enumerate((r0, r1)):  # sides r = r0, r1: s = -cr r / cs
+            s[:, 6 + j] = sj = -cr * rj / cs
+            r[:, 6 + j] = rj
+            ok[:, 6 + j] = (cs != 0.0) & (sj >= s0) & (sj <= s1)
+    z = np.full((k, 8, 2), np.nan)
+    z[ok, 0] = r[ok]
+    z[ok, 1] = s[ok]
     return z
 
 

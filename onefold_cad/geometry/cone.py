@@ -390,7 +390,8 @@ class ExactCone(DirectionSurface):
         g = self.geometry
         j = hf.edges.searchsorted(s, side="right")
         j -= 1
-        np.clip(j, 0, len(hf.half) - 1, out=j)
+        np.maximum(j, 0, out=j)  # np.clip's work without its Python wrapper
+        np.minimum(j, len(hf.half) - 1, out=j)
         a = hf.edges.take(j)
         half = 0.5 * (s - a)
         pts = np.empty((len(s), 21))
@@ -498,11 +499,13 @@ class ExactCone(DirectionSurface):
         p0, p1 = arc_range(self.frame)
         sp = ph - p0
         plus = sp <= 0.5 * g.span
+        if plus.all():  # one half (as a zoom's bracket mostly is): no masks
+            return self._theta_half(0, np.maximum(sp, 0.0))[0]
         out = np.empty(len(ph))
         if plus.any():
-            out[plus] = self._theta_half(0, np.clip(sp[plus], 0.0, None))[0]
+            out[plus] = self._theta_half(0, np.maximum(sp[plus], 0.0))[0]
         if (~plus).any():
-            sm = np.clip(p1 - ph[~plus], 0.0, None)
+            sm = np.maximum(p1 - ph[~plus], 0.0)
             out[~plus] = self.total_angle - self._theta_half(1, sm)[0]
         return out
 
