@@ -26,7 +26,7 @@ from onefold_cad.geometry.params import FrameCurve, Model, check_design_division
 from onefold_cad.geometry.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.sheet import Sheet, boundary_distance
 from onefold_cad.geometry.solver import solve
-from onefold_cad.geometry.thick_sheet import min_relief_hole
+from onefold_cad.geometry.thick_sheet import min_relief_hole, sheet_offsets
 from onefold_cad.geometry.validate import check_magnitudes
 
 __all__ = [
@@ -177,9 +177,10 @@ def solid_min_relief_hole(folded: FoldedSheet, material: Material) -> float:
         InvalidParameterError: as ``min_relief_hole`` (e.g. a flat fold has
             no mitre; 'model' for the paper model).
     """
-    return _once_per_fold(
-        folded, ("min_hole", material), lambda: float(min_relief_hole(folded, material))
-    )
+    # it depends on the material only through its faces' offsets (not on the
+    # relief hole, which the callers may or may not have resolved yet)
+    key = ("min_hole", sheet_offsets(material))
+    return _once_per_fold(folded, key, lambda: float(min_relief_hole(folded, material)))
 
 
 def resting_placement(

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import copy
-import hashlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -283,7 +282,7 @@ def derived_name(base: str, flags: dict[str, Any]) -> str:
         if v is None:
             continue
         if f.dest == "polygon":
-            digest = hashlib.sha1(str(_parse_polygon(v)).encode()).hexdigest()[:6]
+            digest = _sha1(str(_parse_polygon(v)))[:6]
             parts.append(f"polygon{len(_parse_polygon(v))}-{digest}")
         elif f.dest == "rectangle":
             w, h = _parse_rectangle(v)
@@ -294,8 +293,16 @@ def derived_name(base: str, flags: dict[str, Any]) -> str:
             parts.append(f"{_SHORT.get(f.dest, f.dest)}{v:g}")
     name = "".join(c for c in "-".join(parts) if c.isalnum() or c in "._-")
     if len(name) > 64:
-        name = f"{name[:55]}-{hashlib.sha1(name.encode()).hexdigest()[:8]}"
+        name = f"{name[:55]}-{_sha1(name)[:8]}"
     return name
+
+
+def _sha1(text: str) -> str:
+    """The SHA-1 hex digest of ``text`` (hashlib, with OpenSSL, imported only
+    when a name needs it: it costs solve more than the rest of this module)."""
+    import hashlib
+
+    return hashlib.sha1(text.encode()).hexdigest()
 
 
 def _at(data: Any, key: str) -> Any:

@@ -145,6 +145,24 @@ def test_solve_templates_and_help_import_no_cad_library(argv):
         assert "numpy" not in modules  # --help and templates need no numpy at all
 
 
+@pytest.mark.parametrize("template", ["patkau-one-fold", "table1-row4"])
+def test_solve_loads_none_of_the_writers_standard_modules(template):
+    """solve writes no file: the atomic writer's tempfile and shutil, the bend
+    sheet's csv and the derived names' hashlib (with OpenSSL, the slowest of
+    them) stay unloaded, and so do json for the text summary and numpy.ma
+    (np.unique loads it: the core uses validate.sorted_unique)."""
+    code = (
+        "import io, contextlib, sys\n"
+        "from onefold_cad.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    rc = main(['solve', {template!r}])\n"
+        "unwanted = ('tempfile', 'shutil', 'csv', 'hashlib', 'json', 'numpy.ma')\n"
+        "print(rc, *sorted(m for m in unwanted if m in sys.modules))\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.stdout.split() == ["0"], proc.stderr
+
+
 def test_python_dash_m_is_the_same_command():
     proc = subprocess.run(
         [sys.executable, "-m", "onefold_cad", "templates"], capture_output=True, text=True
@@ -842,3 +860,28 @@ def test_solve_and_build_warn_below_five_degrees_of_tipping_margin(tmp_path, sol
     default = solve_json()
     assert default["resting"]["tipping_margin_deg"] > 5.0
     assert not any("tipping margin" in w for w in default["warnings"])
+
+
+@pytest.mark.parametrize("as_process", [True, False])
+def test_only_the_program_freezes_the_garbage_collector(tmp_path, as_process):
+    """``onefold`` as its own process (main() without argv) moves what a
+    writer's library imported out of the collector's way and freezes the rest
+    at the end; main(argv), as other programs call it, leaves the collector
+    as it was. The files are the same either way."""
+    out = tmp_path / "out"
+    argv = ["build", "paper-square", "--formats", "png,json", "-o", str(out), "-q"]
+    call = "main()" if as_process else f"main({argv!r})"
+    code = (
+        "import gc, sys, io, contextlib\n"
+        f"sys.argv = ['onefold', *{argv!r}]\n"
+        "from onefold_cad import cli\n"
+        "seen = []\n"
+        "real = cli._freeze_imports\n"
+        "cli._freeze_imports = lambda done: (real(done), seen.append(gc.get_freeze_count()))\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    rc = cli.{call}\n"
+        "print(rc, bool(seen) and min(seen) > 0, gc.get_freeze_count() > 0)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.stdout.split() == ["0", str(as_process), str(as_process)], proc.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["paper-square-3d.png", "paper-square.json"]

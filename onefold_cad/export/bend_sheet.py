@@ -12,7 +12,6 @@ Lengths are in the design's unit, angles in degrees, points in the blank's
 
 from __future__ import annotations
 
-import csv
 import io
 import math
 import os
@@ -21,8 +20,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-
-from onefold_cad.export.atomic import atomic_output
 
 if TYPE_CHECKING:
     from onefold_cad.design import Design
@@ -183,6 +180,8 @@ def bend_table(pattern: FlatPattern, *, rulings: bool = True) -> str:
 
 def bend_csv(pattern: FlatPattern) -> str:
     """The bend sheet as CSV text: a header row, then one row per crease half."""
+    import csv  # csv and the atomic writer: not for the notes' bend table (solve)
+
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow([f.name for f in fields(BendRow)])
@@ -211,6 +210,7 @@ def write_bend_csv(
         The path written.
     """
     from onefold_cad.design import Design, build_design
+    from onefold_cad.export.atomic import atomic_output
     from onefold_cad.export.flat_pattern import flat_pattern
 
     if isinstance(source, Design):

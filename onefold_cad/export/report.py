@@ -13,7 +13,6 @@ imported when a report is made.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Iterable, Mapping
@@ -38,7 +37,6 @@ from onefold_cad.errors import (
     NoSolutionError,
     OneFoldError,
 )
-from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.placement import stability_warnings
@@ -359,6 +357,8 @@ def check_finite(report: Mapping[str, Any], where: str = "") -> None:
 
 def report_json(report: Mapping[str, Any]) -> str:
     """The report as indented JSON text, after :func:`check_finite`."""
+    import json  # here: solve's text summary needs none
+
     check_finite(report)
     return json.dumps(report, indent=2, allow_nan=False) + "\n"
 
@@ -371,6 +371,8 @@ def write_report(path: str | os.PathLike[str], report: Mapping[str, Any]) -> Pat
             or another value JSON cannot hold, or the file could not be
             written.
     """
+    from onefold_cad.export.atomic import atomic_output  # tempfile: not for solve
+
     out = Path(path)
     try:
         text = report_json(report)

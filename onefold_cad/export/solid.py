@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import time
 from collections import defaultdict
+from collections.abc import Callable
 
 import build123d as bd
 import numpy as np
@@ -104,7 +105,8 @@ def fit_curve(
     nodes spread evenly along its length and exactly at ``nodes`` (where other
     curves end on it); an interval whose worst point of
     :data:`~onefold_cad.export.brep.PROBES` (fractions of its length) deviates
-    by more than ``tol`` (length) is split there until none does.
+    by more than ``tol`` (length) is split there until none does. Each theta
+    is evaluated once (:class:`_Samples`).
 
     Returns:
         ``(curve, deviation reached)``.
@@ -112,6 +114,7 @@ def fit_curve(
     Raises:
         ExportError: the tolerance needs more than 4000 nodes.
     """
+    fn = _Samples(fn)
     dense = a + (b - a) * _DENSE
     dense[-1] = b
     pts = fn(dense)
@@ -142,6 +145,33 @@ def fit_curve(
                 f"{what} misses the tolerance {tol:.3g} (by {worst:.3g}) with {len(t)} points"
             )
         t = np.sort(np.concatenate([t, new]))
+
+
+class _Samples:
+    """``fn(theta)`` ``(k, 3)`` that evaluates each theta once: the points it
+    gave are kept by parameter (a fit reads its nodes again, which were
+    probes before, and the probes of the intervals it did not split)."""
+
+    def __init__(self, fn: Callable[[Array], Array]) -> None:
+        self.fn = fn
+        self.t = np.empty(0)  # sorted
+        self.points = np.empty((0, 3))
+
+    def __call__(self, t: Array) -> Array:
+        t = np.asarray(t, dtype=float)
+        out = np.empty((len(t), 3))
+        known = np.zeros(len(t), dtype=bool)
+        if len(self.t):
+            i = np.minimum(np.searchsorted(self.t, t), len(self.t) - 1)
+            known = self.t[i] == t
+            out[known] = self.points[i[known]]
+        if not known.all():
+            fresh = t[~known]
+            out[~known] = got = self.fn(fresh)
+            order = np.argsort(np.concatenate([self.t, fresh]), kind="stable")
+            self.t = np.concatenate([self.t, fresh])[order]
+            self.points = np.concatenate([self.points, got])[order]
+        return out
 
 
 class _Vertices:

@@ -55,7 +55,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.frame import arc_points, arc_tangents
 from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth, mitre_planes, sheet_offsets
-from onefold_cad.geometry.validate import cross3
+from onefold_cad.geometry.validate import cross3, sorted_unique
 
 __all__ = ["Body", "Piece", "zoom_min", "BODIES"]
 
@@ -167,22 +167,25 @@ def _clipped_rectangle(
     ``cr r + cs s >= 0``: the four corners that satisfy it and the line's
     crossings with the four sides (NaN where absent)."""
     k = len(r0)
-    z = np.full((k, 8, 2), np.nan)
-    sa, sb = np.full(k, s0), np.full(k, s1)
-    corners = ((r0, sa), (r1, sa), (r1, sb), (r0, sb))
+    r = np.empty((k, 8))
+    s = np.empty((k, 8))
+    ok = np.empty((k, 8), dtype=bool)
+    r[:, 0], r[:, 1], r[:, 2], r[:, 3] = r0, r1, r1, r0  # the corners
+    s[:, :2], s[:, 2:4] = s0, s1
     slack = tol * np.hypot(cr, cs)
-    for j, (r, s) in enumerate(corners):
-        ok = cr * r + cs * s >= -slack
-        z[ok, j, 0], z[ok, j, 1] = r[ok], s[ok]
+    ok[:, :4] = cr[:, None] * r[:, :4] + cs[:, None] * s[:, :4] >= -slack[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
-        for j, s in enumerate((s0, s1)):  # sides s = s0, s1: r = -cs s / cr
-            r = -cs * s / cr
-            ok = (cr != 0.0) & (r >= r0) & (r <= r1)
-            z[ok, 4 + j, 0], z[ok, 4 + j, 1] = r[ok], s
-        for j, r in enumerate((r0, r1)):  # sides r = r0, r1: s = -cr r / cs
-            s = -cr * r / cs
-            ok = (cs != 0.0) & (s >= s0) & (s <= s1)
-            z[ok, 6 + j, 0], z[ok, 6 + j, 1] = r[ok], s[ok]
+        for j, sj in enumerate((s0, s1)):  # sides s = s0, s1: r = -cs s / cr
+            r[:, 4 + j] = rj = -cs * sj / cr
+            s[:, 4 + j] = sj
+            ok[:, 4 + j] = (cr != 0.0) & (rj >= r0) & (rj <= r1)
+        for j, rj in enumerate((r0, r1)):  # sides r = r0, r1: s = -cr r / cs
+            s[:, 6 + j] = sj = -cr * rj / cs
+            r[:, 6 + j] = rj
+            ok[:, 6 + j] = (cs != 0.0) & (sj >= s0) & (sj <= s1)
+    z = np.full((k, 8, 2), np.nan)
+    z[ok, 0] = r[ok]
+    z[ok, 1] = s[ok]
     return z
 
 
@@ -279,6 +282,7 @@ class Body:
                 )
         self.s_range = sheet_offsets(material) if material is not None else (0.0, 0.0)
         self._tol = 1e-12 * self.size
+        self._lowest: dict[tuple[int, float, float, bytes], tuple[float, Array]] = {}
         self.pieces: list[Piece] = []
         fixed: list[Array] = []
         if not self.exact:
@@ -345,7 +349,7 @@ class Body:
             psi = np.where(a[1] + b[1] < 0.0, -ang, ang)
             ray = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
             along = np.clip((ray - a) @ (b - a) / length**2, 0.0, 1.0)
-            s_all = np.unique(np.concatenate([np.linspace(0.0, 1.0, n), along]))
+            s_all = sorted_unique(np.concatenate([np.linspace(0.0, 1.0, n), along]))
             q = a + s_all[:, None] * (b - a)
             flat_params.append((a, b))
             thetas.append(np.abs(np.arctan2(q[:, 1], q[:, 0])))  # the side's own flat angle
@@ -490,10 +494,19 @@ class Body:
 
     def lowest(self, piece: int, lo: float, hi: float, g: Array) -> tuple[float, Array]:
         """The lowest point ``(3,)`` along ``g`` of piece ``piece`` for
-        parameters in [lo, hi], and its parameter."""
-        p = self.pieces[piece]
-        t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
-        return t, p.lowest(t, g)
+        parameters in [lo, hi], and its parameter.
+
+        Asked again for the same piece, bracket and direction (the ground
+        plane's last look at its features, then its lowest points, then the
+        bounds along it), it gives the first answer without zooming again."""
+        # by value (+ 0.0: a zero's sign changes no height it compares)
+        key = (piece, float(lo), float(hi), (np.asarray(g, dtype=float) + 0.0).tobytes())
+        known = self._lowest.get(key)
+        if known is None:
+            p = self.pieces[piece]
+            t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
+            known = self._lowest[key] = (t, p.lowest(t, g))
+        return known[0], known[1].copy()
 
     # -- mass -----------------------------------------------------------------
     @cached_property
@@ -518,7 +531,7 @@ class Body:
             grade = 0.5 ** np.arange(3, 31)
             near = breaks[1] * grade
             far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
-            breaks = np.unique(np.concatenate([breaks, near, far]))
+            breaks = sorted_unique(np.concatenate([breaks, near, far]))
             if self.exact:
                 # the rule runs in the arc's phi (no inversion at every node):
                 # dtheta = |du/dphi| dphi, theta being u's arc length
@@ -562,7 +575,7 @@ class Body:
         cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
         cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
         out = np.zeros((len(theta), 4))
-        nodes, weights = np.polynomial.legendre.leggauss(3)  # exact: degree 4 in s
+        nodes, weights = _GL3  # exact: degree 4 in s
         for j in range(3):
             lo, half = cuts[:, j], 0.5 * (cuts[:, j + 1] - cuts[:, j])
             for x, w in zip(nodes, weights, strict=True):
@@ -590,8 +603,7 @@ class Body:
         length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
         depth = mitre_depth(side, self.s_range)
         m, c = mitre_planes(side, s1 - s0)[end]
-        xs, ws = np.polynomial.legendre.leggauss(8)
-        xd, wd = np.polynomial.legendre.leggauss(48)
+        (xs, ws), (xd, wd) = _GL8, _GL48
         vol = 0.0
         mom = np.zeros(3)
         for si, wsi in zip(s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0), strict=True):
@@ -623,6 +635,10 @@ class Body:
 
 
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(16)
+#: The rules of a slab's section in s and of a mitre block in s and d.
+_GL3 = np.polynomial.legendre.leggauss(3)
+_GL8 = np.polynomial.legendre.leggauss(8)
+_GL48 = np.polynomial.legendre.leggauss(48)
 #: Panels of the 16-point Gauss-Legendre rule per sector between vertex rays.
 _PANELS = 8
 

@@ -216,7 +216,7 @@ class ExactCone(DirectionSurface):
         self._theta_lo: tuple[Array, Array] | None = None  # per half: theta at panel starts
         self._speed_at: tuple[Array, Array] | None = None  # per half: |u'| at the nodes
         self._half_total: tuple[float, float] = (0.0, 0.0)
-        self._tables: tuple[tuple[Array, Array], tuple[Array, Array]] | None = None
+        self._tables: tuple[tuple[Array, Array, Array], tuple[Array, Array, Array]] | None = None
         self._verified: tuple[float, float] | None = None
 
     # -- the quadrature rule ---------------------------------------------------
@@ -390,7 +390,8 @@ class ExactCone(DirectionSurface):
         g = self.geometry
         j = hf.edges.searchsorted(s, side="right")
         j -= 1
-        np.clip(j, 0, len(hf.half) - 1, out=j)
+        np.maximum(j, 0, out=j)  # np.clip's work without its Python wrapper
+        np.minimum(j, len(hf.half) - 1, out=j)
         a = hf.edges.take(j)
         half = 0.5 * (s - a)
         pts = np.empty((len(s), 21))
@@ -407,12 +408,14 @@ class ExactCone(DirectionSurface):
         theta = self._theta_lo[k].take(j) + half * (speed[:, :20] @ _GL_WEIGHTS)
         return theta, speed[:, 20]
 
-    def _node_table(self, k: int) -> tuple[Array, Array]:
-        """theta from half k's end and s, ascending, at the end, every node and
-        the midpoint (for first guesses of the inverse)."""
+    def _node_table(self, k: int) -> tuple[Array, Array, Array]:
+        """theta from half k's end, s and |u'| = d theta / d s, ascending in s,
+        at the end, every node and the midpoint (for first guesses of the
+        inverse)."""
         if self._tables is None:
             assert self._apex_rule is not None and self._speed_at is not None
-            assert self._theta_lo is not None
+            assert self._theta_lo is not None and self.height is not None
+            g = self.geometry
             out = []
             for hf, sp, lo in zip(self._apex_rule, self._speed_at, self._theta_lo, strict=True):
                 per = sp.reshape(len(hf.half), -1)
@@ -421,31 +424,59 @@ class ExactCone(DirectionSurface):
                 nodes += lo[:-1, None]
                 th = np.concatenate(((0.0,), nodes.ravel(), lo[-1:]))
                 s = np.concatenate(((0.0,), hf.s.ravel(), hf.edges[-1:]))
-                out.append((th, s))
+                x, d = end_relative(g, s[[0, -1]], hf.plus)  # |u'| at the ends
+                ang = s[[0, -1]] - g.alpha
+                cphi = np.cos(ang) if hf.plus else -np.cos(ang)
+                at_ends = _speed_at(g, x, d, cphi, np.sin(ang), self.height / g.radius)
+                speed = np.concatenate((at_ends[:1], sp, at_ends[1:]))
+                out.append((th, s, speed))
             self._tables = (out[0], out[1])
         return self._tables[k]
 
     def _s_of_theta(self, k: int, theta: Array) -> Array:
-        """Distances s from half k's end at which theta (from that end) is reached."""
-        th_tab, s_tab = self._node_table(k)
+        """Distances s from half k's end at which theta (from that end) is reached.
+
+        Each angle is iterated until its own Newton step is small, so its s
+        does not depend on which other angles share the call (up to the
+        rounding of the vectorised sums): one call over many angles gives
+        what one call per angle gives."""
+        th_tab, s_tab, sp_tab = self._node_table(k)
         j = th_tab.searchsorted(theta, side="right")
         j -= 1
         np.clip(j, 0, len(th_tab) - 2, out=j)
         t0, t1 = th_tab.take(j), th_tab.take(j + 1)
         s0, s1 = s_tab.take(j), s_tab.take(j + 1)
+        # the first guess: cubic Hermite interpolation of s(theta) between
+        # the table's points (slopes d s / d theta = 1 / |u'|), kept between them
+        dt, ds = t1 - t0, s1 - s0
+        sp0, sp1 = sp_tab.take(j), sp_tab.take(j + 1)
         with np.errstate(invalid="ignore", divide="ignore"):
-            frac = np.where(t1 > t0, (theta - t0) / (t1 - t0), 0.0)
-        s = s0 + frac * (s1 - s0)
+            x = np.where(dt > 0.0, (theta - t0) / dt, 0.0)
+            m0, m1 = dt / sp0, dt / sp1
+            # |u''| / |u'| across the table's interval
+            bend = np.where(ds > 0.0, np.abs(sp1 - sp0) / (ds * np.minimum(sp0, sp1)), 0.0)
+        x2 = x * x
+        h01 = x2 * (3.0 - 2.0 * x)
+        s = s0 + h01 * ds + (x2 * x - 2.0 * x2 + x) * m0 + (x2 * x - x2) * m1
+        s = np.where(np.isfinite(s), s, s0 + x * ds)
+        np.clip(s, s0, s1, out=s)
         top = float(s_tab[-1])
+        todo = np.arange(len(s))  # the angles still iterating
+        sa, ta = s, theta
         for _ in range(30):
-            f, speed = self._theta_half(k, s)
-            step = (f - theta) / speed
-            s -= step
-            np.clip(s, 0.0, top, out=s)
-            # Newton leaves an error of about step^2 |u''| / (2 |u'|), and
-            # |u''| / |u'| is at most about 1 / s near an end
-            if bool((np.abs(step) <= 1e-8 * s).all()):
+            f, speed = self._theta_half(k, sa)
+            step = (f - ta) / speed
+            sa -= step
+            np.clip(sa, 0.0, top, out=sa)
+            s[todo] = sa
+            # Newton leaves an error of about step^2 |u''| / (2 |u'|): stop
+            # when that is below a rounding error of s, for |u''| / |u'| as
+            # the table gives it (bend) and as large as 1 / s (near an end)
+            step *= step
+            going = (step > 1e-16 * sa * sa) | (bend * step > _EPS * sa)
+            if not going.any():
                 break
+            todo, sa, ta, bend = todo[going], sa[going], ta[going], bend[going]
         return s
 
     def _split(self, theta: ArrayLike) -> tuple[Array, NDArray[np.bool_], Array]:
@@ -468,11 +499,13 @@ class ExactCone(DirectionSurface):
         p0, p1 = arc_range(self.frame)
         sp = ph - p0
         plus = sp <= 0.5 * g.span
+        if plus.all():  # one half (as a zoom's bracket mostly is): no masks
+            return self._theta_half(0, np.maximum(sp, 0.0))[0]
         out = np.empty(len(ph))
         if plus.any():
-            out[plus] = self._theta_half(0, np.clip(sp[plus], 0.0, None))[0]
+            out[plus] = self._theta_half(0, np.maximum(sp[plus], 0.0))[0]
         if (~plus).any():
-            sm = np.clip(p1 - ph[~plus], 0.0, None)
+            sm = np.maximum(p1 - ph[~plus], 0.0)
             out[~plus] = self.total_angle - self._theta_half(1, sm)[0]
         return out
 

@@ -22,7 +22,7 @@ from onefold_cad.geometry.cone import ExactCone, PaperFan
 from onefold_cad.geometry.frame import arc_range
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import Solution
-from onefold_cad.geometry.validate import cross3
+from onefold_cad.geometry.validate import cross3, sorted_unique
 
 if TYPE_CHECKING:  # placement builds on this module
     from onefold_cad.geometry.placement import RestingPlacement
@@ -238,7 +238,9 @@ class FoldedSheet:
         faces: list[NDArray[np.int64]] = []
         base = 1
         for side, vertex_theta in enumerate(self.ruling_angles):
-            theta = np.unique(np.concatenate([np.linspace(0.0, total, angular + 1), vertex_theta]))
+            theta = sorted_unique(
+                np.concatenate([np.linspace(0.0, total, angular + 1), vertex_theta])
+            )
             psi = theta if side == 0 else -theta
             rho = self.sheet.ray_lengths(psi)
             s = np.arange(1, radial + 1) / radial
@@ -367,7 +369,7 @@ def _edge_pieces(a: Array, b: Array, rays: Array | None = None) -> Array:
         if 0.0 < t < 1.0 and (a[0] + t * d[0]) * c + (a[1] + t * d[1]) * s > 0.0:
             marks.append(t)
             _graded(marks, t, 0.0)
-    m = np.unique(np.clip(marks, 0.0, 1.0))
+    m = sorted_unique(np.clip(marks, 0.0, 1.0))
     return m[np.concatenate([[True], np.diff(m) > 1e-15])]
 
 

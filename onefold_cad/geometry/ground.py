@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from onefold_cad.geometry.body import Body
 from onefold_cad.geometry.hull import convex_hull_2d, edge_distances, polygon_area
-from onefold_cad.geometry.validate import cross3
+from onefold_cad.geometry.validate import cross3, sorted_unique
 
 __all__ = [
     "CONTACT_TOLERANCE",
@@ -233,9 +233,9 @@ def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Featu
     """Group the sampled contacts ``on``: neighbouring samples of one piece are one."""
     owner, param = samples.owner[on], samples.param[on]
     out = [_Feature(-1, 0.0, 0.0, samples.points[i].copy()) for i in on[owner < 0]]
-    for k in np.unique(owner[owner >= 0]):
+    for k in sorted_unique(owner[owner >= 0]):
         piece = body.pieces[int(k)]
-        ts = np.unique(param[owner == k])
+        ts = sorted_unique(param[owner == k])
         idx = np.searchsorted(piece.grid, ts)
         for grp in np.split(ts, np.flatnonzero(np.diff(idx) > 2) + 1):
             lo, hi = piece.bracket(float(grp[0]), float(grp[-1]))
@@ -480,7 +480,7 @@ def lowest_points(
     near = np.zeros(len(h), dtype=bool)
     if len(reach):  # the paper shell without a hole has fixed points only
         near[~fixed] = h[~fixed] <= floor + reach[samples.owner[~fixed]]
-    for k in np.unique(samples.owner[near]):
+    for k in sorted_unique(samples.owner[near]):
         piece = body.pieces[int(k)]
         corners = body.sections[int(k)]
         hk = np.where(np.isnan(corners[..., 0]), np.inf, corners @ g).min(axis=1)

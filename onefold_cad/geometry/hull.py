@@ -12,6 +12,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from onefold_cad.geometry.validate import sorted_unique
+
 __all__ = ["convex_hull_2d", "polygon_area", "edge_distances"]
 
 Array = NDArray[np.float64]
@@ -74,7 +76,7 @@ def _outside_octagon(p: Array) -> NDArray[np.int64]:
     if len(p) < 64:
         return np.arange(len(p))
     proj = np.column_stack([p[:, 0], p[:, 0] + p[:, 1], p[:, 1], p[:, 1] - p[:, 0]])
-    ext = np.unique(np.concatenate([proj.argmin(axis=0), proj.argmax(axis=0)]))
+    ext = sorted_unique(np.concatenate([proj.argmin(axis=0), proj.argmax(axis=0)]))
     sub = convex_hull_2d(p[ext])
     if len(sub) < 3:
         return np.arange(len(p))

@@ -24,6 +24,7 @@ from onefold_cad.geometry.validate import (
     float_errors,
     length,
     positive,
+    sorted_unique,
 )
 
 __all__ = ["MAX_VERTICES", "MIN_FEATURE", "Placement2D", "Sheet"]
@@ -513,7 +514,10 @@ class Sheet:
         upper = np.concatenate([a[: k + 1], [math.pi]])
         lower = np.concatenate([[0.0], _TWO_PI - a[k:]])
         upper[0] = lower[0] = 0.0
-        out = np.unique(np.clip(upper, 0.0, math.pi)), np.unique(np.clip(lower, 0.0, math.pi))
+        out = (
+            sorted_unique(np.clip(upper, 0.0, math.pi)),
+            sorted_unique(np.clip(lower, 0.0, math.pi)),
+        )
         for side in out:
             side.setflags(write=False)
         return out

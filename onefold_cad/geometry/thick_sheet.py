@@ -34,6 +34,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, SheetSurface
+from onefold_cad.geometry.validate import sorted_unique
 
 __all__ = [
     "SideMap",
@@ -127,6 +128,12 @@ class SideMap:
     def points(self, theta: Array, r: Array, s: float | Array) -> Array:
         """F(theta, r, s) ``(k, 3)`` (``s`` one offset, or one per angle)."""
         u, _, n = self.frames(theta)
+        return self.place(u, n, r, s)
+
+    def place(self, u: Array, n: Array, r: Array, s: float | Array) -> Array:
+        """F = A + r u + s n ``(k, 3)`` from the frames ``u``, ``n`` ``(k, 3)``
+        of :meth:`frames` at the angles in question (``s`` one offset, or one
+        per angle)."""
         s = np.asarray(s, dtype=float)
         rr = np.asarray(r, dtype=float)[:, None]
         return self.apex + rr * u + (s[:, None] if s.ndim else s) * n
@@ -140,14 +147,20 @@ class SideMap:
         """k(theta) = -(dn/dtheta) . e: the cone's normal curvature across the
         ruling at distance r from A is k / r (dimensionless k); 0 on the flat
         continuation past the creases."""
+        return self.frames_and_curvature(theta)[3]
+
+    def frames_and_curvature(self, theta: Array) -> tuple[Array, Array, Array, Array]:
+        """u, e, n ``(k, 3)`` (:meth:`frames`) and k ``(k,)`` (:meth:`curvature`)
+        at flat angles ``theta`` (radians), from one evaluation of the frames."""
         t = np.atleast_1d(np.asarray(theta, dtype=float))
         h = 1e-6
         lo, hi = np.clip(t - h, 0.0, self.total), np.clip(t + h, 0.0, self.total)
-        _, e, _ = self.frames(t)
+        m = len(t)
+        u, e, n = self.frames(np.concatenate([t, lo, hi]))
         span = np.where(hi > lo, hi - lo, 1.0)[:, None]
-        k = -np.einsum("ij,ij->i", (self.frames(hi)[2] - self.frames(lo)[2]) / span, e)
+        k = -np.einsum("ij,ij->i", (n[2 * m :] - n[m : 2 * m]) / span, e[:m])
         k[(t < 0.0) | (t > self.total)] = 0.0
-        return k
+        return u[:m], e[:m], n[:m], k
 
 
 def mitre_depth(side: SideMap, s_range: tuple[float, float]) -> float:
@@ -249,9 +262,10 @@ def sheet_offsets(material: Material) -> tuple[float, float]:
 
 def min_relief_hole(folded: FoldedSheet, material: Material) -> float:
     """The smallest relief hole diameter (length) for a solid of the material's
-    thickness on this fold: :func:`min_hole_diameter` over both sides."""
-    s_range = sheet_offsets(material)
-    return max(min_hole_diameter(SideMap(folded, lower=lower), s_range) for lower in (False, True))
+    thickness on this fold: :func:`min_hole_diameter`, which is the same for
+    both sides (the -y side's map is the +y side's mirror image: its
+    curvature and crease frames, all that it reads, are the +y side's)."""
+    return min_hole_diameter(SideMap(folded), sheet_offsets(material))
 
 
 def slab_volume(folded: FoldedSheet, material: Material, hole_diameter: float) -> float:
@@ -277,7 +291,7 @@ def slab_volume(folded: FoldedSheet, material: Material, hole_diameter: float) -
 _GL8 = np.polynomial.legendre.leggauss(8)
 _GL2 = np.polynomial.legendre.leggauss(2)
 #: Panel ends within a piece between breaks (as fractions), graded to both ends.
-_PANELS = np.unique(
+_PANELS = sorted_unique(
     np.concatenate([[0.0, 1.0], np.geomspace(1e-9, 0.5, 12), 1.0 - np.geomspace(1e-9, 0.5, 12)])
 )
 
@@ -430,8 +444,12 @@ class Slab:
     def coefficients(self, plane: str, theta: Array) -> tuple[Array, Array, float]:
         """``(alpha, beta, gamma)``: the plane's equation on the ruling at
         theta is ``alpha r + beta s + gamma >= 0``."""
-        w, c = self.planes[plane]
         u, _, n = self.frames(theta)
+        return self.plane_terms(plane, u, n)
+
+    def plane_terms(self, plane: str, u: Array, n: Array) -> tuple[Array, Array, float]:
+        """:meth:`coefficients` from the frames ``u``, ``n`` ``(k, 3)`` at the angles."""
+        w, c = self.planes[plane]
         return u @ w, n @ w, -c
 
     def inner_radius(self, theta: Array, region: int | None = None) -> Array:
@@ -467,7 +485,12 @@ class Slab:
 
     def points(self, side: int, theta: Array, r: Array, s: float | Array) -> Array:
         """F(theta, r, s) in the fold frame on ``side`` (the -y side mirrored), ``(k, 3)``."""
-        p = self.sides[0].points(theta, r, s)
+        u, _, n = self.frames(theta)
+        return self._place(side, u, n, r, s)
+
+    def _place(self, side: int, u: Array, n: Array, r: Array, s: float | Array) -> Array:
+        """:meth:`points` from the +y side's frames ``u``, ``n`` at the angles."""
+        p = self.sides[0].place(u, n, r, s)
         if side == 1:
             p[:, 1] *= -1.0
         return p
@@ -478,16 +501,17 @@ class Slab:
         t = np.atleast_1d(np.asarray(theta, dtype=float))
         own = side if b.side < 0 else b.side
         where = self.region(t)
+        u, _, n = self.frames(t)
         if b.kind == "C":
             r = self.radius(b.radius, own, t, where)
-            return self.points(own, t, r, self.s_range[b.level])
-        alpha, beta, gamma = self.coefficients(b.plane, t)
+            return self._place(own, u, n, r, self.s_range[b.level])
+        alpha, beta, gamma = self.plane_terms(b.plane, u, n)
         if b.kind == "K":
             s = self.s_range[b.level]
-            p = self.points(own, t, -(beta * s + gamma) / alpha, s)
+            p = self._place(own, u, n, -(beta * s + gamma) / alpha, s)
         else:
             r = self.radius(b.radius, own, t, where)
-            p = self.points(own, t, r, -(alpha * r + gamma) / beta)
+            p = self._place(own, u, n, r, -(alpha * r + gamma) / beta)
         if b.plane == "y":
             p[:, 1] = 0.0  # on the plane of symmetry
         return p
@@ -496,16 +520,17 @@ class Slab:
     def _evaluate(self, specs: list[tuple], label: NDArray[np.int64], theta: Array) -> Array:
         """The functions ``specs[label]`` at ``theta`` (see :meth:`_specs`)."""
         out = np.empty(len(theta))
-        u, _, n = self.frames(theta)
-        for i, spec in enumerate(specs):
+        # the functions of a piece share its angles: the frames once per angle
+        at, where = np.unique(theta, return_inverse=True)
+        u, _, n = self.frames(at)
+        u, n = u[where], n[where]
+        for i in sorted_unique(label).tolist():
+            spec = specs[i]
             m = label == i
-            if not np.any(m):
-                continue
             t, um, nm = theta[m], u[m], n[m]
 
             def coef(plane: str, um: Array = um, nm: Array = nm) -> tuple[Array, Array, float]:
-                w, c = self.planes[plane]
-                return um @ w, nm @ w, -c
+                return self.plane_terms(plane, um, nm)
 
             kind = spec[0]
             if kind == "corner":  # a plane through an edge of the slab
@@ -555,13 +580,11 @@ class Slab:
         specs, pieces = self._specs()
         ab = np.array(pieces)
         grid = ab[:, :1] + (ab[:, 1:] - ab[:, :1]) * _GRID  # (specs, g)
-        lo, hi = grid[:, :-1].ravel(), grid[:, 1:].ravel()
-        lab = np.repeat(np.arange(len(specs)), grid.shape[1] - 1)
-        both = self._evaluate(specs, np.concatenate([lab, lab]), np.concatenate([lo, hi]))
-        pos = both >= 0.0
-        up = pos[len(lo) :]
-        k = up != pos[: len(lo)]
-        lo, hi, lab, up = lo[k], hi[k], lab[k], up[k]
+        every = np.repeat(np.arange(len(specs)), grid.shape[1])
+        pos = (self._evaluate(specs, every, grid.ravel()) >= 0.0).reshape(grid.shape)
+        k = pos[:, 1:] != pos[:, :-1]  # a sign change between neighbours
+        lo, hi, up = grid[:, :-1][k], grid[:, 1:][k], pos[:, 1:][k]
+        lab = np.broadcast_to(np.arange(len(specs))[:, None], k.shape)[k]
         for _ in range(64):
             mid = 0.5 * (lo + hi)
             if not np.any((mid > lo) & (mid < hi)):
@@ -600,12 +623,13 @@ class Slab:
         return _merge(base, np.concatenate(parts) if parts else np.empty(0))
 
     # -- the cross-sections ------------------------------------------------------
-    def _active(self, theta: Array) -> list[tuple[Array, Array, Array]]:
-        """``(alpha, beta, gamma)`` ``(k,)`` of every plane at ``theta``, a
-        plane that does not cut there given as 0 r + 0 s + 1 >= 0."""
+    def _active(self, theta: Array, u: Array, n: Array) -> list[tuple[Array, Array, Array]]:
+        """``(alpha, beta, gamma)`` ``(k,)`` of every plane at ``theta`` (its
+        frames ``u``, ``n``), a plane that does not cut there given as
+        0 r + 0 s + 1 >= 0."""
         out = []
         for name in ("y", "m0", "m1"):
-            a, b, g = self.coefficients(name, theta)
+            a, b, g = self.plane_terms(name, u, n)
             g = np.full(len(theta), g)
             if name != "y":
                 off = ~(theta < 0.0) if name == "m0" else ~(theta > self.total)
@@ -618,10 +642,10 @@ class Slab:
         each angle (r in [r_in, r_out], s in ``s_range``, inside every plane),
         ``(k,)`` (length^2): exact, the integrand being quadratic in s between
         the s where the planes' lines cross r = r_in, r = r_out and each other."""
-        k = self.sides[0].curvature(theta)
+        u, _, n, k = self.sides[0].frames_and_curvature(theta)
         r_in, r_out = self.inner_radius(theta), self.outer_radius(side, theta)
         s0, s1 = self.s_range
-        planes = self._active(theta)
+        planes = self._active(theta, u, n)
         cuts = [np.full(len(theta), s0), np.full(len(theta), s1)]
         with np.errstate(divide="ignore", invalid="ignore"):
             for a, b, g in planes:
@@ -758,7 +782,7 @@ def _merge(
 #: towards both ends (the cuts at y = 0 lie within about t / (crease length)
 #: of the creases). The kinks themselves are left out: there a function may
 #: vanish exactly (the face s = 0 on a crease ruling) and its sign is noise.
-_GRID = np.unique(
+_GRID = sorted_unique(
     np.concatenate(
         [
             np.linspace(0.0, 1.0, 129)[1:-1],

@@ -26,6 +26,7 @@ from contextlib import contextmanager
 from fractions import Fraction
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from onefold_cad.errors import InvalidParameterError
 
@@ -37,6 +38,7 @@ __all__ = [
     "check_magnitudes",
     "closed_interval",
     "cross3",
+    "sorted_unique",
     "finite",
     "float_errors",
     "integer_at_least",
@@ -219,3 +221,24 @@ def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     out[..., 1] = a2 * b0 - a0 * b2
     out[..., 2] = a0 * b1 - a1 * b0
     return out
+
+
+def sorted_unique(values: ArrayLike) -> np.ndarray:
+    """``np.unique(values)`` of real numbers: the sorted distinct values of the
+    flattened array (NaNs as one), computed as numpy computes it for floats
+    (sort, then drop repeats; integers come out the same), without its first
+    call's import of numpy.ma (10 ms, a fifth of ``onefold solve``'s own
+    imports)."""
+    aux = np.asarray(values).flatten()
+    aux.sort()
+    keep = np.empty(aux.shape, dtype=bool)
+    keep[:1] = True
+    if aux.size and aux.dtype.kind == "f" and np.isnan(aux[-1]):
+        first_nan = int(np.searchsorted(aux, aux[-1], side="left"))
+        if first_nan > 0:
+            keep[1:first_nan] = aux[1:first_nan] != aux[: first_nan - 1]
+        keep[first_nan] = True
+        keep[first_nan + 1 :] = False
+    else:
+        keep[1:] = aux[1:] != aux[:-1]
+    return aux[keep]

@@ -60,3 +60,59 @@ def test_arc_frames_are_the_cone_s(folded) -> None:
     h = 1e-5
     slope = (cone.theta_of_phi(phi + h) - cone.theta_of_phi(phi - h)) / (2 * h)
     np.testing.assert_allclose(speed, slope, rtol=1e-9)
+
+
+def test_lowest_asked_again_answers_the_same_without_zooming(folded, monkeypatch) -> None:
+    # a repeated (piece, bracket, direction) gives the first zoom's answer, a
+    # copy (callers keep and move their points); a new direction zooms anew
+    import onefold_cad.geometry.body as body_mod
+
+    body = Body(folded)
+    zooms = []
+    real = body_mod.zoom_min
+
+    def counting(f, lo, hi):
+        zooms.append((lo, hi))
+        return real(f, lo, hi)
+
+    monkeypatch.setattr(body_mod, "zoom_min", counting)
+    piece = body.pieces[0]
+    g = np.array([0.0, 0.3, -1.0]) / math.hypot(0.3, 1.0)
+    t1, p1 = body.lowest(0, piece.t0, piece.t1, g)
+    p1[:] = np.nan  # the caller's copy
+    t2, p2 = body.lowest(0, piece.t0, piece.t1, g * 1.0 + 0.0)
+    assert len(zooms) == 1 and t2 == t1 and np.all(np.isfinite(p2))
+    np.testing.assert_array_equal(p2, piece.lowest(t1, g))
+    body.lowest(0, piece.t0, piece.t1, -g)
+    assert len(zooms) == 2
+
+
+def test_clipped_rectangle_gives_the_corners_inside_and_the_line_s_crossings() -> None:
+    # against the definition, rectangle by rectangle: the corners on the kept
+    # side of cr r + cs s = 0 and the points where that line crosses a side
+    from onefold_cad.geometry.body import _clipped_rectangle
+
+    rng = np.random.default_rng(7)
+    k = 200
+    r0 = rng.uniform(0.0, 2.0, k)
+    r1 = r0 + rng.uniform(0.1, 5.0, k)
+    s0, s1 = -1.5, 0.5
+    cr = rng.choice([0.0, 0.4, -0.7, 1.0], k)
+    cs = rng.choice([0.0, 0.6, -1.0], k)
+    cr[(cr == 0.0) & (cs == 0.0)] = 1.0
+    z = _clipped_rectangle(r0, r1, s0, s1, cr, cs, 0.0)
+    for i in range(k):
+        want = [(r, s) for r, s in ((r0[i], s0), (r1[i], s0), (r1[i], s1), (r0[i], s1))
+                if cr[i] * r + cs[i] * s >= 0.0]  # fmt: skip
+        if cr[i] != 0.0:
+            want += [
+                (-cs[i] * s / cr[i], s) for s in (s0, s1) if r0[i] <= -cs[i] * s / cr[i] <= r1[i]
+            ]
+        if cs[i] != 0.0:
+            want += [
+                (r, -cr[i] * r / cs[i]) for r in (r0[i], r1[i]) if s0 <= -cr[i] * r / cs[i] <= s1
+            ]
+        got = sorted(tuple(map(float, p)) for p in z[i] if not np.isnan(p[0]))
+        assert len(got) == len(want)
+        np.testing.assert_allclose(got, sorted(want), rtol=0, atol=1e-15)
+        assert all(np.isnan(p).all() or not np.isnan(p).any() for p in z[i])

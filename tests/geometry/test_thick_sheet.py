@@ -22,6 +22,7 @@ from onefold_cad.geometry.thick_sheet import (
     MITRE_CLEARANCE,
     SideMap,
     Slab,
+    min_hole_diameter,
     min_relief_hole,
     mitre_depth,
     mitre_planes,
@@ -216,3 +217,55 @@ def test_min_relief_hole_grows_with_thickness_and_covers_the_mitre():
 def test_paper_model_is_refused():
     with pytest.raises(InvalidParameterError, match="model"):
         SideMap(_fold(model="paper"))
+
+
+def test_frames_and_curvature_in_one_call_are_each_angles_own():
+    """:meth:`SideMap.frames_and_curvature` evaluates the frames at theta and
+    theta +- h in one call: the same u, e, n and k as separate calls, angle
+    by angle (on the sheet, at the creases and past them)."""
+    side = SideMap(_fold(70, 60, 10.0))
+    theta = np.concatenate(
+        [[-0.1, 0.0, 1e-7, side.total, side.total + 0.1], np.linspace(0.01, 3, 9)]
+    )
+    u, e, n, k = side.frames_and_curvature(theta)
+    h = 1e-6
+    for i, t in enumerate(theta):
+        ui, ei, ni = (v[0] for v in side.frames(np.array([t])))
+        np.testing.assert_allclose([u[i], e[i], n[i]], [ui, ei, ni], rtol=0, atol=2e-15)
+        lo, hi = np.clip([t - h, t + h], 0.0, side.total)
+        if t < 0.0 or t > side.total:
+            assert k[i] == 0.0
+            continue
+        dn = side.frames(np.array([hi]))[2][0] - side.frames(np.array([lo]))[2][0]
+        # the difference quotient of n: rounding errors of n over h
+        assert k[i] == pytest.approx(-float(dn @ ei) / (hi - lo), abs=1e-8)
+
+
+def test_min_hole_diameter_is_the_same_on_both_sides():
+    """min_relief_hole reads one side: the -y side's map, built for the
+    mirrored sheet, gives the same smallest hole on a sheet that is not
+    symmetric about the crease."""
+    folded = _fold(40, 60, 20.0, sheet=Sheet.quadrilateral(300, 120, 250, 90))
+    for surface in SheetSurface:
+        s_range = sheet_offsets(Material(thickness=3.0, sheet_surface=surface))
+        upper = min_hole_diameter(SideMap(folded), s_range)
+        assert upper == min_hole_diameter(SideMap(folded, lower=True), s_range)
+        assert upper == min_relief_hole(folded, Material(thickness=3.0, sheet_surface=surface))
+
+
+def test_face_breaks_are_sign_changes_of_their_functions():
+    """Each zero Slab.roots finds (one grid evaluation of all functions,
+    frames once per angle, then bisection) is where its function, evaluated
+    alone at angles just beside it, changes sign."""
+    folded = _fold(70, 60, 10.0, sheet=Sheet.quadrilateral(300, 120, 250, 90))
+    slab = Slab(folded, Material(thickness=4.0), 2.0 * min_relief_hole(folded, Material(4.0)))
+    specs, _ = slab._specs()
+    found = 0
+    for spec in specs:
+        for r in slab.roots[spec]:
+            d = 1e-9 * max(1.0, abs(r))
+            lab = np.zeros(2, dtype=int)
+            lo, hi = slab._evaluate([spec], lab, np.array([r - d, r + d]))
+            assert lo * hi <= 0.0, (spec, r, lo, hi)
+            found += 1
+    assert found > 0

@@ -1,0 +1,31 @@
+"""Small numeric helpers of geometry/validate.py."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from onefold_cad.geometry.validate import sorted_unique
+
+_VALUES = st.sampled_from([0.0, -0.0, 1.0, 2.5, -1.0, 1e-300, float("inf"), -float("inf")])
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    values=st.lists(st.one_of(_VALUES, st.just(float("nan")), st.floats(-3, 3)), max_size=40),
+    ints=st.booleans(),
+    column=st.booleans(),
+)
+def test_sorted_unique_is_numpys_unique(values: list[float], ints: bool, column: bool) -> None:
+    # the same values, dtype, shape and signs of zero as np.unique (NaNs as one)
+    a = np.array(values, dtype=float)
+    if ints:
+        a = np.nan_to_num(a, posinf=9, neginf=-9).astype(np.int64)
+    if column:
+        a = a.reshape(-1, 1)
+    want, got = np.unique(a), sorted_unique(a)
+    assert got.dtype == want.dtype and got.shape == want.shape
+    assert np.array_equal(got, want, equal_nan=True)
+    assert np.array_equal(np.signbit(got), np.signbit(want))
+    assert got is not a and (not len(a) or not np.shares_memory(got, a))
