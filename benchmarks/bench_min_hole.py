@@ -1,11 +1,13 @@
-"""The explorer's server state with and without the per-fold cache of the solid's
-smallest relief hole (``onefold_cad.design.solid_min_relief_hole``).
+"""The explorer's server state with and without the per-fold cache
+(``onefold_cad.design._once_per_fold``: the solid's smallest relief hole, the
+resting placement).
 
 The default relief hole, the flat pattern's relief-hole check and the report
-all need :func:`~onefold_cad.geometry.thick_sheet.min_relief_hole`; the cache
-computes it once per fold and material. The baseline is the same code with a
-cache that never keeps anything (each caller computes it again, as before the
-cache). Both run :func:`onefold_cad.explore.state.design_state` (a fresh fold
+all need :func:`~onefold_cad.geometry.thick_sheet.min_relief_hole` (through
+``onefold_cad.design.solid_min_relief_hole``); the cache computes it once per
+fold and material, and the resting placement once per fold, material and body.
+The baseline is the same code with a cache that never keeps anything (each
+caller computes again, as before the cache). Both run :func:`onefold_cad.explore.state.design_state` (a fresh fold
 each call), interleaved with :func:`interleave.interleave` (CPU time, medians
 with the 25th and 75th percentiles); the ratio is the median of the per-round
 ratios. Prints only.
@@ -46,7 +48,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rounds", type=int, default=15)
     ap.add_argument("--only", nargs="*", default=None)
     args = ap.parse_args(argv)
-    cached = design_module._MIN_HOLES
+    cached = design_module._PER_FOLD
     forgetful = _Forgetful()
     calls = {"n": 0}
     real = design_module.min_relief_hole
@@ -62,11 +64,11 @@ def main(argv: list[str] | None = None) -> int:
         design = load_template(name)
 
         def state_cached(d: Any = design) -> Any:
-            design_module._MIN_HOLES = cached
+            design_module._PER_FOLD = cached
             return design_state(d)
 
         def state_uncached(d: Any = design) -> Any:
-            design_module._MIN_HOLES = forgetful
+            design_module._PER_FOLD = forgetful
             return design_state(d)
 
         design_module.min_relief_hole = counted
@@ -87,7 +89,7 @@ def main(argv: list[str] | None = None) -> int:
             f"{res['uncached'].fmt(1e3, ' ms')} | {ratio.fmt(digits=3)} |",
             flush=True,
         )
-    design_module._MIN_HOLES = cached
+    design_module._PER_FOLD = cached
     return 0
 
 

@@ -113,3 +113,11 @@ def test_bench_step_runs_on_one_template(capsys):
     assert bench_step.main(["--repeat", "1", "--only", "table1-row2"]) == 0
     rows = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| table1")]
     assert len(rows) == 1 and "| shell |" in rows[0]
+
+
+def test_bench_min_hole_runs_on_one_template(capsys):
+    import bench_min_hole
+
+    assert bench_min_hole.main(["--rounds", "1", "--only", "paper-square"]) == 0
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| paper")]
+    assert len(rows) == 1
