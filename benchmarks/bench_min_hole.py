@@ -7,10 +7,11 @@ all need :func:`~onefold_cad.geometry.thick_sheet.min_relief_hole` (through
 ``onefold_cad.design.solid_min_relief_hole``); the cache computes it once per
 fold and material, and the resting placement once per fold, material and body.
 The baseline is the same code with a cache that never keeps anything (each
-caller computes again, as before the cache). Both run :func:`onefold_cad.explore.state.design_state` (a fresh fold
-each call), interleaved with :func:`interleave.interleave` (CPU time, medians
-with the 25th and 75th percentiles); the ratio is the median of the per-round
-ratios. Prints only.
+caller computes again, as before the cache). Both run
+:func:`onefold_cad.explore.state.design_state` (a fresh fold each call),
+interleaved with :func:`interleave.interleave` (CPU time, medians with the
+25th and 75th percentiles); the ratio is the median of the per-round ratios.
+Prints only.
 
 Run from the repository root::
 
