@@ -73,7 +73,7 @@ def processes(template: str, rounds: int) -> None:
 
 
 def writers(template: str, rounds: int) -> None:
-    from onefold_cad import build_design
+    from onefold_cad import build_design, fold, solve
     from onefold_cad.export.dxf import export_design_dxf
     from onefold_cad.export.dxf_preview import render_preview
     from onefold_cad.export.fold_file import write_fold
@@ -88,7 +88,8 @@ def writers(template: str, rounds: int) -> None:
     out = Path(tempfile.mkdtemp())
     dxf = export_design_dxf(design, out / "a.dxf", folded=folded)
     cases = {
-        "solve + fold": lambda: build_design(design).resting,
+        # a fresh fold each call (build_design keeps one per design object)
+        "solve + fold": lambda: fold(solve(design.frame, design.model), design.sheet).resting,
         "3D preview PNG": lambda: render_folded_preview(
             folded, out / "a.png", title=design.name, units=design.units.value
         ),

@@ -32,7 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from docs_block import machine_line, write_block  # noqa: E402
 from interleave import Stats, interleave, paired_ratio  # noqa: E402
 
-from onefold_cad import Design, OneFoldError, build_design  # noqa: E402
+from onefold_cad import Design, OneFoldError, fold, solve  # noqa: E402
 from onefold_cad.export.writers import WRITERS, BuildContext  # noqa: E402
 from onefold_cad.templates import list_templates, load_template  # noqa: E402
 
@@ -43,7 +43,11 @@ def stages(design: Design, out: Path) -> dict[str, Callable[[], Any]]:
     """Stage name -> a call doing that stage once."""
     from onefold_cad.export.flat_pattern import flat_pattern
 
-    folded = build_design(design)
+    def fresh() -> Any:
+        # not design.build_design, which keeps one fold per design object
+        return fold(solve(design.frame, design.model), design.sheet)
+
+    folded = fresh()
 
     def writer(name: str) -> Callable[[], Any]:
         w = WRITERS[name]
@@ -51,14 +55,14 @@ def stages(design: Design, out: Path) -> dict[str, Callable[[], Any]]:
         def call() -> Any:
             # a fresh fold: what FoldedSheet derives on first use (metrics, resting
             # placement, the exact model's boundary) is paid by the stage using it
-            ctx = BuildContext(design, build_design(design))
+            ctx = BuildContext(design, fresh())
             ctx.files = [out / f"{design.name}{WRITERS[n].suffix}" for n in WRITERS]
             return w.write(ctx, out / f"{design.name}{w.suffix}")
 
         return call
 
     return {
-        CORE: lambda: build_design(design),
+        CORE: fresh,
         "flat pattern": lambda: flat_pattern(design, folded),
         **{name: writer(name) for name in WRITERS},
     }
