@@ -217,7 +217,7 @@ def division_points(g: ArcGeometry, n: int) -> Array:
     return p
 
 
-@functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=16)
 def _end_steps(n: int) -> tuple[Array, int]:
     """Each division point's number of steps from its nearer end of the arc,
     ``(n + 1,)`` floats (read-only; 0, 1, ... from the +x end for the first
