@@ -24,6 +24,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from interleave import interleave, run_process, stats_of  # noqa: E402
 
+from onefold_cad.geometry.placement import rest_form
+
 _SOLVE = (
     "from onefold_cad import build_design; from onefold_cad.templates import load_template; "
     "d = load_template({t!r}); f = build_design(d); f.resting; "
@@ -78,8 +80,8 @@ def writers(template: str, rounds: int) -> None:
     from onefold_cad.export.dxf_preview import render_preview
     from onefold_cad.export.fold_file import write_fold
     from onefold_cad.export.glb import write_glb
+    from onefold_cad.export.part import build_part
     from onefold_cad.export.preview import render_folded_preview
-    from onefold_cad.export.step import build_part
     from onefold_cad.templates import load_template
 
     design = load_template(template)
@@ -89,7 +91,7 @@ def writers(template: str, rounds: int) -> None:
     dxf = export_design_dxf(design, out / "a.dxf", folded=folded)
     cases = {
         # a fresh fold each call (build_design keeps one per design object)
-        "solve + fold": lambda: fold(solve(design.frame, design.model), design.sheet).resting,
+        "solve + fold": lambda: rest_form(fold(solve(design.frame, design.model), design.sheet)),
         "3D preview PNG": lambda: render_folded_preview(
             folded, out / "a.png", title=design.name, units=design.units.value
         ),

@@ -41,7 +41,7 @@ CORE = "solve + fold"
 
 def stages(design: Design, out: Path) -> dict[str, Callable[[], Any]]:
     """Stage name -> a call doing that stage once."""
-    from onefold_cad.export.flat_pattern import flat_pattern
+    from onefold_cad.fabrication.flat_pattern import flat_pattern
 
     def fresh() -> Any:
         # not design.build_design, which keeps one fold per design object

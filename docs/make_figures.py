@@ -30,7 +30,8 @@ import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 from onefold_cad import FrameCurve, Model, Sheet, fold, solve  # noqa: E402
-from onefold_cad.geometry.frame import arc_points, arc_range  # noqa: E402
+from onefold_cad.geometry.arc import arc_points, arc_range
+from onefold_cad.geometry.placement import rest_form
 from onefold_cad.geometry.solver import make_direction_surface  # noqa: E402
 
 DOCS = Path(__file__).resolve().parent
@@ -257,7 +258,7 @@ def fig_star() -> Path:
     fig = plt.figure(figsize=(12, 4.2))
     flat_panel(fig.add_subplot(1, 3, 1), folded, "(a) flat star, rulings through its vertices")
     v, f = folded.mesh(angular=180, radial=12)
-    v = folded.resting.apply(v)
+    v = rest_form(folded).apply(v)
     for k, azim in enumerate((-60.0, 30.0)):
         ax = axes3d(fig, (1, 3, 2 + k), v, f"({'bc'[k]}) folded, resting on the ground", azim=azim)
         draw_mesh(ax, v, f, azim=azim)
@@ -331,7 +332,7 @@ def fig_gallery() -> Path:
     for k, (fr, sheet, title) in enumerate(designs):
         folded = fold(solve(fr, Model.EXACT), sheet)
         v, f = folded.mesh(angular=150, radial=14)
-        v = folded.resting.apply(v)
+        v = rest_form(folded).apply(v)
         ax = axes3d(fig, (1, 2, k + 1), v, title, elev=18, azim=-50)
         draw_mesh(ax, v, f, elev=18, azim=-50)
     fig.tight_layout()

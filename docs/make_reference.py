@@ -154,7 +154,7 @@ def _sheet_inputs(sheet: Any) -> str:
 # -- CLI -------------------------------------------------------------------------------
 def cli_help(args: list[str]) -> str:
     """The output of ``onefold ARGS --help`` (100 columns), trailing blanks removed."""
-    from onefold_cad.cli import help_text
+    from onefold_cad.cli.parser import help_text
 
     lines = [ln.rstrip() for ln in help_text(args[0] if args else "").splitlines()]
     return "\n".join(lines).strip("\n") + "\n"
@@ -162,7 +162,7 @@ def cli_help(args: list[str]) -> str:
 
 def cli_block() -> str:
     """The CLI reference: ``onefold --help`` and each command's ``--help``."""
-    from onefold_cad.cli import COMMANDS
+    from onefold_cad.cli.commands import COMMANDS
 
     out = ["### `onefold`", "", "```text", cli_help([]).rstrip(), "```", ""]
     for name in sorted(COMMANDS):
@@ -213,7 +213,7 @@ def _flat_renderer() -> Callable[[Any, Design, Path], Path]:
     try:
         from onefold_cad.export.dxf import draw_flat_pattern
         from onefold_cad.export.dxf_preview import render_preview
-        from onefold_cad.export.flat_pattern import flat_pattern
+        from onefold_cad.fabrication.flat_pattern import flat_pattern
     except ImportError:
         return _flat_png
 

@@ -1,11 +1,12 @@
 """onefold_cad: the One-Fold curved-origami construction as fabrication files.
 
-The core (:mod:`onefold_cad.geometry`) is pure numpy; the adapters in
-:mod:`onefold_cad.export` turn its results into STEP (build123d), DXF (ezdxf),
-previews and JSON reports.
+The core (:mod:`onefold_cad.geometry`) is pure numpy; the fabrication rules
+(:mod:`onefold_cad.fabrication`) too; the adapters in :mod:`onefold_cad.export`
+turn their results into STEP (build123d), DXF (ezdxf), previews and JSON
+reports. docs/architecture.md draws the layers.
 
 The public names below are imported on first use (PEP 562), so importing a
-submodule such as :mod:`onefold_cad.cli` does not load the geometry core
+submodule such as :mod:`onefold_cad.cli.main` does not load the geometry core
 until a command needs it (``onefold --help`` starts in a few milliseconds).
 """
 
@@ -27,16 +28,16 @@ _EXPORTS: dict[str, str] = {
     "NoSolutionError": "onefold_cad.errors",
     "OneFoldError": "onefold_cad.errors",
     "CreaseHalf": "onefold_cad.geometry.folding",
-    "Developability": "onefold_cad.geometry.folding",
+    "Developability": "onefold_cad.geometry.developability",
     "FoldedSheet": "onefold_cad.geometry.folding",
     "fold": "onefold_cad.geometry.folding",
-    "BendValues": "onefold_cad.geometry.material",
+    "BendValues": "onefold_cad.geometry.bend_model",
     "Material": "onefold_cad.geometry.material",
-    "SheetSurface": "onefold_cad.geometry.material",
-    "Units": "onefold_cad.geometry.material",
-    "bend_values": "onefold_cad.geometry.material",
-    "FrameCurve": "onefold_cad.geometry.params",
-    "Model": "onefold_cad.geometry.params",
+    "SheetSurface": "onefold_cad.choices",
+    "Units": "onefold_cad.choices",
+    "bend_values": "onefold_cad.geometry.bend_model",
+    "FrameCurve": "onefold_cad.geometry.frame_curve",
+    "Model": "onefold_cad.choices",
     "RestingPlacement": "onefold_cad.geometry.placement",
     "Placement2D": "onefold_cad.geometry.sheet",
     "Sheet": "onefold_cad.geometry.sheet",
@@ -62,6 +63,7 @@ def __dir__() -> list[str]:
 
 if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
     # ruff: noqa: F401
+    from onefold_cad.choices import Model, SheetSurface, Units
     from onefold_cad.design import Design, build_design
     from onefold_cad.errors import (
         ExportError,
@@ -71,15 +73,11 @@ if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
         NoSolutionError,
         OneFoldError,
     )
-    from onefold_cad.geometry.folding import CreaseHalf, Developability, FoldedSheet, fold
-    from onefold_cad.geometry.material import (
-        BendValues,
-        Material,
-        SheetSurface,
-        Units,
-        bend_values,
-    )
-    from onefold_cad.geometry.params import FrameCurve, Model
+    from onefold_cad.geometry.bend_model import BendValues, bend_values
+    from onefold_cad.geometry.developability import Developability
+    from onefold_cad.geometry.folding import CreaseHalf, FoldedSheet, fold
+    from onefold_cad.geometry.frame_curve import FrameCurve
+    from onefold_cad.geometry.material import Material
     from onefold_cad.geometry.placement import RestingPlacement
     from onefold_cad.geometry.sheet import Placement2D, Sheet
     from onefold_cad.geometry.solver import Solution, solve

@@ -1,6 +1,6 @@
 """``python -m onefold_cad``: the ``onefold`` command."""
 
-from onefold_cad.cli import main
+from onefold_cad.cli.main import main
 
 if __name__ == "__main__":
     raise SystemExit(main())

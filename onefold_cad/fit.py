@@ -32,10 +32,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.design import Design, default_body, relief_hole_diameter
+from onefold_cad.choices import Model
+from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+from onefold_cad.fabrication.rules import default_body
 from onefold_cad.geometry.folding import FoldedSheet, fold
-from onefold_cad.geometry.params import FrameCurve, Model
+from onefold_cad.geometry.frame_curve import FrameCurve
 from onefold_cad.geometry.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.solver import solve
 

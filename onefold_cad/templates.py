@@ -272,8 +272,8 @@ def design_from_data(
             out of range; the message names the full key.
     """
     from onefold_cad.design import Design
+    from onefold_cad.geometry.frame_curve import FrameCurve
     from onefold_cad.geometry.material import Material
-    from onefold_cad.geometry.params import FrameCurve
     from onefold_cad.geometry.sheet import Sheet
 
     names = dict(key_names or {})

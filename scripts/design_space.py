@@ -23,8 +23,8 @@ from pathlib import Path
 import numpy as np
 
 from onefold_cad import build_design
-from onefold_cad.design import relief_hole_diameter
 from onefold_cad.errors import OneFoldError
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.placement import TIPPING_WARNING_DEG, rest_form
 from onefold_cad.templates import DEFAULT_TEMPLATE, load_template
 

@@ -17,7 +17,7 @@ import argparse
 import threading
 from pathlib import Path
 
-from onefold_cad.explore import make_server
+from onefold_cad.explore.server import make_server
 
 ROOT = Path(__file__).resolve().parents[1]
 CHROMIUM_ARGS = [

@@ -46,6 +46,8 @@ from typing import Any
 
 import numpy as np
 
+from onefold_cad.geometry.developability import developability
+
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs" / "reliability.md"
 BEGIN, END = "<!-- fuzz-results:begin -->", "<!-- fuzz-results:end -->"
@@ -895,8 +897,8 @@ def check_outputs(
     """Report (finite), flat pattern (area for an uncompensated sheet), DXF
     (re-read and audited) and, for the STEP slice, STEP (re-read, valid)."""
     from onefold_cad.export.dxf import export_design_dxf
-    from onefold_cad.export.flat_pattern import flat_pattern
-    from onefold_cad.export.report import design_report, report_json
+    from onefold_cad.fabrication.flat_pattern import flat_pattern
+    from onefold_cad.fabrication.report import design_report, report_json
 
     stages.append("flat pattern")
     fp = flat_pattern(design, folded)
@@ -934,7 +936,7 @@ def check_outputs(
 def run_design(p: dict[str, Any], seed: int, mp_sample: bool) -> dict[str, Any]:
     """Every stage of one design; its class, stage and message."""
     from onefold_cad import NoSolutionError, OneFoldError, build_design
-    from onefold_cad.design import resting_placement
+    from onefold_cad.fabrication.rules import resting_placement
 
     stages = ["design"]
     rng = np.random.default_rng(seed)
@@ -950,7 +952,7 @@ def run_design(p: dict[str, Any], seed: int, mp_sample: bool) -> dict[str, Any]:
             out.update(check_solution(p, folded.solution, mp_sample))
             check_fold(p, design, folded, rng)
             stages.append("metrics")
-            folded.metrics  # noqa: B018 (computed on access)
+            developability(folded)  # noqa: B018 (computed on access)
             rest = resting_placement(design, folded)  # what the report and files use
             out["solver_warnings"] = len(folded.solution.warnings)
             check_resting(rest, design, folded, rng)
@@ -1361,8 +1363,8 @@ def cap_timings(repeat: int = 3) -> str:
     models, a polygon sheet of MAX_VERTICES vertices."""
     from onefold_cad import Design, FrameCurve, Sheet, build_design
     from onefold_cad.export.dxf import export_design_dxf
-    from onefold_cad.export.flat_pattern import flat_pattern
-    from onefold_cad.geometry.params import MAX_DIVISIONS
+    from onefold_cad.fabrication.flat_pattern import flat_pattern
+    from onefold_cad.geometry.frame_curve import MAX_DIVISIONS
     from onefold_cad.geometry.sheet import MAX_VERTICES
 
     ang = np.linspace(0.0, 2.0 * math.pi, MAX_VERTICES, endpoint=False) + 0.1

@@ -18,7 +18,7 @@ import pytest
 from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve, InvalidParameterError
-from onefold_cad.geometry.params import MIN_ANGLE_DEG
+from onefold_cad.geometry.frame_curve import MIN_ANGLE_DEG
 
 #: alpha or beta anywhere in (0, 90) deg, subnormal floats included.
 OPEN_ANGLE = st.floats(0.0, 90.0, exclude_min=True, exclude_max=True)

@@ -18,7 +18,7 @@ import pytest
 
 from onefold_cad import ExportError, build_design
 from onefold_cad.cli import main
-from onefold_cad.export.report import design_report
+from onefold_cad.fabrication.report import design_report
 from onefold_cad.templates import list_templates, load_template
 from tests.processes import interruptible
 
@@ -306,8 +306,8 @@ def test_a_zero_thickness_flat_pattern_is_not_called_a_refusal(tmp_path, cli):
 
 
 def test_a_blank_left_uncompensated_on_request_says_so():
-    from onefold_cad.export.flat_pattern import flat_pattern
-    from onefold_cad.summary import summary
+    from onefold_cad.cli.summary import summary
+    from onefold_cad.fabrication.flat_pattern import flat_pattern
 
     design = load_template("paper-square")  # t = 0.1 mm, within the bend model's limits
     folded = build_design(design)
@@ -398,7 +398,7 @@ def test_negative_values_after_flags(solve_json, cli):
 
 
 def test_a_non_finite_report_is_an_error_naming_the_key(monkeypatch, capfd):
-    import onefold_cad.export.report as report
+    import onefold_cad.fabrication.report as report
 
     real = report.resting_numbers
 

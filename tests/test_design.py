@@ -21,15 +21,11 @@ from onefold_cad import (
     Units,
     build_design,
 )
-from onefold_cad.design import (
-    KG_PER_LB,
-    design_mass,
-    fabrication_warnings,
-    relief_hole_diameter,
-    relief_hole_problem,
-)
-from onefold_cad.export.flat_pattern import flat_pattern
-from onefold_cad.geometry.thick_sheet import min_relief_hole
+from onefold_cad.fabrication.flat_pattern import flat_pattern
+from onefold_cad.fabrication.mass import KG_PER_LB, design_mass
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
+from onefold_cad.fabrication.rules import fabrication_warnings
+from onefold_cad.geometry.thick_map import min_relief_hole
 from onefold_cad.templates import load_template
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
 
@@ -280,7 +276,7 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
     import gc
 
     from onefold_cad import design as design_module
-    from onefold_cad.export.report import design_report
+    from onefold_cad.fabrication.report import design_report
 
     calls = []
 

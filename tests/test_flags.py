@@ -9,7 +9,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from onefold_cad import InvalidParameterError
-from onefold_cad.flags import DESIGN_FLAGS, Overrides, derived_name, load_jobs
+from onefold_cad.flags.design_flags import DESIGN_FLAGS
+from onefold_cad.flags.jobs import load_jobs
+from onefold_cad.flags.overrides import Overrides, derived_name
 
 NO_FLAGS = {f.dest: None for f in DESIGN_FLAGS}
 SAFE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")

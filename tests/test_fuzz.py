@@ -194,7 +194,7 @@ def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> Non
     import numpy as np
 
     from onefold_cad import build_design
-    from onefold_cad.design import resting_placement
+    from onefold_cad.fabrication.rules import resting_placement
 
     p = dict(EXACT_QUAD)
     design = fuzz.make_design(p)

@@ -53,7 +53,7 @@ def make_download(kind: str, design: Design) -> Download:
         return Download(name, mime, tomli_w.dumps(design_to_data(design)).encode("utf-8"))
     folded = build_design(design)
     if kind == "json":
-        from onefold_cad.export.report import design_report, report_json
+        from onefold_cad.fabrication.report import design_report, report_json
 
         return Download(name, mime, report_json(design_report(design, folded)).encode("utf-8"))
     with tempfile.TemporaryDirectory(prefix="onefold-explore-") as tmp:

@@ -16,7 +16,7 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.export.flat_pattern import FlatPattern
+from onefold_cad.fabrication.flat_pattern import FlatPattern
 
 __all__ = ["flat_pattern_svg"]
 

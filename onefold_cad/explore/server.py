@@ -32,13 +32,13 @@ from typing import Any
 from urllib.parse import urlsplit
 
 from onefold_cad.errors import InvalidParameterError, OneFoldError
-from onefold_cad.explore.downloads import KINDS, make_download
-from onefold_cad.explore.params import (
+from onefold_cad.explore.controls import (
     ParameterProblem,
     QueryError,
     design_from_params,
     parse_query,
 )
+from onefold_cad.explore.downloads import KINDS, make_download
 from onefold_cad.explore.state import design_state, problem_state
 
 __all__ = ["DEFAULT_PORT", "MAX_TARGET", "ExploreServer", "load_templates", "make_server", "serve"]
@@ -88,7 +88,7 @@ def load_templates(ref: str | None) -> tuple[dict[str, dict[str, Any]], str]:
     validated as ``onefold solve`` would (same messages); the shipped
     templates follow it. The page names a template by its key only.
     """
-    from onefold_cad.flags import load_jobs
+    from onefold_cad.flags.jobs import load_jobs
     from onefold_cad.templates import (
         DEFAULT_TEMPLATE,
         find_template,

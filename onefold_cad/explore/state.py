@@ -22,10 +22,12 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design, relief_hole_problem, resting_placement
+from onefold_cad.design import Design, build_design
 from onefold_cad.errors import OneFoldError
+from onefold_cad.explore.controls import PAGE_FLAGS, ParameterProblem, page_values
 from onefold_cad.explore.flat_svg import flat_pattern_svg
-from onefold_cad.explore.params import PAGE_FLAGS, ParameterProblem, page_values
+from onefold_cad.fabrication.relief_hole import relief_hole_problem
+from onefold_cad.fabrication.rules import resting_placement
 
 __all__ = ["MESH_ANGULAR", "MESH_RADIAL", "design_state", "problem_state", "message"]
 
@@ -117,8 +119,8 @@ def design_state(design: Design) -> dict[str, Any]:
         units), ``flat_svg`` (or None when the flat pattern cannot be made)
         and ``server_ms``.
     """
-    from onefold_cad.export.flat_pattern import flat_pattern
-    from onefold_cad.export.report import design_report
+    from onefold_cad.fabrication.flat_pattern import flat_pattern
+    from onefold_cad.fabrication.report import design_report
 
     t0 = time.perf_counter()
     messages: list[dict[str, Any]] = []

@@ -47,7 +47,7 @@ from pathlib import Path
 
 from onefold_cad.errors import ExportError
 
-__all__ = ["Staging", "atomic_output", "check_targets", "recover"]
+__all__ = ["Staging", "atomic_output", "check_targets", "pause_point", "recover"]
 
 _PREFIX = ".onefold-"
 _PARTIAL = ".partial"
@@ -140,7 +140,7 @@ def _signals_held() -> Iterator[None]:
             signal.raise_signal(s)
 
 
-def _test_pause(point: str) -> None:
+def pause_point(point: str) -> None:
     """Fault-injection point for the tests: when ``ONEFOLD_TEST_PAUSE`` names
     ``point``, say so on stderr and wait for a line on stdin (the test sends
     a signal meanwhile). Does nothing otherwise."""
@@ -254,7 +254,7 @@ class Staging:
                 done.append(dst)
                 if on_move is not None:
                     on_move(dst)
-                _test_pause(f"commit:{k}")
+                pause_point(f"commit:{k}")
             _fsync_dir(self.outdir)
             self.committed = True
             self._keep = False

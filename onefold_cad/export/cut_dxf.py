@@ -16,11 +16,11 @@ from pathlib import Path
 
 from ezdxf.document import Drawing
 
+from onefold_cad.choices import Compensation
 from onefold_cad.design import Design, build_design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.dxf import design_seed, new_document, set_units, write_dxf_atomic
-from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
-from onefold_cad.geometry.bend import Compensation
+from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern
 from onefold_cad.geometry.folding import FoldedSheet
 
 __all__ = ["CUT_LAYER", "draw_cut", "export_design_cut_dxf"]

@@ -47,13 +47,13 @@ import numpy as np
 from ezdxf import units as dxf_units
 from ezdxf.document import Drawing
 
+from onefold_cad.choices import Compensation, Units
 from onefold_cad.design import Design, build_design
 from onefold_cad.errors import ExportError, InvalidParameterError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.flat_pattern import FlatPattern, flat_pattern
-from onefold_cad.geometry.bend import Compensation
+from onefold_cad.export.dxf_notes import flat_pattern_notes
+from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern_once
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import Units
 
 __all__ = [
     "LAYERS",
@@ -193,7 +193,7 @@ def draw_flat_pattern(
         for a, b in pattern.rulings:
             msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "RULINGS"})
     x0, y0 = pattern.outline.min(axis=0) - max(pattern.kerf, 0.0)
-    for i, text in enumerate(pattern.notes):
+    for i, text in enumerate(flat_pattern_notes(pattern)):
         msp.add_text(
             _literal(text),
             height=h,
@@ -317,6 +317,6 @@ def export_design_dxf(
         FabricationError: the sharp-crease compensation's limits are passed.
     """
     folded = build_design(design) if folded is None else folded
-    pattern = flat_pattern(design, folded, compensation)
+    pattern = flat_pattern_once(design, folded, compensation)
     doc = draw_flat_pattern(pattern, dxfversion=dxfversion, rulings=rulings)
     return write_dxf_atomic(doc, path, seed=design_seed(design, compensation, "annotated"))

@@ -7,7 +7,7 @@ Spec: edemaine/fold, doc/spec.md (version 1.2). The file holds two frames:
   in the sheet's own frame, as in the DXF), triangulated along its rulings;
 * ``file_frames[0]``, ``["foldedForm"]``, ``frame_parent: 0``,
   ``frame_inherit: true``: the same vertices folded (3D), standing as the
-  form rests on the ground (z = 0; :attr:`FoldedSheet.resting`).
+  form rests on the ground (z = 0; :func:`onefold_cad.design.rest_once`).
 
 The mesh is a fan about H: one vertex at H, one at every ruling's end on the
 outline, one triangle between each two neighbouring rulings (counter-clockwise
@@ -64,18 +64,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.design import (
-    Design,
-    relief_hole_diameter,
-    relief_hole_problem,
-    sheet_inradius,
-)
+from onefold_cad.choices import Model
+from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import FabricationError, InvalidParameterError, NoSolutionError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.geometry.cone import PaperFan
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
+from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
 from onefold_cad.geometry.folding import FoldedSheet, fold
-from onefold_cad.geometry.params import Model
+from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.geometry.solver import solve
 
 __all__ = ["FOLD_SPEC", "RESOLUTION", "fold_data", "fold_fan", "write_fold"]
@@ -275,7 +272,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         ],
         "onefold:relief_hole_diameter": hole,
         "onefold:relief_hole_cut": hole > 0.0,
-        "onefold:resting_tilt_deg": fan.resting.tilt_deg,
+        "onefold:resting_tilt_deg": rest_once(fan).tilt_deg,
     }
     if fan is not folded:
         exact = folded.map_points(fan.boundary_flat)
@@ -292,7 +289,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "frame_attributes": ["3D", "manifold", "orientable", "convexFaces"],
         "frame_parent": 0,
         "frame_inherit": True,
-        "vertices_coords": fan.resting.apply(pts3).tolist(),
+        "vertices_coords": rest_once(fan).apply(pts3).tolist(),
     }
     doc: dict[str, Any] = {
         "file_spec": FOLD_SPEC,

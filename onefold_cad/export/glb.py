@@ -35,12 +35,12 @@ from pathlib import Path
 
 import build123d as bd
 
+from onefold_cad.choices import Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.step import build_part
+from onefold_cad.export.part import build_part
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import Units
 
 __all__ = ["ANGULAR_DEFLECTION", "LINEAR_DEFLECTION", "COLOUR", "write_glb"]
 

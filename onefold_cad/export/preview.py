@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from onefold_cad.design import rest_once
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.folding import FoldedSheet
@@ -55,7 +56,7 @@ def resting_mesh(
     Args:
         folded: the folded sheet.
         angular, radial: the mesh density (see :meth:`FoldedSheet.mesh`).
-        placement: how the form stands (default ``folded.resting``, the bare
+        placement: how the form stands (default ``rest_once(folded)``, the bare
             surface; :func:`onefold_cad.design.resting_placement` for the
             body the STEP holds).
 
@@ -63,7 +64,7 @@ def resting_mesh(
         ``(vertices (k, 3), faces (m, 3))``: vertices in the design unit, the
         ground at z = 0; faces oriented so their normal is the top side's.
     """
-    rest = folded.resting if placement is None else placement
+    rest = rest_once(folded) if placement is None else placement
     verts, faces = folded.mesh(angular=angular, radial=radial)
     return rest.apply(verts), faces
 
@@ -138,7 +139,7 @@ def render_folded_preview(
     Args:
         folded: the folded sheet.
         path: the PNG file to write.
-        placement: how the form stands (default ``folded.resting``;
+        placement: how the form stands (default ``rest_once(folded)``;
             ``build`` passes :func:`onefold_cad.design.resting_placement`,
             the placement of the STEP's body).
         frame: draw the form in the fold frame (apex above H) instead of
@@ -163,7 +164,7 @@ def render_folded_preview(
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
     out = Path(path)
-    rest = folded.resting if placement is None else placement
+    rest = rest_once(folded) if placement is None else placement
     move = (lambda p: np.asarray(p, dtype=float)) if frame else rest.apply
     verts, faces = folded.mesh(angular=_ANGULAR, radial=_RADIAL)
     verts = move(verts)

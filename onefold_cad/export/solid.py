@@ -28,9 +28,7 @@ Lengths are in the design unit; angles in radians.
 
 from __future__ import annotations
 
-import time
 from collections import defaultdict
-from collections.abc import Callable
 
 import build123d as bd
 import numpy as np
@@ -55,123 +53,18 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from onefold_cad.errors import ExportError
-from onefold_cad.export.brep import PROBES, interpolate, probe_points, refine
-from onefold_cad.geometry.thick_sheet import Boundary, Patch, Slab
+from onefold_cad.export.bspline_fit import (
+    curve_values,
+    fit_curve,
+)
+from onefold_cad.export.kernel_budget import KernelBudget
+from onefold_cad.geometry.slab import Boundary, Patch, Slab
+from onefold_cad.geometry.slab_faces import slab_patches
 
-__all__ = ["thick_solid", "KernelBudget"]
+__all__ = ["Array", "thick_solid"]
+
 
 Array = NDArray[np.float64]
-
-
-class KernelBudget:
-    """A time budget (s) for the CAD kernel's work on one part; :meth:`check`
-    raises ExportError naming ``advice`` once it is spent."""
-
-    def __init__(self, seconds: float | None, advice: str) -> None:
-        self.deadline = None if seconds is None else time.perf_counter() + seconds
-        self.seconds = seconds
-        self.advice = advice
-
-    def check(self) -> None:
-        if self.deadline is not None and time.perf_counter() > self.deadline:
-            raise ExportError(
-                f"the CAD kernel's time budget of {self.seconds:g} s ran out; {self.advice}"
-            )
-
-
-def _values(curve: Geom_BSplineCurve, t: Array) -> Array:
-    out = np.empty((len(t), 3))
-    for i, ti in enumerate(t.tolist()):
-        p = curve.Value(ti)
-        out[i] = (p.X(), p.Y(), p.Z())
-    return out
-
-
-#: Relative parameters of the dense sample that places a curve's nodes:
-#: uniform, and graded towards both ends (a cut curve near a crease moves
-#: fast there).
-_DENSE = np.unique(
-    np.concatenate(
-        [np.linspace(0.0, 1.0, 257), np.geomspace(1e-9, 0.1, 64), 1.0 - np.geomspace(1e-9, 0.1, 64)]
-    )
-)
-
-
-def fit_curve(
-    fn, a: float, b: float, tol: float, what: str, nodes: Array | None = None
-) -> tuple[Geom_BSplineCurve, float]:
-    """A B-spline through ``fn(theta)`` ``(k, 3)`` with theta as its parameter
-    on [a, b] (so that ruled faces pair equal theta), interpolating it at
-    nodes spread evenly along its length and exactly at ``nodes`` (where other
-    curves end on it); an interval whose worst point of
-    :data:`~onefold_cad.export.brep.PROBES` (fractions of its length) deviates
-    by more than ``tol`` (length) is split there until none does. Each theta
-    is evaluated once (:class:`_Samples`).
-
-    Returns:
-        ``(curve, deviation reached)``.
-
-    Raises:
-        ExportError: the tolerance needs more than 4000 nodes.
-    """
-    fn = _Samples(fn)
-    dense = a + (b - a) * _DENSE
-    dense[-1] = b
-    pts = fn(dense)
-    cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
-    length = float(cum[-1])
-
-    def at_length(x: Array) -> Array:
-        return np.interp(x, cum, dense)
-
-    def length_at(t: Array) -> Array:
-        return np.interp(t, dense, cum)
-
-    t = at_length(np.linspace(0.0, length, 17)) if length > 0.0 else np.linspace(a, b, 17)
-    t[0], t[-1] = a, b
-    if nodes is not None and len(nodes):
-        keep = np.unique(np.clip(nodes, a, b))
-        gap = np.min(np.abs(length_at(t)[:, None] - length_at(keep)[None, :]), axis=1)
-        t = np.unique(np.concatenate([t[gap > 1e-3 * length / 16.0], keep]))
-    while True:
-        curve = interpolate(fn(t), t, what)
-        probe = probe_points(t, at_length, length_at).ravel()
-        err = np.linalg.norm(_values(curve, probe) - fn(probe), axis=1)
-        new, worst = refine(probe.reshape(-1, len(PROBES)), err.reshape(-1, len(PROBES)), tol)
-        if not len(new):
-            return curve, worst
-        if len(t) + len(new) > 4000:
-            raise ExportError(
-                f"{what} misses the tolerance {tol:.3g} (by {worst:.3g}) with {len(t)} points"
-            )
-        t = np.sort(np.concatenate([t, new]))
-
-
-class _Samples:
-    """``fn(theta)`` ``(k, 3)`` that evaluates each theta once: the points it
-    gave are kept by parameter (a fit reads its nodes again, which were
-    probes before, and the probes of the intervals it did not split)."""
-
-    def __init__(self, fn: Callable[[Array], Array]) -> None:
-        self.fn = fn
-        self.t = np.empty(0)  # sorted
-        self.points = np.empty((0, 3))
-
-    def __call__(self, t: Array) -> Array:
-        t = np.asarray(t, dtype=float)
-        out = np.empty((len(t), 3))
-        known = np.zeros(len(t), dtype=bool)
-        if len(self.t):
-            i = np.minimum(np.searchsorted(self.t, t), len(self.t) - 1)
-            known = self.t[i] == t
-            out[known] = self.points[i[known]]
-        if not known.all():
-            fresh = t[~known]
-            out[~known] = got = self.fn(fresh)
-            order = np.argsort(np.concatenate([self.t, fresh]), kind="stable")
-            self.t = np.concatenate([self.t, fresh])[order]
-            self.points = np.concatenate([self.points, got])[order]
-        return out
 
 
 class _Vertices:
@@ -300,8 +193,8 @@ class _Builder:
         cut = self.splits[key]
         cut = cut[(cut > t0) & (cut < t1)]
         if len(cut):  # none within the sewing tolerance of the ends
-            ends = _values(curve, np.array([t0, t1]))
-            at = _values(curve, cut)
+            ends = curve_values(curve, np.array([t0, t1]))
+            at = curve_values(curve, cut)
             far = np.minimum(*(np.linalg.norm(at - e, axis=1) for e in ends)) > self.sew_tol
             cut = cut[far]
         ts = np.concatenate([[t0], cut, [t1]])
@@ -447,7 +340,7 @@ def thick_solid(
             into one shell.
     """
     budget = budget or KernelBudget(None, "")
-    patches = slab.patches()
+    patches = slab_patches(slab)
     builder = _Builder(slab, tol, budget)
     builder.prepare(patches)
     # past a crease half, each sheet face is one planar face

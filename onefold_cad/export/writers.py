@@ -8,8 +8,13 @@ ezdxf, matplotlib) only when it runs.
 
 The JSON report is written last (it lists the other files and their
 timings). Writers marked ``needs_flat_pattern`` refuse, before anything is
-written, a design whose flat pattern cannot be made. The STEP and the GLB
-(``builds_part``) share one part, built once (:attr:`BuildContext.part`).
+written, a design whose flat pattern cannot be made. What the writers share
+is computed once: the flat pattern and the resting placement through the
+package's one cache of a fold's results (:func:`onefold_cad.design.derived`),
+and the CAD products of this build, the STEP's part (shared with the GLB,
+``builds_part``) and the flat pattern's ezdxf drawing, held by the
+:class:`BuildContext` while the design's files are written (they are freed
+with it).
 """
 
 from __future__ import annotations
@@ -21,17 +26,16 @@ from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from onefold_cad.choices import Compensation, Placement
 from onefold_cad.errors import InvalidParameterError, OneFoldError
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer runs
     from onefold_cad.design import Design
-    from onefold_cad.export.flat_pattern import FlatPattern
+    from onefold_cad.fabrication.flat_pattern import FlatPattern
     from onefold_cad.geometry.folding import FoldedSheet
     from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = [
-    "COMPENSATIONS",
-    "PLACEMENTS",
     "WRITERS",
     "BuildContext",
     "Writer",
@@ -40,18 +44,6 @@ __all__ = [
     "register",
     "write_design",
 ]
-
-#: ``--compensation`` values, the default first: the sharp-crease bend
-#: compensation, or none (the values of
-#: :class:`onefold_cad.geometry.bend.Compensation`, spelled out here so that
-#: the command's parser needs no numpy).
-COMPENSATIONS = ("sharp", "none")
-
-#: ``--placement`` values, the default first: the STEP, GLB and 3D preview
-#: as the form stands on the ground, or in the fold frame (the values of
-#: :data:`onefold_cad.export.step.PLACEMENTS`, spelled out here so that the
-#: command's parser needs no build123d).
-PLACEMENTS = ("rest", "frame")
 
 
 @dataclass
@@ -74,33 +66,34 @@ class BuildContext:
     design: Design
     folded: FoldedSheet
     body: str | None = None
-    compensation: str = "sharp"
+    compensation: str = Compensation.SHARP.value
     sources: Mapping[str, str] = field(default_factory=dict)
     warnings: Sequence[str] = ()
     files: list[Path] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
-    placement: str = PLACEMENTS[0]
+    placement: str = Placement.REST.value
 
-    @cached_property
+    @property
     def pattern(self) -> FlatPattern:
-        """The flat pattern (raises when it cannot be made)."""
-        from onefold_cad.export.flat_pattern import flat_pattern
+        """The flat pattern (raises when it cannot be made;
+        :func:`~onefold_cad.fabrication.flat_pattern.flat_pattern_once`)."""
+        from onefold_cad.fabrication.flat_pattern import flat_pattern_once
 
-        return flat_pattern(self.design, self.folded, self.compensation)
+        return flat_pattern_once(self.design, self.folded, self.compensation)
 
     @property
     def resting(self) -> RestingPlacement:
-        """How the STEP's body stands (:func:`onefold_cad.design.resting_placement`)."""
-        from onefold_cad.design import resting_placement
+        """How the STEP's body stands (:func:`onefold_cad.fabrication.rules.resting_placement`)."""
+        from onefold_cad.fabrication.rules import resting_placement
 
         return resting_placement(self.design, self.folded, self.body)
 
     @cached_property
     def part(self) -> Any:
-        """The STEP's part (build123d shape, :func:`onefold_cad.export.step.build_part`
-        with this body, placement and compensation), built once: the STEP and
-        the GLB writers write this one part."""
-        from onefold_cad.export.step import build_part
+        """The STEP's part (build123d shape, :func:`onefold_cad.export.part.build_part`
+        with this body, placement and compensation), built once for this
+        build: the STEP and the GLB writers write this one part."""
+        from onefold_cad.export.part import build_part
 
         return build_part(
             self.design,
@@ -117,7 +110,8 @@ class BuildContext:
 
     @cached_property
     def drawing(self) -> Any:
-        """The flat pattern as an ezdxf document (for the flat preview)."""
+        """The flat pattern as an ezdxf document (for the flat preview), drawn once
+        for this build."""
         from onefold_cad.export.dxf import draw_flat_pattern
 
         return draw_flat_pattern(self.pattern)
@@ -185,9 +179,9 @@ def _cut(ctx: BuildContext, path: Path) -> Any:
 
 
 def _bends(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import bend_sheet
+    from onefold_cad.export import bend_csv
 
-    return bend_sheet.write_bend_csv(ctx.pattern, path)
+    return bend_csv.write_bend_csv(ctx.pattern, path)
 
 
 def _fold(ctx: BuildContext, path: Path) -> Any:
@@ -223,7 +217,8 @@ def _svg(ctx: BuildContext, path: Path) -> Any:
 
 
 def _json(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export.report import design_report, write_report
+    from onefold_cad.export.report_file import write_report
+    from onefold_cad.fabrication.report import design_report
 
     try:
         pattern = ctx.pattern
@@ -394,12 +389,12 @@ def file_names(stem: str, formats: Sequence[str]) -> list[str]:
 
 def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
     """Raise what a writer of ``formats`` would refuse, before any file exists:
-    a relief hole that does not fit (:func:`~onefold_cad.design.relief_hole_problem`),
+    a relief hole that does not fit (:func:`~onefold_cad.fabrication.relief_hole.relief_hole_problem`),
     the flat pattern (FabricationError or InvalidParameterError) and, with
     ``--compensation sharp``, a STEP solid past the bend model's limits."""
     part = any(WRITERS[n].builds_part for n in formats)
     if part or any(WRITERS[n].cuts_sheet for n in formats):
-        from onefold_cad.design import relief_hole_problem
+        from onefold_cad.fabrication.relief_hole import relief_hole_problem
 
         problem = relief_hole_problem(ctx.design, ctx.folded)
         if problem is not None:
@@ -412,12 +407,12 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
 
 def _check_solid_bends(ctx: BuildContext) -> None:
     """The refusal the part's builder gives a solid past the bend model's
-    limits (:func:`onefold_cad.export.step.build_part`, through
-    :func:`~onefold_cad.design.solid_bend_problem`), raised before anything
+    limits (:func:`onefold_cad.export.part.build_part`, through
+    :func:`~onefold_cad.fabrication.rules.solid_bend_problem`), raised before anything
     is written; a shell, the designed surface, is always written."""
     if (ctx.body or _default_body(ctx.design)) != "solid":
         return
-    from onefold_cad.design import solid_bend_problem
+    from onefold_cad.fabrication.rules import solid_bend_problem
 
     problem = solid_bend_problem(ctx.design, ctx.folded, ctx.compensation)
     if problem is not None:
@@ -448,6 +443,6 @@ def write_design(
 
 
 def _default_body(design: Design) -> str:
-    from onefold_cad.design import default_body
+    from onefold_cad.fabrication.rules import default_body
 
     return default_body(design)

@@ -10,12 +10,12 @@ Two bodies, as the STEP adapter builds them (:mod:`onefold_cad.export.step`):
 * ``solid``: the sheet of the material's thickness (exact model). Per side the
   slab ``F(theta, r, s) = A + r u + s n`` (u the ruling direction, n the top
   normal), r from the hole to the sheet's edge and s between the faces of
-  :func:`~onefold_cad.geometry.thick_sheet.sheet_offsets`, where it lies on its
+  :func:`~onefold_cad.geometry.material.sheet_offsets`, where it lies on its
   own side of the fold's plane of symmetry; and past each crease half the
   mitre's flat block ``A + x u + d a + s n`` (a pointing away from the side's
   sheet) cut at that plane and at its mitre plane, the plane through the
   apex that bisects the crease halves moved a little towards its own half
-  (:func:`~onefold_cad.geometry.thick_sheet.mitre_planes`, as
+  (:func:`~onefold_cad.geometry.thick_map.mitre_planes`, as
   :func:`onefold_cad.export.solid.thick_solid` builds it).
 
 For a fixed ruling the slab's section is a rectangle in (r, s), cut by one
@@ -28,10 +28,8 @@ the hole walls) and a set of fixed points (apex, ruling ends, polytope
 vertices); its lowest point in a direction is the lowest corner over each
 piece's parameter (:func:`zoom_min`).
 
-The centre of mass is integrated from the same description: area-weighted on
-the reference surface for zero thickness, volume-weighted (Jacobian
-``r - s k``, k the geodesic curvature of u, see
-:mod:`onefold_cad.geometry.thick_sheet`) otherwise.
+The centre of mass is integrated from the same description
+(:func:`onefold_cad.geometry.body_mass.mass_properties`).
 
 Points are relative to the apex (the fold frame moved by -A), so that a tiny
 sheet on a large frame keeps its digits. Lengths are in the design unit;
@@ -42,203 +40,32 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from functools import cached_property
 from itertools import combinations
 
 import numpy as np
 from numpy.typing import NDArray
 
+from onefold_cad.choices import Body as BodyKind
 from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.frame import arc_points, arc_tangents
-from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.thick_sheet import SideMap, mitre_depth, mitre_planes, sheet_offsets
-from onefold_cad.geometry.validate import cross3, sorted_unique
+from onefold_cad.geometry.material import Material, sheet_offsets
+from onefold_cad.geometry.numeric import Array, sorted_unique
+from onefold_cad.geometry.pieces import Piece, clipped_rectangle, zoom_min
+from onefold_cad.geometry.thick_map import CreaseFrames, SideMap, mitre_depth, mitre_planes
 
-__all__ = ["Body", "Piece", "zoom_min", "BODIES"]
+__all__ = ["BODIES", "MIRROR", "Body"]
 
-Array = NDArray[np.float64]
-#: The bodies a form can be written as.
-BODIES = ("shell", "solid")
-_MIRROR = np.array([1.0, -1.0, 1.0])
+#: The bodies a form can be written as (the values of :class:`~onefold_cad.choices.Body`).
+BODIES = tuple(b.value for b in BodyKind)
+#: The mirror image in the xz-plane (the -y side of the +y side).
+MIRROR = np.array([1.0, -1.0, 1.0])
 #: Sample points of all pieces together, spread by flat edge length.
 _SAMPLES = 1200
 #: Largest step in the flat angle between samples of an edge (radians).
 _MAX_ANGLE_STEP = math.pi / 180
-_GRID = 33
-
-
-@dataclass(frozen=True, eq=False)
-class Piece:
-    """A one-parameter family of points on which a body's extremes lie.
-
-    Attributes:
-        name: what it is (for messages), e.g. 'edge 3'.
-        grid: ``(n,)`` increasing sample parameters, the first and last being
-            the parameter range's ends.
-        points: ``(k,)`` parameters -> ``(k, V, 3)`` corners of the section
-            there (NaN for corners that are absent).
-        step: the largest length along the piece between neighbouring
-            samples, on the flat sheet for the sheet's edges (the fold keeps
-            lengths: no point of the folded edge lies further than half of it
-            from a sample); 0 to take the samples' 3D distances.
-    """
-
-    name: str
-    grid: Array
-    points: Callable[[Array], Array]
-    step: float = 0.0
-
-    def heights(self, t: Array, g: Array) -> Array:
-        """The lowest corner's height along ``g`` ``(3,)`` at each parameter
-        ``(k,)``; +inf where the section is empty."""
-        h = self.points(np.asarray(t, dtype=float)) @ g
-        return np.where(np.isnan(h), np.inf, h).min(axis=1)
-
-    @property
-    def t0(self) -> float:
-        """The first parameter."""
-        return float(self.grid[0])
-
-    @property
-    def t1(self) -> float:
-        """The last parameter."""
-        return float(self.grid[-1])
-
-    def bracket(self, t_lo: float, t_hi: float) -> tuple[float, float]:
-        """The grid's neighbours around [t_lo, t_hi] (one grid step beyond)."""
-        g = self.grid
-        i = int(np.searchsorted(g, t_lo, side="left"))
-        j = int(np.searchsorted(g, t_hi, side="right")) - 1
-        return float(g[max(i - 1, 0)]), float(g[min(j + 1, len(g) - 1)])
-
-    def lowest(self, t: float, g: Array) -> Array:
-        """The lowest corner ``(3,)`` along ``g`` at parameter ``t``."""
-        pts = self.points(np.array([t]))[0]
-        h = pts @ g
-        return pts[int(np.argmin(np.where(np.isnan(h), np.inf, h)))]
-
-
-def zoom_min(f: Callable[[Array], Array], lo: float, hi: float) -> tuple[float, float]:
-    """The minimum ``(t, f(t))`` of a continuous ``f`` on [lo, hi].
-
-    ``f`` maps ``(k,)`` parameters to ``(k,)`` values. A grid of 33 points is
-    laid over the bracket, which shrinks to the best point's neighbours, until
-    a parabola through the best point and its neighbours predicts the value
-    at its vertex to 1e-3 of the variation there (f is locally quadratic: the
-    vertex is the minimum to rounding), or the bracket is 1e-13 of the first
-    one (a kink, or a minimum at an end of the bracket, which is a grid point).
-    """
-    span = hi - lo
-    best_t, best_v = lo, math.inf
-    at_end = 0
-    for rounds in range(20):
-        t = np.linspace(lo, hi, _GRID)
-        v = f(t)
-        i = int(np.argmin(v))
-        if v[i] < best_v:
-            best_t, best_v = float(t[i]), float(v[i])
-        if not math.isfinite(best_v):
-            break
-        if 0 < i < _GRID - 1 and rounds >= 1:
-            a, b, c = float(v[i - 1]), float(v[i]), float(v[i + 1])
-            curv = a - 2.0 * b + c
-            if curv > 0.0:
-                tp = float(t[i]) + 0.5 * float(t[1] - t[0]) * (a - c) / curv
-                predicted = b - (a - c) ** 2 / (8.0 * curv)
-                vp = float(f(np.array([tp]))[0])
-                if vp < best_v:
-                    best_t, best_v = tp, vp
-                if abs(vp - predicted) <= 1e-3 * (max(a, c) - b):
-                    break
-        at_end = at_end + 1 if i in (0, _GRID - 1) else 0
-        lo, hi = float(t[max(i - 1, 0)]), float(t[min(i + 1, _GRID - 1)])
-        if hi - lo <= 1e-13 * span or at_end >= 3:
-            break
-    return best_t, best_v
-
-
-def _clipped_rectangle(
-    r0: Array, r1: Array, s0: float, s1: float, cr: Array, cs: Array, tol: float
-) -> Array:
-    """Corners ``(k, 8, 2)`` of the rectangles [r0, r1] x [s0, s1] cut to
-    ``cr r + cs s >= 0``: the four corners that satisfy it and the line's
-    crossings with the four sides (NaN where absent)."""
-    k = len(r0)
-    r = np.empty((k, 8))
-    s = np.empty((k, 8))
-    ok = np.empty((k, 8), dtype=bool)
-    r[:, 0], r[:, 1], r[:, 2], r[:, 3] = r0, r1, r1, r0  # the corners
-    s[:, :2], s[:, 2:4] = s0, s1
-    slack = tol * np.hypot(cr, cs)
-    ok[:, :4] = cr[:, None] * r[:, :4] + cs[:, None] * s[:, :4] >= -slack[:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for j, sj in enumerate((s0, s1)):  # sides s = s0, s1: r = -cs s / cr
-            r[:, 4 + j] = rj = -cs * sj / cr
-            s[:, 4 + j] = sj
-            ok[:, 4 + j] = (cr != 0.0) & (rj >= r0) & (rj <= r1)
-        for j, rj in enumerate((r0, r1)):  # sides r = r0, r1: s = -cr r / cs
-            s[:, 6 + j] = sj = -cr * rj / cs
-            r[:, 6 + j] = rj
-            ok[:, 6 + j] = (cs != 0.0) & (sj >= s0) & (sj <= s1)
-    z = np.full((k, 8, 2), np.nan)
-    z[ok, 0] = r[ok]
-    z[ok, 1] = s[ok]
-    return z
-
-
-class _ArcFrames:
-    """The exact cone's frames as functions of the arc parameter phi (no
-    Newton inversion), in the +y side's coordinates: u = (P - A) / |P - A|
-    with P the frame arc (:func:`onefold_cad.geometry.frame.arc_points`)."""
-
-    def __init__(self, folded: FoldedSheet) -> None:
-        self.frame = folded.solution.frame
-        self.apex = folded.apex
-
-    def frames(self, phi: Array, curvature: bool = False) -> tuple[Array, ...]:
-        """u, e, n ``(k, 3)`` at arc parameters ``phi``; and, if asked, the
-        geodesic curvature k = det(v, v', v'') |v|^3 / |v x v'|^3 of u (the k
-        of ``r - s k``) and its speed |du/dphi| = |v x v'| / |v|^2 ``(k,)``,
-        with v = P - A."""
-        v = arc_points(self.frame, phi) - self.apex
-        dv = arc_tangents(self.frame, phi)
-        w = np.sqrt(np.einsum("ij,ij->i", v, v))
-        u = v / w[:, None]
-        e = dv - np.einsum("ij,ij->i", dv, u)[:, None] * u
-        e /= np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
-        n = cross3(u, e)
-        if not curvature:
-            return u, e, n
-        r = self.frame.radius
-        b = math.radians(self.frame.beta)
-        ddv = np.stack(
-            [-r * np.cos(phi), -r * np.sin(phi) * math.cos(b), -r * np.sin(phi) * math.sin(b)],
-            axis=-1,
-        )
-        vxdv = cross3(v, dv)
-        det = np.einsum("ij,ij->i", vxdv, ddv)
-        cross = np.sqrt(np.einsum("ij,ij->i", vxdv, vxdv))
-        k = det * w**3 / cross**3
-        return u, e, n, k, cross / w**2
-
-
-class _Crease:
-    """A SideMap whose crease frames are computed once (the mitre asks often)."""
-
-    def __init__(self, side: SideMap) -> None:
-        self.side = side
-        self.lower = side.lower
-        self.total = side.total
-        self._frames = {end: side.crease_frame(end) for end in (0, 1)}
-
-    def crease_frame(self, end: int) -> tuple[Array, Array, Array]:
-        return self._frames[end]
-
-    def edge_radius(self, theta: Array) -> Array:
-        return self.side.edge_radius(theta)
 
 
 class Body:
@@ -330,7 +157,7 @@ class Body:
         folded = self.folded
         cone = folded.solution.surface
         assert isinstance(cone, ExactCone)
-        arc = _ArcFrames(folded)
+        arc = ArcFrames(folded.solution.frame, folded.apex)
         sheet = folded.sheet
         fixed: list[Array] = []
         if self.kind == "shell" and self.hole <= 0.0:
@@ -364,7 +191,7 @@ class Body:
             self.pieces.append(Piece(f"edge {k}", grid, fn, steps[k]))
         if self.kind == "solid":
             for lower in (False, True):
-                side = _Crease(SideMap(folded, lower=lower))
+                side = CreaseFrames(SideMap(folded, lower=lower))
                 for end in (0, 1):
                     verts, wall = self._block(side, end)
                     fixed += list(verts)
@@ -372,14 +199,14 @@ class Body:
         return fixed
 
     def _sector(
-        self, arc: _ArcFrames, lower: bool, t_lo: float, t_hi: float
+        self, arc: ArcFrames, lower: bool, t_lo: float, t_hi: float
     ) -> Callable[[Array], Array]:
         """Section corners of one sector (one sheet edge) of one side, as a
         function of phi."""
         cone = self.folded.solution.surface
         assert isinstance(cone, ExactCone)
         sheet, rho, tol = self.folded.sheet, self.hole, self._tol
-        mirror = _MIRROR if lower else np.ones(3)
+        mirror = MIRROR if lower else np.ones(3)
         s0, s1 = self.s_range
         solid = self.kind == "solid"
 
@@ -395,19 +222,19 @@ class Body:
                     out = out[:, None, :]
                 return out * mirror
             u, _, n = arc.frames(phi)
-            z = _clipped_rectangle(np.full_like(r_out, rho), r_out, s0, s1, u[:, 1], n[:, 1], tol)
+            z = clipped_rectangle(np.full_like(r_out, rho), r_out, s0, s1, u[:, 1], n[:, 1], tol)
             pts = z[..., :1] * u[:, None, :] + z[..., 1:] * n[:, None, :]
             return pts * mirror
 
         return points
 
-    def _block(self, side: _Crease, end: int) -> tuple[Array, Piece]:
+    def _block(self, side: CreaseFrames, end: int) -> tuple[Array, Piece]:
         """The mitre block past crease half ``end`` of one side: the vertices
         of its polytope outside the hole's disk ``(m, 3)``, and the hole's wall
         as a piece over the distance d past the crease."""
         s0, s1 = self.s_range
         rho, tol = self.hole, self._tol
-        mirror = _MIRROR if side.lower else np.ones(3)
+        mirror = MIRROR if side.lower else np.ones(3)
         depth = mitre_depth(side, self.s_range)
         u, e, n = side.crease_frame(end)
         away = -e if end == 0 else e
@@ -507,161 +334,3 @@ class Body:
             t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
             known = self._lowest[key] = (t, p.lowest(t, g))
         return known[0], known[1].copy()
-
-    # -- mass -----------------------------------------------------------------
-    @cached_property
-    def mass_properties(self) -> tuple[float, Array]:
-        """The sheet's measure (area for zero thickness, else volume; length^2
-        or length^3) and its centre of mass ``(3,)`` (relative to the apex).
-
-        The thickness and reference surface are the material's whichever
-        body is written (the part that stands is the thick sheet); the relief
-        hole is left out; for the exact model the solid's mitre blocks count."""
-        total = 0.0
-        moment = np.zeros(3)
-        folded = self.folded
-        cone = folded.solution.surface
-        for lower in (False, True):
-            mirror = _MIRROR if lower else np.ones(3)
-            up, lo = folded.sheet._side_angles
-            breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-            # graded towards both crease ends: the cut at the crease (thick
-            # sheet), and a sheet edge passing near H (r = d / sin(theta + psi):
-            # a peak of width psi at theta = 0 or pi, e.g. a needle's tip)
-            grade = 0.5 ** np.arange(3, 31)
-            near = breaks[1] * grade
-            far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
-            breaks = sorted_unique(np.concatenate([breaks, near, far]))
-            if self.exact:
-                # the rule runs in the arc's phi (no inversion at every node):
-                # dtheta = |du/dphi| dphi, theta being u's arc length
-                assert isinstance(cone, ExactCone)
-                phi, weights = _sector_rule(cone.phi_of_theta(breaks))
-                theta = np.clip(cone.theta_of_phi(phi), breaks[0], breaks[-1])
-                u, _, n, k, speed = _ArcFrames(folded).frames(phi, curvature=True)
-                weights = weights * speed
-            else:  # planar triangles: no curvature within them
-                theta, weights = _sector_rule(breaks)
-                u, e = cone.frames(theta)
-                n, k = cross3(u, e), np.zeros(len(theta))
-            vals = weights @ self._slab_moments(theta, lower, u, n, k)
-            total += vals[0]
-            moment += vals[1:] * mirror
-            if self.thickness > 0.0 and self.exact:
-                side = _Crease(SideMap(folded, lower=lower))
-                for end in (0, 1):
-                    vol, mom = self._block_moments(side, end)
-                    total += vol
-                    moment += mom * mirror
-        return total, moment / total
-
-    def _slab_moments(self, theta: Array, lower: bool, u: Array, n: Array, k: Array) -> Array:
-        """Per flat angle ``(k,)`` (ruling direction u, top normal n and
-        curvature k there): the section's measure and first moment ``(k, 4)``
-        (per radian), in the +y side's coordinates."""
-        rho = self.hole
-        r_out = self.folded.sheet.ray_lengths(-theta if lower else theta)
-        if self.thickness <= 0.0:
-            i0 = 0.5 * (r_out**2 - rho**2)
-            i1 = (r_out**3 - rho**3) / 3.0
-            return np.column_stack([i0, u * i1[:, None]])
-        s0, s1 = self.s_range
-        uy, ny = u[:, 1], n[:, 1]
-        # y = r u_y + s n_y >= 0 cuts r at -s n_y / u_y (u_y > 0 inside a side):
-        # split s where that bound passes rho and r_out
-        with np.errstate(divide="ignore", invalid="ignore"):
-            s_b = np.where(ny != 0.0, -rho * uy / ny, s0)
-            s_e = np.where(ny != 0.0, -r_out * uy / ny, s0)
-        cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
-        cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
-        out = np.zeros((len(theta), 4))
-        nodes, weights = _GL3  # exact: degree 4 in s
-        for j in range(3):
-            lo, half = cuts[:, j], 0.5 * (cuts[:, j + 1] - cuts[:, j])
-            for x, w in zip(nodes, weights, strict=True):
-                s = lo + half * (1.0 + x)
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    r_y = np.where(uy > 0.0, -s * ny / uy, np.where(s * ny >= 0.0, -np.inf, np.inf))
-                r_lo = np.minimum(np.maximum(rho, r_y), r_out)
-                sk = s * k
-                i0 = (r_out**2 - r_lo**2) / 2.0 - sk * (r_out - r_lo)
-                i1 = (r_out**3 - r_lo**3) / 3.0 - sk * (r_out**2 - r_lo**2) / 2.0
-                ww = w * half
-                out[:, 0] += ww * i0
-                first = (s[:, None] * n) * i0[:, None] + u * i1[:, None]
-                out[:, 1:] += ww[:, None] * first
-        return out
-
-    def _block_moments(self, side: _Crease, end: int) -> tuple[float, Array]:
-        """Volume and first moment ``(3,)`` of the kept part of the mitre block
-        past crease half ``end`` (+y side's coordinates): x integrated exactly,
-        Gauss-Legendre in d and s."""
-        s0, s1 = self.s_range
-        rho = self.hole
-        u, e, n = side.crease_frame(end)
-        away = -e if end == 0 else e
-        length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
-        depth = mitre_depth(side, self.s_range)
-        m, c = mitre_planes(side, s1 - s0)[end]
-        (xs, ws), (xd, wd) = _GL8, _GL48
-        vol = 0.0
-        mom = np.zeros(3)
-        for si, wsi in zip(s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0), strict=True):
-            # y = d away_y + s n_y >= 0 (u_y = 0 on the crease): a bound on d
-            if away[1] < 0.0:
-                d_hi = min(depth, max(si * n[1] / -away[1], 0.0))
-            else:
-                d_hi = depth if si * n[1] >= 0.0 else 0.0
-            if d_hi <= 0.0:
-                continue
-            d = 0.5 * d_hi * (1.0 + xd)
-            wdd = wd * 0.5 * d_hi
-            xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
-            xb = np.full_like(d, length)
-            # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
-            um, c0 = float(u @ m), d * float(away @ m) + si * float(n @ m) - c
-            if um > 0.0:
-                xa = np.maximum(xa, -c0 / um)
-            elif um < 0.0:
-                xb = np.minimum(xb, -c0 / um)
-            else:
-                xb = np.where(c0 >= 0.0, xb, xa)
-            span = np.maximum(xb - xa, 0.0)
-            sq = np.where(span > 0.0, 0.5 * (xb**2 - xa**2), 0.0)
-            base = d[:, None] * away + si * n
-            vol += wsi * float(wdd @ span)
-            mom += wsi * ((wdd * span) @ base + float(wdd @ sq) * u)
-        return vol, mom
-
-
-_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(16)
-#: The rules of a slab's section in s and of a mitre block in s and d.
-_GL3 = np.polynomial.legendre.leggauss(3)
-_GL8 = np.polynomial.legendre.leggauss(8)
-_GL48 = np.polynomial.legendre.leggauss(48)
-#: Panels of the 16-point Gauss-Legendre rule per sector between vertex rays.
-_PANELS = 8
-
-
-def _sector_rule(breaks: Array) -> tuple[Array, Array]:
-    """Nodes and weights of a composite 16-point Gauss-Legendre rule over the
-    sectors between consecutive ``breaks`` (the edge radius is smooth within
-    each): up to 8 panels per sector, in proportion to its width.
-
-    The caller also grades the breaks towards the crease (halving the
-    distance 28 times): the cut at the fold's plane of symmetry leaves only
-    r > C / theta of a thick sheet's concave side there, a feature on every
-    scale from the hole's radius to the sheet's edge; and a sheet edge that
-    passes near H along the crease peaks there on the scale of its angle."""
-    lo, hi = breaks[:-1], breaks[1:]
-    keep = hi > lo
-    lo, hi = lo[keep], hi[keep]
-    panels = np.clip(np.ceil(_PANELS * (hi - lo) / np.max(hi - lo)), 1, _PANELS).astype(int)
-    owner = np.repeat(np.arange(len(lo)), panels)
-    step = ((hi - lo) / panels)[owner]
-    first = np.concatenate([[0], np.cumsum(panels)[:-1]])
-    a = lo[owner] + (np.arange(len(owner)) - first[owner]) * step
-    half = 0.5 * step
-    nodes = ((a + half)[:, None] + half[:, None] * _GL_NODES).ravel()
-    weights = (half[:, None] * _GL_WEIGHTS).ravel()
-    return nodes, weights

@@ -3,196 +3,38 @@
 The developed angle is the integral over the arc of the speed of the unit
 vector from the apex to the arc point, evaluated by Gauss-Legendre quadrature
 on panels graded towards the integrand's complex singularities (see below);
-the surface interface and the in-plane formulation are in :mod:`.surface`.
-:class:`PaperFan` and :class:`DirectionSurface` are re-exported here.
+the rule is in :mod:`.cone_rule`, the surface interface and the in-plane
+formulation in :mod:`.surface`.
 """
 
 from __future__ import annotations
 
-import cmath
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.fan import PaperFan
-from onefold_cad.geometry.frame import ArcGeometry, arc_range, end_relative
-from onefold_cad.geometry.params import FrameCurve
-from onefold_cad.geometry.surface import EPS, Array, DirectionSurface
+from onefold_cad.geometry.arc import arc_range, end_relative
+from onefold_cad.geometry.cone_rule import (
+    GL_NODES,
+    GL_WEIGHTS,
+    NODE_INTEGRALS,
+    REACH,
+    HalfRule,
+    half_rule,
+    halved,
+    panels,
+    rule_speed,
+    singularities,
+    speed_at,
+)
+from onefold_cad.geometry.frame_curve import FrameCurve
+from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.surface import EPS, DirectionSurface
 
-__all__ = ["DirectionSurface", "PaperFan", "ExactCone"]
+__all__ = ["ExactCone"]
 
 _EPS = EPS
-
-# -- the exact cone ---------------------------------------------------------------
-#
-# The developed angle is the integral over the arc of the speed of the unit
-# vector u from the apex to the arc point, in the plane's coordinates (units of
-# R, p = P - F, t = h cos(beta), phi the arc parameter):
-#
-#   |u'(phi)| = sqrt(w^2 + t^2) / (|p|^2 + t^2),   w = p x P'(phi) = x cos(phi) + q sin(phi).
-#
-# With W = C - F (C the arc's centre, F the apex's foot), |p|^2 = |W|^2 + 1 +
-# 2 |W| cos(phi - arg W) and w = 1 + |W| cos(phi - arg W): the integrand's
-# complex singularities are the zeros of |p|^2 + t^2 (one conjugate pair, at
-# arg(F - C) + i acosh((|W|^2 + 1 + t^2) / (2 |W|))) and of w^2 + t^2 (two
-# pairs, near the tangent points from F when F lies outside the circle). A
-# composite 20-point Gauss-Legendre rule whose panels are no wider than
-# 2 * _REACH times their distance from every singularity converges like
-# 4.8^-40; the panels are halved towards each singularity until that holds,
-# so the rule is graded geometrically towards nearly real singularities (H near
-# an end of the f-line, beta near 90 deg) instead of being uniformly fine.
-#
-# The arc is split at its midpoint into two halves, each parametrised by s, the
-# arc parameter's distance from its own end (phi = -alpha + s on the +x half,
-# phi = 180 + alpha - s on the -x half), so that nodes near an end are placed
-# to a rounding error of their distance from it.
-
-_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(20)
-_REACH = 0.4
-_MAX_DEPTH = 60
-
-
-def _integration_matrix(nodes: Array) -> Array:
-    """M with (M @ f)_i = integral from -1 to nodes_i of the polynomial that
-    interpolates f at ``nodes`` (exact for polynomials of degree < len(nodes))."""
-    leg = np.polynomial.legendre
-    n = len(nodes)
-    integrals = leg.legval(nodes, leg.legint(np.eye(n), lbnd=-1)).T
-    return integrals @ np.linalg.inv(leg.legvander(nodes, n - 1))
-
-
-#: s at the nodes of a panel from the integrand there (for initial guesses).
-_NODE_INTEGRALS = _integration_matrix(_GL_NODES)
-
-
-def _singularities(
-    g: ArcGeometry, h: float, planar: bool = False
-) -> list[tuple[float, float, float]]:
-    """The integrand's complex singularities for the apex at height h (units of
-    R): ``(s+, s-, distance)``, their real parts as distances from the +x and
-    from the -x end (each accurate near its own end) and their distance from
-    the real axis. ``planar`` adds the zeros of |p|^2 (the in-plane sweep
-    w / |p|^2 of :meth:`ExactCone.excess_accurate`)."""
-    hs = h * g.sin_beta
-    t = h * g.cos_beta
-    m1 = hs * (hs - 2.0 * g.sin_alpha) - g.l_plus * g.l_minus  # |W|^2 - 1
-    wn = math.sqrt(max(1.0 + m1, 0.0))
-    if wn < 1e-6:  # F at the centre: |u'| is nearly constant
-        return []
-    ea = complex(g.cos_alpha, g.sin_alpha)
-    # the direction of F from the centre, from each end: arg((F - C) / (P_end - C))
-    psi_p = cmath.phase(1.0 + complex(-g.l_plus, hs) * ea)
-    psi_m = -cmath.phase(1.0 - complex(g.l_minus, hs) * ea.conjugate())
-    wm1 = m1 / (1.0 + wn)  # |W| - 1
-    y = (wm1 * wm1 + t * t) / (2.0 * wn)
-    out = [(psi_p, psi_m, math.log1p(y + math.sqrt(y * (y + 2.0))))]
-    if planar:
-        y = wm1 * wm1 / (2.0 * wn)
-        out.append((psi_p, psi_m, math.log1p(y + math.sqrt(y * (y + 2.0)))))
-    # w^2 + t^2 = 0: cos(phi - psi) = (1 +- i t) / |W| = 1 + zeta
-    zeta = complex(-wm1, t) / wn
-    z = 2.0 * cmath.asin(cmath.sqrt(-0.5 * zeta))
-    re, im = abs(z.real), abs(z.imag)
-    out.append((psi_p + re, psi_m - re, im))
-    out.append((psi_p - re, psi_m + re, im))
-    return out
-
-
-def _panels(half_span: float, sing: Array, reach: float) -> Array:
-    """Panel edges on [0, half_span] (one half's s), halved until every panel's
-    half-width is at most ``reach`` times its centre's distance from each
-    singularity ``sing`` ``(m, 2)`` (real part in this half's s, distance)."""
-    lo = np.array([0.0])
-    hi = np.array([half_span])
-    done_lo: list[Array] = []
-    done_hi: list[Array] = []
-    for _ in range(_MAX_DEPTH):
-        c = 0.5 * (lo + hi)
-        hw = 0.5 * (hi - lo)
-        if len(sing):
-            dist = np.hypot(c[:, None] - sing[:, 0], sing[:, 1]).min(axis=1)
-            split = hw > reach * dist
-        else:
-            split = hw > 0.5
-        done_lo.append(lo[~split])
-        done_hi.append(hi[~split])
-        if not split.any():
-            break
-        c, lo, hi = c[split], lo[split], hi[split]
-        lo, hi = np.concatenate((lo, c)), np.concatenate((c, hi))
-    else:
-        done_lo.append(lo)
-        done_hi.append(hi)
-    a, b = np.concatenate(done_lo), np.concatenate(done_hi)
-    order = np.argsort(a)
-    edges = np.empty(len(a) + 1)
-    edges[:-1] = a[order]
-    edges[-1] = b[order[-1]]
-    return edges
-
-
-@dataclass(frozen=True)
-class _Half:
-    """The quadrature rule on one half of the arc (``plus``: from the +x end).
-
-    Attributes:
-        plus: which half.
-        edges: ``(p + 1,)`` panel edges in s (radians from this half's end).
-        half: ``(p,)`` panel half-widths.
-        s: ``(p, 20)`` the nodes' s.
-        weights: ``(p * 20,)`` Gauss-Legendre weights.
-        x, d: ``(p * 20,)`` the nodes' in-plane coordinates (units of R).
-        cphi, sphi: ``(p * 20,)`` cos and sin of the nodes' arc parameter.
-    """
-
-    plus: bool
-    edges: Array
-    half: Array
-    s: Array
-    weights: Array
-    x: Array
-    d: Array
-    cphi: Array
-    sphi: Array
-
-
-def _half_rule(g: ArcGeometry, plus: bool, edges: Array) -> _Half:
-    half = 0.5 * (edges[1:] - edges[:-1])
-    mid = edges[:-1] + half
-    s = mid[:, None] + half[:, None] * _GL_NODES
-    flat = s.ravel()
-    x, d = end_relative(g, flat, plus)
-    ang = flat - g.alpha
-    cphi = np.cos(ang)
-    if not plus:
-        np.negative(cphi, out=cphi)
-    weights = (half[:, None] * _GL_WEIGHTS).ravel()
-    return _Half(plus, edges, half, s, weights, x, d, cphi, np.sin(ang))
-
-
-def _speed(hf: _Half, g: ArcGeometry, h: float | Array) -> Array:
-    """|u'| at the nodes of ``hf`` for apex heights ``h`` (units of R; a float
-    or a column ``(k, 1)``)."""
-    return _speed_at(g, hf.x, hf.d, hf.cphi, hf.sphi, h)
-
-
-def _speed_at(
-    g: ArcGeometry, x: Array, d: Array, cphi: Array, sphi: Array, h: float | Array
-) -> Array:
-    """|u'| at arc points with in-plane coordinates ``x``, ``d`` (units of R) and
-    arc parameter cosines/sines ``cphi``, ``sphi``, apex at height(s) ``h``."""
-    q = d - h * g.sin_beta
-    t = h * g.cos_beta
-    w = x * cphi
-    w = w + q * sphi
-    den = x * x
-    den = den + q * q
-    den += t * t
-    num = np.hypot(w, t)
-    num /= den
-    return num
 
 
 class ExactCone(DirectionSurface):
@@ -206,13 +48,13 @@ class ExactCone(DirectionSurface):
     against the rule with every panel halved.
     """
 
-    def __init__(self, frame: FrameCurve, reach: float = _REACH) -> None:
+    def __init__(self, frame: FrameCurve, reach: float = REACH) -> None:
         super().__init__(frame)
         self.reach = reach
-        self._rule: tuple[_Half, _Half] | None = None
+        self._rule: tuple[HalfRule, HalfRule] | None = None
         self._valid_for: list[float] = []
         # at the apex (set_apex)
-        self._apex_rule: tuple[_Half, _Half] | None = None
+        self._apex_rule: tuple[HalfRule, HalfRule] | None = None
         self._theta_lo: tuple[Array, Array] | None = None  # per half: theta at panel starts
         self._speed_at: tuple[Array, Array] | None = None  # per half: |u'| at the nodes
         self._half_total: tuple[float, float] = (0.0, 0.0)
@@ -226,7 +68,7 @@ class ExactCone(DirectionSurface):
         sm: list[tuple[float, float]] = []
         two_pi = 2.0 * math.pi
         for h in heights:
-            for rp, rm, dist in _singularities(g, h, planar):
+            for rp, rm, dist in singularities(g, h, planar):
                 for k in (-two_pi, 0.0, two_pi):
                     sp.append((rp + k, dist))
                     sm.append((rm + k, dist))
@@ -234,16 +76,16 @@ class ExactCone(DirectionSurface):
 
     def _build(
         self, heights: list[float], reach: float, planar: bool = False
-    ) -> tuple[_Half, _Half]:
+    ) -> tuple[HalfRule, HalfRule]:
         g = self.geometry
         sp, sm = self._sing_arrays(heights, planar)
         hs = 0.5 * g.span
         return (
-            _half_rule(g, True, _panels(hs, sp, reach)),
-            _half_rule(g, False, _panels(hs, sm, reach)),
+            half_rule(g, True, panels(hs, sp, reach)),
+            half_rule(g, False, panels(hs, sm, reach)),
         )
 
-    def _valid(self, rule: tuple[_Half, _Half], heights: list[float]) -> bool:
+    def _valid(self, rule: tuple[HalfRule, HalfRule], heights: list[float]) -> bool:
         sp, sm = self._sing_arrays(heights)
         for hf, sing in zip(rule, (sp, sm), strict=True):
             if not len(sing):
@@ -254,7 +96,7 @@ class ExactCone(DirectionSurface):
                 return False
         return True
 
-    def _rule_for(self, heights: list[float]) -> tuple[_Half, _Half]:
+    def _rule_for(self, heights: list[float]) -> tuple[HalfRule, HalfRule]:
         """A rule fine enough for every apex height in ``heights`` (units of R)."""
         if self._rule is not None:
             new = [h for h in heights if h not in self._valid_for]
@@ -268,11 +110,11 @@ class ExactCone(DirectionSurface):
         return self._rule
 
     # -- the angle condition -------------------------------------------------------
-    def _integral(self, rule: tuple[_Half, _Half], h: float | Array) -> Array | float:
+    def _integral(self, rule: tuple[HalfRule, HalfRule], h: float | Array) -> Array | float:
         g = self.geometry
         total: Array | float = 0.0
         for hf in rule:
-            total = total + _speed(hf, g, h) @ hf.weights
+            total = total + rule_speed(hf, g, h) @ hf.weights
         return total
 
     def excess(self, h: float) -> float:
@@ -341,8 +183,8 @@ class ExactCone(DirectionSurface):
         hu = h / g.radius
         coarse = self._rule_for([hu])
         # the verified rule: every panel halved
-        fine = tuple(_half_rule(g, hf.plus, _halved(hf.edges)) for hf in coarse)  # type: tuple[_Half, _Half]
-        speeds = tuple(_speed(hf, g, hu) for hf in fine)
+        fine = tuple(half_rule(g, hf.plus, halved(hf.edges)) for hf in coarse)  # type: tuple[HalfRule, HalfRule]
+        speeds = tuple(rule_speed(hf, g, hu) for hf in fine)
         lo = []
         totals = []
         for hf, sp in zip(fine, speeds, strict=True):
@@ -395,7 +237,7 @@ class ExactCone(DirectionSurface):
         a = hf.edges.take(j)
         half = 0.5 * (s - a)
         pts = np.empty((len(s), 21))
-        pts[:, :20] = (a + half)[:, None] + half[:, None] * _GL_NODES
+        pts[:, :20] = (a + half)[:, None] + half[:, None] * GL_NODES
         pts[:, 20] = s
         flat = pts.ravel()
         x, d = end_relative(g, flat, hf.plus)
@@ -403,9 +245,9 @@ class ExactCone(DirectionSurface):
         cphi = np.cos(ang)
         if not hf.plus:
             np.negative(cphi, out=cphi)
-        speed = _speed_at(g, x, d, cphi, np.sin(ang), self.height / g.radius)
+        speed = speed_at(g, x, d, cphi, np.sin(ang), self.height / g.radius)
         speed = speed.reshape(len(s), 21)
-        theta = self._theta_lo[k].take(j) + half * (speed[:, :20] @ _GL_WEIGHTS)
+        theta = self._theta_lo[k].take(j) + half * (speed[:, :20] @ GL_WEIGHTS)
         return theta, speed[:, 20]
 
     def _node_table(self, k: int) -> tuple[Array, Array, Array]:
@@ -419,7 +261,7 @@ class ExactCone(DirectionSurface):
             out = []
             for hf, sp, lo in zip(self._apex_rule, self._speed_at, self._theta_lo, strict=True):
                 per = sp.reshape(len(hf.half), -1)
-                nodes = per @ _NODE_INTEGRALS.T
+                nodes = per @ NODE_INTEGRALS.T
                 nodes *= hf.half[:, None]
                 nodes += lo[:-1, None]
                 th = np.concatenate(((0.0,), nodes.ravel(), lo[-1:]))
@@ -427,7 +269,7 @@ class ExactCone(DirectionSurface):
                 x, d = end_relative(g, s[[0, -1]], hf.plus)  # |u'| at the ends
                 ang = s[[0, -1]] - g.alpha
                 cphi = np.cos(ang) if hf.plus else -np.cos(ang)
-                at_ends = _speed_at(g, x, d, cphi, np.sin(ang), self.height / g.radius)
+                at_ends = speed_at(g, x, d, cphi, np.sin(ang), self.height / g.radius)
                 speed = np.concatenate((at_ends[:1], sp, at_ends[1:]))
                 out.append((th, s, speed))
             self._tables = (out[0], out[1])
@@ -557,11 +399,3 @@ class ExactCone(DirectionSurface):
             return u[0].tolist(), e[0].tolist()
         u, e = self.frames(np.array([theta]))
         return u[0].tolist(), e[0].tolist()
-
-
-def _halved(edges: Array) -> Array:
-    """Panel edges with every panel split in two."""
-    out = np.empty(2 * len(edges) - 1)
-    out[::2] = edges
-    out[1::2] = 0.5 * (edges[:-1] + edges[1:])
-    return out

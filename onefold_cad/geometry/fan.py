@@ -13,10 +13,10 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.frame import division_points
-from onefold_cad.geometry.params import FrameCurve
-from onefold_cad.geometry.surface import EPS, Array, DirectionSurface
-from onefold_cad.geometry.validate import cross3
+from onefold_cad.geometry.arc import division_points
+from onefold_cad.geometry.frame_curve import FrameCurve
+from onefold_cad.geometry.numeric import Array, cross3
+from onefold_cad.geometry.surface import EPS, DirectionSurface
 
 __all__ = ["PaperFan"]
 

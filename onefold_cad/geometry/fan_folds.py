@@ -23,12 +23,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.geometry.cone import PaperFan
+from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.numeric import Array
 
 __all__ = ["RulingFold", "on_division_rays", "ring_angles", "ruling_folds", "signed_fold_angles"]
 
-Array = NDArray[np.float64]
 #: Rays closer than this (radians) are one ruling (as in folding.fold's merge).
 SAME_RAY = 1e-12
 

@@ -12,11 +12,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.validate import sorted_unique
+from onefold_cad.geometry.numeric import Array, sorted_unique
 
-__all__ = ["convex_hull_2d", "polygon_area", "edge_distances"]
-
-Array = NDArray[np.float64]
+__all__ = ["convex_hull_2d", "edge_distances"]
 
 
 def _chain(xs: list[float], ys: list[float], order: list[int], tol: float) -> list[int]:
@@ -86,16 +84,6 @@ def _outside_octagon(p: Array) -> NDArray[np.int64]:
         p[:, None, 0] - poly[None, :, 0]
     )
     return np.flatnonzero(~np.all(cross > 0.0, axis=1))
-
-
-def polygon_area(polygon: ArrayLike) -> float:
-    """Signed area of a closed polygon ``(m, 2)`` (positive when
-    counter-clockwise; length^2); 0 for fewer than 3 corners."""
-    p = np.asarray(polygon, dtype=float).reshape(-1, 2)
-    if len(p) < 3:
-        return 0.0
-    q = np.roll(p, -1, axis=0)
-    return 0.5 * float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
 
 
 def edge_distances(point: ArrayLike, polygon: ArrayLike) -> Array:

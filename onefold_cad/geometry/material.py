@@ -1,4 +1,4 @@
-"""Sheet material and fabrication inputs, and the bend formulas.
+"""Sheet material and fabrication inputs, and where the sheet's faces lie.
 
 Lengths are in the design's unit; angles in degrees at the API edge. The
 names follow build123d's sheet-metal vocabulary: ``thickness``,
@@ -8,52 +8,13 @@ names follow build123d's sheet-metal vocabulary: ``thickness``,
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+from onefold_cad.choices import SheetSurface
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.choice import Choice
-from onefold_cad.geometry.validate import closed_interval, finite
+from onefold_cad.geometry.checks import closed_interval, finite
 
-if TYPE_CHECKING:
-    from onefold_cad.geometry.bend import BendValues
-
-__all__ = ["SheetSurface", "Units", "Material", "BendValues", "bend_values"]
-
-
-class SheetSurface(Choice):
-    """Which face of the sheet the designed (reference) surface is.
-
-    INSIDE: the top (+z) face; the material lies below it.
-    OUTSIDE: the bottom face; the material lies above it.
-    MID: the mid-surface; half the thickness each way.
-    """
-
-    INSIDE = "INSIDE"
-    OUTSIDE = "OUTSIDE"
-    MID = "MID"
-
-
-class Units(Choice):
-    """Length unit of a design."""
-
-    MM = "mm"
-    IN = "in"
-    FT = "ft"
-
-    @property
-    def mm(self) -> float:
-        """Millimetres per unit (exact: 1 in = 25.4 mm, 1 ft = 304.8 mm)."""
-        return {"mm": 1.0, "in": 25.4, "ft": 304.8}[self.value]
-
-    def factor_to(self, other: Units | str) -> float:
-        """The factor that turns a length in this unit into one in ``other``."""
-        return self.mm / Units.parse(other).mm
-
-    @property
-    def mass_unit(self) -> str:
-        """The unit masses are reported in: 'kg' for mm designs, 'lb' for inch
-        and foot designs."""
-        return "kg" if self is Units.MM else "lb"
+__all__ = ["Material", "default_relief_hole", "sheet_offsets"]
 
 
 @dataclass(frozen=True)
@@ -69,7 +30,7 @@ class Material:
             None chooses the default: none for t = 0, 2 * t + 2 * r otherwise
             (at least 3 * t).
         density: kg/m^3 > 0 (e.g. 7850 for steel), or None; independent of
-            the design's length unit (see :func:`onefold_cad.design.design_mass`).
+            the design's length unit (see :func:`onefold_cad.fabrication.mass.design_mass`).
         name: a material description for the notes (e.g. '304 stainless').
         sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
     """
@@ -109,50 +70,33 @@ class Material:
         """The relief hole's diameter after applying the default (length)."""
         if self.relief_hole is not None:
             return self.relief_hole
-        if self.thickness == 0.0:
-            return 0.0
-        return max(3.0 * self.thickness, 2.0 * (self.thickness + self.bend_radius))
+        return default_relief_hole(self.thickness, self.bend_radius)
 
     def with_changes(self, **changes: Any) -> Material:
         """A copy with some fields replaced (validated again)."""
         return replace(self, **changes)
 
 
-def bend_values(angle_deg: float, material: Material, bend: str | None = None) -> BendValues:
-    """The bend model's numbers for a bend of ``angle_deg`` in [0, 180) deg.
-
-    One source: this calls :func:`onefold_cad.geometry.bend.bend_model`
-    (setback SB = (r + s t) tan(psi/2), BA = psi (r + K t), BD = 2 SB - BA,
-    shift SB - BA/2, with s the reference surface's place in the bend).
-
-    Args:
-        angle_deg: the fold angle psi from flat (deg).
-        material: thickness, bend radius, K-factor and reference surface.
-        bend: 'UP' or 'DOWN'. Needed for an INSIDE or OUTSIDE reference
-            surface (the bend direction decides which face is inside); a MID
-            reference is the same in both directions.
-    """
-    from onefold_cad.geometry.bend import bend_model
-
-    psi = finite("angle_deg", angle_deg)
-    if not 0.0 <= psi < 180.0:
-        raise InvalidParameterError("angle_deg", f"must be in [0, 180) deg, got {angle_deg:g}")
-    if bend is None:
-        if material.sheet_surface is not SheetSurface.MID:
-            raise InvalidParameterError(
-                "bend",
-                f"'UP' or 'DOWN' is needed for the {material.sheet_surface.value} reference "
-                "surface: the bend direction decides whether it is the bend's inside or outside",
-            )
-        bend = "UP"
-    return bend_model(psi, bend, material)
+#: Where the sheet's faces lie for each reference surface, in thicknesses
+#: along the top normal from the reference surface.
+_S_RANGE = {
+    SheetSurface.INSIDE: (-1.0, 0.0),
+    SheetSurface.OUTSIDE: (0.0, 1.0),
+    SheetSurface.MID: (-0.5, 0.5),
+}
 
 
-def __getattr__(name: str) -> Any:
-    """``BendValues`` lives with the bend model (imported on first use: the
-    bend model imports this module)."""
-    if name == "BendValues":
-        from onefold_cad.geometry.bend import BendValues
+def sheet_offsets(material: Material) -> tuple[float, float]:
+    """The sheet's two faces as signed distances from the reference surface
+    along its top normal (length): INSIDE (-t, 0), OUTSIDE (0, t), MID (-t/2, t/2)."""
+    lo, hi = _S_RANGE[material.sheet_surface]
+    return lo * material.thickness, hi * material.thickness
 
-        return BendValues
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+def default_relief_hole(thickness: float, bend_radius: float) -> float:
+    """The default relief hole's diameter before a solid's needs (length):
+    none for a zero-thickness sheet, else max(3 t, 2 (t + r)). The one home of
+    that rule (:attr:`Material.relief_hole_diameter`, the fabrication checks)."""
+    if thickness == 0.0:
+        return 0.0
+    return max(3.0 * thickness, 2.0 * (thickness + bend_radius))

@@ -24,28 +24,27 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from onefold_cad.errors import NoSolutionError
 from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.ground import (
     CONTACT_TOLERANCE,
     Samples,
-    com_depth,
-    com_outside,
     exact_features,
     features,
     holds,
     lowest_points,
-    roll,
     sample_spacing,
     settle,
     touching,
 )
-from onefold_cad.geometry.hull import convex_hull_2d, edge_distances, polygon_area
+from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
 from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.validate import cross3
+from onefold_cad.geometry.numeric import Array, cross3, polygon_area
+from onefold_cad.geometry.topple import com_depth, com_outside, roll
 
 __all__ = [
     "RestingPlacement",
@@ -54,7 +53,6 @@ __all__ = [
     "TIPPING_WARNING_DEG",
 ]
 
-Array = NDArray[np.float64]
 #: Below this tipping margin (deg) a form gets a stability warning.
 TIPPING_WARNING_DEG = 5.0
 
@@ -261,7 +259,7 @@ def rest_form(
     """
     form = Body(folded, material, body)
     size = form.size
-    _, com = form.mass_properties
+    _, com = mass_properties(form)
     samples = Samples(*form.samples)
     if not (np.all(np.isfinite(samples.points)) and np.all(np.isfinite(com))):
         raise NoSolutionError(
@@ -327,7 +325,7 @@ def rest_form(
     polygon = contacts[convex_hull_2d(contacts[:, :2], contact_tol), :2]
     # a rocking form balances its centre of mass over the line through two
     # tangencies, whose places along their curves are known to about 1e-8 of
-    # the size (ground._rock settles for 1e-6 of it)
+    # the size (ground.rock settles for 1e-6 of it)
     margin, edge = _tipping(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
     bounds = _bounds(form, samples, rot, shift, band)
     shadow = samples.points @ rot.T
@@ -375,9 +373,9 @@ def _cut(
 
 def _surface_centre(folded: FoldedSheet, material: Material | None) -> Array:
     """The centre of mass ``(3,)`` of the zero-thickness reference surface
-    (relative to the apex, as :attr:`Body.mass_properties`)."""
+    (relative to the apex, as :func:`~onefold_cad.geometry.body_mass.mass_properties`)."""
     thin = None if material is None else material.with_changes(thickness=0.0, bend_radius=0.0)
-    return Body(folded, thin, "shell").mass_properties[1]
+    return mass_properties(Body(folded, thin, "shell"))[1]
 
 
 def _rotation_to_up(g: Array) -> Array:

@@ -32,7 +32,18 @@ from numpy.typing import NDArray
 
 from onefold_cad.geometry.surface import EPS, DirectionSurface
 
-__all__ = ["SearchFailed", "Search", "find_root", "GRID"]
+__all__ = [
+    "GRID",
+    "GRID_HEIGHTS",
+    "SPACING",
+    "Search",
+    "SearchFailed",
+    "find_root",
+    "neville",
+    "neville5",
+    "neville6",
+    "slope5",
+]
 
 #: First probe, as multiples of the paper's lower bound l: the root lies in
 #: [1.09 l, 2 l] for beta >= 30 deg and H not near an end. Twelve heights
@@ -41,9 +52,10 @@ __all__ = ["SearchFailed", "Search", "find_root", "GRID"]
 #: paper's Table 1 and for ~3 designs in 4 (eight heights and a cubic: ~1 in
 #: 3), saving a whole probe at the cost of four heights' elementwise work.
 GRID = tuple(0.95 * (2.3 / 0.95) ** (j / 11.0) for j in range(12))
-_GRID = np.array(GRID)
+#: :data:`GRID` as an array.
+GRID_HEIGHTS = np.array(GRID)
 #: The 5-height probes' spacing around an estimate (relative).
-_SPACING = 5e-5
+SPACING = 5e-5
 #: Heights (units of R) outside which no root is searched.
 _H_MIN, _H_MAX = 1e-280, 1e12
 
@@ -52,12 +64,12 @@ class SearchFailed(Exception):
     """No sign change of S - 180 deg was found (a design beyond double precision)."""
 
 
-def _neville(fs: list[float], hs: list[float]) -> float:
+def neville(fs: list[float], hs: list[float]) -> float:
     """The polynomial through (fs[i], hs[i]) evaluated at 0 (inverse interpolation)."""
     if len(fs) == 6:
-        return _neville6(fs, hs)
+        return neville6(fs, hs)
     if len(fs) == 5:
-        return _neville5(fs, hs)
+        return neville5(fs, hs)
     p = list(hs)
     n = len(fs)
     for k in range(1, n):
@@ -69,8 +81,8 @@ def _neville(fs: list[float], hs: list[float]) -> float:
     return p[0]
 
 
-def _neville6(fs: list[float], hs: list[float]) -> float:
-    """:func:`_neville` for 6 points (the first estimate's), written out."""
+def neville6(fs: list[float], hs: list[float]) -> float:
+    """:func:`neville` for 6 points (the first estimate's), written out."""
     f0, f1, f2, f3, f4, f5 = fs
     p0, p1, p2, p3, p4, p5 = hs
     try:
@@ -93,8 +105,8 @@ def _neville6(fs: list[float], hs: list[float]) -> float:
         return math.nan
 
 
-def _neville5(fs: list[float], hs: list[float]) -> float:
-    """:func:`_neville` for 5 points (the final probe's), written out: the same
+def neville5(fs: list[float], hs: list[float]) -> float:
+    """:func:`neville` for 5 points (the final probe's), written out: the same
     operations in the same order, without the loops' indexing."""
     f0, f1, f2, f3, f4 = fs
     p0, p1, p2, p3, p4 = hs
@@ -113,7 +125,7 @@ def _neville5(fs: list[float], hs: list[float]) -> float:
         return math.nan
 
 
-def _slope5(hs: list[float], fs: list[float], x: float) -> float:
+def slope5(hs: list[float], fs: list[float], x: float) -> float:
     """dF/dh at x from 5 equally spaced heights (finite differences about the
     middle one, to fourth order: x lies within the stencil)."""
     f0, f1, f2, f3, f4 = fs
@@ -225,7 +237,7 @@ def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, floa
         SearchFailed: no height with S above or below 180 deg was found.
     """
     s = Search(surface)
-    s.probe(_GRID * l0)
+    s.probe(GRID_HEIGHTS * l0)
     span = 16.0
     for _ in range(60):
         if s.exact is not None or (s.lo > 0.0 and s.hi < math.inf):
@@ -248,26 +260,26 @@ def find_root(surface: DirectionSurface, l0: float) -> tuple[float, Search, floa
     if s.exact is not None:
         return s.exact, s, _slope(s, s.exact)
     fs, hs = s.around()
-    estimate = _neville(fs, hs)
+    estimate = neville(fs, hs)
     if not s.lo < estimate < s.hi:
         estimate = 0.5 * (s.lo + s.hi)
-    delta = _SPACING * estimate
+    delta = SPACING * estimate
     for _ in range(60):
         delta = max(min(delta, 0.25 * (s.hi - s.lo)), 4.0 * EPS * estimate)
         hs = [estimate + delta * j for j in (-2, -1, 0, 1, 2)]
         fs = s.probe(hs)
         if s.exact is not None:
-            return s.exact, s, _slope5(hs, fs, s.exact)
-        new = _neville(fs, hs)
+            return s.exact, s, slope5(hs, fs, s.exact)
+        new = neville(fs, hs)
         if not s.lo <= new <= s.hi:
             new = 0.5 * (s.lo + s.hi)
-        if fs[0] > 0.0 > fs[4] and abs(new - estimate) <= 2.0 * delta <= 4.0 * _SPACING * new:
-            return new, s, _slope5(hs, fs, new)
+        if fs[0] > 0.0 > fs[4] and abs(new - estimate) <= 2.0 * delta <= 4.0 * SPACING * new:
+            return new, s, slope5(hs, fs, new)
         # the root's position is known only to the rounding of F over its slope
         noise = 4.0 * s.bound * abs((hs[4] - hs[0]) / (fs[4] - fs[0]))
         if s.hi - s.lo <= max(8.0 * EPS * estimate, noise):
             return new, s, _slope(s, new)
-        delta = min(max(abs(new - estimate), 0.5 * delta), _SPACING * new)
+        delta = min(max(abs(new - estimate), 0.5 * delta), SPACING * new)
         estimate = new
     raise SearchFailed("the root search did not converge")
 

@@ -17,17 +17,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import InvalidParameterError, InvalidSheetError
-from onefold_cad.geometry.validate import (
+from onefold_cad.geometry.checks import (
     MAX_LENGTH,
     MIN_LENGTH,
     finite,
     float_errors,
     length,
     positive,
-    sorted_unique,
 )
+from onefold_cad.geometry.numeric import cross2, edge_lengths_2d, polygon_area, sorted_unique
+from onefold_cad.geometry.polygon import TOUCH, boundary_distance, check_simple
 
-__all__ = ["MAX_VERTICES", "MIN_FEATURE", "Placement2D", "Sheet"]
+__all__ = ["MAX_VERTICES", "MIN_FEATURE", "Placement2D", "Sheet", "sheet_inradius"]
 
 _TWO_PI = 2.0 * math.pi
 #: Most vertices a polygon sheet may have. A polygon of 10 000 vertices follows
@@ -77,154 +78,6 @@ class Placement2D:
         return p @ self.matrix
 
 
-def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
-#: Sweep coordinates are turned by this angle (radians, no rational multiple
-#: of pi) so that, in practice, no edge is vertical and no two vertices share
-#: the sweep coordinate; the sweep's order only decides which edges are
-#: compared, every comparison uses the original coordinates.
-_SWEEP_ANGLE = 0.6180339887498949
-#: Two edges closer than this fraction of the polygon's scale (its largest
-#: coordinate magnitude) touch.
-_TOUCH = 1e-12
-
-
-def _edges_meet(p: list[list[float]], i: int, k: int, scale: float) -> bool:
-    """Whether edges i and k (vertex i to i + 1, k to k + 1) of the closed polygon
-    ``p`` cross or touch: cross properly, or an endpoint of one lies within
-    ``_TOUCH * scale`` of the other (collinear overlaps included)."""
-    n = len(p)
-    (ax, ay), (bx, by) = p[i], p[(i + 1) % n]
-    (cx, cy), (dx, dy) = p[k], p[(k + 1) % n]
-    ex, ey, fx, fy = bx - ax, by - ay, dx - cx, dy - cy
-    ee, ff = ex * ex + ey * ey, fx * fx + fy * fy
-    if ee == 0.0 or ff == 0.0:
-        return False  # a zero-length edge meets nothing (callers remove them)
-    # cross products: |e| (resp. |f|) times the signed distance of a point from the line
-    d1 = ex * (cy - ay) - ey * (cx - ax)
-    d2 = ex * (dy - ay) - ey * (dx - ax)
-    d3 = fx * (ay - cy) - fy * (ax - cx)
-    d4 = fx * (by - cy) - fy * (bx - cx)
-    tol_e, tol_f = _TOUCH * scale * math.sqrt(ee), _TOUCH * scale * math.sqrt(ff)
-    if ((d1 > tol_e and d2 < -tol_e) or (d1 < -tol_e and d2 > tol_e)) and (
-        (d3 > tol_f and d4 < -tol_f) or (d3 < -tol_f and d4 > tol_f)
-    ):
-        return True  # a proper crossing
-    lo, hi = -_TOUCH, 1.0 + _TOUCH
-    for d, tol, px, py, ox, oy, ux, uy, uu in (
-        (d1, tol_e, cx, cy, ax, ay, ex, ey, ee),
-        (d2, tol_e, dx, dy, ax, ay, ex, ey, ee),
-        (d3, tol_f, ax, ay, cx, cy, fx, fy, ff),
-        (d4, tol_f, bx, by, cx, cy, fx, fy, ff),
-    ):
-        if abs(d) <= tol and lo <= ((px - ox) * ux + (py - oy) * uy) / uu <= hi:
-            return True  # an endpoint on the other edge
-    return False
-
-
-def _check_simple(p: NDArray[np.float64], name: str) -> None:
-    """Raise if two non-adjacent edges of the closed polygon ``p`` touch or cross.
-
-    Args:
-        p: ``(n, 2)`` vertices (length), either orientation, no repeats of
-            consecutive vertices.
-        name: the parameter named in the error.
-
-    Raises:
-        InvalidSheetError: 'polygon self-intersects', naming the two edges
-            (edge i runs from vertex i to vertex i + 1) and their ends.
-
-    A sweep line (Shamos and Hoey, 1976): the edges crossing the sweep line
-    are kept in their order along it; an edge is compared with its
-    neighbours when it enters, the two edges beside it with each other when
-    it leaves, and at each event every pair of edges through the event's
-    point (touching vertices, collinear overlaps: a handful at most). If any
-    two edges meet, the leftmost meeting point is found that way, so
-    O(n log n) comparisons (sort and binary searches) and O(n) edge tests
-    decide. Below :data:`MAX_VERTICES` the list insertions (memmove, O(n)
-    each in principle) cost less than the comparisons. Tolerance: points
-    within 1e-12 of the polygon's scale of an edge lie on it.
-    """
-    n = len(p)
-    if n < 4:
-        return  # every pair of a triangle's edges is adjacent
-    scale = float(np.max(np.abs(p)))
-    pts = p.tolist()
-    c, s = math.cos(_SWEEP_ANGLE), math.sin(_SWEEP_ANGLE)
-    sx = (p[:, 0] * c - p[:, 1] * s).tolist()
-    sy = (p[:, 0] * s + p[:, 1] * c).tolist()
-    left, right, slope = [0] * n, [0] * n, [0.0] * n
-    events = []
-    for i in range(n):
-        a, b = i, (i + 1) % n
-        if (sx[b], sy[b]) < (sx[a], sy[a]):
-            a, b = b, a
-        left[i], right[i] = a, b
-        dx = sx[b] - sx[a]
-        slope[i] = (sy[b] - sy[a]) / dx if dx != 0.0 else math.inf
-        events.append((sx[a], sy[a], 0, i))  # enters (before any edge leaves at that point)
-        events.append((sx[b], sy[b], 1, i))  # leaves
-    events.sort()
-
-    def height(e: int, x0: float, y0: float) -> float:
-        """Where edge e crosses the sweep line at x0 (y0 on a vertical edge)."""
-        a, b = left[e], right[e]
-        if slope[e] == math.inf:
-            return min(max(y0, sy[a]), sy[b])
-        return sy[a] + (x0 - sx[a]) * slope[e]
-
-    def test(i: int, k: int) -> None:
-        if k == (i + 1) % n or i == (k + 1) % n or not _edges_meet(pts, i, k, scale):
-            return
-        i, k = min(i, k), max(i, k)
-        raise InvalidSheetError(
-            name,
-            f"polygon self-intersects: edge {i} ({pts[i]} -> {pts[(i + 1) % n]}) "
-            f"meets edge {k} ({pts[k]} -> {pts[(k + 1) % n]}); a simple polygon is required",
-        )
-
-    tie = _TOUCH * scale
-    status: list[int] = []  # edges crossing the sweep line, bottom to top
-
-    def through_point(j: int, x0: float, y0: float) -> tuple[int, int]:
-        """The run status[lo:hi] around position j of edges through (x0, y0)."""
-        lo, hi = j, j + 1
-        while lo > 0 and abs(height(status[lo - 1], x0, y0) - y0) <= tie:
-            lo -= 1
-        while hi < len(status) and abs(height(status[hi], x0, y0) - y0) <= tie:
-            hi += 1
-        return lo, hi
-
-    def test_run(lo: int, hi: int) -> None:
-        """Every pair of edges through one point, and the run's outer neighbours."""
-        run = status[max(lo - 1, 0) : hi + 1]
-        for a in range(len(run)):
-            for b in range(a + 1, len(run)):
-                test(run[a], run[b])
-
-    for x0, y0, leaves, e in events:
-        if leaves:
-            j = status.index(e)
-            test_run(*through_point(j, x0, y0))
-            del status[j]
-            if 0 < j < len(status):
-                test(status[j - 1], status[j])
-            continue
-        lo, hi = 0, len(status)
-        while lo < hi:  # binary search: the first edge above e at (x0, y0)
-            mid = (lo + hi) // 2
-            t = status[mid]
-            yt = height(t, x0, y0)
-            if yt < y0 or (yt == y0 and slope[t] < slope[e]):
-                lo = mid + 1
-            else:
-                hi = mid
-        status.insert(lo, e)
-        test_run(*through_point(lo, x0, y0))
-
-
 def _validated(p: NDArray[np.float64], scale: float, name: str) -> NDArray[np.float64]:
     """The checks of :meth:`Sheet.polygon` on finite vertices ``(n, 2)`` whose
     largest coordinate magnitude ``scale`` is within the length bounds; returns
@@ -234,35 +87,35 @@ def _validated(p: NDArray[np.float64], scale: float, name: str) -> NDArray[np.fl
     A polygon whose vertices, seen from H, turn strictly counter-clockwise (each
     edge by less than 180 deg) once around is simple: its edges lie in disjoint
     angular sectors. That O(n) test accepts every valid sheet; only a polygon
-    that fails it goes through the O(n log n) :func:`_check_simple`, so that a
+    that fails it goes through the O(n log n) :func:`check_simple`, so that a
     self-intersection is reported as one before the other reasons.
     """
     p = p.copy()
-    p[np.abs(p[:, 1]) <= _TOUCH * scale, 1] = 0.0  # on the fold line up to rounding
+    p[np.abs(p[:, 1]) <= TOUCH * scale, 1] = 0.0  # on the fold line up to rounding
     nxt = np.roll(p, -1, axis=0)
     seglen = np.hypot(*(nxt - p).T)
-    if scale == 0.0 or np.any(seglen <= _TOUCH * scale):
+    if scale == 0.0 or np.any(seglen <= TOUCH * scale):
         k = int(np.argmin(seglen))
         raise InvalidSheetError(name, f"vertices {k} and {(k + 1) % len(p)} coincide")
-    if float(np.sum(_cross(p, nxt))) < 0.0:
+    if float(np.sum(cross2(p, nxt))) < 0.0:
         p = p[::-1].copy()
         nxt = np.roll(p, -1, axis=0)
         seglen = np.hypot(*(nxt - p).T)
     r = np.hypot(p[:, 0], p[:, 1])
-    steps = np.arctan2(_cross(p, nxt), np.einsum("ij,ij->i", p, nxt))
+    steps = np.arctan2(cross2(p, nxt), np.einsum("ij,ij->i", p, nxt))
     winding = round(float(np.sum(steps)) / _TWO_PI)
-    edge_dist = np.abs(_cross(p, nxt - p)) / seglen
-    on_edge = (edge_dist <= _TOUCH * scale) & (np.einsum("ij,ij->i", p, nxt) <= 0.0)
+    edge_dist = np.abs(cross2(p, nxt - p)) / seglen
+    on_edge = (edge_dist <= TOUCH * scale) & (np.einsum("ij,ij->i", p, nxt) <= 0.0)
     if (
         winding == 1
         and bool(np.all(steps > 1e-12))
         and bool(np.all(steps < math.pi))
-        and bool(np.all(r > _TOUCH * scale))
+        and bool(np.all(r > TOUCH * scale))
         and not bool(np.any(on_edge))
     ):
         return p  # strictly star-shaped about H, hence simple
-    _check_simple(p, name)
-    if np.any(r <= _TOUCH * scale):
+    check_simple(p, name)
+    if np.any(r <= TOUCH * scale):
         raise InvalidSheetError(name, "H (the origin) must lie strictly inside, not on a vertex")
     if np.any(on_edge) or winding == 0:
         raise InvalidSheetError(
@@ -279,15 +132,6 @@ def _validated(p: NDArray[np.float64], scale: float, name: str) -> NDArray[np.fl
     raise InvalidSheetError(  # a simple polygon winds once about a point inside it
         name, f"polygon self-intersects: it winds {winding} times around H"
     )
-
-
-def boundary_distance(polygon: ArrayLike, point: ArrayLike = (0.0, 0.0)) -> float:
-    """Distance from ``point`` to the boundary of the closed polygon ``(n, 2)``
-    (length): the largest circle about ``point`` that stays inside it."""
-    v = np.asarray(polygon, dtype=float) - np.asarray(point, dtype=float)
-    e = np.roll(v, -1, axis=0) - v
-    t = np.clip(-(v * e).sum(axis=1) / (e * e).sum(axis=1), 0.0, 1.0)
-    return float(np.min(np.hypot(*(v + t[:, None] * e).T)))
 
 
 def _insert_axis_crossings(p: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -468,14 +312,12 @@ class Sheet:
     @property
     def area(self) -> float:
         """Flat area (length^2)."""
-        v = self.vertices
-        return 0.5 * float(np.sum(_cross(v, np.roll(v, -1, axis=0))))
+        return polygon_area(self.vertices)
 
     @property
     def perimeter(self) -> float:
         """Flat perimeter (length)."""
-        v = self.vertices
-        return float(np.sum(np.hypot(*(np.roll(v, -1, axis=0) - v).T)))
+        return float(np.sum(edge_lengths_2d(self.vertices)))
 
     @property
     def size(self) -> float:
@@ -505,7 +347,7 @@ class Sheet:
         return a
 
     @cached_property
-    def _side_angles(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def side_angles(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Flat angles theta (radians, read-only) of the vertices of the upper
         (y >= 0, counter-clockwise from +x) and the lower side (clockwise from
         +x), each sorted from 0 to pi, both ends included."""
@@ -531,7 +373,7 @@ class Sheet:
     def _ray_table(self) -> NDArray[np.float64]:
         """``(5, n + 1)`` per edge k (vertex k to k + 1), in column k + 1: its x
         and y extent, the cross product vertex_k x edge_k, the polar angle of
-        vertex k and its distance from H, for :meth:`_rays_at` (column 0
+        vertex k and its distance from H, for :meth:`rays_at` (column 0
         repeats edge 0; ``polar_angles.searchsorted(angle, 'right')`` indexes
         it). Read-only."""
         v = self.vertices
@@ -539,7 +381,7 @@ class Sheet:
         table = np.empty((5, len(v) + 1))
         rows = table[:, 1:]
         rows[0], rows[1] = e[:, 0], e[:, 1]
-        rows[2] = _cross(v, e)
+        rows[2] = cross2(v, e)
         rows[3] = self.polar_angles
         rows[4] = self._vertex_radii
         table[:, 0] = rows[:, 0]
@@ -553,9 +395,9 @@ class Sheet:
         any), with cos(psi) and sin(psi): three ``(k,)`` arrays. Exact: one line
         intersection per ray, ``rho = (v_k x e_k) / (d x e_k)`` with d the ray's
         unit direction and e_k the edge the ray meets."""
-        return self._rays_at(np.asarray(psi, dtype=float) % _TWO_PI)
+        return self.rays_at(np.asarray(psi, dtype=float) % _TWO_PI)
 
-    def _rays_at(
+    def rays_at(
         self, ang: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """:meth:`_rays` for polar angles ``ang`` already in [0, 2 pi) (fold
@@ -598,3 +440,8 @@ class Sheet:
 
     def __repr__(self) -> str:
         return f"Sheet(kind={self.kind!r}, vertices={len(self.vertices)}, area={self.area:.6g})"
+
+
+def sheet_inradius(sheet: Sheet) -> float:
+    """Distance from H to the nearest point of the sheet's boundary (length)."""
+    return boundary_distance(sheet.vertices)

@@ -29,10 +29,13 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from onefold_cad.choices import Model
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
-from onefold_cad.geometry.cone import DirectionSurface, ExactCone, PaperFan
-from onefold_cad.geometry.params import FrameCurve, Model
+from onefold_cad.geometry.cone import ExactCone
+from onefold_cad.geometry.fan import PaperFan
+from onefold_cad.geometry.frame_curve import FrameCurve
 from onefold_cad.geometry.root import Search, SearchFailed, find_root
+from onefold_cad.geometry.surface import DirectionSurface
 
 __all__ = ["Solution", "solve", "make_direction_surface", "ANGLE_TOLERANCE_DEG"]
 

@@ -35,14 +35,14 @@ import math
 from abc import ABC, abstractmethod
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from onefold_cad.geometry.frame import ArcGeometry, arc_geometry
-from onefold_cad.geometry.params import FrameCurve
+from onefold_cad.geometry.frame_curve import ArcGeometry, FrameCurve
+from onefold_cad.geometry.numeric import Array
 
-__all__ = ["DirectionSurface"]
+__all__ = ["EPS", "DirectionSurface"]
 
-Array = NDArray[np.float64]
+#: The double-precision unit roundoff 2^-52.
 EPS = 2.0**-52
 
 
@@ -57,7 +57,7 @@ class DirectionSurface(ABC):
 
     def __init__(self, frame: FrameCurve) -> None:
         self.frame = frame
-        self.geometry: ArcGeometry = arc_geometry(frame)
+        self.geometry: ArcGeometry = frame.geometry
         self.height: float | None = None
 
     # -- the angle condition (heights in units of R) ---------------------------

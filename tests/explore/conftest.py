@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from onefold_cad.explore import ExploreServer, make_server
+from onefold_cad.explore.server import ExploreServer, make_server
 
 CHROMIUM = Path("/usr/bin/chromium")
 #: How the explorer's tests start Debian's Chromium (as root: no sandbox; the

@@ -10,8 +10,8 @@ import ezdxf
 import pytest
 
 from onefold_cad import FabricationError, InvalidParameterError
+from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.downloads import make_download
-from onefold_cad.explore.params import design_from_params
 from onefold_cad.explore.server import load_templates
 from onefold_cad.templates import design_from_data, design_to_data
 
@@ -75,7 +75,7 @@ def test_the_step_of_a_solid_past_the_bend_limits_is_refused_as_build_refuses_it
     """The page's STEP is build's: a solid past the bend model's limits gets the
     error build gives before writing (the page has no --compensation none)."""
     from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
-    from onefold_cad.design import solid_bend_problem
+    from onefold_cad.fabrication.rules import solid_bend_problem
 
     design = Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
                     material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip

@@ -11,7 +11,7 @@ import pytest
 
 from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
 from onefold_cad.explore.flat_svg import flat_pattern_svg
-from onefold_cad.export.flat_pattern import flat_pattern
+from onefold_cad.fabrication.flat_pattern import flat_pattern
 
 SVG = "{http://www.w3.org/2000/svg}"
 W, H, F = 1200.0, 2600.0, 0.35

@@ -10,7 +10,7 @@ import pathlib
 import pytest
 
 from onefold_cad.cli import main
-from onefold_cad.explore.params import (
+from onefold_cad.explore.controls import (
     MAX_POLYGON,
     MAX_QUERY,
     MAX_VALUE,

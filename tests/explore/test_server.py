@@ -174,8 +174,8 @@ def test_a_busy_port_is_an_error_naming_the_flag(server):
 
 
 def test_the_commands_default_port_is_the_servers():
-    from onefold_cad.cli import build_parser
-    from onefold_cad.explore import DEFAULT_PORT
+    from onefold_cad.cli.parser import build_parser
+    from onefold_cad.explore.server import DEFAULT_PORT
 
     assert build_parser()["explore"].get_default("port") == DEFAULT_PORT
 

@@ -10,11 +10,12 @@ import numpy as np
 import pytest
 
 from onefold_cad.cli import main
-from onefold_cad.design import build_design, resting_placement
-from onefold_cad.explore.params import design_from_params
+from onefold_cad.design import build_design
+from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.server import load_templates
 from onefold_cad.explore.state import MESH_ANGULAR, MESH_RADIAL, design_state
-from onefold_cad.export.report import design_report
+from onefold_cad.fabrication.report import design_report
+from onefold_cad.fabrication.rules import resting_placement
 
 
 @pytest.fixture(scope="module")

@@ -9,8 +9,10 @@ import numpy as np
 import pytest
 
 from onefold_cad import Design, ExportError, FrameCurve, Material, Sheet, build_design
-from onefold_cad.export.bend_sheet import BendRow, bend_rows, bend_table, write_bend_csv
-from onefold_cad.export.flat_pattern import flat_pattern
+from onefold_cad.export.bend_csv import write_bend_csv
+from onefold_cad.export.dxf_notes import flat_pattern_notes
+from onefold_cad.fabrication.bend_table import BendRow, bend_rows, bend_table
+from onefold_cad.fabrication.flat_pattern import flat_pattern
 from tests.hand_bend import arc_point, fan_folds, hand_bend
 
 TEXT_FIELDS = ("half", "direction", "inside_face", "reference", "compensation", "material", "units")
@@ -77,7 +79,7 @@ def test_table_has_a_line_per_half_and_is_in_the_notes(asym):
         assert f"fold {half.fold_angle_deg:.2f}" in line
         assert f"included {180 - half.fold_angle_deg:.2f}" in line
     for line in lines:
-        assert line in pattern.notes
+        assert line in flat_pattern_notes(pattern)
 
 
 def test_from_a_design_atomic_and_nothing_on_failure(tmp_path, asym):

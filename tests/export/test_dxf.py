@@ -27,9 +27,10 @@ from onefold_cad import (
     build_design,
 )
 from onefold_cad.export.dxf import LAYERS, draw_flat_pattern, export_design_dxf
+from onefold_cad.export.dxf_notes import flat_pattern_notes
 from onefold_cad.export.dxf_preview import render_preview
-from onefold_cad.export.flat_pattern import flat_pattern
-from onefold_cad.geometry.bend import check_bends
+from onefold_cad.fabrication.bend_checks import check_bends
+from onefold_cad.fabrication.flat_pattern import flat_pattern
 from tests.hand_bend import fan_folds, hand_bend
 
 STAR = [(220, 0), (70, 45), (90, 190), (-30, 80), (-150, 150), (-110, 15), (-200, -50),
@@ -239,7 +240,7 @@ def test_thickness_compensation_and_bend_zones(tmp_path, shape, mat):
     assert pattern.shift == pytest.approx(shift, rel=1e-12)
     assert pattern.residual == pytest.approx(abs(hb[0]["shift"] - hb[1]["shift"]) / 2.0, abs=1e-12)
     errors = [round(2 * (b["shift"] - shift), 9) + 0.0 for b in hb]  # '-0.0000' is '0.0000
-    assert f"{errors[0]:.4f}, {errors[1]:.4f} mm" in " ".join(pattern.notes)
+    assert f"{errors[0]:.4f}, {errors[1]:.4f} mm" in " ".join(flat_pattern_notes(pattern))
     if shape in ("t1a", "t1b", "t1c", "rect"):  # symmetric: each side moves by its own shift
         assert shift == pytest.approx(hb[0]["shift"], rel=1e-9) and pattern.residual < 1e-9
     out = place.inverse(outline_of(doc))  # back to the fold frame: fold line = x axis
@@ -334,7 +335,7 @@ def test_notes_content_and_mass(tmp_path):
     assert mass == pytest.approx(area * m.thickness * 7900.0 * 1e-9, rel=1e-5)
     w, h = np.ptp(outline_of(doc), axis=0)
     assert f"flat size: {w:.3f} x {h:.3f} mm" in text
-    assert "mass" not in "\n".join(flat_pattern(*_design("t1d", "bare")).notes)
+    assert "mass" not in "\n".join(flat_pattern_notes(flat_pattern(*_design("t1d", "bare"))))
 
 
 def test_paper_model_rulings_inside_and_optional(tmp_path):
@@ -641,7 +642,11 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
     try:
         pattern = flat_pattern(design, folded)
     except FabricationError as exc:  # the bend model's limits, and only those
-        assert t > 0 and check_bends(design, folded) and exc.parameter in ("bend_radius", "hc")
+        assert (
+            t > 0
+            and check_bends(folded, design.material, design.units)
+            and exc.parameter in ("bend_radius", "hc")
+        )
         return
     except InvalidParameterError as exc:  # the kerf's documented refusal
         assert exc.parameter == "kerf"

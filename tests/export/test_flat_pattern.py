@@ -30,8 +30,8 @@ from onefold_cad import (
     build_design,
 )
 from onefold_cad.export.dxf import export_design_dxf
-from onefold_cad.export.flat_pattern import flat_pattern
-from onefold_cad.geometry.bend import check_bends
+from onefold_cad.fabrication.bend_checks import check_bends
+from onefold_cad.fabrication.flat_pattern import flat_pattern
 from tests.hand_bend import hand_bend, neutral_length, polygon_span_at
 
 SURFACES = ("INSIDE", "MID", "OUTSIDE")
@@ -240,7 +240,7 @@ def test_blank_corners_where_the_bend_model_puts_them(
     assert all(math.isfinite(h.fold_angle_deg) for h in folded.crease)
     v = np.asarray(design.sheet.vertices)
     size = design.sheet.size
-    problems = check_bends(design, folded)
+    problems = check_bends(folded, design.material, design.units)
     event("refused: " + ", ".join(sorted({q.kind for q in problems})) if problems else "accepted")
     if problems:
         with pytest.raises(FabricationError) as info:

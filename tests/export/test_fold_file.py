@@ -27,8 +27,8 @@ from onefold_cad import (
     build_design,
     solve,
 )
-from onefold_cad.design import sheet_inradius
 from onefold_cad.export.fold_file import fold_data, write_fold
+from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
 from tests.angles import OPEN_ANGLE, cos_deg, frame_unless_on_end, refused_below_bound
 

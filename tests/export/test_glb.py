@@ -21,10 +21,11 @@ from onefold_cad import (
     Sheet,
     build_design,
 )
-from onefold_cad.design import relief_hole_diameter, resting_placement, solid_bend_problem
 from onefold_cad.export.glb import ANGULAR_DEFLECTION, LINEAR_DEFLECTION, write_glb
 from onefold_cad.export.measure import measure
-from onefold_cad.export.step import build_part
+from onefold_cad.export.part import build_part
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+from onefold_cad.fabrication.rules import resting_placement, solid_bend_problem
 
 FLOAT32 = float(np.finfo(np.float32).eps)
 

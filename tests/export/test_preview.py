@@ -11,6 +11,7 @@ import pytest
 
 from onefold_cad import Design, ExportError, FrameCurve, Sheet, build_design
 from onefold_cad.export.preview import render_folded_preview, resting_mesh, support_and_centre
+from onefold_cad.geometry.placement import rest_form
 
 
 @pytest.fixture(scope="module")
@@ -31,7 +32,7 @@ def test_resting_mesh_stands_on_the_ground(folded):
     assert faces.min() >= 0 and faces.max() < len(verts)
     # A rigid motion of the folded mesh: distances from the apex survive.
     raw, _ = folded.mesh(angular=30, radial=4)
-    apex = folded.resting.apply(folded.apex[None, :])[0]
+    apex = rest_form(folded).apply(folded.apex[None, :])[0]
     np.testing.assert_allclose(
         np.linalg.norm(verts - apex, axis=1),
         np.linalg.norm(raw - folded.apex, axis=1),
@@ -86,7 +87,7 @@ def test_mesh_faces_turn_their_normal_to_the_top_side(folded):
 
 
 def test_support_polygon_lies_on_the_ground_around_the_centre_of_mass(folded):
-    poly, centre = support_and_centre(folded.resting)
+    poly, centre = support_and_centre(rest_form(folded))
     size = folded.sheet.size
     assert len(poly) >= 3
     np.testing.assert_allclose(poly[:, 2], 0.0, atol=1e-9 * size)
@@ -95,10 +96,10 @@ def test_support_polygon_lies_on_the_ground_around_the_centre_of_mass(folded):
     turn = e[:, 0] * np.roll(e[:, 1], -1) - e[:, 1] * np.roll(e[:, 0], -1)
     assert np.all(turn > 0.0)
     # its corners are the lowest points of the resting form (nothing below)
-    low = folded.resting.apply(folded.map_points(folded.sheet.vertices))[:, 2].min()
+    low = rest_form(folded).apply(folded.map_points(folded.sheet.vertices))[:, 2].min()
     assert low >= -1e-9 * size
     # the form stands, so the centre of mass is above the polygon ...
-    assert folded.resting.stable
+    assert rest_form(folded).stable
     side = e[:, 0] * (centre[1] - poly[:, 1]) - e[:, 1] * (centre[0] - poly[:, 0])
     assert np.all(side > 0.0)
     assert centre[2] > 0.0
@@ -111,7 +112,7 @@ def test_centre_of_mass_is_the_area_centroid_of_the_folded_surface(folded):
     tri = verts[faces]
     area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     expected = (area[:, None] * tri.mean(axis=1)).sum(axis=0) / area.sum()
-    _, centre = support_and_centre(folded.resting)
+    _, centre = support_and_centre(rest_form(folded))
     np.testing.assert_allclose(centre, expected, atol=1e-5 * folded.sheet.size)
 
 
@@ -144,16 +145,16 @@ def test_caption_gives_fold_angles_height_and_footprint(folded):
     the resting form's outline sampled finely and its apex."""
     from onefold_cad.export.preview import _caption
 
-    text = _caption(folded, folded.resting, "mm")
+    text = _caption(folded, rest_form(folded), "mm")
     for half in folded.crease:
         assert f"{half.fold_angle_deg:.1f}\N{DEGREE SIGN} {half.bend}" in text
     pts, _ = folded.sheet.sample_boundary(folded.sheet.perimeter / 20000)
-    form = folded.resting.apply(np.vstack([folded.map_points(pts), folded.apex]))
+    form = rest_form(folded).apply(np.vstack([folded.map_points(pts), folded.apex]))
     ext = np.ptp(form, axis=0)
     height = f"height {ext[2]:.4g} mm"  # the form's extent, as `onefold solve` prints it
     footprint = f"footprint {ext[0]:.4g} x {ext[1]:.4g} mm"
     assert height in text and footprint in text
-    margin = folded.resting.tipping_margin_deg
+    margin = rest_form(folded).tipping_margin_deg
     assert margin > 5.0 and f"tipping margin of {margin:.1f}\N{DEGREE SIGN}" in text
 
 
@@ -162,11 +163,11 @@ def test_the_fold_frame_view_says_so_and_keeps_the_standing_numbers(folded, tmp_
     picture; the caption says it is the fold frame and still gives how it stands."""
     from onefold_cad.export.preview import _caption
 
-    standing = _caption(folded, folded.resting, "mm")
-    text = _caption(folded, folded.resting, "mm", frame=True)
+    standing = _caption(folded, rest_form(folded), "mm")
+    text = _caption(folded, rest_form(folded), "mm", frame=True)
     assert "shown in the fold frame (apex above H)" in text
     assert "fold frame (apex" not in standing
-    rest = folded.resting
+    rest = rest_form(folded)
     for words in (
         f"height {rest.height:.4g} mm",
         f"tipping margin of {rest.tipping_margin_deg:.1f}",

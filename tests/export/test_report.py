@@ -18,16 +18,17 @@ from onefold_cad import (
     Sheet,
     build_design,
 )
-from onefold_cad.design import resting_placement
-from onefold_cad.export.report import (
+from onefold_cad.export.report_file import write_report
+from onefold_cad.fabrication.bend_checks import bend_error, check_bends
+from onefold_cad.fabrication.report import (
     REPORT_VERSION,
     check_finite,
     design_report,
     design_warnings,
     report_json,
-    write_report,
 )
-from onefold_cad.geometry.bend import bend_error, check_bends
+from onefold_cad.fabrication.rules import resting_placement
+from onefold_cad.geometry.developability import developability
 
 
 @pytest.fixture(scope="module")
@@ -155,7 +156,7 @@ def test_areas_sizes_and_mass(steel):
     design, folded, rep = steel
     assert rep["sheet"]["size"] == pytest.approx([600, 400], rel=1e-12)
     assert rep["sheet"]["area"] == pytest.approx(600 * 400, rel=1e-12)
-    assert rep["surface_area"] == folded.metrics.area_3d
+    assert rep["surface_area"] == developability(folded).area_3d
     hole = rep["relief_hole_diameter"]
     assert hole == 2 * (2.0 + 3.0)  # the default: max(3 t, 2 (t + r)) = 10
     assert 0 < rep["solid_min_relief_hole"] < hole  # the default hole is wide enough
@@ -217,7 +218,7 @@ def test_the_bend_warning_says_what_build_does_with_the_compensation():
     are refused. 'none': build writes the uncompensated blank and the STEP; the warning
     says so and refuses nothing. The limit's own line is the same."""
     design, folded = _corner_design()
-    error = str(bend_error(check_bends(design, folded)))
+    error = str(bend_error(check_bends(folded, design.material, design.units)))
     stability = resting_placement(design, folded).to_data()["warnings"]  # its own, if any
     *rest1, sharp = design_warnings(design, folded)
     *rest2, none = design_warnings(design, folded, "none")
@@ -240,7 +241,7 @@ def test_a_width_problem_alone_does_not_refuse_the_solid():
     design = Design("asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
                     material=Material(thickness=10.0, bend_radius=10.0))  # fmt: skip
     folded = build_design(design)
-    assert {p.kind for p in check_bends(design, folded)} == {"width"}
+    assert {p.kind for p in check_bends(folded, design.material, design.units)} == {"width"}
     (w,) = design_warnings(design, folded)
     assert w.endswith("build refuses the DXF, cut DXF, bend sheet and flat preview "
                       "(--compensation none writes the uncompensated blank)")  # fmt: skip

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from onefold_cad.export.solid import fit_curve
+from onefold_cad.export.bspline_fit import fit_curve
 
 
 def _values(curve, t: np.ndarray) -> np.ndarray:

@@ -34,29 +34,20 @@ from onefold_cad import (
     Units,
     build_design,
 )
-from onefold_cad.design import (
-    default_body,
-    relief_hole_diameter,
-    resting_placement,
-    solid_min_relief_hole,
-)
 from onefold_cad.errors import FabricationError
-from onefold_cad.export.brep import PRECISION
-from onefold_cad.export.flat_pattern import flat_pattern
-from onefold_cad.export.report import design_report
-from onefold_cad.export.step import (
-    BOUNDARY_TOLERANCE,
-    SOLID_TOLERANCE,
-    build_part,
-    build_shell,
-    build_solid,
-    export_design_step,
-    measure,
-    sheet_offsets,
-)
-from onefold_cad.geometry.bend import bend_error, check_bends
-from onefold_cad.geometry.frame import arc_points
-from onefold_cad.geometry.thick_sheet import slab_volume
+from onefold_cad.export.fan_faces import PRECISION
+from onefold_cad.export.measure import measure
+from onefold_cad.export.part import SOLID_TOLERANCE, build_part, build_shell, build_solid
+from onefold_cad.export.step import export_design_step
+from onefold_cad.export.step_checks import BOUNDARY_TOLERANCE
+from onefold_cad.fabrication.bend_checks import bend_error, check_bends
+from onefold_cad.fabrication.flat_pattern import flat_pattern
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
+from onefold_cad.fabrication.report import design_report
+from onefold_cad.fabrication.rules import default_body, resting_placement
+from onefold_cad.geometry.arc import arc_points
+from onefold_cad.geometry.material import sheet_offsets
+from onefold_cad.geometry.slab_volume import slab_volume
 from tests.angles import cos_deg, frame_unless_on_end, refused_below_bound
 
 TABLE1 = [  # (H_c, alpha, beta, divisions, Y+, Y-, X+, X-)
@@ -378,7 +369,7 @@ def _free_edges_develop_onto_the_outline(folded, shell, hole: float) -> None:
 def test_unreachable_boundary_fit_is_an_export_error(monkeypatch):
     """The shell never silently misses its stated tolerance: with too few
     points allowed the fit cannot reach it, and the build says so."""
-    import onefold_cad.export.brep as brep
+    import onefold_cad.export.cone_faces as brep
 
     folded = build_design(CASES["star"][0])
     monkeypatch.setattr(brep, "MAX_NODES", 20)
@@ -427,7 +418,7 @@ def test_fan_leaves_out_rulings_closer_than_the_kernel_resolves(scale, hole):
     precision (1e-7), are one ruling (OCC cannot make edges that short): the
     two triangles beside a left-out ruling become one, and the outline and
     the hole's boundary shorten by less than twice those gaps per ruling."""
-    from onefold_cad.export.brep import NEAR, PRECISION
+    from onefold_cad.export.fan_faces import NEAR, PRECISION
 
     design = _tiny_sharp_fan(scale)
     folded = build_design(design)
@@ -527,7 +518,9 @@ def test_a_solid_past_the_bend_limits_is_refused_unless_compensation_none(tmp_pa
     t, r = design.material.thickness, design.material.bend_radius
     # by hand: MID reference, so the set-back is (r + t / 2) tan(psi / 2)
     setback = (r + t / 2) * math.tan(math.radians(half.fold_angle_deg) / 2)
-    expected = bend_error(tuple(q for q in check_bends(design, folded) if q.kind != "width"))
+    expected = bend_error(
+        tuple(q for q in check_bends(folded, design.material, design.units) if q.kind != "width")
+    )
     assert expected is not None
     with pytest.raises(FabricationError) as err:
         build_part(design, folded)  # the default body is the solid

@@ -102,7 +102,7 @@ def test_a_registered_writer_is_written_timed_and_listed_in_the_report(tmp_path,
 def test_a_solid_past_the_bend_limits_is_refused_for_the_step_and_the_glb_alike():
     """The STEP and the GLB hold the same part: each alone is refused before writing,
     with the error the part's builder gives (--compensation none writes both)."""
-    from onefold_cad.design import solid_bend_problem
+    from onefold_cad.fabrication.rules import solid_bend_problem
 
     d = Design(
         "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
@@ -194,8 +194,8 @@ def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
 
 
 def test_the_compensations_the_command_offers_are_the_bend_model_s():
+    from onefold_cad.choices import Compensation
     from onefold_cad.cli import main
-    from onefold_cad.geometry.bend import Compensation
 
     assert writers.COMPENSATIONS == tuple(c.value for c in Compensation)
     assert writers.COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default

@@ -17,15 +17,12 @@ from onefold_cad import (
     bend_values,
     build_design,
 )
-from onefold_cad.geometry.bend import (
+from onefold_cad.fabrication.bend_checks import (
     MAX_SETBACK_FRACTION,
     MAX_WIDTH_ERROR_FRACTION,
-    BendReference,
-    bend_model,
-    blank_move,
     check_bends,
-    crease_bends,
 )
+from onefold_cad.geometry.bend_model import BendReference, bend_model, blank_move, crease_bends
 from tests.hand_bend import (
     FACES,
     S_TABLE,
@@ -164,12 +161,12 @@ def _diagonal(alpha: float) -> tuple[Design, object]:
 def test_default_template_passes_every_limit():
     design, folded = _diagonal(30.0)
     mat = Material(thickness=3.57, bend_radius=6.0, k_factor=0.44, relief_hole=0)
-    assert check_bends(design.with_changes(material=mat), folded) == ()
+    assert check_bends(folded, mat, design.units) == ()
 
 
 def test_zero_thickness_has_no_limits():
     design, folded = _diagonal(85.0)
-    assert check_bends(design, folded) == ()
+    assert check_bends(folded, design.material, design.units) == ()
 
 
 @pytest.mark.parametrize("factor", [1.0 - 1e-6, 1.0 + 1e-6])
@@ -183,7 +180,7 @@ def test_setback_limit_is_a_tenth_of_the_narrower_flange(factor):
     psi = folded.crease[0].fold_angle_deg
     r = factor * MAX_SETBACK_FRACTION * depth / math.tan(math.radians(psi) / 2) - 0.5 * 3.57
     mat = Material(thickness=3.57, bend_radius=r, k_factor=0.44, relief_hole=0)
-    problems = check_bends(design.with_changes(material=mat), folded)
+    problems = check_bends(folded, mat, design.units)
     if factor < 1.0:
         assert problems == ()
         return
@@ -200,7 +197,7 @@ def test_setback_limit_catches_the_fold_near_180_deg():
     design, folded = _diagonal(85.0)
     assert folded.crease[0].fold_angle_deg > 179.0
     mat = Material(thickness=3.57, bend_radius=6.0, k_factor=0.44)
-    kinds = {p.kind for p in check_bends(design.with_changes(material=mat), folded)}
+    kinds = {p.kind for p in check_bends(folded, mat, design.units)}
     assert kinds == {"setback"}
 
 
@@ -220,7 +217,7 @@ def test_corner_limit_a_corner_closer_than_the_setback(ratio):
     sheet = Sheet.polygon([(300, 0), (150, y), (0, 300), (-300, 0), (0, -300)])
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("c", frame, sheet, material=mat)
-    problems = check_bends(design, build_design(design))
+    problems = check_bends(build_design(design), design.material, design.units)
     if ratio < 1.0:
         assert problems == ()
     else:
@@ -260,7 +257,7 @@ def test_edge_limit_an_edge_passing_over_h_inside_the_wider_zone(eps):
            (-2000, 0), (-1000, -300), (1000, -300)]  # fmt: skip
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("e", DOWN_FRAME, Sheet.polygon(pts), model="paper", material=mat)
-    problems = _geometric(check_bends(design, build_design(design)))
+    problems = _geometric(check_bends(build_design(design), design.material, design.units))
     if eps > 0:
         assert problems == []
     else:
@@ -283,7 +280,7 @@ def test_edge_limit_a_half_whose_sheet_is_narrower_than_its_zone_up_to_h():
     pts = [(60, 0), (x_j, corner_y), (-1000, 200), (-1200, 0), (0, -300)]
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface="OUTSIDE", relief_hole=0)
     design = Design("n", DOWN_FRAME, Sheet.polygon(pts), model="paper", material=mat)
-    problems = _geometric(check_bends(design, build_design(design)))
+    problems = _geometric(check_bends(build_design(design), design.material, design.units))
     assert [(p.half, p.kind) for p in problems] == [("plus_x", "edge")]
     assert "narrower than its bend zone" in problems[0].message
 
@@ -302,7 +299,7 @@ def test_mean_shift_past_a_crease_end_zone_is_no_geometric_limit_but_a_width_err
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface="INSIDE", relief_hole=0)
     design = Design("m", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    problems = check_bends(design, build_design(design))
+    problems = check_bends(build_design(design), design.material, design.units)
     crease = [p for p in problems if p.half in ("plus_x", "minus_x")]
     width = plus["shift"] - minus["shift"]  # across plus_x: 2 (shift+ - d)
     assert width > MAX_WIDTH_ERROR_FRACTION * t  # the blank is too wide across plus_x
@@ -340,7 +337,7 @@ def test_width_limit_is_a_tenth_of_the_thickness(factor):
     assert r_edge > 0.0 and slope > 0.0
     r = factor * r_edge
     design, folded = _t1d(r, t)
-    problems = check_bends(design, folded)
+    problems = check_bends(folded, design.material, design.units)
     if factor < 1.0:
         assert problems == ()
         return
@@ -369,7 +366,7 @@ def test_width_limit_names_hc_when_no_bend_radius_helps():
 
     assert width(10.0) == pytest.approx(6.72, abs=5e-3)
     assert width(0.0) > MAX_WIDTH_ERROR_FRACTION * t and width(1.0) > width(0.0)
-    (p,) = check_bends(design, folded)
+    (p,) = check_bends(folded, design.material, design.units)
     assert (p.half, p.kind, p.parameter) == ("plus_x", "width", "hc")
     assert f"the blank is {width(10.0):+.4g} mm too wide across it" in p.message
     assert "h_c nearer 0" in p.message and "bend_radius <=" not in p.message
@@ -393,7 +390,7 @@ def test_ruling_folds_of_the_paper_fan_have_the_width_limit_too():
     widths = [2 * hand_bend(ang, bend, "MID", t, r, k)["shift"] for ang, bend in folds]
     over = [(abs(w), w, i) for i, w in enumerate(widths) if abs(w) > MAX_WIDTH_ERROR_FRACTION * t]
     _, worst, i = max(over)
-    (p,) = [q for q in check_bends(design, folded) if "ruling" in q.half]
+    (p,) = [q for q in check_bends(folded, design.material, design.units) if "ruling" in q.half]
     # the -y side's rulings are the +y side's mirror images: either may come first
     assert p.half in (f"+y ruling {i + 1}", f"-y ruling {i + 1}")
     assert (p.kind, p.parameter) == ("width", "divisions")
@@ -436,7 +433,7 @@ def test_corners_in_a_zone_are_one_problem_per_half_naming_the_closest():
     folded = build_design(design)
     v = np.asarray(design.sheet.vertices)
     inner = [p for i, p in enumerate(v) if i not in (0, design.sheet.minus_x_index)]
-    problems = check_bends(design, folded)
+    problems = check_bends(folded, design.material, design.units)
     assert [(p.half, p.kind) for p in problems] == [("plus_x", "corner"), ("minus_x", "corner")]
     for p, side in zip(problems, (1.0, -1.0), strict=True):
         near = [q for q in inner if abs(q[1]) <= sb and side * q[0] >= 0]

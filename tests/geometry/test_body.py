@@ -8,8 +8,11 @@ import numpy as np
 import pytest
 
 from onefold_cad import FrameCurve, Sheet, fold, solve
-from onefold_cad.geometry.body import Body, zoom_min
-from onefold_cad.geometry.thick_sheet import SideMap
+from onefold_cad.geometry.arc import ArcFrames
+from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body_mass import mass_properties
+from onefold_cad.geometry.pieces import clipped_rectangle, zoom_min
+from onefold_cad.geometry.thick_map import SideMap
 
 
 def test_zoom_min_finds_smooth_kinked_and_end_minima() -> None:
@@ -29,7 +32,7 @@ def folded():
 
 
 def test_shell_mass_is_the_area_and_its_centroid(folded) -> None:
-    area, com = Body(folded).mass_properties
+    area, com = mass_properties(Body(folded))
     assert abs(area - folded.sheet.area) <= 1e-10 * folded.sheet.area
     # the centroid of a fine mesh of the surface, extrapolated in its step (h^2)
     cents = []
@@ -47,12 +50,11 @@ def test_arc_frames_are_the_cone_s(folded) -> None:
     # solid's: directions and normals (SideMap), the geodesic curvature
     # (thick_sheet's finite differences) and dtheta/dphi (central differences
     # of the cone's own theta(phi))
-    from onefold_cad.geometry.body import _ArcFrames
 
     cone, side = folded.solution.surface, SideMap(folded)
     theta = np.linspace(0.05, side.total - 0.05, 41)
     phi = cone.phi_of_theta(theta)
-    u, e, n, k, speed = _ArcFrames(folded).frames(phi, curvature=True)
+    u, e, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(phi, curvature=True)
     su, se, sn = side.frames(theta)
     for mine, theirs in ((u, su), (e, se), (n, sn)):
         np.testing.assert_allclose(mine, theirs, atol=1e-12)
@@ -90,7 +92,6 @@ def test_lowest_asked_again_answers_the_same_without_zooming(folded, monkeypatch
 def test_clipped_rectangle_gives_the_corners_inside_and_the_line_s_crossings() -> None:
     # against the definition, rectangle by rectangle: the corners on the kept
     # side of cr r + cs s = 0 and the points where that line crosses a side
-    from onefold_cad.geometry.body import _clipped_rectangle
 
     rng = np.random.default_rng(7)
     k = 200
@@ -100,7 +101,7 @@ def test_clipped_rectangle_gives_the_corners_inside_and_the_line_s_crossings() -
     cr = rng.choice([0.0, 0.4, -0.7, 1.0], k)
     cs = rng.choice([0.0, 0.6, -1.0], k)
     cr[(cr == 0.0) & (cs == 0.0)] = 1.0
-    z = _clipped_rectangle(r0, r1, s0, s1, cr, cs, 0.0)
+    z = clipped_rectangle(r0, r1, s0, s1, cr, cs, 0.0)
     for i in range(k):
         want = [(r, s) for r, s in ((r0[i], s0), (r1[i], s0), (r1[i], s1), (r0[i], s1))
                 if cr[i] * r + cs[i] * s >= 0.0]  # fmt: skip

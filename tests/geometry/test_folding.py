@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve, Sheet, fold, solve
 from onefold_cad.errors import NoSolutionError
+from onefold_cad.geometry.developability import developability
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
 from tests.geometry import mp_reference as mp_ref
 from tests.geometry.folds import fold_or_none
@@ -134,7 +135,7 @@ def test_paper_model_is_developable(frame: FrameCurve, sheet: Sheet) -> None:
     s3 = np.linalg.norm(np.roll(b3, -1, axis=0) - b3, axis=1)
     assert np.all(np.abs(s3 - s2) <= 1e-9 * scale)
     # the folded area and perimeter are the flat sheet's (shoelace, edge lengths)
-    m = folded.metrics
+    m = developability(folded)
     assert abs(m.area_3d - _shoelace(sheet.vertices)) <= 1e-9 * abs(_shoelace(sheet.vertices))
     perimeter = float(
         np.sum(np.linalg.norm(np.roll(sheet.vertices, -1, axis=0) - sheet.vertices, axis=1))
@@ -162,7 +163,7 @@ def test_exact_model_is_developable(frame: FrameCurve, sheet: Sheet) -> None:
     folded = fold_or_none(frame, sheet, "exact")
     if folded is None:
         return
-    m = folded.metrics
+    m = developability(folded)
     scale = sheet.size
     area = _shoelace(sheet.vertices)
     edges = np.linalg.norm(np.roll(sheet.vertices, -1, axis=0) - sheet.vertices, axis=1)
@@ -208,7 +209,7 @@ def test_exact_area_agrees_with_an_integral_over_the_arc() -> None:
         for a, b in zip(phis[:-1], phis[1:], strict=True):
             total += quad(density, a, b, args=(sign,), epsabs=0.0, epsrel=1e-13, limit=200)[0]
     assert abs(total - sheet.area) <= 1e-9 * sheet.area
-    assert abs(folded.metrics.area_3d - total) <= 1e-9 * sheet.area
+    assert abs(developability(folded).area_3d - total) <= 1e-9 * sheet.area
 
 
 def _expected_fold_angles(folded) -> list[float]:
@@ -455,6 +456,6 @@ def test_near_crease_fold_is_right_and_its_edges_keep_their_length() -> None:
         want = apex + r * u(phi)
         got = folded.map_points([[r * math.cos(float(t)), r * math.sin(float(t))]])[0]
         assert max(abs(float(want[j]) - got[j]) for j in range(3)) <= 1e-9 * size
-    m = folded.metrics
+    m = developability(folded)
     assert m.max_boundary_segment_error <= 1e-9 * size
     assert abs(m.area_3d - folded.sheet.area) <= 1e-9 * folded.sheet.area

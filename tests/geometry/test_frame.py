@@ -8,7 +8,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from onefold_cad import FrameCurve
-from onefold_cad.geometry.frame import arc_geometry, division_points, end_relative
+from onefold_cad.geometry.arc import division_points, end_relative
+from onefold_cad.geometry.frame_curve import arc_geometry
 
 EPS = 2.0**-52
 

@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from onefold_cad.geometry.ground import com_depth, com_outside, holds, roll
+from onefold_cad.geometry.ground import holds
+from onefold_cad.geometry.topple import com_depth, com_outside, roll
 
 
 def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:

@@ -8,7 +8,8 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from scipy.spatial import ConvexHull
 
-from onefold_cad.geometry.hull import convex_hull_2d, edge_distances, polygon_area
+from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
+from onefold_cad.geometry.numeric import polygon_area
 
 #: coordinates 0 or of magnitude 1e-30 .. 1e6 (the lengths a design may have:
 #: below that, areas underflow in double precision and no hull is defined)

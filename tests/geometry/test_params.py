@@ -21,14 +21,18 @@ from onefold_cad import (
     bend_values,
     build_design,
 )
-from onefold_cad.design import relief_hole_problem
-from onefold_cad.geometry.frame import arc_geometry
-from onefold_cad.geometry.params import MAX_DESIGN_DIVISIONS, MAX_DIVISIONS, MIN_ANGLE_DEG
-from onefold_cad.geometry.validate import (
+from onefold_cad.fabrication.relief_hole import relief_hole_problem
+from onefold_cad.geometry.checks import (
     MAX_LENGTH,
     MAX_SHEET_TO_RADIUS,
     MIN_LENGTH,
     MIN_SHEET_TO_RADIUS,
+)
+from onefold_cad.geometry.frame_curve import (
+    MAX_DESIGN_DIVISIONS,
+    MAX_DIVISIONS,
+    MIN_ANGLE_DEG,
+    arc_geometry,
 )
 from tests.angles import OPEN_ANGLE, cos_deg, frame_unless_on_end, refused_below_bound
 
@@ -249,7 +253,7 @@ def test_divisions_cap_boundary() -> None:
 def test_cli_help_states_the_caps_the_design_enforces() -> None:
     # the flags' help is written out (the CLI does not import the core to start);
     # it must name the bounds Design and check_magnitudes enforce
-    from onefold_cad.flags import DESIGN_FLAGS
+    from onefold_cad.flags.design_flags import DESIGN_FLAGS
 
     helps = {f.dest: f.help for f in DESIGN_FLAGS}
     assert f"[1, {MAX_DESIGN_DIVISIONS}]" in helps["divisions"]

@@ -20,8 +20,9 @@ from onefold_cad import (
     fold,
     solve,
 )
-from onefold_cad.design import relief_hole_diameter
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.placement import (
     TIPPING_WARNING_DEG,
@@ -391,7 +392,7 @@ def _step_resting(design: Design, body: str):
     from OCP.GProp import GProp_GProps
     from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideArea, ShapeUpgrade_ShapeDivideContinuity
 
-    from onefold_cad.export.step import build_part
+    from onefold_cad.export.part import build_part
 
     folded = build_design(design)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
@@ -434,7 +435,7 @@ def _step_resting(design: Design, body: str):
             p = curve.Value(float(u))
             if p.Z() <= 1e-6 * size:
                 touching.append((p.X(), p.Y()))
-    body_measure, _ = Body(folded, material, body).mass_properties
+    body_measure, _ = mass_properties(Body(folded, material, body))
     assert abs(body_measure - measure) <= 1e-5 * measure  # volume (solid) or area (shell)
     return rest, lowest, com, np.array(touching)
 

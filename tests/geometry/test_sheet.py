@@ -14,8 +14,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from onefold_cad import InvalidParameterError, InvalidSheetError, Sheet
-from onefold_cad.geometry.sheet import MAX_VERTICES, MIN_FEATURE, _check_simple
-from onefold_cad.geometry.validate import MAX_LENGTH, MIN_LENGTH
+from onefold_cad.geometry.checks import MAX_LENGTH, MIN_LENGTH
+from onefold_cad.geometry.polygon import check_simple
+from onefold_cad.geometry.sheet import MAX_VERTICES, MIN_FEATURE
 
 UP, DOWN = math.inf, -math.inf
 
@@ -79,10 +80,10 @@ def test_check_simple_agrees_with_an_exact_oracle(pts: list, scale: float) -> No
     bad = meeting_pairs(pts)
     p = np.array(pts, dtype=float) * scale
     if not bad:
-        _check_simple(p, "polygon")
+        check_simple(p, "polygon")
         return
     with pytest.raises(InvalidSheetError, match="self-intersects") as err:
-        _check_simple(p, "polygon")
+        check_simple(p, "polygon")
     named = tuple(int(x) for x in re.findall(r"edge (\d+)", str(err.value)))
     assert named in bad  # the two edges it names do meet
 

@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from onefold_cad.geometry.validate import sorted_unique
+from onefold_cad.geometry.numeric import sorted_unique
 
 _VALUES = st.sampled_from([0.0, -0.0, 1.0, 2.5, -1.0, 1e-300, float("inf"), -float("inf")])
 

@@ -1,10 +1,11 @@
-"""The bend sheet for the press brake: one row per crease half, then one per
+"""The bend table for the press brake: one row per crease half, then one per
 ruling fold of the paper model's fan (none for the exact model).
 
 Every number comes from the flat pattern and its bend model
-(:mod:`onefold_cad.geometry.bend`); nothing is derived here. The same rows
-are written as ``NAME-bends.csv`` (:func:`write_bend_csv`), printed by
-``onefold build`` (:func:`bend_table`) and written in the DXF's NOTES.
+(:mod:`onefold_cad.geometry.bend_model`); nothing is derived here. The same
+rows are written as ``NAME-bends.csv``
+(:func:`onefold_cad.export.bend_csv.write_bend_csv`), printed by ``onefold
+build`` (:func:`bend_table`) and written in the DXF's NOTES.
 
 Lengths are in the design's unit, angles in degrees, points in the blank's
 (sheet's own) frame, the frame of the DXF.
@@ -12,22 +13,15 @@ Lengths are in the design's unit, angles in degrees, points in the blank's
 
 from __future__ import annotations
 
-import io
 import math
-import os
-from dataclasses import astuple, dataclass, fields
-from pathlib import Path
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from onefold_cad.design import Design
-    from onefold_cad.export.flat_pattern import FlatPattern
-    from onefold_cad.geometry.bend import BendValues
-    from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.fabrication.flat_pattern import FlatPattern
+from onefold_cad.geometry.bend_model import BendValues
 
-__all__ = ["BendRow", "bend_rows", "bend_table", "write_bend_csv"]
+__all__ = ["BendRow", "bend_rows", "bend_table"]
 
 
 @dataclass(frozen=True)
@@ -176,47 +170,3 @@ def bend_table(pattern: FlatPattern, *, rulings: bool = True) -> str:
             f"{worst:.4f}; each one in the bend sheet (CSV) and the DXF notes"
         )
     return "\n".join(lines)
-
-
-def bend_csv(pattern: FlatPattern) -> str:
-    """The bend sheet as CSV text: a header row, then one row per crease half."""
-    import csv  # csv and the atomic writer: not for the notes' bend table (solve)
-
-    out = io.StringIO()
-    writer = csv.writer(out, lineterminator="\n")
-    writer.writerow([f.name for f in fields(BendRow)])
-    for row in bend_rows(pattern):
-        writer.writerow(astuple(row))
-    return out.getvalue()
-
-
-def write_bend_csv(
-    source: FlatPattern | Design,
-    path: str | os.PathLike[str],
-    folded: FoldedSheet | None = None,
-    *,
-    compensation: str = "sharp",
-) -> Path:
-    """Write ``NAME-bends.csv`` (atomically: nothing is written if anything fails).
-
-    Args:
-        source: a flat pattern, or a design (its pattern is computed with
-            ``compensation``; ``folded`` is ``build_design(design)`` if given).
-        path: the output file.
-        folded: for a design: its fold, if already computed.
-        compensation: for a design: 'sharp' or 'none'.
-
-    Returns:
-        The path written.
-    """
-    from onefold_cad.design import Design, build_design
-    from onefold_cad.export.atomic import atomic_output
-    from onefold_cad.export.flat_pattern import flat_pattern
-
-    if isinstance(source, Design):
-        folded = build_design(source) if folded is None else folded
-        source = flat_pattern(source, folded, compensation)
-    text = bend_csv(source)
-    with atomic_output(path) as tmp:
-        tmp.write_text(text, encoding="utf-8")
-    return Path(path)

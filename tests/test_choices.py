@@ -5,10 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from onefold_cad.choices import Compensation, Model, SheetSurface, Units
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.bend import Compensation
-from onefold_cad.geometry.material import SheetSurface, Units
-from onefold_cad.geometry.params import Model
 
 CHOICES = [
     (Model, "model", ["paper", "exact"]),

@@ -1,26 +1,27 @@
 """The flat pattern of a design: the 2D geometry a cutting table needs.
 
-Everything here is plain numpy (ezdxf's mitred offset is imported inside
-:func:`flat_pattern` only when a kerf is given); :mod:`onefold_cad.export.dxf`
-and :mod:`onefold_cad.export.cut_dxf` only draw it. Lengths are in the design's
+Everything here is plain numpy (:func:`~onefold_cad.fabrication.kerf.offset_outline`
+gives the kerf's mitred offset); :mod:`onefold_cad.export.dxf` and
+:mod:`onefold_cad.export.cut_dxf` only draw it (the DXF's NOTES text is
+:mod:`onefold_cad.export.dxf_notes`'s). Lengths are in the design's
 unit, angles in degrees, points in the sheet's own frame (for a rectangle: a
 corner at the origin, sides on the axes).
 
 Thickness compensation (t > 0, ``compensation='sharp'``). The designed surface
 has a sharp crease; the real sheet bends with inside radius r. The bend model
-(:mod:`onefold_cad.geometry.bend`, one source for every writer) gives each
+(:mod:`onefold_cad.geometry.bend_model`, one source for every writer) gives each
 crease half its shift SB - BA/2: each side of the blank moves that far towards
 the fold line, perpendicular to it, so that the flat flanges land where the
 design puts them. The fold line has two halves with their own angles; one
 rigid move per side keeps every straight edge straight, so both sides move by
-the **mean** of the two shifts (:func:`~onefold_cad.geometry.bend.blank_move`);
+the **mean** of the two shifts (:func:`~onefold_cad.geometry.bend_model.blank_move`);
 the blank's width error across each half, 2 (own shift - mean), is recorded
-(:attr:`FlatPattern.move`) and written in the notes (0 for symmetric designs).
+(:attr:`FlatPattern.move`) and written in the DXF's notes (0 for symmetric designs).
 Inside each half's bend zone (within BA/2 of the fold line) the outline is
 bridged by a straight segment from the upper side's edge at +BA/2 to the lower
 side's edge at -BA/2 (from the moved crease end itself where the mean shift
 puts it outside that half's zone); the fold half ends at that bridge. Past the limits of
-:func:`~onefold_cad.geometry.bend.check_bends` the pattern is refused with
+:func:`~onefold_cad.fabrication.bend_checks.check_bends` the pattern is refused with
 :class:`~onefold_cad.errors.FabricationError`; ``compensation='none'`` then
 gives the uncompensated blank (the designed outline) and says so in the notes.
 With t = 0 nothing is compensated (a zero-thickness surface creased sharp).
@@ -32,37 +33,30 @@ mitred corners (each edge moves exactly kerf/2), the relief hole inwards.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
-from onefold_cad.design import Design, design_mass, relief_hole_diameter, relief_hole_problem
+from onefold_cad.choices import Compensation, Units
+from onefold_cad.design import Design, derived
 from onefold_cad.errors import FabricationError, InvalidParameterError, InvalidSheetError
-from onefold_cad.geometry.bend import (
-    BendProblem,
+from onefold_cad.fabrication.bend_checks import BendProblem, bend_error, check_bends
+from onefold_cad.fabrication.kerf import offset_outline
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
+from onefold_cad.geometry.bend_model import (
     BendValues,
     BlankMove,
-    Compensation,
-    bend_error,
     bend_model,
     blank_move,
-    check_bends,
     crease_bends,
 )
 from onefold_cad.geometry.fan_folds import ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.material import Material, Units
-from onefold_cad.geometry.sheet import boundary_distance
+from onefold_cad.geometry.material import Material
+from onefold_cad.geometry.numeric import Array, edge_lengths_2d, polygon_area
+from onefold_cad.geometry.polygon import boundary_distance, check_simple
 
-try:  # the sheet's own simplicity check (public under this name once the sheet module has it)
-    from onefold_cad.geometry.sheet import check_simple  # type: ignore[attr-defined]
-except ImportError:
-    from onefold_cad.geometry.sheet import _check_simple as check_simple
-
-__all__ = ["FoldHalf", "FoldRuling", "FlatPattern", "flat_pattern", "polygon_area"]
-
-Array = NDArray[np.float64]
+__all__ = ["FoldHalf", "FoldRuling", "FlatPattern", "flat_pattern", "flat_pattern_once"]
 
 
 @dataclass(frozen=True)
@@ -171,7 +165,6 @@ class FlatPattern:
         material: the design's material.
         kerf: the kerf used (length).
         thickness: sheet thickness (length).
-        notes: the text lines for the NOTES layer.
     """
 
     name: str
@@ -190,7 +183,6 @@ class FlatPattern:
     material: Material
     kerf: float
     thickness: float
-    notes: tuple[str, ...]
 
     @property
     def compensation(self) -> str:
@@ -224,12 +216,6 @@ class FlatPattern:
         return max(self.size)
 
 
-def polygon_area(p: Array) -> float:
-    """Signed shoelace area of a closed polygon ``(n, 2)`` (CCW > 0)."""
-    q = np.roll(p, -1, axis=0)
-    return 0.5 * float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
-
-
 def _at_height(a: Array, b: Array, c: float) -> Array:
     """The point of the line through ``a`` and ``b`` at height y = ``c`` (their
     midpoint when the line is level)."""
@@ -259,7 +245,7 @@ def _clip_chain(chain: Array, c_start: float, c_end: float) -> Array:
 
 def _dedupe(p: Array, tol: float) -> Array:
     """Drop consecutive (cyclic) vertices closer than ``tol``."""
-    keep = np.hypot(*(np.roll(p, -1, axis=0) - p).T) > tol
+    keep = edge_lengths_2d(p) > tol
     return p[keep]
 
 
@@ -320,7 +306,7 @@ def flat_pattern(
         folded: ``build_design(design)`` (fold angles and bend directions).
         compensation: 'sharp' (default): each side moves by the bend model's
             shift, refused past the limits of
-            :func:`~onefold_cad.geometry.bend.check_bends`; 'none': the
+            :func:`~onefold_cad.fabrication.bend_checks.check_bends`; 'none': the
             uncompensated blank (the designed outline), said so in the notes.
 
     Raises:
@@ -328,7 +314,7 @@ def flat_pattern(
             'compensation' not 'sharp' or 'none'; 'kerf' when the kerf is too
             large for the blank or the hole.
         FabricationError: the relief hole does not fit the sheet or the
-            compensated blank (:func:`~onefold_cad.design.relief_hole_problem`,
+            compensated blank (:func:`~onefold_cad.fabrication.relief_hole.relief_hole_problem`,
             the writers' one check); a limit of the sharp-crease compensation
             is passed (the message names the crease half, its fold angle, the
             numbers and what to change).
@@ -346,7 +332,7 @@ def flat_pattern(
     if hole_problem is not None:
         raise hole_problem
     bends = crease_bends(folded, mat)
-    problems = check_bends(design, folded)
+    problems = check_bends(folded, mat, design.units)
     error = bend_error(problems)
     if error is not None and comp is Compensation.SHARP:
         raise error
@@ -392,9 +378,7 @@ def flat_pattern(
     place = sheet.to_sheet
     outline_s = place.apply(outline)
     if kerf > 0.0:
-        from ezdxf.math import offset_vertices_2d  # ezdxf only when a kerf is cut
-
-        cut = np.array([(p.x, p.y) for p in offset_vertices_2d(outline_s, -kerf / 2.0, True)])
+        cut = offset_outline(outline_s, kerf / 2.0)
         try:
             check_simple(cut, "kerf")
         except InvalidSheetError as exc:
@@ -439,7 +423,7 @@ def flat_pattern(
         )
         for f, seg in zip((folds[i] for i in drawn), fold_segments, strict=True)
     )
-    pattern = FlatPattern(
+    return FlatPattern(
         name=design.name,
         units=design.units,
         outline=outline_s,
@@ -456,58 +440,15 @@ def flat_pattern(
         material=mat,
         kerf=kerf,
         thickness=t,
-        notes=(),
     )
-    return replace(pattern, notes=_notes(pattern, design))
 
 
-def _notes(p: FlatPattern, design: Design) -> tuple[str, ...]:
-    """The NOTES text lines of ``p``."""
-    from onefold_cad.export.bend_sheet import bend_table
-
-    mat, u = design.material, design.units.value
-    w, h = p.size
-    lines = [
-        f"ONE-FOLD FLAT PATTERN: {design.name}",
-        f"units: {u}",
-        f"material: {mat.name or 'unspecified'}",
-        f"thickness t = {mat.thickness:g} {u}, bend radius r = {mat.bend_radius:g} {u}, "
-        f"K-factor = {mat.k_factor:g}, reference surface {mat.sheet_surface.value}",
-        "UP = the flat sheet's top face (the face this drawing shows) ends inside the bend: "
-        "the sides rise towards you; DOWN = the bottom face ends inside: they drop away",
-    ]
-    for half in p.halves:
-        side = "+x" if half.name == "plus_x" else "-x"
-        lines.append(f"fold half {side}: {half.label} (layer {half.layer})")
-    if p.fold_rulings:
-        lines.append(
-            f"ruling folds: {len(p.fold_rulings)} rulings of the paper model's fan are folds "
-            "(planar triangles meeting at an angle), drawn on BEND_UP/BEND_DOWN and listed in "
-            "the bend sheet; the blank does not compensate them (width error 2 x shift each)"
-        )
-    if p.thickness <= 0.0:
-        lines.append("thickness compensation: none (t = 0, sharp crease)")
-    elif p.compensation == "none":
-        e = p.move.errors
-        lines.append(
-            "thickness compensation: NONE (asked for): this blank is the designed outline; "
-            f"across each half it is 2 x shift wider than the bend model asks ({e[0]:.4f}, "
-            f"{e[1]:.4f} {u} for +x, -x)"
-        )
-        lines += [f"limit passed: {q.message}" for q in p.problems]
-    else:
-        e = [round(x, 9) + 0.0 for x in p.move.errors]  # no '-0.0000'
-        lines.append(
-            f"thickness compensation: each side moved {p.shift:.4f} {u} towards the fold line "
-            "(the mean of the halves' shifts SB - BA/2); blank width error across +x, -x: "
-            f"{e[0]:.4f}, {e[1]:.4f} {u}"
-        )
-    lines += bend_table(p).splitlines()
-    lines.append(f"kerf: {p.kerf:g} {u} (cut contours offset by kerf/2)")
-    if p.hole_diameter > 0.0:
-        lines.append(f"relief hole: diameter {p.hole_diameter:g} {u} at the apex mark")
-    lines.append(f"flat size: {w:.3f} x {h:.3f} {u}, area {p.area:.3f} sq {u}")
-    mass = design_mass(design, p.area)  # the one mass formula (kg or lb, density kg/m^3)
-    if mass is not None:
-        lines.append(f"mass: {mass}")
-    return tuple(lines)
+def flat_pattern_once(
+    design: Design, folded: FoldedSheet, compensation: Compensation | str = "sharp"
+) -> FlatPattern:
+    """:func:`flat_pattern`, computed once per design, fold and compensation
+    (the writers of one build share it; its refusal too)."""
+    comp = Compensation.parse(compensation)
+    return derived(
+        design, ("flat_pattern", folded, comp), lambda: flat_pattern(design, folded, comp)
+    )

@@ -14,7 +14,6 @@ names one by its key, never by a path.
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Mapping
 from typing import Any
@@ -120,21 +119,14 @@ def parse_query(query: str) -> dict[str, str]:
     return out
 
 
-@functools.cache
-def _solve_parser() -> Any:
-    from onefold_cad.cli import build_parser
-
-    return build_parser()["solve"]
-
-
 def _controls_of(flag: str) -> tuple[str, ...]:
     return tuple(k for k, f in PAGE_FLAGS.items() if f == flag)
 
 
 def _cli_flags(params: Mapping[str, str]) -> dict[str, Any]:
-    """The design flags parsed by ``onefold solve``'s own option parser."""
-    from onefold_cad.cli import UsageError
-    from onefold_cad.flags import DESIGN_FLAGS
+    """The design flags parsed as ``onefold solve`` parses them
+    (:func:`onefold_cad.flags.parser.parse_design_flags`)."""
+    from onefold_cad.flags.parser import UsageError, parse_design_flags
 
     args = []
     if "width" in params or "height" in params:
@@ -143,12 +135,11 @@ def _cli_flags(params: Mapping[str, str]) -> dict[str, Any]:
         if name in PAGE_FLAGS and PAGE_FLAGS[name] != "--rectangle":
             args.append(f"{PAGE_FLAGS[name]}={text}")
     try:
-        ns = _solve_parser().parse_intermixed_args(args)
+        return parse_design_flags(args)
     except UsageError as exc:  # the parser's one-line message, as `main` reports it
         text = " ".join(str(exc).split())
         flag = text.split(":", 1)[0]
         raise ParameterProblem(text, _controls_of(flag)) from None
-    return {f.dest: getattr(ns, f.dest) for f in DESIGN_FLAGS}
 
 
 def design_from_params(
@@ -164,7 +155,8 @@ def design_from_params(
     Raises:
         ParameterProblem: a value the CLI would refuse, with its message.
     """
-    from onefold_cad.flags import FLAG_OF, Overrides, changed_flags, mark_changes
+    from onefold_cad.flags.design_flags import FLAG_OF
+    from onefold_cad.flags.overrides import Overrides, changed_flags, mark_changes
 
     key = params.get("template", default)
     if key not in templates:

@@ -1,6 +1,15 @@
-"""Frozen, validated inputs of the construction: the frame curve and the model.
+"""The frame curve of paper section 3.2: its frozen, validated inputs and the
+scalars every point of it is computed from (:class:`ArcGeometry`).
 
-Angles are in degrees at this edge of the API; lengths are in the design's unit.
+Angles are in degrees at this edge of the API (radians in :class:`ArcGeometry`);
+lengths are in the design's unit.
+
+Accuracy near the ends. H may lie arbitrarily close to an end of the f-line,
+and the apex then sits about as close above it, so the arc near that end must
+be placed to a small fraction of that distance, not to a rounding error of R:
+the end distances L+ and L- are evaluated in 40-digit decimal arithmetic when
+they are small (:func:`end_distances`); :mod:`onefold_cad.geometry.arc` places
+the points from the nearer end.
 """
 
 from __future__ import annotations
@@ -8,13 +17,23 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, replace
+from decimal import Decimal, localcontext
+from functools import cached_property
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.choice import Choice
-from onefold_cad.geometry.validate import finite, integer_at_least, length, open_interval
+from onefold_cad.geometry.checks import finite, integer_at_least, length, open_interval
 
-__all__ = ["FrameCurve", "Model", "MAX_DESIGN_DIVISIONS", "MAX_DIVISIONS", "MIN_ANGLE_DEG"]
+__all__ = [
+    "ArcGeometry",
+    "FrameCurve",
+    "MAX_DESIGN_DIVISIONS",
+    "MAX_DIVISIONS",
+    "MIN_ANGLE_DEG",
+    "arc_geometry",
+    "check_design_divisions",
+    "end_distances",
+]
 
 #: Smallest alpha and beta (deg). The construction squares them in radians
 #: (sin^2, 1 - cos); from 1e-100 deg those squares stay normal doubles
@@ -35,19 +54,6 @@ MAX_DIVISIONS = 100_000
 #: (at the cap solve + fold + flat pattern + DXF take about a second,
 #: docs/reliability.md).
 MAX_DESIGN_DIVISIONS = 10_000
-
-
-class Model(Choice):
-    """Which direction-surface the solver uses.
-
-    PAPER: the fan of ``divisions`` planar triangles over the division points
-    of the frame curve, exactly as in the paper.
-    EXACT: the continuous cone over the circular arc (the limit of infinitely
-    many divisions); independent of ``divisions``.
-    """
-
-    PAPER = "paper"
-    EXACT = "exact"
 
 
 @dataclass(frozen=True)
@@ -90,11 +96,7 @@ class FrameCurve:
         # folds with, R cos(alpha) -+ h_c, each to a rounding error of itself
         # (40 digits near an end): a double cos(alpha) is off by up to 8 % within
         # 1e-14 deg of 90, which let through h_c the solver then refused.
-        from onefold_cad.geometry.frame import arc_geometry  # (it imports this module)
-
-        g = arc_geometry(self)
-        # kept for the solver (every direction-surface starts from it); not a field
-        set_(self, "_geometry", g)
+        g = self.geometry
         if not min(g.l_plus, g.l_minus) > 0.0:
             half = 0.5 * (g.l_plus + g.l_minus) * self.radius
             raise InvalidParameterError(
@@ -102,6 +104,12 @@ class FrameCurve:
                 f"H must lie strictly inside the f-line: |h_c| < radius*cos(alpha) = "
                 f"{half:.6g}, i.e. h_c in ({-half:.6g}, {half:.6g}), got {self.h_c:g}",
             )
+
+    @cached_property
+    def geometry(self) -> ArcGeometry:
+        """The arc's scalars (:func:`arc_geometry`), computed once: validation
+        needs them, and every direction-surface starts from them."""
+        return arc_geometry(self)
 
     @property
     def half_chord(self) -> float:
@@ -165,3 +173,90 @@ def check_design_divisions(frame: FrameCurve) -> None:
             "exact cone, and the flat pattern and STEP grow with every division; use the "
             "exact model for finer)",
         )
+
+
+#: Below this distance from an end (in units of R) the end distance L is
+#: evaluated in decimal arithmetic (double precision gives it only to ~3e-16 R).
+_PRECISE_END = 1.0 / 16.0
+_PI_40 = Decimal("3.1415926535897932384626433832795028841971693993751")
+
+
+def _sin_cos_deg(deg: float) -> tuple[float, float]:
+    """sin and cos of an angle in (0, 90) deg, each to a relative rounding error
+    (the smaller one from the complement, 90 - deg, which is exact)."""
+    if deg <= 45.0:
+        r = math.radians(deg)
+        return math.sin(r), math.cos(r)
+    r = math.radians(90.0 - deg)
+    return math.cos(r), math.sin(r)
+
+
+def _cos_deg_decimal(deg: float) -> Decimal:
+    """cos(deg) for deg in (0, 90), to about 40 digits (Taylor series of the
+    sine or cosine of whichever of deg and 90 - deg is at most 45 deg)."""
+    with localcontext() as ctx:
+        ctx.prec = 45
+        d = Decimal(deg)
+        use_sin = d > 45
+        x = (Decimal(90) - d if use_sin else d) * _PI_40 / 180
+        x2 = x * x
+        term = x if use_sin else Decimal(1)
+        total = term
+        k = 1 if use_sin else 0
+        while abs(term) > Decimal("1e-44") * abs(total):
+            term = -term * x2 / ((k + 1) * (k + 2))
+            total += term
+            k += 2
+        return +total
+
+
+@dataclass(frozen=True)
+class ArcGeometry:
+    """The frame curve's scalars, lengths in units of the radius R.
+
+    Attributes:
+        radius: R (length).
+        alpha: alpha (radians).
+        sin_alpha, cos_alpha, sin_beta, cos_beta: each to a relative rounding error.
+        hc: h_c / R.
+        l_plus, l_minus: the end distances L+ / R and L- / R (see :func:`end_distances`).
+        span: the arc's central angle, pi + 2 alpha (radians).
+    """
+
+    radius: float
+    alpha: float
+    sin_alpha: float
+    cos_alpha: float
+    sin_beta: float
+    cos_beta: float
+    hc: float
+    l_plus: float
+    l_minus: float
+    span: float
+
+
+def arc_geometry(frame: FrameCurve) -> ArcGeometry:
+    """The :class:`ArcGeometry` of ``frame`` (a few microseconds; a decimal
+    evaluation of L when H is within R/16 of an end; :attr:`FrameCurve.geometry`
+    keeps the one its validation computed)."""
+    sa, ca = _sin_cos_deg(frame.alpha)
+    sb, cb = _sin_cos_deg(frame.beta)
+    r = frame.radius
+    hc = frame.h_c / r
+    lp, lm = ca - hc, ca + hc
+    if min(lp, lm) < _PRECISE_END:
+        with localcontext() as ctx:
+            ctx.prec = 45
+            c = _cos_deg_decimal(frame.alpha) * Decimal(r)
+            lp = float((c - Decimal(frame.h_c)) / Decimal(r))
+            lm = float((c + Decimal(frame.h_c)) / Decimal(r))
+    a = math.radians(frame.alpha)
+    return ArcGeometry(r, a, sa, ca, sb, cb, hc, lp, lm, math.pi + 2.0 * a)
+
+
+def end_distances(frame: FrameCurve) -> tuple[float, float]:
+    """Distances ``(L+, L-)`` from H to the f-line's +x and -x ends (length),
+    R cos(alpha) - h_c and R cos(alpha) + h_c, each to a rounding error of
+    itself below R/16 (however close H is to an end), of R above."""
+    g = frame.geometry
+    return g.l_plus * frame.radius, g.l_minus * frame.radius

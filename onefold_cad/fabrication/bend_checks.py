@@ -1,68 +1,34 @@
-"""The bend model: one source for the DXF blank, the STEP solid, the report and
-the bend sheet (numpy only, cheap: no CAD library is imported).
+"""The limits of the sharp-crease bend compensation, checked on a fold: the
+one check ``solve`` reports as warnings and every writer of the blank or the
+solid refuses with (numpy only, cheap: linear in the sheet's vertex count).
 
-The designed surface is the sheet's reference surface with a sharp crease. A
-real sheet of thickness t bends along each crease half with inside radius r;
-the neutral surface sits K t from the inside face. For a half of fold angle
-psi (from flat) whose reference surface lies s t from the inside face of that
-bend (s = 0, 1/2, 1: the reference is the inside, middle or outside face):
-
-- setback        SB = (r + s t) tan(psi / 2): from the reference surface's
-  sharp crease (its mould line) to where the flat flange meets the bend;
-- bend allowance BA = psi (r + K t): the neutral surface's length in the bend;
-- bend deduction BD = 2 SB - BA;
-- shift          SB - BA / 2 = BD / 2: how far each side of the flat blank
-  moves towards the fold line, so that the flat flanges land where the design
-  puts them.
-
-The bend direction decides which face is inside: UP (the sides rotate towards
-the flat sheet's top face) puts the top face inside, DOWN the bottom face. The
-reference surface's place across the thickness comes from
-:func:`onefold_cad.geometry.thick_sheet.sheet_offsets`, the same offsets the
-STEP solid is built from.
-
-A zero-thickness sheet (t = 0) is a surface creased sharp: every value is 0.
-
-Lengths are in the design's unit, angles in degrees at the API.
+The bend model itself is :mod:`onefold_cad.geometry.bend_model`; the
+reasoning behind each limit is in docs/fabrication.md. Lengths are in the
+design's unit, angles in degrees.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import StrEnum
-from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import NDArray
 
-from onefold_cad.errors import FabricationError, InvalidParameterError
-from onefold_cad.geometry.choice import Choice
+from onefold_cad.choices import Units
+from onefold_cad.errors import FabricationError
+from onefold_cad.geometry.bend_model import BendValues, bend_model, blank_move, crease_bends
 from onefold_cad.geometry.fan_folds import RulingFold, ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.thick_sheet import sheet_offsets
-
-if TYPE_CHECKING:
-    from onefold_cad.design import Design
+from onefold_cad.geometry.numeric import Array
 
 __all__ = [
     "MAX_SETBACK_FRACTION",
     "MAX_WIDTH_ERROR_FRACTION",
     "BendProblem",
-    "BendReference",
-    "BendValues",
-    "BlankMove",
-    "Compensation",
     "bend_error",
-    "bend_model",
-    "blank_move",
     "check_bends",
-    "crease_bends",
-    "reference_fraction",
 ]
-
-Array = NDArray[np.float64]
 
 #: The largest set-back, as a fraction of the flange beside the crease half,
 #: for which the sharp-crease compensation is accepted (see docs/fabrication.md).
@@ -75,160 +41,6 @@ MAX_SETBACK_FRACTION = 0.1
 #: +-0.05, which moves BA = psi (r + K t) by psi x 0.05 t, 0.08 t at a 90 deg
 #: fold (see docs/fabrication.md).
 MAX_WIDTH_ERROR_FRACTION = 0.1
-
-_DIRECTIONS = ("UP", "DOWN")
-
-
-class BendReference(StrEnum):
-    """Where the reference surface lies across the thickness in one bend."""
-
-    INSIDE = "INSIDE"
-    MID = "MID"
-    OUTSIDE = "OUTSIDE"
-
-
-class Compensation(Choice):
-    """How the flat blank accounts for the bends.
-
-    SHARP: each side moves by the bend model's shift (refused past the limits).
-    NONE: the blank is the designed reference surface's outline, uncompensated.
-    """
-
-    SHARP = "sharp"
-    NONE = "none"
-
-
-@dataclass(frozen=True)
-class BendValues:
-    """The bend model's numbers for one bend (one crease half).
-
-    Attributes:
-        half: 'plus_x' or 'minus_x' ('' for a bend not tied to a crease half).
-        angle_deg: fold angle psi from flat (deg).
-        direction: 'UP' (top face inside the bend) or 'DOWN' (bottom face inside).
-        reference: the reference surface's place in this bend.
-        s: the reference surface's distance from the inside face, in thicknesses.
-        thickness: t (length).
-        radius: inside bend radius r (length); 0 for a zero-thickness sheet.
-        k_factor: K.
-        allowance: BA = psi (r + K t) (length).
-        setback: SB = (r + s t) tan(psi / 2) (length).
-        outside_setback: OSSB = (r + t) tan(psi / 2), the outside mould line's
-            set-back (length), for shops that work from it.
-        deduction: BD = 2 SB - BA (length).
-        shift: SB - BA / 2, how far each side moves towards the fold line
-            (length; negative: the blank grows).
-    """
-
-    half: str
-    angle_deg: float
-    direction: str
-    reference: BendReference
-    s: float
-    thickness: float
-    radius: float
-    k_factor: float
-    allowance: float
-    setback: float
-    outside_setback: float
-    deduction: float
-    shift: float
-
-    @property
-    def included_deg(self) -> float:
-        """The angle between the two flanges (deg): 180 - psi."""
-        return 180.0 - self.angle_deg
-
-    @property
-    def inside_face(self) -> str:
-        """'top' or 'bottom': the flat sheet's face that ends inside the bend."""
-        return "top" if self.direction == "UP" else "bottom"
-
-
-def reference_fraction(material: Material, direction: str) -> float:
-    """s: the reference surface's distance from the inside face of a bend in
-    ``direction`` ('UP' or 'DOWN'), in thicknesses (0, 1/2 or 1).
-
-    Read from :func:`~onefold_cad.geometry.thick_sheet.sheet_offsets`: the
-    faces lie at (lo, hi) along the top normal; UP puts the top face (hi)
-    inside, DOWN the bottom face (lo)."""
-    if direction not in _DIRECTIONS:
-        raise InvalidParameterError("bend", f"must be 'UP' or 'DOWN', got {direction!r}")
-    lo, hi = sheet_offsets(material.with_changes(thickness=1.0))
-    return hi if direction == "UP" else -lo
-
-
-def bend_model(angle_deg: float, direction: str, material: Material, half: str = "") -> BendValues:
-    """The bend model for a fold angle ``angle_deg`` in [0, 180] (deg) bent
-    ``direction`` ('UP'/'DOWN') in ``material`` (see the module docstring)."""
-    psi = math.radians(angle_deg)
-    if not (math.isfinite(psi) and 0.0 <= psi <= math.pi):
-        raise InvalidParameterError("angle_deg", f"must be in [0, 180] deg, got {angle_deg!r}")
-    s = reference_fraction(material, direction)
-    t, k = material.thickness, material.k_factor
-    r = material.bend_radius if t > 0.0 else 0.0
-    tan = math.tan(psi / 2.0)
-    ba = psi * (r + k * t)
-    sb = (r + s * t) * tan
-    ref = (BendReference.INSIDE, BendReference.MID, BendReference.OUTSIDE)[round(2.0 * s)]
-    return BendValues(
-        half=half,
-        angle_deg=math.degrees(psi),
-        direction=direction,
-        reference=ref,
-        s=s,
-        thickness=t,
-        radius=r,
-        k_factor=k,
-        allowance=ba,
-        setback=sb,
-        outside_setback=(r + t) * tan,
-        deduction=2.0 * sb - ba,
-        shift=sb - ba / 2.0,
-    )
-
-
-def crease_bends(folded: FoldedSheet, material: Material) -> tuple[BendValues, BendValues]:
-    """The bend model of both crease halves ('plus_x', 'minus_x')."""
-    a, b = (bend_model(c.fold_angle_deg, c.bend, material, half=c.name) for c in folded.crease)
-    return a, b
-
-
-@dataclass(frozen=True)
-class BlankMove:
-    """What the flat blank does about the bends: one rigid move per side.
-
-    Both crease halves lie on one straight fold line and each side of the
-    blank is one rigid piece, so a side cannot move by two different amounts
-    along the two halves. The blank moves each side by the **mean** of the two
-    halves' shifts, which halves the largest error.
-
-    Attributes:
-        compensation: 'sharp' or 'none'.
-        shift: how far each side moved towards the fold line (length; 0 for 'none').
-        errors: per half ('plus_x', 'minus_x'), the blank's width across that
-            half minus the width the bend model asks for: 2 (own shift -
-            shift) (length; > 0: the blank is too wide there).
-    """
-
-    compensation: Compensation
-    shift: float
-    errors: tuple[float, float]
-
-    @property
-    def residual(self) -> float:
-        """The largest error per side, max |own shift - shift| (length)."""
-        return max(abs(e) for e in self.errors) / 2.0
-
-
-def blank_move(
-    bends: tuple[BendValues, BendValues], compensation: Compensation | str = Compensation.SHARP
-) -> BlankMove:
-    """The move of each side of the blank for the two crease halves' bends."""
-    comp = Compensation.parse(compensation)
-    shift = 0.5 * (bends[0].shift + bends[1].shift) if comp is Compensation.SHARP else 0.0
-    e0, e1 = (2.0 * (b.shift - shift) for b in bends)
-    return BlankMove(comp, shift, (e0, e1))
 
 
 @dataclass(frozen=True)
@@ -347,8 +159,11 @@ def _line_at_h(a: Array, b: Array) -> float:
     return float(a[1] + a[0] / (a[0] - b[0]) * (b[1] - a[1]))
 
 
-def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
-    """The limits of the sharp-crease compensation, checked on ``folded``.
+def check_bends(
+    folded: FoldedSheet, material: Material, units: Units | str
+) -> tuple[BendProblem, ...]:
+    """The limits of the sharp-crease compensation of ``material`` (lengths in
+    ``units``, named in the messages), checked on ``folded``.
 
     Numpy only and cheap (linear in the sheet's vertex count): ``solve`` can
     report the problems as warnings, the writers refuse with them.
@@ -378,12 +193,12 @@ def check_bends(design: Design, folded: FoldedSheet) -> tuple[BendProblem, ...]:
         a one-line message naming the half, its fold angle, the numbers and
         what to change. Zero thickness: always empty.
     """
-    mat, sheet = design.material, folded.sheet
+    mat, sheet = material, folded.sheet
     if mat.thickness <= 0.0:
         return ()
     bends = crease_bends(folded, mat)
     d = blank_move(bends).shift
-    u = design.units.value
+    u = Units.parse(units).value
     c = (bends[0].allowance / 2.0, bends[1].allowance / 2.0)
     ends = sheet.crease_lengths
     place = sheet.to_sheet

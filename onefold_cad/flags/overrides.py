@@ -1,139 +1,21 @@
-"""The design flags of ``onefold build`` and ``onefold solve``, and the designs
-they make from templates.
-
-:data:`DESIGN_FLAGS` lists every flag once (the parser is built from it);
-:class:`Overrides` puts flag values into template data; :func:`load_jobs`
-turns templates and flags into validated designs, converting a template's
-values into ``--units`` first (so flag values are read in that unit), naming
-each design after what defines it and recording where every material value
-came from.
+"""Flag values put into template data: :class:`Overrides` replaces template
+values, :func:`changed_flags` says which flags changed one, :func:`mark_changes`
+keeps the description and material name true, :func:`derived_name` names a
+design after what defines it.
 """
 
 from __future__ import annotations
 
-import argparse
 import copy
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.templates import DEFAULT_TEMPLATE
 
 if TYPE_CHECKING:
-    from onefold_cad.design import Design
+    pass
+from onefold_cad.flags.design_flags import DESIGN_FLAGS
 
-__all__ = [
-    "DESIGN_FLAGS",
-    "Flag",
-    "Job",
-    "Overrides",
-    "changed_flags",
-    "derived_name",
-    "flags_text",
-    "load_jobs",
-    "mark_changes",
-]
-
-MODELS = ("exact", "paper")
-UNITS = ("mm", "in", "ft")
-SURFACES = ("INSIDE", "OUTSIDE", "MID")
-BODIES = ("auto", "solid", "shell")
-MATERIAL_KEYS = (
-    "name",
-    "thickness",
-    "bend_radius",
-    "k_factor",
-    "kerf",
-    "relief_hole",
-    "density",
-    "sheet_surface",
-)
-
-
-# -- flag values -------------------------------------------------------------------
-def parse_float(text: str) -> float:
-    try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a number") from None
-
-
-def parse_int(text: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a whole number") from None
-
-
-def parse_choice(values: Sequence[str], upper: bool = False) -> Callable[[str], str]:
-    def parse(text: str) -> str:
-        v = text.strip().upper() if upper else text.strip().lower()
-        if v not in values:
-            raise argparse.ArgumentTypeError(
-                f"must be one of {', '.join(values)}, got {text.strip()!r}"
-            )
-        return v
-
-    return parse
-
-
-@dataclass(frozen=True)
-class Flag:
-    """A design flag shared by ``build`` and ``solve``."""
-
-    dest: str
-    flag: str
-    kind: Callable[[str], Any]
-    help: str
-    group: str
-    metavar: str | None = None
-
-
-_FRAME = "frame curve (paper section 3.2; lengths in the design's unit)"
-_SHEET = "sheet (fold frame: fold line on the x axis, H at the origin; design unit)"
-_MAT = "material (lengths in the design's unit)"
-_DESIGN = "design"
-
-DESIGN_FLAGS: tuple[Flag, ...] = (
-    Flag("model", "--model", parse_choice(MODELS), "exact: the cone over the arc; paper: the "
-         "paper's fan of --divisions triangles (default: the template's)", _DESIGN, "exact|paper"),
-    Flag("units", "--units", parse_choice(UNITS), "the design's length unit: the template's values "
-         "are converted into it and the flags below are read in it", _DESIGN, "mm|in|ft"),
-    Flag("alpha", "--alpha", parse_float, "arc opening alpha, deg in (0, 90)", _FRAME, "DEG"),
-    Flag("beta", "--beta", parse_float, "tilt beta of the arc's plane, deg in (0, 90)", _FRAME,
-         "DEG"),
-    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint", _FRAME, "LENGTH"),
-    Flag("radius", "--radius", parse_float, "frame-curve radius R > 0, from 1e-6 to 1e6 times "
-         "the sheet's size", _FRAME, "LENGTH"),
-    Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, in "
-         "[1, 10000]", _FRAME, "N"),
-    Flag("x_plus", "--x-plus", parse_float, "quadrilateral: distance from H to the +x vertex",
-         _SHEET, "LENGTH"),
-    Flag("x_minus", "--x-minus", parse_float, "quadrilateral: distance from H to the -x vertex",
-         _SHEET, "LENGTH"),
-    Flag("y_plus", "--y-plus", parse_float, "quadrilateral: distance from H to the +y vertex",
-         _SHEET, "LENGTH"),
-    Flag("y_minus", "--y-minus", parse_float, "quadrilateral: distance from H to the -y vertex",
-         _SHEET, "LENGTH"),
-    Flag("polygon", "--polygon", str, 'polygon sheet "x,y;x,y;...", star-shaped about H',
-         _SHEET, "X,Y;..."),
-    Flag("rectangle", "--rectangle", str, "rectangle folded along its diagonal", _SHEET,
-         "WIDTHxHEIGHT"),
-    Flag("apex_fraction", "--apex-fraction", parse_float, "rectangle: where H sits along the "
-         "diagonal, in (0, 1)", _SHEET, "F"),
-    Flag("thickness", "--thickness", parse_float, "sheet thickness t >= 0", _MAT, "LENGTH"),
-    Flag("bend_radius", "--bend-radius", parse_float, "inside bend radius r >= 0", _MAT, "LENGTH"),
-    Flag("k_factor", "--k-factor", parse_float, "K-factor in [0, 1]", _MAT, "K"),
-    Flag("kerf", "--kerf", parse_float, "cutting kerf >= 0", _MAT, "LENGTH"),
-    Flag("relief_hole", "--relief-hole", parse_float, "relief hole diameter at the apex >= 0 "
-         "(0: none)", _MAT, "DIAMETER"),
-    Flag("density", "--density", parse_float, "density in kg/m^3 > 0 (e.g. 7850 for steel), "
-         "whatever the design unit", _MAT, "KG/M3"),
-    Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
-         "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
-)  # fmt: skip
-FLAG_OF = {f.dest: f.flag for f in DESIGN_FLAGS}
+__all__ = ["changed_flags", "derived_name", "flags_text", "mark_changes", "Overrides"]
 
 
 # -- designs from templates and flags ---------------------------------------------
@@ -205,10 +87,10 @@ class Overrides:
             raise InvalidParameterError(given[1], f"cannot be combined with {given[0]}")
         sheet = out.get("sheet") if isinstance(out.get("sheet"), dict) else {}
         if "polygon" in v:
-            out["sheet"] = {"polygon": _parse_polygon(v["polygon"])}
+            out["sheet"] = {"polygon": parse_polygon(v["polygon"])}
             names["sheet.polygon"] = "--polygon"
         elif "rectangle" in v:
-            w, h = _parse_rectangle(v["rectangle"])
+            w, h = parse_rectangle(v["rectangle"])
             old = sheet.get("rectangle", {}) if isinstance(sheet.get("rectangle"), dict) else {}
             out["sheet"] = {"rectangle": {**old, "width": w, "height": h}}
             names["sheet.rectangle.width"] = names["sheet.rectangle.height"] = "--rectangle"
@@ -243,7 +125,7 @@ def _parse_number(text: str, flag: str) -> float:
         raise InvalidParameterError(flag, f"{text.strip()!r} is not a number") from None
 
 
-def _parse_polygon(text: str) -> list[list[float]]:
+def parse_polygon(text: str) -> list[list[float]]:
     pts = []
     for i, pair in enumerate(p for p in text.split(";") if p.strip()):
         parts = pair.split(",")
@@ -256,7 +138,7 @@ def _parse_polygon(text: str) -> list[list[float]]:
     return pts
 
 
-def _parse_rectangle(text: str) -> tuple[float, float]:
+def parse_rectangle(text: str) -> tuple[float, float]:
     parts = text.lower().split("x")
     try:
         width, height = (float(p) for p in parts)
@@ -282,10 +164,10 @@ def derived_name(base: str, flags: dict[str, Any]) -> str:
         if v is None:
             continue
         if f.dest == "polygon":
-            digest = _sha1(str(_parse_polygon(v)))[:6]
-            parts.append(f"polygon{len(_parse_polygon(v))}-{digest}")
+            digest = _sha1(str(parse_polygon(v)))[:6]
+            parts.append(f"polygon{len(parse_polygon(v))}-{digest}")
         elif f.dest == "rectangle":
-            w, h = _parse_rectangle(v)
+            w, h = parse_rectangle(v)
             parts.append(f"{w:g}x{h:g}")
         elif f.dest in ("model", "units", "sheet_surface"):
             parts.append(str(v).lower())
@@ -338,7 +220,7 @@ def flags_text(flags: dict[str, Any]) -> str:
         if v is None:
             continue
         if f.dest == "polygon":
-            text = f"({len(_parse_polygon(v))} vertices)"
+            text = f"({len(parse_polygon(v))} vertices)"
         elif isinstance(v, float):
             text = f"{v:g}"
         else:
@@ -392,86 +274,3 @@ def mark_changes(
         kind = str(mat["name"]).split(",", 1)[0].strip()
         mat["name"] = f"{kind} (from template {template}), {' and '.join(own)} from {by}"
     return out
-
-
-@dataclass(frozen=True)
-class Job:
-    """One design to solve or build, and where its values came from.
-
-    Attributes:
-        design: the validated design.
-        template: the template it started from.
-        sources: template key -> where its value came from: a flag
-            (``--thickness``), ``template NAME``, ``inherited from template
-            NAME`` (no template was given: the default one's) or ``default``.
-    """
-
-    design: Design
-    template: str
-    sources: dict[str, str] = field(default_factory=dict)
-
-
-def _sources(
-    raw: dict[str, Any], names: dict[str, str], template: str, implicit: bool
-) -> dict[str, str]:
-    where = f"inherited from template {template}" if implicit else f"template {template}"
-    table = raw.get("material") if isinstance(raw.get("material"), dict) else {}
-    out = {}
-    for key in MATERIAL_KEYS:
-        full = f"material.{key}"
-        out[full] = names.get(full) or (where if key in table else "default")
-    for key in ("units", "model"):
-        out[key] = names.get(key) or (where if key in raw else "default")
-    return out
-
-
-def load_jobs(refs: Sequence[str], flags: dict[str, Any], name: str | None = None) -> list[Job]:
-    """The designs of the templates ``refs`` (the default one if none) with the
-    design flags applied.
-
-    A template's values are converted into ``--units`` first (when given), so
-    flag values are read in that unit. The design is named ``name`` if given;
-    else the template's name, with the flags given appended; without a
-    template, ``onefold-`` and the flags (never the default template's name).
-    """
-    from onefold_cad.templates import (
-        design_from_data,
-        design_to_data,
-        find_template,
-        read_template,
-        template_units,
-    )
-
-    implicit = not refs
-    jobs = []
-    for ref in refs or [DEFAULT_TEMPLATE]:
-        path = find_template(ref)
-        raw = read_template(path)
-        units = template_units(raw, path)
-        template = str(raw.get("name", path.stem))
-        data = raw
-        try:
-            if flags.get("units") and flags["units"] != units.lower():
-                base = design_from_data(raw)
-                data = {**raw, **design_to_data(base.in_units(flags["units"]))}
-            given = {k: v for k, v in flags.items() if v is not None}
-            if name is not None:
-                stem = name
-            elif implicit:
-                stem = derived_name("onefold", given) if given else template
-            else:
-                stem = derived_name(template, given)
-            changed, names = Overrides(**flags, name=stem).apply(data)
-            if name is None:
-                names.pop("name")
-            which = changed_flags(design_to_data(design_from_data(data)), changed, names)
-            changed = mark_changes(changed, given, which, template, implicit)
-            design = design_from_data(changed, key_names=names)
-        except InvalidParameterError as exc:
-            if exc.parameter.startswith("--"):
-                raise
-            raise type(exc)(
-                f"{path}: {exc.parameter}", str(exc)[len(exc.parameter) + 2 :]
-            ) from None
-        jobs.append(Job(design, template, _sources(raw, names, template, implicit)))
-    return jobs

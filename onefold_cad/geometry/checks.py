@@ -1,5 +1,5 @@
-"""Small checks shared by the frozen parameter dataclasses, and the bounds on
-magnitudes that double precision can fold.
+"""The value checks shared by the frozen parameter dataclasses, and the bounds
+on magnitudes that double precision can fold.
 
 Bounds (the reasons are in the docstrings of the constants and in
 docs/reliability.md):
@@ -26,7 +26,6 @@ from contextlib import contextmanager
 from fractions import Fraction
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from onefold_cad.errors import InvalidParameterError
 
@@ -37,8 +36,6 @@ __all__ = [
     "MIN_SHEET_TO_RADIUS",
     "check_magnitudes",
     "closed_interval",
-    "cross3",
-    "sorted_unique",
     "finite",
     "float_errors",
     "integer_at_least",
@@ -209,36 +206,3 @@ def integer_at_least(name: str, value: object, lo: int, hi: int | None = None) -
         rng = f">= {lo}" if hi is None else f"in [{lo}, {hi}]"
         raise InvalidParameterError(name, f"must be an integer {rng}, got {n}")
     return n
-
-
-def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product of 3-vectors along the last axis (numpy's np.cross without
-    its axis-juggling overhead, which dominates for the small arrays here)."""
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    out[..., 0] = a1 * b2 - a2 * b1
-    out[..., 1] = a2 * b0 - a0 * b2
-    out[..., 2] = a0 * b1 - a1 * b0
-    return out
-
-
-def sorted_unique(values: ArrayLike) -> np.ndarray:
-    """``np.unique(values)`` of real numbers: the sorted distinct values of the
-    flattened array (NaNs as one), computed as numpy computes it for floats
-    (sort, then drop repeats; integers come out the same), without its first
-    call's import of numpy.ma (10 ms, a fifth of ``onefold solve``'s own
-    imports)."""
-    aux = np.asarray(values).flatten()
-    aux.sort()
-    keep = np.empty(aux.shape, dtype=bool)
-    keep[:1] = True
-    if aux.size and aux.dtype.kind == "f" and np.isnan(aux[-1]):
-        first_nan = int(np.searchsorted(aux, aux[-1], side="left"))
-        if first_nan > 0:
-            keep[1:first_nan] = aux[1:first_nan] != aux[: first_nan - 1]
-        keep[first_nan] = True
-        keep[first_nan + 1 :] = False
-    else:
-        keep[1:] = aux[1:] != aux[:-1]
-    return aux[keep]

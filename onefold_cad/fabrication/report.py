@@ -7,8 +7,8 @@ degrees, times in seconds, the mass in ``mass.unit`` (kg or lb) and the
 density in kg/m^3. Every number is checked to be finite before the report
 is printed or written (:func:`check_finite`).
 
-This module imports numpy and the geometry core only; the flat pattern is
-imported when a report is made.
+Numpy and the geometry core only; the file is written by
+:func:`onefold_cad.export.report_file.write_report`.
 """
 
 from __future__ import annotations
@@ -17,19 +17,12 @@ import math
 import os
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from onefold_cad.design import (
-    Design,
-    design_mass,
-    fabrication_warnings,
-    relief_hole_diameter,
-    resting_placement,
-    solid_bend_problem,
-    solid_min_relief_hole,
-)
+from onefold_cad.choices import Compensation
+from onefold_cad.design import Design, derived
 from onefold_cad.errors import (
     ExportError,
     FabricationError,
@@ -37,13 +30,20 @@ from onefold_cad.errors import (
     NoSolutionError,
     OneFoldError,
 )
-from onefold_cad.geometry.bend import Compensation, bend_error, check_bends, crease_bends
+from onefold_cad.fabrication.bend_checks import bend_error, check_bends
+from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern_once
+from onefold_cad.fabrication.mass import design_mass
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
+from onefold_cad.fabrication.rules import (
+    fabrication_warnings,
+    resting_placement,
+    solid_bend_problem,
+)
+from onefold_cad.geometry.bend_model import crease_bends
+from onefold_cad.geometry.developability import developability
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.placement import stability_warnings
 from onefold_cad.templates import design_to_data
-
-if TYPE_CHECKING:
-    from onefold_cad.export.flat_pattern import FlatPattern
 
 __all__ = [
     "REPORT_VERSION",
@@ -52,7 +52,6 @@ __all__ = [
     "design_warnings",
     "report_json",
     "resting_numbers",
-    "write_report",
 ]
 
 #: Bumped when a key of the report changes meaning or disappears.
@@ -122,16 +121,14 @@ def _flat_pattern(
     design: Design, folded: FoldedSheet, warnings: list[str], compensation: Compensation
 ) -> FlatPattern | None:
     """The flat pattern, or None with the writer's refusal as a warning."""
-    from onefold_cad.export.flat_pattern import flat_pattern
-
     try:
         try:
-            return flat_pattern(design, folded, compensation)
+            return flat_pattern_once(design, folded, compensation)
         except FabricationError as exc:  # past the bend model's limits: design_warnings names them
-            bends = bend_error(check_bends(design, folded))
+            bends = bend_error(check_bends(folded, design.material, design.units))
             if bends is None or str(exc) != str(bends):
                 raise  # not a bend limit (a relief hole that does not fit, ...)
-            return flat_pattern(design, folded, "none")
+            return flat_pattern_once(design, folded, "none")
     except OneFoldError as exc:  # the writer's parameter checks (hole, kerf)
         if not any(str(exc) in w for w in warnings):  # said already
             warnings.append(f"{exc} (flat pattern; build refuses the DXF)")
@@ -174,12 +171,12 @@ def design_warnings(
     stability (a tipping margin below 5 deg,
     :func:`~onefold_cad.geometry.placement.stability_warnings`, for ``body``
     as :func:`resting_numbers` places it) and the bend model's
-    limits (:func:`~onefold_cad.geometry.bend.check_bends`), worded for what
+    limits (:func:`~onefold_cad.fabrication.bend_checks.check_bends`), worded for what
     ``build`` does with ``compensation`` ('sharp': refuses the flat pattern's
     files, and the STEP solid unless only the blank's width is off; 'none':
     writes the uncompensated blank)."""
     comp = Compensation.parse(compensation)
-    problems = check_bends(design, folded)
+    problems = check_bends(folded, design.material, design.units)
     error = bend_error(problems)
     bends = []
     if error is not None and comp is Compensation.NONE:
@@ -271,7 +268,8 @@ def design_report(
         ``developability`` (measured errors), ``step`` (as given, or null),
         ``warnings``, ``timings_s`` and ``files``.
     """
-    sol, sheet, m = folded.solution, folded.sheet, folded.metrics
+    sol, sheet = folded.solution, folded.sheet
+    m = derived(folded, "developability", lambda: developability(folded))
     comp = Compensation.parse(compensation)
     notes = [*warnings, *design_warnings(design, folded, comp, body)]
     fp = _flat_pattern(design, folded, notes, comp) if pattern is None else pattern
@@ -361,23 +359,3 @@ def report_json(report: Mapping[str, Any]) -> str:
 
     check_finite(report)
     return json.dumps(report, indent=2, allow_nan=False) + "\n"
-
-
-def write_report(path: str | os.PathLike[str], report: Mapping[str, Any]) -> Path:
-    """Write ``report`` as JSON to ``path`` atomically (temp name, then rename).
-
-    Raises:
-        ExportError: the report holds a non-finite number (naming its key)
-            or another value JSON cannot hold, or the file could not be
-            written.
-    """
-    from onefold_cad.export.atomic import atomic_output  # tempfile: not for solve
-
-    out = Path(path)
-    try:
-        text = report_json(report)
-    except (TypeError, ValueError) as exc:
-        raise ExportError(f"report of {report.get('name')!r} is not valid JSON: {exc}") from exc
-    with atomic_output(out) as tmp:
-        tmp.write_text(text, encoding="utf-8")
-    return out

@@ -1,0 +1,124 @@
+"""The design's named options, one enum each: the vocabulary every layer uses.
+
+No numpy here: the command's parser (:mod:`onefold_cad.flags`) reads its
+choices from these enums and starts in milliseconds. One way to read a name
+from text (:meth:`Choice.parse`, any case) and one error for a name that is
+not one.
+"""
+
+from __future__ import annotations
+
+import re
+from enum import StrEnum
+from typing import Self
+
+from onefold_cad.errors import InvalidParameterError
+
+__all__ = ["Body", "Choice", "Compensation", "Model", "Placement", "SheetSurface", "Units"]
+
+
+class Choice(StrEnum):
+    """A string enum whose members a user names in any case.
+
+    The parameter a bad name is reported against is the class name in
+    snake case: ``Model`` -> ``model``, ``SheetSurface`` -> ``sheet_surface``.
+    """
+
+    @classmethod
+    def parse(cls, value: object) -> Self:
+        """The member named by ``value`` (a member, or its value in any case).
+
+        Raises:
+            InvalidParameterError: naming the parameter and the allowed names.
+        """
+        if isinstance(value, cls):
+            return value
+        text = str(value).casefold()
+        for member in cls:
+            if member.value.casefold() == text:
+                return member
+        names = ", ".join(member.value for member in cls)
+        parameter = re.sub(r"(?<!^)(?=[A-Z])", "_", cls.__name__).lower()
+        raise InvalidParameterError(parameter, f"must be one of {names}, got {value!r}")
+
+
+class Model(Choice):
+    """Which direction-surface the solver uses.
+
+    PAPER: the fan of ``divisions`` planar triangles over the division points
+    of the frame curve, exactly as in the paper.
+    EXACT: the continuous cone over the circular arc (the limit of infinitely
+    many divisions); independent of ``divisions``.
+    """
+
+    PAPER = "paper"
+    EXACT = "exact"
+
+
+class SheetSurface(Choice):
+    """Which face of the sheet the designed (reference) surface is.
+
+    INSIDE: the top (+z) face; the material lies below it.
+    OUTSIDE: the bottom face; the material lies above it.
+    MID: the mid-surface; half the thickness each way.
+    """
+
+    INSIDE = "INSIDE"
+    OUTSIDE = "OUTSIDE"
+    MID = "MID"
+
+
+class Units(Choice):
+    """Length unit of a design."""
+
+    MM = "mm"
+    IN = "in"
+    FT = "ft"
+
+    @property
+    def mm(self) -> float:
+        """Millimetres per unit (exact: 1 in = 25.4 mm, 1 ft = 304.8 mm)."""
+        return {"mm": 1.0, "in": 25.4, "ft": 304.8}[self.value]
+
+    def factor_to(self, other: Units | str) -> float:
+        """The factor that turns a length in this unit into one in ``other``."""
+        return self.mm / Units.parse(other).mm
+
+    @property
+    def mass_unit(self) -> str:
+        """The unit masses are reported in: 'kg' for mm designs, 'lb' for inch
+        and foot designs."""
+        return "kg" if self is Units.MM else "lb"
+
+
+class Compensation(Choice):
+    """How the flat blank accounts for the bends.
+
+    SHARP: each side moves by the bend model's shift (refused past the limits).
+    NONE: the blank is the designed reference surface's outline, uncompensated.
+    """
+
+    SHARP = "sharp"
+    NONE = "none"
+
+
+class Body(Choice):
+    """The body a form is written as (STEP, GLB) and stood on the ground with.
+
+    SHELL: the folded reference surface (zero thickness).
+    SOLID: the sheet of the material's thickness (exact model).
+    """
+
+    SHELL = "shell"
+    SOLID = "solid"
+
+
+class Placement(Choice):
+    """Where the STEP, the GLB and the 3D preview put the form.
+
+    REST: as it stands on the ground z = 0 (the resting placement).
+    FRAME: the fold frame (H at the origin, the fold line on x, the apex above H).
+    """
+
+    REST = "rest"
+    FRAME = "frame"

@@ -1,0 +1,289 @@
+"""``onefold build``: every design solves and every writer's checks pass before
+any file is written; the files are staged and committed all at once
+(:mod:`onefold_cad.export.atomic`), several designs at a time in worker
+processes (``-j``), the CAD libraries' modules moved out of the garbage
+collector's way once a writer has imported them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import gc
+import signal
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from onefold_cad.cli.summary import material_lines
+from onefold_cad.errors import InvalidParameterError, OneFoldError
+from onefold_cad.export.writers import WRITERS
+from onefold_cad.flags.design_flags import (
+    FLAG_OF,
+    PLACEMENTS,
+)
+from onefold_cad.flags.jobs import Job, load_jobs
+
+if TYPE_CHECKING:
+    from onefold_cad.design import Design
+from onefold_cad.cli.output import Progress, os_message, warn
+from onefold_cad.flags.parser import design_flag_values
+
+__all__ = ["STATE", "cmd_build", "interrupted_text"]
+
+
+@dataclass
+class _Task:
+    """What a build worker needs for one design (picklable)."""
+
+    index: int
+    total: int
+    job: Job
+    formats: tuple[str, ...]
+    body: str | None
+    compensation: str
+    folder: str
+    quiet: bool
+    warnings: tuple[str, ...] = ()
+    placement: str = PLACEMENTS[0]
+    freeze: bool = False  # the command runs as its own process (see _freeze_imports)
+
+
+#: Libraries whose modules a build moves out of the cyclic collector's way
+#: once a writer has imported them (:func:`_freeze_imports`).
+_LIBRARIES = ("build123d", "matplotlib")
+
+
+def _freeze_imports(frozen: set[str]) -> None:
+    """gc.freeze() after a writer has imported build123d (with OCP, scipy and
+    sklearn: a third of a million objects) or matplotlib: the cyclic garbage
+    collector would otherwise walk their modules' objects, which live as long
+    as the process, at every full collection of the build (0.1 s of a default
+    build). The first freeze keeps whatever the import left (a full collection
+    there finds nothing and costs as much); a later one collects the
+    writers' garbage first (the rest being frozen, that is cheap). Only
+    ``onefold`` running as its own process does this (:func:`main`)."""
+    new = [m for m in _LIBRARIES if m in sys.modules and m not in frozen]
+    if not new:
+        return
+    if frozen:
+        gc.collect()
+    gc.freeze()
+    frozen.update(new)
+
+
+def _write_task(task: _Task) -> list[Path]:
+    """Solve and write one design into its staging folder (in this process)."""
+    from onefold_cad.design import build_design
+    from onefold_cad.export.writers import BuildContext, write_design
+
+    d = task.job.design
+    progress = Progress(task.quiet)
+    t0 = time.perf_counter()
+    ctx = BuildContext(
+        d,
+        build_design(d),
+        task.body,
+        task.compensation,
+        task.job.sources,
+        task.warnings,
+        placement=task.placement,
+    )
+
+    frozen: set[str] = set()
+
+    def stage(label: str, seconds: float) -> None:
+        if task.freeze:
+            _freeze_imports(frozen)
+        progress.line(task.index, task.total, d.name, f"{label} {seconds:.2f} s")
+
+    files = write_design(ctx, Path(task.folder), task.formats, stage)
+    progress.line(task.index, task.total, d.name, f"done in {time.perf_counter() - t0:.1f} s")
+    return files
+
+
+def _worker_init() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # terminate() ends a worker at once
+    signal.signal(signal.SIGHUP, signal.SIG_DFL)
+
+
+def _worker(task: _Task) -> tuple[str, Any]:
+    """Pool entry point: ('ok', files) or ('error', (kind, message))."""
+    try:
+        return "ok", [str(p) for p in _write_task(task)]
+    except OneFoldError as exc:  # their pickled form cannot be rebuilt: send the text
+        return "error", ("onefold", str(exc))
+    except OSError as exc:
+        return "error", ("os", os_message(exc))
+
+
+def _write_all(tasks: list[_Task], jobs: int) -> list[Path]:
+    if jobs <= 1 or len(tasks) <= 1:
+        return [p for t in tasks for p in _write_task(t)]
+    import multiprocessing
+
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    ctx = multiprocessing.get_context(method)
+    pool = ctx.Pool(min(jobs, len(tasks)), initializer=_worker_init)
+    try:
+        results = [pool.apply_async(_worker, (t,)) for t in tasks]
+        files: list[Path] = []
+        for r in results:
+            status, value = r.get()
+            if status == "error":
+                pool.terminate()
+                raise OneFoldError(value[1])
+            files += [Path(p) for p in value]
+        pool.close()
+        return files
+    finally:
+        pool.terminate()
+        pool.join()
+
+
+def cmd_build(ns: argparse.Namespace) -> int:
+    """Write the files of every design of the call, all or nothing."""
+    from onefold_cad.design import build_design
+    from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
+    from onefold_cad.export.writers import (
+        BuildContext,
+        check_before_writing,
+        file_names,
+        parse_formats,
+    )
+    from onefold_cad.fabrication.report import design_warnings
+
+    refs = list(ns.templates)
+    if ns.name is not None and len(refs) > 1:
+        raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
+    if ns.jobs < 1:
+        raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
+    formats = parse_formats(ns.formats)
+    body = None if ns.body == "auto" else ns.body
+    jobs = load_jobs(refs, design_flag_values(ns), ns.name)
+    stems = [j.design.name for j in jobs]
+    dup = sorted({s for s in stems if stems.count(s) > 1})
+    if dup:
+        raise InvalidParameterError(
+            "templates", f"two designs share the name {dup[0]!r}; their files would collide"
+        )
+    n = len(jobs)
+    progress = Progress(ns.quiet)
+    found: list[tuple[str, ...]] = []
+    # Every design solves, and every writer's checks pass, before any file is written.
+    for i, job in enumerate(jobs, 1):
+        d = job.design
+        progress.line(i, n, d.name, f"started: {_describe(d)}")
+        t0 = time.perf_counter()
+        folded = build_design(d)
+        for text in _material_text(d, folded, job):
+            progress.line(i, n, d.name, text)
+        progress.line(i, n, d.name, f"solve {time.perf_counter() - t0:.2f} s")
+        ctx = BuildContext(d, folded, body, ns.compensation, job.sources, placement=ns.placement)
+        t0 = time.perf_counter()
+        try:
+            check_before_writing(ctx, formats)
+        except OneFoldError as exc:
+            exc = _flag_named(exc, ns)
+            if n == 1:
+                raise exc from None
+            raise _prefixed(exc, d.name) from None
+        if any(WRITERS[f].needs_flat_pattern for f in formats):
+            progress.line(i, n, d.name, f"flat pattern {time.perf_counter() - t0:.2f} s")
+            from onefold_cad.fabrication.bend_table import bend_table
+
+            for text in bend_table(ctx.pattern, rulings=False).splitlines():
+                progress.line(i, n, d.name, text)
+        notes = tuple(design_warnings(d, folded, ns.compensation, body))
+        for w in notes:
+            warn(f"{d.name}: {w}")
+        found.append(notes)
+    outdir = Path(ns.outdir)
+    created = not outdir.exists()
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InvalidParameterError(
+            "--outdir", f"cannot create {str(outdir)!r}: {exc.strerror or exc}"
+        ) from None
+    try:
+        for p in recover(outdir):
+            warn(f"finished an interrupted earlier build: {p}")
+        check_targets(outdir, [f for j in jobs for f in file_names(j.design.name, formats)])
+        with Staging(outdir) as staging:
+            STATE["staging"] = staging
+            tasks = [
+                _Task(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
+                      ns.quiet, found[i - 1], ns.placement, bool(STATE.get("process")))
+                for i, job in enumerate(jobs, 1)
+            ]  # fmt: skip
+            files = _write_all(tasks, ns.jobs)
+            pause_point("staged")
+            for p in staging.commit(files):
+                print(p, flush=True)
+    finally:
+        with contextlib.suppress(OSError):
+            if created and outdir.is_dir() and not any(outdir.iterdir()):
+                outdir.rmdir()
+    return 0
+
+
+#: The staging area of the running build (main says whether it was committed).
+STATE: dict[str, Any] = {}
+
+
+def interrupted_text() -> str:
+    staging = STATE.get("staging")
+    if staging is not None and staging.committed:
+        return "every file of the build had been written"
+    return "nothing was written (the output folder is as it was)"
+
+
+def _flag_named(exc: OneFoldError, ns: argparse.Namespace) -> OneFoldError:
+    """A writer's refusal of an input value (InvalidParameterError: ``kerf``)
+    named after the flag the user typed (``--kerf``), as the input checks name
+    it; else ``exc`` (a FabricationError names what to change, as the API and
+    the explorer spell it)."""
+    param = getattr(exc, "parameter", None)
+    if not isinstance(exc, InvalidParameterError):
+        return exc
+    flag = FLAG_OF.get(param) if isinstance(param, str) else None
+    prefix = f"{param}: "
+    if flag is None or getattr(ns, str(param), None) is None or not str(exc).startswith(prefix):
+        return exc
+    return type(exc)(flag, str(exc)[len(prefix) :])  # type: ignore[call-arg]
+
+
+def _prefixed(exc: OneFoldError, name: str) -> OneFoldError:
+    """``exc`` with the design's name in front (several designs in one call)."""
+    param = getattr(exc, "parameter", None)  # InvalidParameterError, FabricationError
+    if isinstance(param, str) and str(exc).startswith(f"{param}: "):
+        return type(exc)(f"{name}: {param}", str(exc)[len(param) + 2 :])  # type: ignore[call-arg]
+    return OneFoldError(f"{name}: {exc}")
+
+
+def _describe(design: Design) -> str:
+    s, u = design.sheet, design.units.value
+    if s.kind == "rectangle":
+        sheet = f"{s.inputs['width']:g} x {s.inputs['height']:g} {u} rectangle"
+    else:
+        sheet = f"{s.kind} of {len(s.vertices)} vertices"
+    fr = design.frame
+    return f"{design.model.value} model, alpha {fr.alpha:g}, beta {fr.beta:g}, {sheet}"
+
+
+def _material_text(design: Design, folded: Any, job: Job) -> list[str]:
+    from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+    from onefold_cad.templates import design_to_data
+
+    report = {
+        "inputs": design_to_data(design),
+        "sources": job.sources,
+        "units": design.units.value,
+        "relief_hole_diameter": relief_hole_diameter(design, folded),
+    }
+    name, values, origin = material_lines(report)
+    return [f"material: {name}; {values}", f"({origin})"]

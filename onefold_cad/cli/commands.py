@@ -1,0 +1,113 @@
+"""The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
+``explore`` and ``fit``, each ``cmd_NAME(namespace) -> exit status``, and
+the table :data:`COMMANDS` of all of them."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import sys
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from onefold_cad.cli.summary import summary
+from onefold_cad.flags.jobs import load_jobs
+
+if TYPE_CHECKING:
+    pass
+from onefold_cad.cli.build import cmd_build
+from onefold_cad.cli.output import warn
+from onefold_cad.cli.parser import build_parser
+from onefold_cad.flags.parser import design_flag_values
+
+__all__ = ["COMMANDS"]
+
+
+def cmd_templates(ns: argparse.Namespace) -> int:
+    """List the shipped templates, one line each."""
+    from onefold_cad.templates import list_templates
+
+    infos = list_templates()
+    width = max((len(t.name) for t in infos), default=0)
+    for t in infos:
+        print(f"{t.name:<{width}}  {t.description}")
+    return 0
+
+
+def cmd_solve(ns: argparse.Namespace) -> int:
+    """Solve one design and print it (text or JSON); warnings on stderr."""
+    from onefold_cad.design import build_design
+    from onefold_cad.fabrication.report import check_finite, design_report, report_json
+
+    (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
+    report = design_report(job.design, build_design(job.design), sources=job.sources)
+    check_finite(report)  # a NaN is an error naming its key, in the text as in the JSON
+    text = report_json(report) if ns.json else summary(report) + "\n"
+    for w in report["warnings"]:
+        warn(w)
+    sys.stdout.write(text)
+    return 0
+
+
+def cmd_explore(ns: argparse.Namespace) -> int:
+    """Serve the explorer page until Ctrl-C."""
+    from onefold_cad.explore.server import serve
+
+    serve(ns.template, port=ns.port, open_browser=not ns.no_browser)
+    return 0
+
+
+def cmd_fit(ns: argparse.Namespace) -> int:
+    """Inverse design: the frame whose resting form has the target size."""
+    import json
+
+    from onefold_cad.fit import fit_design
+
+    (job,) = load_jobs([ns.template], {})
+    design = job.design
+    result = fit_design(design, ns.height, ns.span, ns.depth, ns.min_tipping_margin)
+    f = result.design.frame
+    if ns.outdir is not None:  # the build's list of files goes to stderr under --json
+        frame = ["--alpha", repr(f.alpha), "--beta", repr(f.beta), "--hc", repr(f.h_c)]
+        # named after the template and the fit, not after the flags' values
+        name = ["--name", f"{design.name}-fit"]
+        argv = [ns.template, "-o", str(ns.outdir), *frame, *name, *(["-q"] if ns.quiet else [])]
+        with contextlib.redirect_stdout(sys.stderr) if ns.json else contextlib.nullcontext():
+            status = cmd_build(build_parser()["build"].parse_intermixed_args(argv))
+        if status:
+            return status
+    u = design.units.value
+    data = {
+        "name": design.name,
+        "units": u,
+        "frame": {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c},
+        "body": result.body,
+        "achieved": {
+            "height": result.height,
+            "span": result.span,
+            "depth": result.depth,
+            "tipping_margin_deg": result.tipping_margin_deg,
+        },
+        "targets": result.targets,
+        "relative_errors": result.errors,
+        "evaluations": result.evaluations,
+    }
+    if ns.json:
+        print(json.dumps(data, indent=2, allow_nan=False))
+        return 0
+    print(f"{design.name}: alpha {f.alpha:.6g} deg, beta {f.beta:.6g} deg, h_c {f.h_c:.6g} {u}")
+    for key, got in (("height", result.height), ("span", result.span), ("depth", result.depth)):
+        want = result.targets.get(key)
+        aim = f" (target {want:.6g}, {100 * abs(got - want) / want:.2g} %)" if want else ""
+        print(f"  {key:<15} {got:.6g} {u}{aim}")
+    print(f"  tipping margin  {result.tipping_margin_deg:.3g} deg ({result.body})")
+    return 0
+
+
+COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
+    "build": cmd_build,
+    "solve": cmd_solve,
+    "templates": cmd_templates,
+    "explore": cmd_explore,
+    "fit": cmd_fit,
+}

@@ -1,0 +1,235 @@
+"""The ``onefold`` command's option parsers, one per command, built from the
+design flags (:mod:`onefold_cad.flags`) and the writers' registry
+(:mod:`onefold_cad.export.writers`); nothing heavier than the standard
+library is imported, so ``--help`` starts in a few milliseconds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import textwrap
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from onefold_cad import __version__
+from onefold_cad.export.writers import WRITERS, files_help
+from onefold_cad.flags.design_flags import (
+    BODIES,
+    COMPENSATIONS,
+    PLACEMENTS,
+    parse_choice,
+    parse_float,
+    parse_int,
+)
+from onefold_cad.templates import DEFAULT_TEMPLATE
+
+if TYPE_CHECKING:
+    pass
+from onefold_cad.flags.parser import FlagParser, add_design_flags
+
+__all__ = ["build_parser", "help_text"]
+
+
+PROG = "onefold"
+
+
+def _formatter(prog: str) -> argparse.HelpFormatter:
+    return argparse.HelpFormatter(prog, max_help_position=30, width=100)
+
+
+def _fill(text: str) -> str:
+    """``text`` wrapped for a raw help description (100 columns, words whole)."""
+    return textwrap.fill(text, 100, break_on_hyphens=False)
+
+
+def _raw_formatter(prog: str) -> argparse.HelpFormatter:
+    """Like :func:`_formatter`, the description and epilog kept as written."""
+    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=30, width=100)
+
+
+def _add_common(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--name", help="the design's name (file stem); default: the template's, with the "
+        "flags given appended; without a template, made from the flags"
+    )  # fmt: skip
+    p.add_argument(
+        "-q", "--quiet", action="store_true", help="no progress or material lines on stderr "
+        "(warnings and errors are still printed)"
+    )  # fmt: skip
+
+
+def build_parser() -> dict[str, argparse.ArgumentParser]:
+    """The parsers of the commands, by name (``""`` is ``onefold`` itself)."""
+    top = FlagParser(
+        prog=PROG,
+        usage=f"{PROG} [-h] [--version] COMMAND [ARGS]",
+        description=_fill(
+            "Design One-Fold curved-origami forms and write the files to make them: STEP, "
+            "DXF (annotated and cut-only), bend sheet, FOLD, GLB, JSON report and previews."
+        ),
+        epilog="commands:\n"
+        "  build      write the files of one or more designs (all or nothing)\n"
+        "  solve      solve a design and print the result (writes nothing)\n"
+        "  templates  list the shipped templates\n"
+        "  explore    explore a design in the browser (sliders, 3D form, flat pattern)\n"
+        "  fit        find the frame whose resting form has a target height and span\n\n"
+        f"'{PROG} COMMAND --help' shows a command's options.",
+        formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
+        allow_abbrev=False,
+    )
+    top.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+
+    build = FlagParser(
+        prog=f"{PROG} build",
+        usage=f"{PROG} build [TEMPLATE ...] [options]",
+        description=_fill(
+            "Write the files below for each template's design (every one, or those "
+            "--formats names): all files of all designs, or none. Flags change every "
+            "template given; without a template they change the default one "
+            f"({DEFAULT_TEMPLATE})."
+        ),
+        epilog=f"files (--formats NAME,NAME,...; default: all):\n{files_help()}",
+        formatter_class=_raw_formatter,
+        allow_abbrev=False,
+    )
+    build.add_argument(
+        "templates", nargs="*", metavar="TEMPLATE", help="template file or shipped template "
+        f"name (default: {DEFAULT_TEMPLATE})"
+    )  # fmt: skip
+    out = build.add_argument_group("output")
+    out.add_argument("-o", "--outdir", type=Path, default=Path("out"), metavar="DIR",
+                     help="output folder (default: out)")  # fmt: skip
+    out.add_argument(
+        "--formats", metavar="LIST", help="comma-separated formats to write (default: all): "
+        f"{', '.join(WRITERS)} (see the files below)"
+    )  # fmt: skip
+    out.add_argument(
+        "--body", type=parse_choice(BODIES), default="auto", metavar="auto|solid|shell",
+        help="STEP body: 'solid' (the sheet's thickness, exact model), 'shell' (the "
+        "reference surface) or 'auto' (solid with thickness and a relief hole, else shell)",
+    )  # fmt: skip
+    out.add_argument(
+        "--compensation", type=parse_choice(COMPENSATIONS), default=COMPENSATIONS[0],
+        metavar="sharp|none", help="flat pattern: bend compensation of the sharp-crease "
+        "model (default), or none (the designed sheet uncompensated, said in the notes); "
+        "a STEP solid past the bend model's limits is written only with none",
+    )  # fmt: skip
+    out.add_argument(
+        "--placement", type=parse_choice(PLACEMENTS), default=PLACEMENTS[0],
+        metavar="rest|frame", help="where the STEP, GLB and 3D preview put the form: 'rest' "
+        "(default: standing on the ground z = 0 as the report's resting numbers say) or "
+        "'frame' (the fold frame: H at the origin, the fold line on x, the apex above H)",
+    )  # fmt: skip
+    out.add_argument(
+        "-j", "--jobs", type=parse_int, default=1, metavar="N",
+        help="build N designs at a time in separate processes (default 1)",
+    )  # fmt: skip
+    _add_common(out)
+    add_design_flags(build)
+
+    solve = FlagParser(
+        prog=f"{PROG} solve",
+        usage=f"{PROG} solve [TEMPLATE] [options]",
+        description="Solve a design and print the result; nothing is written. Fabrication "
+        "problems are warnings here (exit status 0); only build refuses.",
+        formatter_class=_formatter,
+        allow_abbrev=False,
+    )
+    solve.add_argument(
+        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
+        f"name (default: {DEFAULT_TEMPLATE})"
+    )  # fmt: skip
+    o = solve.add_argument_group("output")
+    o.add_argument("--json", action="store_true", help="print the JSON report")
+    _add_common(o)
+    add_design_flags(solve)
+
+    templates = FlagParser(
+        prog=f"{PROG} templates",
+        usage=f"{PROG} templates",
+        description="List the shipped templates, one line each: name and description.",
+        formatter_class=_formatter,
+        allow_abbrev=False,
+    )
+    explore = FlagParser(
+        prog=f"{PROG} explore",
+        usage=f"{PROG} explore [TEMPLATE] [--port N] [--no-browser]",
+        description="Explore a design in the browser: sliders, the 3D form, the flat pattern, "
+        "downloads. Serves a page on 127.0.0.1 until Ctrl-C; the solver runs here, the page "
+        "only draws.",
+        formatter_class=_formatter,
+        allow_abbrev=False,
+    )
+    explore.add_argument(
+        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
+        f"name (default: {DEFAULT_TEMPLATE})"
+    )  # fmt: skip
+    explore.add_argument("--port", type=parse_int, default=8765, metavar="N",
+                         help="port on 127.0.0.1 (0: any free port; default 8765)")  # fmt: skip
+    explore.add_argument("--no-browser", action="store_true",
+                         help="only print the address; do not open a browser")  # fmt: skip
+    fit = FlagParser(
+        prog=f"{PROG} fit",
+        usage=f"{PROG} fit TEMPLATE --height H --span S [--depth D] [--min-tipping-margin DEG] "
+        "[--json] [-o DIR]",
+        description="Find alpha, beta and h_c whose resting form has the target height and "
+        "span (footprint width), and depth if given, each within 0.5 %. The template's sheet, "
+        "material and model are kept; lengths are in its unit. A target out of reach is an "
+        "error that gives the ranges the template's sheet can reach.",
+        formatter_class=_formatter,
+        allow_abbrev=False,
+    )
+    fit.add_argument(
+        "template",
+        metavar="TEMPLATE",
+        help="template file or shipped template name: sheet and material",
+    )
+    fit.add_argument(
+        "--height",
+        type=parse_float,
+        required=True,
+        metavar="H",
+        help="height of the form as it rests on the ground, > 0",
+    )
+    fit.add_argument(
+        "--span",
+        type=parse_float,
+        required=True,
+        metavar="S",
+        help="footprint width of the resting form (along the fold line), > 0",
+    )
+    fit.add_argument(
+        "--depth",
+        type=parse_float,
+        metavar="D",
+        help="footprint depth of the resting form (across it), > 0",
+    )
+    fit.add_argument(
+        "--min-tipping-margin",
+        type=parse_float,
+        metavar="DEG",
+        help="smallest tipping margin allowed (deg)",
+    )
+    fit.add_argument("--json", action="store_true", help="print the result as JSON")
+    fit.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        metavar="DIR",
+        help="also build the found design into this folder (as NAME-fit)",
+    )
+    fit.add_argument("-q", "--quiet", action="store_true",
+                     help="no progress lines on stderr when building (-o)")  # fmt: skip
+    return {
+        "": top,
+        "build": build,
+        "solve": solve,
+        "templates": templates,
+        "explore": explore,
+        "fit": fit,
+    }
+
+
+def help_text(command: str = "") -> str:
+    """The ``--help`` text of ``onefold`` or of one of its commands."""
+    return build_parser()[command].format_help()

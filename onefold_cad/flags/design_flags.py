@@ -1,0 +1,135 @@
+"""The design flags of ``onefold build`` and ``onefold solve`` (and the
+explorer's controls): :data:`DESIGN_FLAGS` lists every flag once, with its
+parser; the choices are the enums' of :mod:`onefold_cad.choices`.
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from onefold_cad.choices import Body, Compensation, Model, Placement, SheetSurface, Units
+
+if TYPE_CHECKING:
+    pass
+
+__all__ = [
+    "BODIES",
+    "COMPENSATIONS",
+    "DESIGN_FLAGS",
+    "FLAG_OF",
+    "MODELS",
+    "PLACEMENTS",
+    "SURFACES",
+    "UNITS",
+    "Flag",
+    "parse_choice",
+    "parse_float",
+    "parse_int",
+]
+
+
+#: The choices of the flags, from the enums of :mod:`onefold_cad.choices`
+#: (the default first where the flag has one).
+MODELS = (Model.EXACT.value, Model.PAPER.value)
+UNITS = tuple(u.value for u in Units)
+SURFACES = tuple(s.value for s in SheetSurface)
+BODIES = ("auto", Body.SOLID.value, Body.SHELL.value)
+COMPENSATIONS = tuple(c.value for c in Compensation)
+PLACEMENTS = tuple(p.value for p in Placement)
+
+
+# -- flag values -------------------------------------------------------------------
+def parse_float(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a number") from None
+
+
+def parse_int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a whole number") from None
+
+
+def parse_choice(values: Sequence[str], upper: bool = False) -> Callable[[str], str]:
+    def parse(text: str) -> str:
+        v = text.strip().upper() if upper else text.strip().lower()
+        if v not in values:
+            raise argparse.ArgumentTypeError(
+                f"must be one of {', '.join(values)}, got {text.strip()!r}"
+            )
+        return v
+
+    return parse
+
+
+@dataclass(frozen=True)
+class Flag:
+    """A design flag shared by ``build`` and ``solve``."""
+
+    dest: str
+    flag: str
+    kind: Callable[[str], Any]
+    help: str
+    group: str
+    metavar: str | None = None
+
+
+_FRAME = "frame curve (paper section 3.2; lengths in the design's unit)"
+
+
+_SHEET = "sheet (fold frame: fold line on the x axis, H at the origin; design unit)"
+
+
+_MAT = "material (lengths in the design's unit)"
+
+
+_DESIGN = "design"
+
+
+DESIGN_FLAGS: tuple[Flag, ...] = (
+    Flag("model", "--model", parse_choice(MODELS), "exact: the cone over the arc; paper: the "
+         "paper's fan of --divisions triangles (default: the template's)", _DESIGN, "exact|paper"),
+    Flag("units", "--units", parse_choice(UNITS), "the design's length unit: the template's values "
+         "are converted into it and the flags below are read in it", _DESIGN, "mm|in|ft"),
+    Flag("alpha", "--alpha", parse_float, "arc opening alpha, deg in (0, 90)", _FRAME, "DEG"),
+    Flag("beta", "--beta", parse_float, "tilt beta of the arc's plane, deg in (0, 90)", _FRAME,
+         "DEG"),
+    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint", _FRAME, "LENGTH"),
+    Flag("radius", "--radius", parse_float, "frame-curve radius R > 0, from 1e-6 to 1e6 times "
+         "the sheet's size", _FRAME, "LENGTH"),
+    Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, in "
+         "[1, 10000]", _FRAME, "N"),
+    Flag("x_plus", "--x-plus", parse_float, "quadrilateral: distance from H to the +x vertex",
+         _SHEET, "LENGTH"),
+    Flag("x_minus", "--x-minus", parse_float, "quadrilateral: distance from H to the -x vertex",
+         _SHEET, "LENGTH"),
+    Flag("y_plus", "--y-plus", parse_float, "quadrilateral: distance from H to the +y vertex",
+         _SHEET, "LENGTH"),
+    Flag("y_minus", "--y-minus", parse_float, "quadrilateral: distance from H to the -y vertex",
+         _SHEET, "LENGTH"),
+    Flag("polygon", "--polygon", str, 'polygon sheet "x,y;x,y;...", star-shaped about H',
+         _SHEET, "X,Y;..."),
+    Flag("rectangle", "--rectangle", str, "rectangle folded along its diagonal", _SHEET,
+         "WIDTHxHEIGHT"),
+    Flag("apex_fraction", "--apex-fraction", parse_float, "rectangle: where H sits along the "
+         "diagonal, in (0, 1)", _SHEET, "F"),
+    Flag("thickness", "--thickness", parse_float, "sheet thickness t >= 0", _MAT, "LENGTH"),
+    Flag("bend_radius", "--bend-radius", parse_float, "inside bend radius r >= 0", _MAT, "LENGTH"),
+    Flag("k_factor", "--k-factor", parse_float, "K-factor in [0, 1]", _MAT, "K"),
+    Flag("kerf", "--kerf", parse_float, "cutting kerf >= 0", _MAT, "LENGTH"),
+    Flag("relief_hole", "--relief-hole", parse_float, "relief hole diameter at the apex >= 0 "
+         "(0: none)", _MAT, "DIAMETER"),
+    Flag("density", "--density", parse_float, "density in kg/m^3 > 0 (e.g. 7850 for steel), "
+         "whatever the design unit", _MAT, "KG/M3"),
+    Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
+         "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
+)  # fmt: skip
+
+
+FLAG_OF = {f.dest: f.flag for f in DESIGN_FLAGS}

@@ -1,0 +1,115 @@
+"""The designs of templates and flags: :func:`load_jobs` converts a
+template's values into ``--units`` first (so flag values are read in that
+unit), names each design after what defines it and records where every
+material value came from.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.templates import DEFAULT_TEMPLATE
+
+if TYPE_CHECKING:
+    from onefold_cad.design import Design
+from onefold_cad.flags.overrides import Overrides, changed_flags, derived_name, mark_changes
+
+__all__ = ["Job", "load_jobs"]
+
+
+MATERIAL_KEYS = (
+    "name",
+    "thickness",
+    "bend_radius",
+    "k_factor",
+    "kerf",
+    "relief_hole",
+    "density",
+    "sheet_surface",
+)
+
+
+@dataclass(frozen=True)
+class Job:
+    """One design to solve or build, and where its values came from.
+
+    Attributes:
+        design: the validated design.
+        template: the template it started from.
+        sources: template key -> where its value came from: a flag
+            (``--thickness``), ``template NAME``, ``inherited from template
+            NAME`` (no template was given: the default one's) or ``default``.
+    """
+
+    design: Design
+    template: str
+    sources: dict[str, str] = field(default_factory=dict)
+
+
+def _sources(
+    raw: dict[str, Any], names: dict[str, str], template: str, implicit: bool
+) -> dict[str, str]:
+    where = f"inherited from template {template}" if implicit else f"template {template}"
+    table = raw.get("material") if isinstance(raw.get("material"), dict) else {}
+    out = {}
+    for key in MATERIAL_KEYS:
+        full = f"material.{key}"
+        out[full] = names.get(full) or (where if key in table else "default")
+    for key in ("units", "model"):
+        out[key] = names.get(key) or (where if key in raw else "default")
+    return out
+
+
+def load_jobs(refs: Sequence[str], flags: dict[str, Any], name: str | None = None) -> list[Job]:
+    """The designs of the templates ``refs`` (the default one if none) with the
+    design flags applied.
+
+    A template's values are converted into ``--units`` first (when given), so
+    flag values are read in that unit. The design is named ``name`` if given;
+    else the template's name, with the flags given appended; without a
+    template, ``onefold-`` and the flags (never the default template's name).
+    """
+    from onefold_cad.templates import (
+        design_from_data,
+        design_to_data,
+        find_template,
+        read_template,
+        template_units,
+    )
+
+    implicit = not refs
+    jobs = []
+    for ref in refs or [DEFAULT_TEMPLATE]:
+        path = find_template(ref)
+        raw = read_template(path)
+        units = template_units(raw, path)
+        template = str(raw.get("name", path.stem))
+        data = raw
+        try:
+            if flags.get("units") and flags["units"] != units.lower():
+                base = design_from_data(raw)
+                data = {**raw, **design_to_data(base.in_units(flags["units"]))}
+            given = {k: v for k, v in flags.items() if v is not None}
+            if name is not None:
+                stem = name
+            elif implicit:
+                stem = derived_name("onefold", given) if given else template
+            else:
+                stem = derived_name(template, given)
+            changed, names = Overrides(**flags, name=stem).apply(data)
+            if name is None:
+                names.pop("name")
+            which = changed_flags(design_to_data(design_from_data(data)), changed, names)
+            changed = mark_changes(changed, given, which, template, implicit)
+            design = design_from_data(changed, key_names=names)
+        except InvalidParameterError as exc:
+            if exc.parameter.startswith("--"):
+                raise
+            raise type(exc)(
+                f"{path}: {exc.parameter}", str(exc)[len(exc.parameter) + 2 :]
+            ) from None
+        jobs.append(Job(design, template, _sources(raw, names, template, implicit)))
+    return jobs
