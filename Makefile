@@ -40,9 +40,11 @@ browser:
 	  fi; \
 	fi
 
+# ruff, then the layer contract of pyproject.toml ([tool.importlinter]).
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
+	$(BIN)/lint-imports
 
 clean:
 	rm -rf $(OUT) build *.egg-info .pytest_cache .ruff_cache

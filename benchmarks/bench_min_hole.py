@@ -1,10 +1,10 @@
 """The explorer's server state with and without the per-fold cache
-(``onefold_cad.design._once_per_fold``: the solid's smallest relief hole, the
+(``onefold_cad.design.derived``: the solid's smallest relief hole, the
 resting placement).
 
 The default relief hole, the flat pattern's relief-hole check and the report
-all need :func:`~onefold_cad.geometry.thick_sheet.min_relief_hole` (through
-``onefold_cad.design.solid_min_relief_hole``); the cache computes it once per
+all need :func:`~onefold_cad.geometry.thick_map.min_relief_hole` (through
+``onefold_cad.fabrication.relief_hole.solid_min_relief_hole``); the cache computes it once per
 fold and material, and the resting placement once per fold, material and body.
 The baseline is the same code with a cache that never keeps anything (each
 caller computes again, as before the cache). Both run
@@ -32,15 +32,23 @@ from interleave import interleave, paired_ratio  # noqa: E402
 
 from onefold_cad import design as design_module  # noqa: E402
 from onefold_cad.explore.state import design_state  # noqa: E402
+from onefold_cad.fabrication import relief_hole  # noqa: E402
 from onefold_cad.templates import load_template  # noqa: E402
 
 TEMPLATES = ["patkau-one-fold", "broken-vault", "paper-square"]
 
 
 class _Forgetful(weakref.WeakKeyDictionary):  # type: ignore[type-arg]
-    """A cache that keeps nothing: every lookup computes again."""
+    """A cache that keeps nothing but each design's fold (``build_design``'s):
+    every result derived from a fold is computed again."""
+
+    def __init__(self, real: Any) -> None:
+        super().__init__()
+        self.real = real
 
     def setdefault(self, key: Any, default: Any = None) -> Any:
+        if isinstance(key, design_module.Design):
+            return self.real.setdefault(key, {} if default is None else default)
         return {} if default is None else default
 
 
@@ -49,10 +57,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rounds", type=int, default=15)
     ap.add_argument("--only", nargs="*", default=None)
     args = ap.parse_args(argv)
-    cached = design_module._PER_FOLD
-    forgetful = _Forgetful()
+    cached = design_module.DERIVED
+    forgetful = _Forgetful(cached)
     calls = {"n": 0}
-    real = design_module.min_relief_hole
+    real = relief_hole.min_relief_hole
 
     def counted(*a: Any) -> Any:
         calls["n"] += 1
@@ -65,20 +73,20 @@ def main(argv: list[str] | None = None) -> int:
         design = load_template(name)
 
         def state_cached(d: Any = design) -> Any:
-            design_module._PER_FOLD = cached
+            design_module.DERIVED = cached
             return design_state(d)
 
         def state_uncached(d: Any = design) -> Any:
-            design_module._PER_FOLD = forgetful
+            design_module.DERIVED = forgetful
             return design_state(d)
 
-        design_module.min_relief_hole = counted
+        relief_hole.min_relief_hole = counted
         counts = []
         for fn in (state_cached, state_uncached):
             calls["n"] = 0
             fn()
             counts.append(calls["n"])
-        design_module.min_relief_hole = real
+        relief_hole.min_relief_hole = real
         res = interleave(
             {"cached": state_cached, "uncached": state_uncached},
             rounds=args.rounds,
@@ -90,7 +98,7 @@ def main(argv: list[str] | None = None) -> int:
             f"{res['uncached'].fmt(1e3, ' ms')} | {ratio.fmt(digits=3)} |",
             flush=True,
         )
-    design_module._PER_FOLD = cached
+    design_module.DERIVED = cached
     return 0
 
 

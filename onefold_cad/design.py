@@ -36,7 +36,7 @@ from onefold_cad.geometry.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import solve
 
-__all__ = ["Design", "build_design", "derived", "rest_once"]
+__all__ = ["DERIVED", "Design", "build_design", "derived", "rest_once"]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
 
@@ -123,10 +123,11 @@ def _scaled_sheet(sheet: Sheet, f: float) -> Sheet:
 
 T = TypeVar("T")
 
-#: What is derived from each live design or fold: owner -> {key: result}. A
+#: What is derived from each live design or fold: owner -> {key: result} (the
+#: tests and benchmarks read it; a benchmark swaps it for one that forgets). A
 #: result must not refer to its owner (it would keep it alive); an error is
 #: kept without its traceback (whose frames do).
-_DERIVED: weakref.WeakKeyDictionary[Any, dict[Hashable, Any]] = weakref.WeakKeyDictionary()
+DERIVED: weakref.WeakKeyDictionary[Any, dict[Hashable, Any]] = weakref.WeakKeyDictionary()
 _LOCK = threading.Lock()
 _MISSING = object()
 
@@ -145,7 +146,7 @@ def derived(
             again (else it is raised and nothing is kept).
     """
     with _LOCK:
-        known = _DERIVED.setdefault(owner, {}).get(key, _MISSING)
+        known = DERIVED.setdefault(owner, {}).get(key, _MISSING)
     if known is _MISSING:
         try:
             known = compute()
@@ -154,7 +155,7 @@ def derived(
                 raise
             known = exc.with_traceback(None)
         with _LOCK:
-            known = _DERIVED.setdefault(owner, {}).setdefault(key, known)
+            known = DERIVED.setdefault(owner, {}).setdefault(key, known)
     if isinstance(known, OneFoldError):
         raise known
     return known

@@ -108,7 +108,7 @@ class OutOfReachError(InvalidParameterError):
 
 
 def _body_of(design: Design, folded: FoldedSheet) -> tuple[str, object]:
-    """The body the STEP holds (:func:`onefold_cad.design.default_body`) and
+    """The body the STEP holds (:func:`onefold_cad.fabrication.rules.default_body`) and
     the material it is built with."""
     m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
     return default_body(design), m

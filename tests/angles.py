@@ -2,7 +2,7 @@
 refusal that a design below the angle bound must get.
 
 alpha and beta are admissible in (0, 90) deg open; below
-:data:`~onefold_cad.geometry.params.MIN_ANGLE_DEG` (1e-100 deg: there their
+:data:`~onefold_cad.geometry.frame_curve.MIN_ANGLE_DEG` (1e-100 deg: there their
 squares in radians underflow) a frame is refused with an
 ``InvalidParameterError`` naming the angle and the bound. A property test
 draws from the whole open interval and accepts that refusal, checked here,

@@ -1,5 +1,5 @@
 """The bend model by hand, for the tests: from its definitions, never from
-:mod:`onefold_cad.geometry.bend`.
+:mod:`onefold_cad.geometry.bend_model`.
 
 Definitions used (docs/fabrication.md, material.py, folding.py):
 - the reference surface ``INSIDE`` is the flat sheet's top face (the material

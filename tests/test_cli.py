@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from onefold_cad import ExportError, build_design
-from onefold_cad.cli import main
+from onefold_cad.cli.main import main
 from onefold_cad.fabrication.report import design_report
 from onefold_cad.templates import list_templates, load_template
 from tests.processes import interruptible
@@ -874,12 +874,13 @@ def test_only_the_program_freezes_the_garbage_collector(tmp_path, as_process):
     code = (
         "import gc, sys, io, contextlib\n"
         f"sys.argv = ['onefold', *{argv!r}]\n"
-        "from onefold_cad import cli\n"
+        "from onefold_cad.cli import build as cli\n"
+        "from onefold_cad.cli.main import main\n"
         "seen = []\n"
         "real = cli._freeze_imports\n"
         "cli._freeze_imports = lambda done: (real(done), seen.append(gc.get_freeze_count()))\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
-        f"    rc = cli.{call}\n"
+        f"    rc = {call}\n"
         "print(rc, bool(seen) and min(seen) > 0, gc.get_freeze_count() > 0)\n"
     )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)

@@ -275,7 +275,7 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
     material (a new fold or material computes it again; the fold's entry goes with it)."""
     import gc
 
-    from onefold_cad import design as design_module
+    from onefold_cad.fabrication import relief_hole as design_module
     from onefold_cad.fabrication.report import design_report
 
     calls = []
@@ -299,10 +299,12 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
     d2 = load_template("patkau-one-fold")  # another design object: a new fold
     design_report(d2, build_design(d2))
     assert len(calls) == 3
-    before = len(design_module._PER_FOLD)
+    from onefold_cad.design import DERIVED
+
+    before = len(DERIVED)
     del folded, pattern, d, d2  # a design holds its fold (build_design's cache)
     gc.collect()
-    assert len(design_module._PER_FOLD) < before
+    assert len(DERIVED) < before
 
 
 def test_an_implausible_density_is_a_warning():

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from onefold_cad.cli import main
+from onefold_cad.cli.main import main
 from onefold_cad.fit import FIT_TOLERANCE, OutOfReachError, fit_design
 from onefold_cad.templates import find_template, load_template
 

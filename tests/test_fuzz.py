@@ -215,7 +215,7 @@ def test_reproducer_command_gives_the_same_apex(fuzz: ModuleType, capsys) -> Non
     import shlex
 
     from onefold_cad import build_design
-    from onefold_cad.cli import main
+    from onefold_cad.cli.main import main
 
     p = {
         "model": "paper",

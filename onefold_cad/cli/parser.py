@@ -11,7 +11,6 @@ import textwrap
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from onefold_cad import __version__
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
     BODIES,
@@ -22,6 +21,7 @@ from onefold_cad.flags.design_flags import (
     parse_int,
 )
 from onefold_cad.templates import DEFAULT_TEMPLATE
+from onefold_cad.version import __version__
 
 if TYPE_CHECKING:
     pass

@@ -1,6 +1,6 @@
 """The text ``onefold solve`` prints, and the material lines ``build`` prints.
 
-Both read the JSON report (:func:`onefold_cad.export.report.design_report`),
+Both read the JSON report (:func:`onefold_cad.fabrication.report.design_report`),
 so the text and the JSON never disagree.
 """
 

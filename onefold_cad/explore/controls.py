@@ -3,8 +3,8 @@
 The page sends every control's value as text (``alpha=30&beta=30&...``). This
 module checks the query's shape (known names only, each once, bounded
 lengths), hands the values to the ``onefold`` command's own option parser
-(:data:`onefold_cad.flags.DESIGN_FLAGS`, as ``--alpha=30`` ...), applies them to
-the chosen template's data with :class:`onefold_cad.flags.Overrides` and
+(:data:`onefold_cad.flags.design_flags.DESIGN_FLAGS`, as ``--alpha=30`` ...), applies them to
+the chosen template's data with :class:`onefold_cad.flags.overrides.Overrides` and
 validates the result with :func:`onefold_cad.templates.design_from_data`. So
 a bad value gets exactly the message ``onefold solve`` prints for it.
 

@@ -1,6 +1,6 @@
 """The flat pattern as an SVG fragment for the page (drawing only, no geometry).
 
-Everything drawn comes from :class:`onefold_cad.export.flat_pattern.FlatPattern`
+Everything drawn comes from :class:`onefold_cad.fabrication.flat_pattern.FlatPattern`
 (the same object the DXF is drawn from): the part's outline, the relief hole,
 the apex mark, each fold half with its bend direction and angle
 (:attr:`FoldHalf.label`), the bend zones and the rulings. SVG's y axis points

@@ -2,11 +2,11 @@
 
 Every number and every vertex the page shows comes from here; the page only
 draws. The 3D form is :meth:`FoldedSheet.mesh` moved by
-:func:`onefold_cad.design.resting_placement` (standing as the STEP's body
+:func:`onefold_cad.fabrication.rules.resting_placement` (standing as the STEP's body
 rests on the ground, z up: the placement the report, STEP, GLB and previews use), the
-flat pattern is :func:`onefold_cad.export.flat_pattern.flat_pattern` drawn by
+flat pattern is :func:`onefold_cad.fabrication.flat_pattern.flat_pattern` drawn by
 :func:`onefold_cad.explore.flat_svg.flat_pattern_svg`, and the numbers are
-those of :func:`onefold_cad.export.report.design_report`.
+those of :func:`onefold_cad.fabrication.report.design_report`.
 
 A design the fabrication model cannot make (a bend zone reaching a corner,
 ...) still shows its form: the flat pattern's error is one message among the
@@ -112,7 +112,7 @@ def design_state(design: Design) -> dict[str, Any]:
     Returns:
         A JSON-ready dict: ``ok`` (the form was solved), ``messages`` (errors
         and warnings, each as the CLI words it), ``page`` (the design's
-        control values, see :func:`onefold_cad.explore.params.page_values`),
+        control values, see :func:`onefold_cad.explore.controls.page_values`),
         and when solved ``numbers``, ``form`` (the resting mesh as base64
         float32 positions and uint16 or uint32 (``index_type``) triangle
         indices, the apex, the crease halves, the bounding box; z up, design

@@ -5,7 +5,7 @@ R12) and the relief hole as a CIRCLE, both offset by kerf/2 when a kerf is
 given (outline outwards, hole inwards). No text, no bend lines, no splines,
 nothing twice; ``$INSUNITS`` (not in R12) and ``$MEASUREMENT`` follow the
 design's unit. The geometry is the annotated DXF's ``CUT`` layer, from
-:func:`onefold_cad.export.flat_pattern.flat_pattern`; the file is
+:func:`onefold_cad.fabrication.flat_pattern.flat_pattern`; the file is
 deterministic like the annotated one.
 """
 
@@ -64,7 +64,7 @@ def export_design_cut_dxf(
         folded: ``build_design(design)`` if already computed.
         dxfversion: 'R2000' (default), 'R12' or a later version.
         compensation: 'sharp' (default) or 'none' (see
-            :func:`~onefold_cad.export.flat_pattern.flat_pattern`).
+            :func:`~onefold_cad.fabrication.flat_pattern.flat_pattern`).
 
     Raises:
         FabricationError: the sharp-crease compensation's limits are passed.

@@ -16,12 +16,12 @@ Layers (exact names, so a CAM setup maps them once):
 - ``RULINGS`` (optional): the rulings that are no folds as light etch lines
   (the exact model's: the sheet curves smoothly along them).
 - ``NOTES``: design name, units, material, what UP and DOWN mean, the
-  compensation used, the bend sheet (:mod:`onefold_cad.export.bend_sheet`),
+  compensation used, the bend sheet (:mod:`onefold_cad.fabrication.bend_table`),
   size, area, mass, and each half's direction and angle next to it.
 
 Everything is in modelspace, in the sheet's own frame; ``$INSUNITS`` and
 ``$MEASUREMENT`` follow the design's units (R12 has no ``$INSUNITS``).
-The geometry comes from :mod:`onefold_cad.export.flat_pattern`.
+The geometry comes from :mod:`onefold_cad.fabrication.flat_pattern`.
 
 Deterministic files: two writes of one drawing are byte-identical.
 :func:`write_dxf_atomic` fixes every time stamp ezdxf writes ($TDCREATE,
@@ -135,7 +135,7 @@ def draw_flat_pattern(
     """Draw ``pattern`` into the modelspace of ``doc`` (a new document if None).
 
     Args:
-        pattern: from :func:`onefold_cad.export.flat_pattern.flat_pattern`.
+        pattern: from :func:`onefold_cad.fabrication.flat_pattern.flat_pattern`.
         doc: an existing ezdxf document to fill (its ``$INSUNITS``,
             ``$MEASUREMENT`` and ``$LTSCALE`` are set for the design), or None
             for a new one.
@@ -308,7 +308,7 @@ def export_design_dxf(
         dxfversion: 'R2000' (default) or 'R12' (or a later version).
         rulings: include the RULINGS layer.
         compensation: 'sharp' (default) or 'none', see
-            :func:`~onefold_cad.export.flat_pattern.flat_pattern`.
+            :func:`~onefold_cad.fabrication.flat_pattern.flat_pattern`.
 
     Returns:
         The path written.

@@ -12,7 +12,7 @@ Spec: edemaine/fold, doc/spec.md (version 1.2). The file holds two frames:
 The mesh is a fan about H: one vertex at H, one at every ruling's end on the
 outline, one triangle between each two neighbouring rulings (counter-clockwise
 in the crease pattern, so every face's normal is the sheet's top, +z, side).
-With a relief hole (:func:`onefold_cad.design.relief_hole_diameter` > 0) the
+With a relief hole (:func:`onefold_cad.fabrication.relief_hole.relief_hole_diameter` > 0) the
 hole is cut: H is gone, and each ruling starts where it crosses the hole's
 circle, so the hole's boundary is the polygon of those points (inscribed in
 the circle) and each triangle of the fan becomes a quad, split into two
@@ -322,7 +322,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
 
 
 def _version() -> str:
-    from onefold_cad import __version__
+    from onefold_cad.version import __version__
 
     return __version__
 

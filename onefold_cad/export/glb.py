@@ -1,10 +1,10 @@
 """NAME.glb: the folded form as binary glTF 2.0, for web viewers.
 
-The part is the design's STEP part (:func:`onefold_cad.export.step.build_part`:
+The part is the design's STEP part (:func:`onefold_cad.export.part.build_part`:
 the solid when the design has thickness, else the shell), in the STEP's
 placement: by default standing on the ground as it rests
-(:func:`onefold_cad.design.resting_placement`, applied by
-:func:`onefold_cad.export.step.place`), or in the fold frame. ``build``
+(:func:`onefold_cad.fabrication.rules.resting_placement`, applied by
+:func:`onefold_cad.export.part.place`), or in the fold frame. ``build``
 passes the part it wrote as STEP, so the two files hold the same part in the
 same place. It is tessellated and written by build123d's ``export_gltf``
 (OCCT's RWGltf_CafWriter), which turns OCCT's z-up into glTF's y-up (a -90 deg

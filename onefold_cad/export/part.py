@@ -111,7 +111,7 @@ SOLID_TOLERANCE = 1e-6
 SOLID_THICKNESS_TOLERANCE = 1e-3
 #: Relative difference allowed between the solid's volume (OCC's
 #: Gauss-Kronrod rule to 1e-8) and the thick sheet's volume integrated from
-#: the geometry (:func:`~onefold_cad.geometry.thick_sheet.slab_volume`,
+#: the geometry (:func:`~onefold_cad.geometry.slab_volume.slab_volume`,
 #: about 1e-12). The edge curves' deviation (SOLID_TOLERANCE) moves the
 #: volume by a few 1e-6; a face missing or doubled by a wrong construction
 #: moves it by far more.
@@ -234,7 +234,7 @@ def build_solid(
     that ``material.sheet_surface`` names (:func:`sheet_offsets`). The relief
     hole, ``material.relief_hole_diameter``, is required: the cone's apex is
     singular and its offsets fold over near it
-    (:func:`onefold_cad.design.solid_min_relief_hole`).
+    (:func:`onefold_cad.fabrication.relief_hole.solid_min_relief_hole`).
     The two sides meet in a mitre on the fold's plane of symmetry; its
     faces, the sheet's two faces and the walls along the outline and the hole
     are built directly and sewn once (:mod:`onefold_cad.export.solid`, no
@@ -320,7 +320,7 @@ def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: str) 
     """Refuse a solid past the bend model's limits (FabricationError: a bend
     zone reaching a sheet corner, a large set-back beside the flanges, a fold
     near 180 deg) unless ``compensation`` is 'none':
-    :func:`onefold_cad.design.solid_bend_problem`, the check ``build`` also
+    :func:`onefold_cad.fabrication.rules.solid_bend_problem`, the check ``build`` also
     makes before it writes anything."""
     problem = solid_bend_problem(design, folded, compensation)
     if problem is not None:
@@ -329,7 +329,7 @@ def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: str) 
 
 def place(part: bd.Shape, placement: RestingPlacement) -> bd.Shape:
     """``part`` moved by the rigid motion of ``placement`` (rotation, then
-    translation; :func:`onefold_cad.design.resting_placement`), then lifted or
+    translation; :func:`onefold_cad.fabrication.rules.resting_placement`), then lifted or
     lowered so that the B-rep's own lowest point lies on the ground z = 0
     exactly: the placement stands the exact body there, and the B-rep's
     curves lie within its ``fit_tolerance`` of it. The one place where a part
@@ -373,10 +373,10 @@ def build_part(
         body: 'shell': the reference surface, with the relief hole of
             ``material.relief_hole_diameter``; 'solid': the sheet of
             ``material.thickness`` (:func:`build_solid`); None (default):
-            :func:`onefold_cad.design.default_body`.
+            :func:`onefold_cad.fabrication.rules.default_body`.
         placement: 'rest' (default): standing on the ground, lowest point on
             z = 0 (:func:`place` with
-            :func:`onefold_cad.design.resting_placement` of this body);
+            :func:`onefold_cad.fabrication.rules.resting_placement` of this body);
             'frame': the fold frame (apex above H).
         compensation: 'sharp' (default): a solid past the bend model's
             limits is refused; 'none': built as designed (as ``build

@@ -57,7 +57,7 @@ def resting_mesh(
         folded: the folded sheet.
         angular, radial: the mesh density (see :meth:`FoldedSheet.mesh`).
         placement: how the form stands (default ``rest_once(folded)``, the bare
-            surface; :func:`onefold_cad.design.resting_placement` for the
+            surface; :func:`onefold_cad.fabrication.rules.resting_placement` for the
             body the STEP holds).
 
     Returns:
@@ -140,7 +140,7 @@ def render_folded_preview(
         folded: the folded sheet.
         path: the PNG file to write.
         placement: how the form stands (default ``rest_once(folded)``;
-            ``build`` passes :func:`onefold_cad.design.resting_placement`,
+            ``build`` passes :func:`onefold_cad.fabrication.rules.resting_placement`,
             the placement of the STEP's body).
         frame: draw the form in the fold frame (apex above H) instead of
             standing, without ground, support polygon and centre of mass;

@@ -1,6 +1,6 @@
 """The sheet as a solid of thickness t (exact model), built face by face.
 
-The boundary comes from :class:`onefold_cad.geometry.thick_sheet.Slab`: each
+The boundary comes from :class:`onefold_cad.geometry.slab.Slab`: each
 side is ``F(theta, r, s) = A + r u(theta) + s n(theta)`` over the sheet (r
 from the relief hole to the cut edge, s over the thickness), continued past
 each crease half by a flat mitre block, and kept on the inner side of its
@@ -9,7 +9,7 @@ also the mitre plane that keeps the two halves' blocks apart); the -y side
 is the mirror image of the same construction on the mirrored sheet. Every
 face is ruled (F and the planes are linear in r and in s), so each is built
 as the ruled surface between two B-spline curves parameterised by theta
-(:class:`~onefold_cad.geometry.thick_sheet.Patch`): its rulings join points
+(:class:`~onefold_cad.geometry.slab.Patch`): its rulings join points
 of equal theta exactly, and the curves carry the interpolation error
 (refined until their deviation is below a tolerance). The sheet's faces past
 a crease half are planar and each becomes one planar face. The outlines

@@ -389,7 +389,8 @@ def file_names(stem: str, formats: Sequence[str]) -> list[str]:
 
 def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
     """Raise what a writer of ``formats`` would refuse, before any file exists:
-    a relief hole that does not fit (:func:`~onefold_cad.fabrication.relief_hole.relief_hole_problem`),
+    a relief hole that does not fit
+    (:func:`~onefold_cad.fabrication.relief_hole.relief_hole_problem`),
     the flat pattern (FabricationError or InvalidParameterError) and, with
     ``--compensation sharp``, a STEP solid past the bend model's limits."""
     part = any(WRITERS[n].builds_part for n in formats)

@@ -41,6 +41,7 @@ from onefold_cad.choices import Compensation, Units
 from onefold_cad.design import Design, derived
 from onefold_cad.errors import FabricationError, InvalidParameterError, InvalidSheetError
 from onefold_cad.fabrication.bend_checks import BendProblem, bend_error, check_bends
+from onefold_cad.fabrication.blank import at_height, compensate, dedupe, ruling_segments
 from onefold_cad.fabrication.kerf import offset_outline
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.geometry.bend_model import (
@@ -53,10 +54,10 @@ from onefold_cad.geometry.bend_model import (
 from onefold_cad.geometry.fan_folds import ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.numeric import Array, edge_lengths_2d, polygon_area
+from onefold_cad.geometry.numeric import Array, polygon_area
 from onefold_cad.geometry.polygon import boundary_distance, check_simple
 
-__all__ = ["FoldHalf", "FoldRuling", "FlatPattern", "flat_pattern", "flat_pattern_once"]
+__all__ = ["flat_pattern", "flat_pattern_once", "FlatPattern", "FoldHalf", "FoldRuling"]
 
 
 @dataclass(frozen=True)
@@ -216,78 +217,6 @@ class FlatPattern:
         return max(self.size)
 
 
-def _at_height(a: Array, b: Array, c: float) -> Array:
-    """The point of the line through ``a`` and ``b`` at height y = ``c`` (their
-    midpoint when the line is level)."""
-    if a[1] == b[1]:
-        return (a + b) / 2.0
-    s = (c - a[1]) / (b[1] - a[1])
-    return np.array([a[0] + s * (b[0] - a[0]), c])
-
-
-def _clip_chain(chain: Array, c_start: float, c_end: float) -> Array:
-    """One side's chain (y > 0 side, moved towards the fold line), from one
-    fold-line end to the other, cut at the bend zones: ``[start, inner
-    vertices..., end]``, where start is the first edge's crossing of
-    y = ``c_start`` (or the moved crease end itself when it already lies outside
-    the zone) and end likewise with ``c_end``. :func:`check_bends` has made
-    sure that the inner vertices clear the zones."""
-    y = chain[:, 1]
-    if not (c_start < y[1] and c_end < y[-2]):
-        raise FabricationError(
-            "bend_radius", "the compensated outline is invalid: a corner next to a crease end "
-            "lies in its bend zone"
-        )  # fmt: skip
-    first = chain[0] if y[0] >= c_start else _at_height(chain[0], chain[1], c_start)
-    last = chain[-1] if y[-1] >= c_end else _at_height(chain[-1], chain[-2], c_end)
-    return np.vstack([first, chain[1:-1], last])
-
-
-def _dedupe(p: Array, tol: float) -> Array:
-    """Drop consecutive (cyclic) vertices closer than ``tol``."""
-    keep = edge_lengths_2d(p) > tol
-    return p[keep]
-
-
-def _compensate(
-    vertices: Array, k: int, shift: float, c_plus: float, c_minus: float
-) -> tuple[Array, Array]:
-    """The compensated upper and lower outline pieces in the fold frame.
-
-    Upper runs from the +x bridge to the -x bridge, lower from -x to +x (CCW).
-    """
-    mirror = np.array([1.0, -1.0])
-    upper = vertices[: k + 1] - np.array([0.0, shift])
-    lower = np.vstack([vertices[k:], vertices[:1]]) * mirror - np.array([0.0, shift])
-    return (
-        _clip_chain(upper, c_plus, c_minus),
-        _clip_chain(lower, c_minus, c_plus) * mirror,
-    )
-
-
-def _ruling_segments(ends: Array, shift: float, c: float, hole_r: float) -> tuple[Array, list[int]]:
-    """Ruling segments (fold frame) moved with their side, clipped to the
-    flat flanges (|y| >= c) and outside the hole (|p| >= hole_r), and the
-    index in ``ends`` of each (a ruling left with nothing is dropped)."""
-    out, kept = [], []
-    for i, e in enumerate(ends):
-        s = 1.0 if e[1] > 0.0 else -1.0
-        p0, p1 = np.array([0.0, -s * shift]), e - np.array([0.0, s * shift])
-        d = p1 - p0
-        lo = 0.0
-        if c > 0.0 or shift > 0.0:
-            lo = (c - s * p0[1]) / (s * d[1])
-        if hole_r > 0.0:  # |p0 + u d| >= hole_r
-            a, b, cc = d @ d, 2.0 * (p0 @ d), p0 @ p0 - hole_r**2
-            disc = b * b - 4.0 * a * cc
-            if disc > 0.0:
-                lo = max(lo, (-b + math.sqrt(disc)) / (2.0 * a))
-        if lo < 1.0 - 1e-9:
-            out.append([p0 + max(lo, 0.0) * d, p1])
-            kept.append(i)
-    return np.array(out, dtype=float).reshape(-1, 2, 2), kept
-
-
 def _require_simple(polygon: Array, param: str, what: str) -> None:
     """FabricationError naming ``param`` unless ``polygon`` is simple."""
     try:
@@ -342,12 +271,12 @@ def flat_pattern(
     c_plus, c_minus = (b.allowance / 2.0 for b in bends) if sharp else (0.0, 0.0)
 
     if sharp:
-        up, lo = _compensate(v, k, shift, c_plus, c_minus)
-        outline = _dedupe(np.vstack([up, lo]), tol)
+        up, lo = compensate(v, k, shift, c_plus, c_minus)
+        outline = dedupe(np.vstack([up, lo]), tol)
         bridges = ((up[0], lo[-1], c_plus), (up[-1], lo[0], c_minus))  # from +y to -y
-        end_plus, end_minus = (_at_height(a, b, 0.0) for a, b, _ in bridges)
+        end_plus, end_minus = (at_height(a, b, 0.0) for a, b, _ in bridges)
         zones = [
-            np.array([[[0.0, c], _at_height(a, b, c)], [[0.0, -c], _at_height(a, b, -c)]])
+            np.array([[[0.0, c], at_height(a, b, c)], [[0.0, -c], at_height(a, b, -c)]])
             for a, b, c in bridges
         ]
         _require_simple(outline, "bend_radius", "the compensated outline is invalid")
@@ -410,8 +339,8 @@ def flat_pattern(
         gap = np.linalg.norm(ends[:, None, :] - fold_ends[None, :, :], axis=2)
         ends = ends[~np.any(gap <= 1e-12 * sheet.size, axis=1)]
     c_max, hole_r = max(c_plus, c_minus), max(hole - kerf, 0.0) / 2.0
-    rul, _ = _ruling_segments(ends, shift, c_max, hole_r)
-    fold_segments, drawn = _ruling_segments(fold_ends, shift, c_max, hole_r)
+    rul, _ = ruling_segments(ends, shift, c_max, hole_r)
+    fold_segments, drawn = ruling_segments(fold_ends, shift, c_max, hole_r)
     fold_rulings = tuple(
         FoldRuling(
             f.name,

@@ -25,7 +25,7 @@ __all__ = ["relief_hole_diameter", "relief_hole_problem", "solid_min_relief_hole
 
 def solid_min_relief_hole(folded: FoldedSheet, material: Material) -> float:
     """The smallest relief hole a STEP solid of ``material`` needs on ``folded``
-    (length): :func:`~onefold_cad.geometry.thick_sheet.min_relief_hole`,
+    (length): :func:`~onefold_cad.geometry.thick_map.min_relief_hole`,
     computed once per fold and material (the report, the default hole and
     the flat pattern all ask for it).
 

@@ -74,8 +74,8 @@ def _floats(a: Any) -> list[Any]:
 
 def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None) -> dict[str, Any]:
     """The report's ``resting`` section: how the body the STEP holds (``body``,
-    default :func:`~onefold_cad.design.default_body`) stands on the ground
-    (:func:`~onefold_cad.design.resting_placement`): its exact
+    default :func:`~onefold_cad.fabrication.rules.default_body`) stands on the ground
+    (:func:`~onefold_cad.fabrication.rules.resting_placement`): its exact
     bounding box, height, footprint (width along the resting frame's x axis,
     the fold line's direction, depth across it, and the area of its shadow),
     ``span`` (the footprint's width: what ``onefold fit --span`` aims at),
@@ -167,7 +167,7 @@ def design_warnings(
 ) -> list[str]:
     """What ``solve`` and ``build`` warn about before any writer runs, one
     line each: the solver's own warnings (when it gives any),
-    :func:`~onefold_cad.design.fabrication_warnings`, the resting form's
+    :func:`~onefold_cad.fabrication.rules.fabrication_warnings`, the resting form's
     stability (a tipping margin below 5 deg,
     :func:`~onefold_cad.geometry.placement.stability_warnings`, for ``body``
     as :func:`resting_numbers` places it) and the bend model's

@@ -1,6 +1,6 @@
 """The body a form is written as: where its lowest point can lie, and its mass.
 
-Two bodies, as the STEP adapter builds them (:mod:`onefold_cad.export.step`):
+Two bodies, as the STEP adapter builds them (:mod:`onefold_cad.export.part`):
 
 * ``shell``: the folded reference surface, with a relief hole of radius rho
   about the apex (none: the apex itself). Along a ruling the height is linear,

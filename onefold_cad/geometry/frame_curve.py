@@ -72,7 +72,7 @@ class FrameCurve:
         h_c: offset of H from the f-line midpoint (length); positive puts H on
             the +x side of the midpoint. |h_c| < radius * cos(alpha).
         radius: arc radius R (length), in [1e-30, 1e30] (see
-            :data:`onefold_cad.geometry.validate.MAX_LENGTH`). The paper's
+            :data:`onefold_cad.geometry.checks.MAX_LENGTH`). The paper's
             H_c values assume 100.
         divisions: number of triangles of the paper model's fan, in
             [1, :data:`MAX_DIVISIONS`] = [1, 100 000]; a design takes at

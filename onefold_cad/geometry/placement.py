@@ -242,7 +242,7 @@ def rest_form(
         folded: the fold.
         material: thickness, reference surface and relief hole (the hole
             the STEP is built with: pass the material with ``relief_hole``
-            resolved, as :func:`onefold_cad.export.step.build_part` does);
+            resolved, as :func:`onefold_cad.export.part.build_part` does);
             None: a zero-thickness sheet without a hole.
         body: 'shell' (the reference surface) or 'solid' (the thick sheet;
             exact model, thickness > 0, relief hole > 0).

@@ -195,7 +195,7 @@ class Sheet:
             InvalidSheetError: fewer than 3 or more than :data:`MAX_VERTICES`
                 (10 000) vertices, non-finite coordinates, the largest
                 coordinate magnitude outside [1e-30, 1e30] (see
-                :data:`onefold_cad.geometry.validate.MAX_LENGTH`), repeated
+                :data:`onefold_cad.geometry.checks.MAX_LENGTH`), repeated
                 vertices, self-intersection, H not strictly inside, or not
                 strictly star-shaped about H. Points within 1e-12 of the
                 largest coordinate magnitude of each other coincide.

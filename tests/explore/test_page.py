@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from onefold_cad.cli import main
+from onefold_cad.cli.main import main
 from tests.explore.conftest import get
 
 TIMEOUT_MS = 60_000

@@ -9,7 +9,7 @@ import pathlib
 
 import pytest
 
-from onefold_cad.cli import main
+from onefold_cad.cli.main import main
 from onefold_cad.explore.controls import (
     MAX_POLYGON,
     MAX_QUERY,

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from onefold_cad.cli import main
+from onefold_cad.cli.main import main
 from onefold_cad.design import build_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.server import load_templates

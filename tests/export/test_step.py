@@ -751,16 +751,16 @@ def test_default_relief_hole_fits_the_solid_and_every_export_cuts_it(tmp_path):
 
 
 def test_kernel_failure_is_an_export_error_and_leaves_no_file(tmp_path, monkeypatch):
-    import onefold_cad.export.step as step
+    import onefold_cad.export.part as part
 
     def broken(*args, **kwargs):
         raise RuntimeError("simulated OCC failure")
 
     design = CASES["table1-0"][0].with_changes(material=Material(thickness=3.0))
-    monkeypatch.setattr(step, "thick_solid", broken)
+    monkeypatch.setattr(part, "thick_solid", broken)
     with pytest.raises(ExportError, match="simulated OCC failure"):
         export_design_step(design, tmp_path / "x.step")
-    monkeypatch.setattr(step, "ruled_shell", broken)
+    monkeypatch.setattr(part, "ruled_shell", broken)
     with pytest.raises(ExportError, match="simulated OCC failure"):
         export_design_step(design, tmp_path / "x.step", body="shell")
     assert list(tmp_path.iterdir()) == []

@@ -130,7 +130,7 @@ def test_the_step_and_the_glb_are_one_part_built_once_and_the_report_gives_its_f
     import numpy as np
     import trimesh
 
-    from onefold_cad.export import step
+    from onefold_cad.export import part as step
     from onefold_cad.export.glb import LINEAR_DEFLECTION
 
     calls = []
@@ -195,7 +195,7 @@ def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
 
 def test_the_compensations_the_command_offers_are_the_bend_model_s():
     from onefold_cad.choices import Compensation
-    from onefold_cad.cli import main
+    from onefold_cad.cli.main import main
 
     assert writers.COMPENSATIONS == tuple(c.value for c in Compensation)
     assert writers.COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default

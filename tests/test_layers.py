@@ -1,0 +1,65 @@
+"""The layers of onefold_cad/layers.py hold: no import circle inside the
+package, no module importing a layer above its own, in any form (module top,
+inside a function, under TYPE_CHECKING), and the import-linter contract of
+``make lint`` is the same list."""
+
+from __future__ import annotations
+
+import tomllib
+
+import pytest
+
+from onefold_cad.layers import LAYERS, layer_of
+from tests.imports import ROOT, cycles, import_graph, modules
+
+
+@pytest.fixture(scope="module")
+def graph():
+    return import_graph()
+
+
+def test_the_graph_sees_imports_in_functions_and_under_type_checking(graph):
+    # writers imports the flat pattern only inside a function, and the
+    # design only under TYPE_CHECKING: both are edges
+    edges = graph["onefold_cad.export.writers"]
+    assert "onefold_cad.fabrication.flat_pattern" in edges
+    assert "onefold_cad.design" in edges
+
+
+def test_no_import_circle_inside_the_package(graph):
+    assert cycles(graph) == []
+
+
+def test_a_planted_circle_is_found():
+    planted = {"a": {"b": 1}, "b": {"c": 1}, "c": {"a": 1}, "d": {"a": 1}}
+    assert cycles(planted) == [["a", "b", "c"]]
+
+
+def test_every_module_belongs_to_a_layer():
+    lost = [m for m in modules() if m != "onefold_cad" and layer_of(m) is None]
+    assert lost == []
+
+
+def test_no_module_imports_a_layer_above_its_own(graph):
+    up = []
+    for module, edges in graph.items():
+        here = layer_of(module)
+        if here is None:  # the package's public API names anything
+            continue
+        for target, line in edges.items():
+            there = layer_of(target)
+            assert there is not None, (module, target)
+            if there[0] > here[0] or (there[0] == here[0] and there[1] != here[1]):
+                up.append(f"{module}:{line} imports {target}")
+    assert up == []
+
+
+def test_the_lint_contract_is_the_layers():
+    data = tomllib.loads((ROOT / "pyproject.toml").read_text())
+    (contract,) = data["tool"]["importlinter"]["contracts"]
+    assert contract["type"] == "layers"
+    listed = [
+        tuple(sorted(n.strip().strip("()") for n in row.split("|")))
+        for row in reversed(contract["layers"])
+    ]
+    assert listed == [tuple(sorted(names)) for _, names in LAYERS]
