@@ -13,7 +13,6 @@ Run from the repository root: ``.venv/bin/python docs/make_architecture.py``.
 
 from __future__ import annotations
 
-import ast
 import collections
 import sys
 from pathlib import Path
@@ -22,53 +21,20 @@ ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "docs" / "images" / "architecture.png"
 sys.path.insert(0, str(ROOT))
 
-from onefold_cad.layers import LAYERS, layer_of  # noqa: E402
-
-
-def _modules() -> dict[str, Path]:
-    out = {}
-    for p in sorted((ROOT / "onefold_cad").rglob("*.py")):
-        parts = list(p.relative_to(ROOT).with_suffix("").parts)
-        out[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = p
-    return out
-
-
-def _imports(name: str, path: Path, known: set[str]) -> list[str]:
-    is_package = path.name == "__init__.py"
-    found = []
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if isinstance(node, ast.Import):
-            targets = [a.name for a in node.names]
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = name.split(".") if is_package else name.split(".")[:-1]
-                mod = ".".join(base[: len(base) - node.level + 1] + [node.module or ""])
-            else:
-                mod = node.module or ""
-            targets = [f"{mod}.{a.name}" for a in node.names]
-        else:
-            continue
-        for t in targets:
-            while t and t not in known:
-                t = t.rpartition(".")[0]
-            if t and t != name:
-                found.append(t)
-    return found
+from onefold_cad.layers import LAYERS, import_graph, layer_of  # noqa: E402
 
 
 def graph() -> tuple[dict[str, int], collections.Counter[tuple[str, str]]]:
     """Boxes (the layers' folders and modules) with their module counts, and
     the imports between boxes: (from, to) -> count."""
-    mods = _modules()
-    known = set(mods)
     sizes: collections.Counter[str] = collections.Counter()
     edges: collections.Counter[tuple[str, str]] = collections.Counter()
-    for name, path in mods.items():
+    for name, imports in import_graph().items():
         here = layer_of(name)
         if here is None:
             continue
         sizes[here[1]] += 1
-        for t in _imports(name, path, known):
+        for t in imports:
             there = layer_of(t)
             if there is not None and there[1] != here[1]:
                 edges[(here[1], there[1])] += 1

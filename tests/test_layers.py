@@ -9,8 +9,7 @@ import tomllib
 
 import pytest
 
-from onefold_cad.layers import LAYERS, layer_of
-from tests.imports import ROOT, cycles, import_graph, modules
+from onefold_cad.layers import LAYERS, ROOT, cycles, import_graph, layer_of, modules
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.imports import ROOT, modules
+from onefold_cad.layers import ROOT, modules
 
 #: The longest a module may be (lines): split by job before it gets there.
 MAX_LINES = 450

@@ -22,7 +22,7 @@ from onefold_cad.fabrication.report import design_report
 from onefold_cad.templates import list_templates, load_template
 from tests.processes import interruptible
 
-REPO = Path(__file__).resolve().parent.parent
+REPO = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent / "onefold"
 ONEFOLD = str(BIN) if BIN.exists() else shutil.which("onefold")
 SUFFIXES = (
