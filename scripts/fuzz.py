@@ -1092,7 +1092,7 @@ def _fd_captured(fd: int) -> Iterator[io.StringIO]:
 def run_bad_line(argv: list[str], param: str) -> dict[str, Any]:
     """Run one bad command line in-process: exit 2, one stderr line naming
     ``param``, no traceback, nothing in the output folder."""
-    from onefold_cad.cli import main
+    from onefold_cad.cli.main import main
 
     with tempfile.TemporaryDirectory() as td:
         outdir = Path(td) / "out"
@@ -1262,7 +1262,7 @@ def fuzz(
         if progress and (count % 200 == 0 or count == len(jobs)):
             print(f"  {count}/{len(jobs)} in {time.monotonic() - t0:.0f} s", file=sys.stderr)
 
-    import onefold_cad.cli  # noqa: F401 (imported once, before forking)
+    import onefold_cad.cli.main  # noqa: F401 (imported once, before forking)
 
     pool = Pool(workers)
     try:

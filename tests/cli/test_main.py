@@ -125,7 +125,7 @@ def test_solve_templates_and_help_import_no_cad_library(argv):
     """Issue 14: the quick commands load numpy and the geometry core only."""
     code = (
         "import io, contextlib, json, sys\n"
-        "from onefold_cad.cli import main\n"
+        "from onefold_cad.cli.main import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         f"    rc = main({argv!r})\n"
         "print(json.dumps([rc, sorted(sys.modules)]))\n"
@@ -153,7 +153,7 @@ def test_solve_loads_none_of_the_writers_standard_modules(template):
     (np.unique loads it: the core uses validate.sorted_unique)."""
     code = (
         "import io, contextlib, sys\n"
-        "from onefold_cad.cli import main\n"
+        "from onefold_cad.cli.main import main\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         f"    rc = main(['solve', {template!r}])\n"
         "unwanted = ('tempfile', 'shutil', 'csv', 'hashlib', 'json', 'numpy.ma')\n"

@@ -64,8 +64,8 @@ def test_render_failure_raises_export_error_and_leaves_nothing(tmp_path, folded)
 
 def test_matplotlib_is_imported_only_by_the_preview():
     code = (
-        "import sys, onefold_cad, onefold_cad.cli, onefold_cad.export.preview, "
-        "onefold_cad.export.report; print('matplotlib' in sys.modules)"
+        "import sys, onefold_cad, onefold_cad.cli.main, onefold_cad.export.preview, "
+        "onefold_cad.fabrication.report; print('matplotlib' in sys.modules)"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

@@ -196,7 +196,8 @@ def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
 def test_the_compensations_the_command_offers_are_the_bend_model_s():
     from onefold_cad.choices import Compensation
     from onefold_cad.cli.main import main
+    from onefold_cad.flags.design_flags import COMPENSATIONS
 
-    assert writers.COMPENSATIONS == tuple(c.value for c in Compensation)
-    assert writers.COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default
+    assert COMPENSATIONS == tuple(c.value for c in Compensation)
+    assert COMPENSATIONS[0] == BuildContext.compensation == "sharp"  # the default
     assert main(["build", "--compensation", "bent", "--formats", "json"]) == 2

@@ -196,7 +196,7 @@ def test_compensation_is_checked():
 
 def test_flat_pattern_and_bend_model_import_no_cad_library():
     code = (
-        "import sys, onefold_cad.fabrication.flat_pattern, onefold_cad.geometry.bend\n"
+        "import sys, onefold_cad.fabrication.flat_pattern, onefold_cad.geometry.bend_model\n"
         "top = {m.split('.')[0] for m in sys.modules}\n"
         "heavy = {'ezdxf', 'build123d', 'OCP', 'matplotlib'} & top\n"
         "print(sorted(heavy))"
