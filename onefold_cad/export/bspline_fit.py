@@ -24,7 +24,7 @@ from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Pnt, gp_Pnt2d
 
 from onefold_cad.errors import ExportError
-from onefold_cad.export.cone_patch import Array
+from onefold_cad.geometry.numeric import Array
 
 __all__ = [
     "DENSE",

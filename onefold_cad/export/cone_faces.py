@@ -56,10 +56,11 @@ from onefold_cad.export.bspline_fit import (
     probe_points,
     refine,
 )
-from onefold_cad.export.cone_patch import Array, ConePatch, cone_patch, pnt, ruling_sectors
+from onefold_cad.export.cone_patch import ConePatch, cone_patch, pnt, ruling_sectors
 from onefold_cad.export.fan_faces import PRECISION
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.numeric import Array
 
 __all__ = ["FoldedBackError", "ruled_shell"]
 

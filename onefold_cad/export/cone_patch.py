@@ -13,7 +13,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 from OCP.collections import (
     Array1_double,
     Array1_int,
@@ -30,14 +29,12 @@ from OCP.GeomConvert import GeomConvert
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
 from onefold_cad.geometry.cone import ExactCone
+from onefold_cad.geometry.numeric import Array
 
 __all__ = ["Array", "cone_patch", "ConePatch", "pnt", "ruling_sectors"]
 
 
 Convert_RationalC1 = Convert_ParameterisationType.Convert_RationalC1
-
-
-Array = NDArray[np.float64]
 
 
 def pnt(p: Array) -> gp_Pnt:

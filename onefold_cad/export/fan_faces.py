@@ -29,8 +29,9 @@ from OCP.TopoDS import (
 )
 
 from onefold_cad.errors import ExportError
-from onefold_cad.export.cone_patch import Array, pnt, ruling_sectors
+from onefold_cad.export.cone_patch import pnt, ruling_sectors
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.numeric import Array
 
 __all__ = ["PRECISION", "fan_shell"]
 

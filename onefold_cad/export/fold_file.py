@@ -62,7 +62,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from onefold_cad.choices import Model
 from onefold_cad.design import Design, rest_once
@@ -72,6 +71,7 @@ from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hol
 from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
 from onefold_cad.geometry.folding import FoldedSheet, fold
+from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.geometry.solver import solve
 
@@ -79,7 +79,6 @@ __all__ = ["FOLD_SPEC", "RESOLUTION", "fold_data", "fold_fan", "write_fold"]
 
 #: The FOLD spec version written.
 FOLD_SPEC = 1.2
-Array = NDArray[np.float64]
 #: The shortest edge a cut relief hole may add, relative to the sheet's size
 #: (:attr:`Sheet.size`): shorter ones would leave faces of no area once the
 #: coordinates are rounded (about 1e-16 of the size).

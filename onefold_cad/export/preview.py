@@ -29,11 +29,11 @@ from onefold_cad.design import rest_once
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = ["render_folded_preview", "resting_mesh", "support_and_centre"]
 
-Array = NDArray[np.float64]
 _TOP = np.array([0.86, 0.62, 0.30])  # the flat sheet's top (+z) face
 _BOTTOM = np.array([0.55, 0.63, 0.72])
 _LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])

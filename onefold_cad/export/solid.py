@@ -32,7 +32,6 @@ from collections import defaultdict
 
 import build123d as bd
 import numpy as np
-from numpy.typing import NDArray
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeFace,
@@ -58,13 +57,11 @@ from onefold_cad.export.bspline_fit import (
     fit_curve,
 )
 from onefold_cad.export.kernel_budget import KernelBudget
+from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.slab import Boundary, Patch, Slab
 from onefold_cad.geometry.slab_faces import slab_patches
 
 __all__ = ["Array", "thick_solid"]
-
-
-Array = NDArray[np.float64]
 
 
 class _Vertices:
