@@ -46,6 +46,7 @@ def test_star_polygons_match_ezdxf(radii: list[float], distance: float) -> None:
     scale = float(np.max(np.abs(outline)))
     assert np.all(np.hypot(*(got - want).T) <= 1e-12 * scale / np.maximum(sin_turn, 1e-6))
 
+
 def test_every_edge_moves_exactly_the_offset() -> None:
     outline = _star([1.0, 0.4, 1.2, 0.5, 0.9, 0.3, 1.1])
     got = offset_outline(outline, 0.01)
