@@ -89,6 +89,9 @@ _MATERIAL: dict[str, str] = {
     "relief_hole": _NUMBER,
     "density": _NUMBER,
     "sheet_surface": "str",
+    "youngs_modulus": _NUMBER,
+    "poisson": _NUMBER,
+    "yield_stress": _NUMBER,
 }
 _SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
 
@@ -378,6 +381,9 @@ def design_to_data(design: Design) -> dict[str, Any]:
         material["relief_hole"] = m.relief_hole
     if m.density is not None:
         material["density"] = m.density
+    for key in ("youngs_modulus", "poisson", "yield_stress"):
+        if getattr(m, key) is not None:
+            material[key] = getattr(m, key)
     return {
         "name": design.name,
         "description": design.description,

@@ -33,6 +33,14 @@ def material_lines(report: dict[str, Any]) -> list[str]:
             f"density {density:g} kg/m^3" if density is not None else "no density",
         ),
     }
+    # the elastic-plastic values `simulate` needs, when the material has them
+    for key, label, text in (
+        ("youngs_modulus", "E", "E {:g} GPa"),
+        ("poisson", "nu", "nu {:g}"),
+        ("yield_stress", "yield stress", "yield stress {:g} MPa"),
+    ):
+        if mat.get(key) is not None:
+            values[f"material.{key}"] = (label, text.format(mat[key]))
     by_source: dict[str, list[str]] = {}
     for key, label in [("material.name", "name"), *((k, v[0]) for k, v in values.items())]:
         by_source.setdefault(src.get(key, "default"), []).append(label)

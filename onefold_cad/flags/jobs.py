@@ -29,6 +29,9 @@ MATERIAL_KEYS = (
     "relief_hole",
     "density",
     "sheet_surface",
+    "youngs_modulus",
+    "poisson",
+    "yield_stress",
 )
 
 

@@ -7,12 +7,9 @@ design after what defines it.
 from __future__ import annotations
 
 import copy
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
-
-if TYPE_CHECKING:
-    pass
 from onefold_cad.flags.design_flags import DESIGN_FLAGS
 
 __all__ = ["changed_flags", "derived_name", "flags_text", "mark_changes", "Overrides"]
@@ -34,6 +31,9 @@ class Overrides:
         "material.kerf": "--kerf",
         "material.relief_hole": "--relief-hole",
         "material.density": "--density",
+        "material.youngs_modulus": "--youngs-modulus",
+        "material.poisson": "--poisson",
+        "material.yield_stress": "--yield-stress",
     }
     _QUAD = {
         "x_plus": "--x-plus",
@@ -151,7 +151,8 @@ def parse_rectangle(text: str) -> tuple[float, float]:
 
 _SHORT = {"hc": "hc", "radius": "r", "divisions": "div", "apex_fraction": "af", "k_factor": "k",
           "bend_radius": "br", "relief_hole": "hole", "x_plus": "xp", "x_minus": "xm",
-          "y_plus": "yp", "y_minus": "ym", "thickness": "t", "density": "rho"}  # fmt: skip
+          "y_plus": "yp", "y_minus": "ym", "thickness": "t", "density": "rho",
+          "youngs_modulus": "E", "poisson": "nu", "yield_stress": "sy"}  # fmt: skip
 
 
 def derived_name(base: str, flags: dict[str, Any]) -> str:

@@ -14,7 +14,11 @@ from onefold_cad.choices import SheetSurface
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.checks import closed_interval, finite
 
-__all__ = ["Material", "default_relief_hole", "sheet_offsets"]
+__all__ = ["MAX_MODULUS_GPA", "Material", "default_relief_hole", "sheet_offsets"]
+
+#: The largest Young's modulus a material may have (GPa): ten times diamond's
+#: (about 1 050-1 220 GPa), so no real sheet is refused.
+MAX_MODULUS_GPA = 10_000.0
 
 
 @dataclass(frozen=True)
@@ -33,6 +37,15 @@ class Material:
             the design's length unit (see :func:`onefold_cad.fabrication.mass.design_mass`).
         name: a material description for the notes (e.g. '304 stainless').
         sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
+        youngs_modulus: Young's modulus E in GPa (0 < E <= 10 000), or None;
+            independent of the design's length unit, like the density.
+        poisson: Poisson's ratio nu, -1 < nu < 0.5, or None.
+        yield_stress: the yield stress sigma_y in MPa, 0 < sigma_y <= E (a
+            yield stress as high as the modulus itself never yields: a check
+            of the elastic model), or None.
+
+    The three elastic-plastic values are what ``onefold simulate`` needs
+    (:mod:`onefold_cad.mechanics`); nothing else reads them.
     """
 
     thickness: float = 0.0
@@ -43,6 +56,9 @@ class Material:
     density: float | None = None
     name: str = ""
     sheet_surface: SheetSurface = SheetSurface.MID
+    youngs_modulus: float | None = None
+    poisson: float | None = None
+    yield_stress: float | None = None
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -64,6 +80,33 @@ class Material:
             set_(self, "density", v)
         set_(self, "sheet_surface", SheetSurface.parse(self.sheet_surface))
         set_(self, "name", str(self.name))
+        self._check_elastic_plastic()
+
+    def _check_elastic_plastic(self) -> None:
+        """Validate Young's modulus, Poisson's ratio and the yield stress (each
+        may be None)."""
+        set_ = object.__setattr__
+        if self.youngs_modulus is not None:
+            e = finite("youngs_modulus", self.youngs_modulus)
+            if not 0.0 < e <= MAX_MODULUS_GPA:
+                raise InvalidParameterError(
+                    "youngs_modulus", f"must be > 0 and <= {MAX_MODULUS_GPA:g} GPa, got {e:g}"
+                )
+            set_(self, "youngs_modulus", e)
+        if self.poisson is not None:
+            nu = finite("poisson", self.poisson)
+            if not -1.0 < nu < 0.5:
+                raise InvalidParameterError("poisson", f"must be > -1 and < 0.5, got {nu:g}")
+            set_(self, "poisson", nu)
+        if self.yield_stress is not None:
+            sy = finite("yield_stress", self.yield_stress)
+            top = (MAX_MODULUS_GPA if self.youngs_modulus is None else self.youngs_modulus) * 1e3
+            what = "Young's modulus" if self.youngs_modulus is not None else "the largest modulus"
+            if not 0.0 < sy <= top:
+                raise InvalidParameterError(
+                    "yield_stress", f"must be > 0 and <= {top:g} MPa ({what}), got {sy:g}"
+                )
+            set_(self, "yield_stress", sy)
 
     @property
     def relief_hole_diameter(self) -> float:

@@ -1,0 +1,65 @@
+"""The material's elastic-plastic values: Young's modulus, Poisson's ratio and
+the yield stress, their ranges at both ends, and their trip through a template."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.material import MAX_MODULUS_GPA, Material
+from onefold_cad.templates import design_to_data, load_template
+
+
+@given(
+    st.floats(1e-9, MAX_MODULUS_GPA),
+    st.floats(-1.0, 0.5, exclude_min=True, exclude_max=True),
+    st.floats(1e-6, 1.0),
+)
+def test_every_value_in_range_is_kept(e, nu, share):
+    sy = share * e * 1e3  # up to the modulus itself, in MPa
+    m = Material(youngs_modulus=e, poisson=nu, yield_stress=sy)
+    assert (m.youngs_modulus, m.poisson, m.yield_stress) == (e, nu, sy)
+
+
+@pytest.mark.parametrize(
+    ("changes", "name"),
+    [
+        ({"youngs_modulus": 0.0}, "youngs_modulus"),
+        ({"youngs_modulus": math.nextafter(MAX_MODULUS_GPA, math.inf)}, "youngs_modulus"),
+        ({"youngs_modulus": math.nan}, "youngs_modulus"),
+        ({"poisson": 0.5}, "poisson"),
+        ({"poisson": -1.0}, "poisson"),
+        ({"poisson": math.inf}, "poisson"),
+        ({"yield_stress": 0.0}, "yield_stress"),
+        ({"youngs_modulus": 193.0, "yield_stress": math.nextafter(193e3, 1e6)}, "yield_stress"),
+        ({"yield_stress": math.nextafter(MAX_MODULUS_GPA * 1e3, math.inf)}, "yield_stress"),
+    ],
+)
+def test_values_outside_the_range_name_the_parameter(changes, name):
+    with pytest.raises(InvalidParameterError) as info:
+        Material(**changes)
+    assert info.value.parameter == name
+
+
+def test_the_edges_inside_the_range_are_allowed():
+    m = Material(youngs_modulus=MAX_MODULUS_GPA, poisson=math.nextafter(0.5, 0.0))
+    assert m.poisson < 0.5
+    assert Material(youngs_modulus=193.0, yield_stress=193e3).yield_stress == 193e3
+    assert Material(poisson=math.nextafter(-1.0, 0.0)).poisson > -1.0
+
+
+def test_the_stainless_template_has_its_data_and_writes_it_back():
+    design = load_template("patkau-one-fold")
+    m = design.material
+    assert (m.youngs_modulus, m.poisson, m.yield_stress) == (193.0, 0.29, 215.0)
+    data = design_to_data(design)["material"]
+    assert (data["youngs_modulus"], data["poisson"], data["yield_stress"]) == (193.0, 0.29, 215.0)
+
+
+def test_a_material_without_them_writes_none():
+    data = design_to_data(load_template("paper-square"))["material"]
+    assert not {"youngs_modulus", "poisson", "yield_stress"} & set(data)
