@@ -1,0 +1,203 @@
+"""Small geometric functions of a triangle or an edge, with gradients and Hessians.
+
+Vectorised over elements. A face's 9 local variables are its vertices'
+coordinates ``(x0, x1, x2)`` (3 each, in that order); an edge's 12 are
+``(a, b, c, d)``: the edge ``a -> b`` as it runs in its first face ``T0 = (a, b, c)``,
+and ``d`` the vertex opposite it in ``T1 = (b, a, d)``. Derivations are in
+docs/mechanics.md; tests/mechanics/test_kinematics.py checks every derivative
+against finite differences.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["dihedral", "face_heights", "face_metric", "skew", "METRIC_HESSIAN"]
+
+F = NDArray[np.float64]
+_I3 = np.eye(3)
+
+
+def skew(v: F) -> F:
+    """Cross-product matrices: ``skew(v) @ w == cross(v, w)``; (..., 3) -> (..., 3, 3)."""
+    z = np.zeros(v.shape[:-1])
+    x, y, w = v[..., 0], v[..., 1], v[..., 2]
+    return np.stack(
+        [np.stack([z, -w, y], -1), np.stack([w, z, -x], -1), np.stack([-y, x, z], -1)], -2
+    )
+
+
+def _metric_hessian() -> F:
+    """(3, 9, 9): Hessians of ``(e1.e1, e1.e2, e2.e2)``, ``e1 = x1 - x0``, ``e2 = x2 - x0``."""
+    s1 = np.zeros((3, 9))
+    s2 = np.zeros((3, 9))
+    s1[:, 0:3], s1[:, 3:6] = -_I3, _I3
+    s2[:, 0:3], s2[:, 6:9] = -_I3, _I3
+    return np.stack([2 * s1.T @ s1, s1.T @ s2 + s2.T @ s1, 2 * s2.T @ s2])
+
+
+#: Constant Hessians of the metric components with respect to the 9 coordinates.
+METRIC_HESSIAN = _metric_hessian()
+
+
+def face_metric(x: F) -> tuple[F, F]:
+    """The metric ``(a11, a12, a22)`` of ``x(u, v) = x0 + u e1 + v e2`` and its gradient.
+
+    Args:
+        x: (m, 3, 3) vertex positions.
+
+    Returns:
+        a: (m, 3); da: (m, 3, 9). The Hessian is ``METRIC_HESSIAN`` (constant).
+    """
+    e1, e2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]
+    a = np.stack(
+        [
+            np.einsum("ij,ij->i", e1, e1),
+            np.einsum("ij,ij->i", e1, e2),
+            np.einsum("ij,ij->i", e2, e2),
+        ],
+        axis=1,
+    )
+    da = np.zeros((len(x), 3, 9))
+    da[:, 0, 0:3], da[:, 0, 3:6] = -2 * e1, 2 * e1
+    da[:, 1, 0:3], da[:, 1, 3:6], da[:, 1, 6:9] = -(e1 + e2), e2, e1
+    da[:, 2, 0:3], da[:, 2, 6:9] = -2 * e2, 2 * e2
+    return a, da
+
+
+def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
+    """Heights ``h_i = 2 A / l_i`` of the vertices over the opposite edges.
+
+    Args:
+        x: (m, 3, 3) vertex positions.
+        order: 0 (values), 1 (and gradients) or 2 (and Hessians).
+
+    Returns:
+        h: (m, 3); dh: (m, 3, 9); d2h: (m, 3, 9, 9).
+    """
+    m = len(x)
+    edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    nn = np.einsum("ij,ij->i", normal, normal)
+    ll = np.einsum("ijk,ijk->ij", edge, edge)
+    h = np.sqrt(nn[:, None] / ll)
+    if order == 0:
+        return h, None, None
+    # F = ln|N|, G_i = ln l_i; h_i = exp(F - G_i).
+    dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]  # (m, 3 vertices, 3)
+    df = dfx.reshape(m, 9)
+    dg = np.zeros((m, 3, 9))
+    for i in range(3):
+        j, k = (i + 2) % 3, (i + 1) % 3
+        dg[:, i, 3 * j : 3 * j + 3] = edge[:, i] / ll[:, i, None]
+        dg[:, i, 3 * k : 3 * k + 3] = -edge[:, i] / ll[:, i, None]
+    dlog = df[:, None, :] - dg
+    dh = h[:, :, None] * dlog
+    if order == 1:
+        return h, dh, None
+    # Hessian of F: (dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T.
+    # Blocks (j, l): (E_j . E_l) I - E_l E_j^T  +  [N]x (delta_{l, j+2} - delta_{l, j+1}).
+    gram = edge @ edge.transpose(0, 2, 1)
+    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
+    wn = skew(normal)
+    for j in range(3):
+        blocks[:, j, (j + 2) % 3] += wn
+        blocks[:, j, (j + 1) % 3] -= wn
+    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
+    d2f -= 2 * df[:, :, None] * df[:, None, :]
+    d2h = np.broadcast_to(d2f[:, None], (m, 3, 9, 9)).copy()
+    d2h += dlog[:, :, :, None] * dlog[:, :, None, :]
+    unit = edge / np.sqrt(ll)[:, :, None]
+    mm = (_I3 - 2 * unit[:, :, :, None] * unit[:, :, None, :]) / ll[:, :, None, None]
+    for i in range(3):
+        j, k = 3 * ((i + 2) % 3), 3 * ((i + 1) % 3)
+        d2h[:, i, j : j + 3, j : j + 3] -= mm[:, i]
+        d2h[:, i, k : k + 3, k : k + 3] -= mm[:, i]
+        d2h[:, i, j : j + 3, k : k + 3] += mm[:, i]
+        d2h[:, i, k : k + 3, j : j + 3] += mm[:, i]
+    d2h *= h[:, :, None, None]
+    return h, dh, d2h
+
+
+def dihedral(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
+    """The signed bending angle of edges: 0 flat, > 0 where the two faces form a bowl
+    (concave towards their normals).
+
+    Args:
+        x: (k, 4, 3) the positions of ``(a, b, c, d)``.
+        order: 0, 1 or 2.
+
+    Returns:
+        psi: (k,) rad in (-pi, pi); dpsi: (k, 12); d2psi: (k, 12, 12).
+    """
+    a, b, c, d = x[:, 0], x[:, 1], x[:, 2], x[:, 3]
+    e = b - a
+    n0 = np.cross(e, c - a)  # T0 = (a, b, c)
+    n1 = np.cross(a - b, d - b)  # T1 = (b, a, d)
+    ee = np.einsum("ij,ij->i", e, e)
+    le = np.sqrt(ee)
+    sin = np.einsum("ij,ij->i", np.cross(n1, n0), e) / le
+    psi = np.arctan2(sin, np.einsum("ij,ij->i", n0, n1))
+    if order == 0:
+        return psi, None, None
+    k = len(x)
+    nn0 = np.einsum("ij,ij->i", n0, n0)
+    nn1 = np.einsum("ij,ij->i", n1, n1)
+    v0 = le[:, None] * n0 / nn0[:, None]  # n0 / h0
+    v1 = le[:, None] * n1 / nn1[:, None]
+    s0 = np.einsum("ij,ij->i", c - a, e) / ee  # foot of c on a -> b
+    s1 = np.einsum("ij,ij->i", d - a, e) / ee
+    grad = np.zeros((k, 4, 3))
+    grad[:, 0] = -(1 - s0)[:, None] * v0 - (1 - s1)[:, None] * v1
+    grad[:, 1] = -s0[:, None] * v0 - s1[:, None] * v1
+    grad[:, 2] = v0
+    grad[:, 3] = v1
+    dpsi = grad.reshape(k, 12)
+    if order == 1:
+        return psi, dpsi, None
+    unit = e / le[:, None]
+    dv0 = _dv(le, n0, nn0, unit, [(0, skew(c - b)), (1, skew(a - c)), (2, skew(e))])
+    dv1 = _dv(le, n1, nn1, unit, [(1, skew(d - a)), (0, skew(b - d)), (3, skew(a - b))])
+    ds0 = _ds(e, ee, c - a, s0, 2)
+    ds1 = _ds(e, ee, d - a, s1, 3)
+    hess = np.zeros((k, 4, 3, 12))
+    hess[:, 2] = dv0
+    hess[:, 3] = dv1
+    hess[:, 0] = (
+        -(1 - s0)[:, None, None] * dv0
+        + v0[:, :, None] * ds0[:, None, :]
+        - (1 - s1)[:, None, None] * dv1
+        + v1[:, :, None] * ds1[:, None, :]
+    )
+    hess[:, 1] = (
+        -s0[:, None, None] * dv0
+        - v0[:, :, None] * ds0[:, None, :]
+        - s1[:, None, None] * dv1
+        - v1[:, :, None] * ds1[:, None, :]
+    )
+    d2psi = hess.reshape(k, 12, 12)
+    return psi, dpsi, 0.5 * (d2psi + d2psi.transpose(0, 2, 1))
+
+
+def _dv(le: F, n: F, nn: F, unit: F, dn_blocks: list[tuple[int, F]]) -> F:
+    """(k, 3, 12) Jacobian of ``v = |e| N / |N|^2`` (``e = b - a``)."""
+    k = len(n)
+    nhat = n / np.sqrt(nn)[:, None]
+    proj = (_I3 - 2 * nhat[:, :, None] * nhat[:, None, :]) * (le / nn)[:, None, None]
+    out = np.zeros((k, 3, 12))
+    for slot, block in dn_blocks:
+        out[:, :, 3 * slot : 3 * slot + 3] += proj @ block
+    pe = (n / nn[:, None])[:, :, None] * unit[:, None, :]
+    out[:, :, 0:3] -= pe
+    out[:, :, 3:6] += pe
+    return out
+
+
+def _ds(e: F, ee: F, f: F, s: F, slot: int) -> F:
+    """(k, 12) gradient of ``s = f.e / |e|^2`` with ``f = (vertex at slot) - a``."""
+    out = np.zeros((len(e), 12))
+    out[:, 0:3] = (-e - f + 2 * s[:, None] * e) / ee[:, None]
+    out[:, 3:6] = (f - 2 * s[:, None] * e) / ee[:, None]
+    out[:, 3 * slot : 3 * slot + 3] = e / ee[:, None]
+    return out
