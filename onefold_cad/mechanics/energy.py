@@ -46,6 +46,9 @@ class Evaluation:
         hessian: (N, N) CSC, or None.
         ghost_gradient: (kcl, 3) dE/d(ghost vertex) of the clamped edges (N), with the
             gradient: minus the force the sheet puts on each clamp's ghost.
+        crease_stress: with the Hessian, its part ``k_c lbar (psi - ...) d2psi`` from
+            the creases' misfit (indefinite; Newton drops it when the Hessian is not
+            positive definite), or None without creases.
     """
 
     energy: float
@@ -53,6 +56,7 @@ class Evaluation:
     gradient: F | None = None
     hessian: sp.csc_matrix | None = None
     ghost_gradient: F | None = None
+    crease_stress: sp.csc_matrix | None = None
 
 
 def _face_angles(shell: Shell, x: F, xi: F, order: int) -> tuple[F, ...]:
@@ -211,9 +215,13 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
             coeff[shell.clamp_edges, None, None] * d2clamp
         )
     h_crease = np.zeros((kc, 14, 14))
+    stress = None
     if kc:
         dd = np.concatenate([cdpsi, -np.ones((kc, 2))], axis=1)
         h_crease = ck[:, None, None] * dd[:, :, None] * dd[:, None, :]
-        h_crease[:, :12, :12] += (ck * delta)[:, None, None] * cd2psi
+        h_stress = np.zeros((kc, 14, 14))
+        h_stress[:, :12, :12] = (ck * delta)[:, None, None] * cd2psi
+        h_crease += h_stress
+        stress = pattern.matrix(np.zeros((m, 21, 21)), np.zeros((0, 12, 12)), h_stress)
     hessian = pattern.matrix(h_face, h_edge, h_crease)
-    return Evaluation(total, parts, gradient, hessian, ghost)
+    return Evaluation(total, parts, gradient, hessian, ghost, stress)

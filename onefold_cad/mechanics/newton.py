@@ -28,11 +28,15 @@ from onefold_cad.errors import ConvergenceError
 __all__ = ["NewtonResult", "Progress", "minimize", "restrict"]
 
 F = NDArray[np.float64]
-#: ``fun(q, order) -> (energy, gradient or None, hessian or None)``.
-EnergyFunction = Callable[[F, int], tuple[float, F | None, sp.csc_matrix | None]]
+#: ``fun(q, order) -> (energy, gradient, hessian, drop)``: gradient and Hessian None
+#: below orders 1 and 2; ``drop`` None or a part of the Hessian (same structure) to
+#: leave out when the Hessian is not positive definite, before shifting it.
+EnergyFunction = Callable[
+    [F, int], tuple[float, F | None, sp.csc_matrix | None, sp.csc_matrix | None]
+]
 Progress = Callable[[int, float, float], None]
 
-_SHIFTS = (0.0, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 1.0, 1e2)
+_SHIFTS = (0.0, 1e-8, 1e-6, 1e-4, 1e-3, 1e-2, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0, 1e3)
 
 
 @dataclass(frozen=True)
@@ -125,7 +129,7 @@ def minimize(
     q = np.array(q0, dtype=float)
     free = ~np.asarray(fixed, dtype=bool)
     scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
-    energy, grad, hess = fun(q, 2)
+    energy, grad, hess, drop = fun(q, 2)
     _, block = restrict(hess, free)
 
     def residual(g: F) -> float:
@@ -134,7 +138,8 @@ def minimize(
     res = residual(grad)
     tol = max(rtol * max(force_scale, res), atol)
     shift_start, relaxed = 0, 0
-    ref: tuple[F, float, F, sp.csc_matrix, float] | None = None
+    before = (math.inf, math.inf)  # residual and energy before the last full step
+    ref: tuple[F, float, F, sp.csc_matrix, sp.csc_matrix | None, float] | None = None
     for it in range(max_iter + 1):
         if callback is not None:
             callback(it, res, energy)
@@ -144,13 +149,17 @@ def minimize(
             return NewtonResult(q, energy, grad, res, tol, it)
         if it == max_iter:
             break
-        monotone = relaxed >= watchdog
+        # Full steps may climb once (a thin shell's rotation stretches it for a step);
+        # a later one that raises both the energy and the residual ends them.
+        worse = relaxed >= 2 and res > before[0] and energy > before[1]
+        monotone = relaxed >= watchdog or worse
         if monotone and ref is not None:
             # The full steps since the reference did not lower the energy enough:
             # back to it, and search along a line there.
-            q, energy, grad, hess = ref[0].copy(), ref[1], ref[2], ref[3]
+            q, energy, grad, hess, drop = ref[0].copy(), ref[1], ref[2], ref[3], ref[4]
         taken = False
-        for p, slope, k in _directions(block(hess), grad[free], shift_start):
+        dropped = None if drop is None else block(drop)
+        for p, slope, k in _directions(block(hess), dropped, grad[free], shift_start):
             if monotone:
                 accepted = _line_search(fun, q, free, p, energy, slope)
                 if accepted is None:
@@ -159,7 +168,8 @@ def minimize(
                 relaxed = 0
             else:
                 if relaxed == 0:
-                    ref = (q.copy(), energy, grad, hess, slope)
+                    ref = (q.copy(), energy, grad, hess, drop, slope)
+                before = (res, energy)
                 trial = q.copy()
                 trial[free] += p
                 e = fun(trial, 0)[0]
@@ -167,7 +177,7 @@ def minimize(
                     continue
                 assert ref is not None
                 slack = 1e-13 * max(abs(ref[1]), 1e-300)
-                relaxed = 0 if e <= ref[1] + 1e-4 * ref[4] + slack else relaxed + 1
+                relaxed = 0 if e <= ref[1] + 1e-4 * ref[5] + slack else relaxed + 1
                 q, energy = trial, e
             shift_start = max(k - 1, 0)
             taken = True
@@ -179,7 +189,7 @@ def minimize(
                 iterations=it,
                 residual=res,
             )
-        energy, grad, hess = fun(q, 2)
+        energy, grad, hess, drop = fun(q, 2)
         res = residual(grad)
     raise ConvergenceError(
         f"Newton did not converge in {max_iter} iterations: residual {res:.3g} N "
@@ -189,14 +199,22 @@ def minimize(
     )
 
 
-def _directions(hf: sp.csc_matrix, gf: F, shift_start: int):
-    """Newton directions ``p`` with ``slope = g.p < 0`` from ``(H + lambda diag|H|) p = -g``,
-    for growing shifts ``lambda`` (only positive definite matrices are used)."""
+def _directions(hf: sp.csc_matrix, dropped: sp.csc_matrix | None, gf: F, shift_start: int):
+    """Newton directions ``p`` with ``slope = g.p < 0``, from ``H p = -g`` where ``H`` is
+    positive definite, else from ``H - dropped`` (if given), then from that matrix
+    plus growing shifts ``lambda diag|H|``. Yields ``(p, slope, k)``, ``k`` the shift's
+    index (0: unshifted)."""
     diag = np.abs(hf.diagonal())
     diag = np.where(diag > 0, diag, max(float(diag.max(initial=0.0)), 1.0))
-    for k in range(shift_start, len(_SHIFTS)):
-        lam = _SHIFTS[k]
-        a = hf if lam == 0 else (hf + sp.diags(lam * diag)).tocsc()
+    base = hf if dropped is None else (hf - dropped).tocsc()
+    tries: list[tuple[int, sp.csc_matrix | None]] = []
+    if shift_start == 0:
+        tries.append((0, hf))
+        if dropped is not None:
+            tries.append((0, base))
+    tries += [(k, None) for k in range(max(shift_start, 1), len(_SHIFTS))]
+    for k, matrix in tries:
+        a = matrix if matrix is not None else (base + sp.diags(_SHIFTS[k] * diag)).tocsc()
         lu, definite = _factor(a)
         if lu is None or not definite:
             continue
