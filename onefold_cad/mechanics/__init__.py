@@ -29,7 +29,6 @@ from onefold_cad.mechanics.newton import NewtonResult, minimize
 from onefold_cad.mechanics.plastic import PlasticState
 from onefold_cad.mechanics.shell import (
     Shell,
-    clamp_ghosts_of,
     director_angles,
     flat_positions,
     hinge_stiffness,
@@ -52,7 +51,6 @@ __all__ = [
     "Shell",
     "ShellMaterial",
     "build_mesh",
-    "clamp_ghosts_of",
     "director_angles",
     "evaluate",
     "flat_positions",

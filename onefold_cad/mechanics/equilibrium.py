@@ -65,9 +65,7 @@ class Equilibrium:
         q: (N,) the state (see ``shell``).
         positions: (n, 3) node positions (m).
         energy: total energy (J); ``parts`` its terms.
-        reactions: (n, 3) support forces on the sheet (N), zero at free coordinates;
-            a clamp's ghost force is shared by its edge's two nodes (the clamp's
-            moment is in ``director_reactions``, not here).
+        reactions: (n, 3) support forces on the sheet (N), zero at free coordinates.
         director_reactions: (n_dir,) support moments at fixed director angles (N m).
         contacts: (n,) bool, nodes on the ground.
         iterations: Newton steps over all passes; ``passes`` the solves.
@@ -114,7 +112,7 @@ def _newton(
 ) -> NewtonResult:
     def fun(state: F, order: int):
         ev = evaluate(shell, state, order)
-        return ev.energy, ev.gradient, ev.hessian, ev.crease_stress
+        return ev.energy, ev.gradient, ev.hessian
 
     mat = shell.material
     x = unpack(shell.mesh, q)[0]
@@ -228,11 +226,6 @@ def solve(
             fixed_final[3 * np.flatnonzero(active) + 1] = True
     react = np.where(fixed_final, ev.gradient, 0.0)
     node_react = react[: 3 * n].reshape(n, 3).copy()
-    if len(shell.clamp_edges):
-        # A clamp's ghost is a support too: its force goes to the edge's nodes.
-        ends = mesh.edges[shell.clamp_edges]
-        for j in range(2):
-            np.add.at(node_react, ends[:, j], ev.ghost_gradient / 2)
     return Equilibrium(
         q=q,
         positions=q[: 3 * n].reshape(n, 3).copy(),
@@ -380,7 +373,7 @@ def form_sheet(
         flat = shell.with_changes(rest_curvature=np.zeros_like(shell.rest_curvature))
         eq = solve_directors(flat, q0, **options)
     else:
-        q0 = np.concatenate([p.ravel(), director_angles(mesh, p, normals)])
+        q0 = np.concatenate([p.ravel(), director_angles(shell, p, normals)])
         eq = solve(shell, q0, fixed=np.arange(mesh.n_dofs), **options)  # type: ignore[arg-type]
     b = second_fundamental_form(shell, eq.q)
     state, work = plastic.form(shell.material, shell.form, b, shell.ref_area)

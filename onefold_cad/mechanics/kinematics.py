@@ -201,3 +201,168 @@ def _ds(e: F, ee: F, f: F, s: F, slot: int) -> F:
     out[:, 3:6] = (f - 2 * s[:, None] * e) / ee[:, None]
     out[:, 3 * slot : 3 * slot + 3] = e / ee[:, None]
     return out
+
+
+def unit_derivatives(e: F) -> tuple[F, F, F]:
+    """``t = e / |e|`` with its Jacobian (k, 3, 3) and Hessian (k, 3, 3, 3) in ``e``."""
+    length = np.linalg.norm(e, axis=1)
+    t = e / length[:, None]
+    dt = (_I3 - t[:, :, None] * t[:, None, :]) / length[:, None, None]
+    tt = t[:, :, None, None]
+    d2t = (
+        -(
+            _I3[None, :, :, None] * t[:, None, None, :]
+            + _I3[None, :, None, :] * t[:, None, :, None]
+            + _I3[None, None, :, :] * tt
+            - 3 * tt * t[:, None, :, None] * t[:, None, None, :]
+        )
+        / (length**2)[:, None, None, None]
+    )
+    return t, dt, d2t
+
+
+def transported_director(
+    t0: F, r0: F, e: F, theta: F, order: int = 2
+) -> tuple[F, F | None, F | None]:
+    """Directors ``d = cos(theta) r + sin(theta) t x r``, ``r`` the reference director ``r0``
+    parallel-transported from the reference edge direction ``t0`` to ``t = e / |e|``.
+
+    Args:
+        t0, r0: (k, 3) unit reference edge directions and directors (``r0 . t0 = 0``).
+        e: (k, 3) current edge vectors; theta: (k,) angles (rad) about ``t``.
+        order: 0, 1 or 2.
+
+    Returns:
+        d: (k, 3); dd: (k, 3, 4) in ``(e, theta)``; d2d: (k, 3, 4, 4).
+    """
+    t, dt, d2t = unit_derivatives(e)
+    c = np.einsum("ij,ij->i", t0, t)
+    # An edge turned back on its reference direction has no transport: NaN there.
+    w = np.where(c > -1 + 1e-9, 1.0, np.nan) / np.maximum(1.0 + c, 1e-300)
+    s = np.einsum("ij,ij->i", r0, t)
+    alpha = s * w
+    plus = t0 + t
+    r = r0 - alpha[:, None] * plus
+    q = np.cross(t, r)
+    cos, sin = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    d = cos * r + sin * q
+    if order == 0:
+        return d, None, None
+    k = len(e)
+    a = w[:, None] * r0 - (s * w**2)[:, None] * t0  # d alpha / dt
+    r1 = -plus[:, :, None] * a[:, None, :] - alpha[:, None, None] * _I3  # dr_i / dt_j
+    q1 = -skew(r) + skew(t) @ r1
+    d_t = cos[:, :, None] * r1 + sin[:, :, None] * q1
+    dd = np.zeros((k, 3, 4))
+    dd[:, :, :3] = d_t @ dt
+    dd[:, :, 3] = -sin * r + cos * q
+    if order == 1:
+        return d, dd, None
+    big_a = -(w**2)[:, None, None] * (
+        r0[:, :, None] * t0[:, None, :] + t0[:, :, None] * r0[:, None, :]
+    )
+    big_a += (2 * s * w**3)[:, None, None] * t0[:, :, None] * t0[:, None, :]
+    r2 = -plus[:, :, None, None] * big_a[:, None, :, :]
+    r2 -= _I3[None, :, :, None] * a[:, None, None, :] + _I3[None, :, None, :] * a[:, None, :, None]
+    # q2_ijk = (e_j x dr/dt_k + e_k x dr/dt_j + t x d2r/dt_j dt_k)_i
+    eps = np.zeros((3, 3, 3))
+    eps[0, 1, 2] = eps[1, 2, 0] = eps[2, 0, 1] = 1.0
+    eps[0, 2, 1] = eps[2, 1, 0] = eps[1, 0, 2] = -1.0
+    cross_jk = np.einsum("ijl,nlk->nijk", eps, r1)  # (e_j x r1[:, :, k])_i
+    q2 = cross_jk + cross_jk.transpose(0, 1, 3, 2) + np.einsum("ijl,nj,nlab->niab", eps, t, r2)
+    d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
+    d2d = np.zeros((k, 3, 4, 4))
+    d2d[:, :, :3, :3] = np.einsum("nibc,nbj,nck->nijk", d_tt, dt, dt) + np.einsum(
+        "nib,nbjk->nijk", d_t, d2t
+    )
+    mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
+    d2d[:, :, :3, 3] = mixed
+    d2d[:, :, 3, :3] = mixed
+    d2d[:, :, 3, 3] = -d
+    return d, dd, d2d
+
+
+def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
+    """``u_i = h_i tan(phi_i) = |N| (d_i . (x_i - x_{i+1})) / (d_i . N)``: a face's
+    height over edge i times the slope of its director ``d_i`` there.
+
+    Args:
+        x: (m, 3, 3) vertex positions; d: (m, 3, 3) the directors of edges 0, 1, 2
+            (each normal to its edge).
+
+    Returns:
+        u: (m, 3); du: (m, 3, 12) and d2u: (m, 3, 12, 12) in ``(x0, x1, x2, d_i)``.
+    """
+    m = len(x)
+    edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    nn = np.einsum("ij,ij->i", normal, normal)
+    norm = np.sqrt(nn)
+    f = x - x[:, [1, 2, 0]]  # x_i - x_{i+1}
+    num = np.einsum("mij,mij->mi", d, f)
+    den = np.einsum("mij,mj->mi", d, normal)
+    u = norm[:, None] * num / den
+    if order == 0:
+        return u, None, None
+    # |N| = M: dM = M dF (F = ln|N|), d2M = M (d2F + dF dF^T).
+    dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]
+    df = dfx.reshape(m, 9)
+    dm = norm[:, None] * df
+    da = np.zeros((m, 3, 12))
+    db = np.zeros((m, 3, 12))
+    for i in range(3):
+        j = (i + 1) % 3
+        da[:, i, 3 * i : 3 * i + 3] += d[:, i]
+        da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
+        da[:, i, 9:] = f[:, i]
+        for v in range(3):
+            db[:, i, 3 * v : 3 * v + 3] = np.cross(d[:, i], edge[:, v])
+        db[:, i, 9:] = normal
+    g = norm[:, None] / den  # G = M / B
+    dg = dm[:, None, :] / den[:, :, None]
+    dg = (
+        np.concatenate([dg, np.zeros((m, 3, 3))], axis=2)
+        - (norm[:, None] / den**2)[:, :, None] * db
+    )
+    du = g[:, :, None] * da + num[:, :, None] * dg
+    if order == 1:
+        return u, du, None
+    gram = edge @ edge.transpose(0, 2, 1)
+    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
+    wn = skew(normal)
+    for j in range(3):
+        blocks[:, j, (j + 2) % 3] += wn
+        blocks[:, j, (j + 1) % 3] -= wn
+    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
+    d2f -= 2 * df[:, :, None] * df[:, None, :]
+    d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
+    d2u = np.zeros((m, 3, 12, 12))
+    for i in range(3):
+        j = (i + 1) % 3
+        d2a = np.zeros((m, 12, 12))
+        d2a[:, 3 * i : 3 * i + 3, 9:] = _I3
+        d2a[:, 3 * j : 3 * j + 3, 9:] = -_I3
+        d2a[:, 9:, :9] = d2a[:, :9, 9:].transpose(0, 2, 1)
+        d2b = np.zeros((m, 12, 12))
+        wd = skew(d[:, i])
+        for v in range(3):
+            d2b[:, 3 * v : 3 * v + 3, 3 * ((v + 2) % 3) : 3 * ((v + 2) % 3) + 3] += wd
+            d2b[:, 3 * v : 3 * v + 3, 3 * ((v + 1) % 3) : 3 * ((v + 1) % 3) + 3] -= wd
+            d2b[:, 3 * v : 3 * v + 3, 9:] = -skew(edge[:, v])
+        d2b[:, 9:, :9] = d2b[:, :9, 9:].transpose(0, 2, 1)
+        b, bb = den[:, i, None, None], db[:, i]
+        m_full = np.zeros((m, 12))
+        m_full[:, :9] = dm
+        d2g = np.zeros((m, 12, 12))
+        d2g[:, :9, :9] = d2m / b
+        d2g -= (m_full[:, :, None] * bb[:, None, :] + bb[:, :, None] * m_full[:, None, :]) / b**2
+        d2g -= norm[:, None, None] * d2b / b**2
+        d2g += 2 * norm[:, None, None] * bb[:, :, None] * bb[:, None, :] / b**3
+        ai, gi = da[:, i], dg[:, i]
+        d2u[:, i] = (
+            g[:, i, None, None] * d2a
+            + ai[:, :, None] * gi[:, None, :]
+            + gi[:, :, None] * ai[:, None, :]
+            + num[:, i, None, None] * d2g
+        )
+    return u, du, d2u

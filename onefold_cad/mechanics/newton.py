@@ -28,12 +28,9 @@ from onefold_cad.errors import ConvergenceError
 __all__ = ["NewtonResult", "Progress", "minimize", "restrict"]
 
 F = NDArray[np.float64]
-#: ``fun(q, order) -> (energy, gradient, hessian, drop)``: gradient and Hessian None
-#: below orders 1 and 2; ``drop`` None or a part of the Hessian (same structure) to
-#: leave out when the Hessian is not positive definite, before shifting it.
-EnergyFunction = Callable[
-    [F, int], tuple[float, F | None, sp.csc_matrix | None, sp.csc_matrix | None]
-]
+#: ``fun(q, order) -> (energy, gradient, hessian)``, gradient and Hessian None below
+#: orders 1 and 2; the Hessian's structure must not change between calls.
+EnergyFunction = Callable[[F, int], tuple[float, F | None, sp.csc_matrix | None]]
 Progress = Callable[[int, float, float], None]
 
 _SHIFTS = (0.0, 1e-8, 1e-6, 1e-4, 1e-3, 1e-2, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0, 1e3)
@@ -129,7 +126,7 @@ def minimize(
     q = np.array(q0, dtype=float)
     free = ~np.asarray(fixed, dtype=bool)
     scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
-    energy, grad, hess, drop = fun(q, 2)
+    energy, grad, hess = fun(q, 2)
     _, block = restrict(hess, free)
 
     def residual(g: F) -> float:
@@ -139,7 +136,7 @@ def minimize(
     tol = max(rtol * max(force_scale, res), atol)
     shift_start, relaxed = 0, 0
     before = (math.inf, math.inf)  # residual and energy before the last full step
-    ref: tuple[F, float, F, sp.csc_matrix, sp.csc_matrix | None, float] | None = None
+    ref: tuple[F, float, F, sp.csc_matrix, float] | None = None
     for it in range(max_iter + 1):
         if callback is not None:
             callback(it, res, energy)
@@ -156,10 +153,9 @@ def minimize(
         if monotone and ref is not None:
             # The full steps since the reference did not lower the energy enough:
             # back to it, and search along a line there.
-            q, energy, grad, hess, drop = ref[0].copy(), ref[1], ref[2], ref[3], ref[4]
+            q, energy, grad, hess = ref[0].copy(), ref[1], ref[2], ref[3]
         taken = False
-        dropped = None if drop is None else block(drop)
-        for p, slope, k in _directions(block(hess), dropped, grad[free], shift_start):
+        for p, slope, k in _directions(block(hess), grad[free], shift_start):
             if monotone:
                 accepted = _line_search(fun, q, free, p, energy, slope)
                 if accepted is None:
@@ -168,7 +164,7 @@ def minimize(
                 relaxed = 0
             else:
                 if relaxed == 0:
-                    ref = (q.copy(), energy, grad, hess, drop, slope)
+                    ref = (q.copy(), energy, grad, hess, slope)
                 before = (res, energy)
                 trial = q.copy()
                 trial[free] += p
@@ -177,7 +173,7 @@ def minimize(
                     continue
                 assert ref is not None
                 slack = 1e-13 * max(abs(ref[1]), 1e-300)
-                relaxed = 0 if e <= ref[1] + 1e-4 * ref[5] + slack else relaxed + 1
+                relaxed = 0 if e <= ref[1] + 1e-4 * ref[4] + slack else relaxed + 1
                 q, energy = trial, e
             shift_start = max(k - 1, 0)
             taken = True
@@ -189,7 +185,7 @@ def minimize(
                 iterations=it,
                 residual=res,
             )
-        energy, grad, hess, drop = fun(q, 2)
+        energy, grad, hess = fun(q, 2)
         res = residual(grad)
     raise ConvergenceError(
         f"Newton did not converge in {max_iter} iterations: residual {res:.3g} N "
@@ -199,22 +195,15 @@ def minimize(
     )
 
 
-def _directions(hf: sp.csc_matrix, dropped: sp.csc_matrix | None, gf: F, shift_start: int):
-    """Newton directions ``p`` with ``slope = g.p < 0``, from ``H p = -g`` where ``H`` is
-    positive definite, else from ``H - dropped`` (if given), then from that matrix
-    plus growing shifts ``lambda diag|H|``. Yields ``(p, slope, k)``, ``k`` the shift's
-    index (0: unshifted)."""
+def _directions(hf: sp.csc_matrix, gf: F, shift_start: int):
+    """Newton directions ``p`` with ``slope = g.p < 0`` from ``(H + lambda diag|H|) p = -g``
+    for growing shifts ``lambda`` (only positive definite matrices are used).
+    Yields ``(p, slope, k)``, ``k`` the shift's index (0: unshifted)."""
     diag = np.abs(hf.diagonal())
     diag = np.where(diag > 0, diag, max(float(diag.max(initial=0.0)), 1.0))
-    base = hf if dropped is None else (hf - dropped).tocsc()
-    tries: list[tuple[int, sp.csc_matrix | None]] = []
-    if shift_start == 0:
-        tries.append((0, hf))
-        if dropped is not None:
-            tries.append((0, base))
-    tries += [(k, None) for k in range(max(shift_start, 1), len(_SHIFTS))]
-    for k, matrix in tries:
-        a = matrix if matrix is not None else (base + sp.diags(_SHIFTS[k] * diag)).tocsc()
+    for k in range(shift_start, len(_SHIFTS)):
+        lam = _SHIFTS[k]
+        a = hf if lam == 0 else (hf + sp.diags(lam * diag)).tocsc()
         lu, definite = _factor(a)
         if lu is None or not definite:
             continue

@@ -15,13 +15,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.mechanics.kinematics import dihedral, face_metric
+from onefold_cad.mechanics.kinematics import face_metric, transported_director
 from onefold_cad.mechanics.material import ShellMaterial, strain_form
-from onefold_cad.mechanics.mesh import BOUNDARY, INTERIOR, SheetMesh
+from onefold_cad.mechanics.mesh import SheetMesh
 
 __all__ = [
     "Shell",
-    "clamp_ghosts_of",
     "director_angles",
     "hinge_stiffness",
     "flat_positions",
@@ -48,11 +47,10 @@ class Shell:
             valley: the faces' normals turn towards each other).
         crease_stiffness: (kc,) hinge stiffness ``k_c`` per unit length (N m/m per rad^2).
         gravity: (3,) acceleration (m/s^2), e.g. ``(0, 0, -9.80665)``.
-        clamp_edges: (kcl,) boundary edges whose director is held in a fixed
-            direction (a clamp): their director angle is measured from the normal
-            of a ghost face through the edge and ``clamp_ghosts`` (so a clamped
-            edge's angle 0, held fixed, is the clamp; fix its nodes too).
-        clamp_ghosts: (kcl, 3) the ghost vertices (m), fixed.
+
+    Director angles are measured about each edge from its reference director
+    (``edge_frames``: made in the reference form, carried along the edge by
+    parallel transport), so a clamp is an edge whose nodes and angle are held.
     """
 
     mesh: SheetMesh
@@ -62,8 +60,6 @@ class Shell:
     crease_angle: F
     crease_stiffness: F
     gravity: F
-    clamp_edges: NDArray[np.int64]
-    clamp_ghosts: F
 
     @classmethod
     def create(
@@ -76,8 +72,6 @@ class Shell:
         crease_angle: ArrayLike = 0.0,
         crease_stiffness: ArrayLike | None = None,
         gravity: ArrayLike = (0.0, 0.0, 0.0),
-        clamp_edges: ArrayLike = (),
-        clamp_ghosts: ArrayLike | None = None,
     ) -> Shell:
         """A shell; defaults: flat reference, flat rest form, crease set angle 0 and
         stiffness ``hinge_stiffness(material, crease_angle)``, no gravity."""
@@ -91,13 +85,6 @@ class Shell:
             stiff = hinge_stiffness(material, angle)
         else:
             stiff = np.broadcast_to(np.asarray(crease_stiffness, dtype=float), (kc,)).copy()
-        clamps = np.asarray(clamp_edges, dtype=np.int64).ravel()
-        if np.any(mesh.edge_kind[clamps] != BOUNDARY):
-            raise InvalidParameterError("clamp_edges", "a clamped edge must be a boundary edge")
-        if clamp_ghosts is None:
-            ghosts = clamp_ghosts_of(mesh, ref, clamps)
-        else:
-            ghosts = np.array(clamp_ghosts, dtype=float).reshape(len(clamps), 3)
         return cls(
             mesh=mesh,
             material=material,
@@ -106,8 +93,6 @@ class Shell:
             crease_angle=angle,
             crease_stiffness=stiff,
             gravity=np.asarray(gravity, dtype=float).reshape(3),
-            clamp_edges=clamps,
-            clamp_ghosts=ghosts,
         )
 
     def with_changes(self, **changes: object) -> Shell:
@@ -129,6 +114,41 @@ class Shell:
     def form(self) -> F:
         """(m, 3, 3) the quadratic form ``K`` of the strain energies (``material.strain_form``)."""
         return strain_form(self.ref_metric, self.material.poisson)
+
+    @cached_property
+    def edge_frames(self) -> tuple[F, F]:
+        """(k, 3) each edge's reference direction ``t0`` and reference director ``r0``:
+        the reference form's edge direction and the mean of its faces' normals there
+        (normal to the edge)."""
+        mesh, p = self.mesh, self.reference
+        t0 = p[mesh.edges[:, 1]] - p[mesh.edges[:, 0]]
+        t0 /= np.linalg.norm(t0, axis=1)[:, None]
+        tri = p[mesh.triangles]
+        normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        faces = mesh.edge_faces
+        r0 = normal[faces[:, 0]] + np.where(faces[:, 1:] >= 0, normal[faces[:, 1]], 0.0)
+        r0 -= np.einsum("ij,ij->i", r0, t0)[:, None] * t0
+        return t0, r0 / np.linalg.norm(r0, axis=1)[:, None]
+
+    @cached_property
+    def edge_maps(self) -> F:
+        """(m, 3, 4, 12) d(edge vector, director angle) of each face edge over the face's
+        (9 coordinates, 3 director angles)."""
+        mesh = self.mesh
+        tri = mesh.triangles
+        m = len(tri)
+        out = np.zeros((m, 3, 4, 12))
+        ends = mesh.edges[mesh.face_edges]
+        rows = np.arange(m)
+        for i in range(3):
+            a_slot = np.argmax(tri == ends[:, i, 0, None], axis=1)
+            b_slot = np.argmax(tri == ends[:, i, 1, None], axis=1)
+            for c in range(3):
+                out[rows, i, c, 3 * a_slot + c] = -1.0
+                out[rows, i, c, 3 * b_slot + c] = 1.0
+            out[:, i, 3, 9 + i] = 1.0
+        return out
 
     @cached_property
     def node_mass(self) -> F:
@@ -160,55 +180,36 @@ def hinge_stiffness(material: ShellMaterial, set_angle: ArrayLike, bend_radius: 
     return material.bending_stiffness / length
 
 
-def clamp_ghosts_of(
-    mesh: SheetMesh, x: ArrayLike, edges: ArrayLike, normal: ArrayLike = (0, 0, 1)
-) -> F:
-    """(kcl, 3) ghost vertices that clamp boundary ``edges`` with directors along ``normal``.
-
-    The ghost lies outside the sheet, so that the ghost face through the edge
-    (as it is at positions ``x``, (n, 3)) has the unit normal ``normal``.
-    """
-    p = np.asarray(x, dtype=float)
-    e = mesh.edges[np.asarray(edges, dtype=np.int64).ravel()]
-    a, b = p[e[:, 0]], p[e[:, 1]]
-    nrm = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
-    return (a + b) / 2 + np.cross(b - a, nrm)
-
-
-def director_angles(mesh: SheetMesh, x: ArrayLike, normals: ArrayLike) -> F:
+def director_angles(shell: Shell, x: ArrayLike, normals: ArrayLike) -> F:
     """(n_dir,) the director angles that put every edge's director along a given normal.
 
     Use it to impose a known smooth form: with the form's unit normals at the
-    edge midpoints the faces' second fundamental forms are accurate to O(h).
+    edge midpoints the faces' second fundamental forms are accurate to O(h^2).
     (Vertex positions alone leave free boundary directors, which an energy
     minimisation relaxes; for a form imposed as a whole they must be imposed too.)
 
     Args:
+        shell: the model (its reference directors).
         x: (n, 3) node positions (m).
         normals: (n_dir, 3) the surface normal at each director's edge midpoint, on
             the side of that director's face (``T0``; a crease's second director:
-            ``T1``), oriented like the faces' normals. Only the component normal to
-            the edge is used.
+            ``T1``), oriented like the faces' normals. Only the part normal to the
+            edge is used.
+
+    Raises:
+        InvalidParameterError: an edge points against its reference direction.
     """
+    mesh = shell.mesh
     p = np.asarray(x, dtype=float)
     d = np.asarray(normals, dtype=float).reshape(mesh.n_directors, 3)
-    k = mesh.n_edges
-    edge = np.concatenate([np.arange(k), mesh.crease_edges])
-    face = np.concatenate([mesh.edge_faces[:, 0], mesh.edge_faces[mesh.crease_edges, 1]])
-    side = np.concatenate([np.zeros(k, dtype=np.int64), np.ones(len(mesh.crease_edges), np.int64)])
-    a, b = p[mesh.edges[edge, 0]], p[mesh.edges[edge, 1]]
-    c = p[mesh.edge_opposite[edge, side]]
-    tri = p[mesh.triangles[face]]
-    n_face = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    n_face /= np.linalg.norm(n_face, axis=1)[:, None]
-    unit = (b - a) / np.linalg.norm(b - a, axis=1)[:, None]
-    inward = (c - a) - np.einsum("ij,ij->i", c - a, unit)[:, None] * unit
-    inward /= np.linalg.norm(inward, axis=1)[:, None]
-    phi = np.arctan2(np.einsum("ij,ij->i", d, inward), np.einsum("ij,ij->i", d, n_face))
-    interior = np.flatnonzero(mesh.edge_kind == INTERIOR)
-    verts = np.concatenate([mesh.edges[interior], mesh.edge_opposite[interior]], axis=1)
-    phi[interior] -= dihedral(p[verts], 0)[0] / 2
-    return phi
+    edge = np.concatenate([np.arange(mesh.n_edges), mesh.crease_edges])
+    t0, r0 = shell.edge_frames
+    vec = p[mesh.edges[edge, 1]] - p[mesh.edges[edge, 0]]
+    if np.any(np.einsum("ij,ij->i", vec, t0[edge]) <= 0):
+        raise InvalidParameterError("x", "an edge points against its reference direction")
+    r = transported_director(t0[edge], r0[edge], vec, np.zeros(len(edge)), 0)[0]
+    t = vec / np.linalg.norm(vec, axis=1)[:, None]
+    return np.arctan2(np.einsum("ij,ij->i", np.cross(r, d), t), np.einsum("ij,ij->i", r, d))
 
 
 def flat_positions(mesh: SheetMesh) -> F:

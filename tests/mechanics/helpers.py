@@ -45,12 +45,11 @@ def clamped_edge(mesh: SheetMesh, x0: float = 0.0):
 
 def cantilever(mesh: SheetMesh, material: ShellMaterial, gravity: float, height: float = 0.0):
     """A strip clamped level along x = 0 at z = height under gravity (m/s^2): the shell
-    (its reference and clamps at that height) and its fixed DOFs."""
+    and its fixed DOFs (the clamped nodes, and the clamped edges' director angles at 0,
+    their reference directors being the flat sheet's normal)."""
     edges, nodes = clamped_edge(mesh)
     ref = flat_positions(mesh) + [0.0, 0.0, height]
-    shell = Shell.create(
-        mesh, material, reference=ref, gravity=(0.0, 0.0, -gravity), clamp_edges=edges
-    )
+    shell = Shell.create(mesh, material, reference=ref, gravity=(0.0, 0.0, -gravity))
     fixed = np.concatenate([(3 * nodes[:, None] + np.arange(3)).ravel(), 3 * mesh.n_nodes + edges])
     return shell, fixed
 

@@ -30,12 +30,12 @@ def _rosenbrock(q, order):
     x, y = q
     e = (1 - x) ** 2 + 100 * (y - x**2) ** 2
     if order == 0:
-        return e, None, None, None
+        return e, None, None
     g = np.array([-2 * (1 - x) - 400 * x * (y - x**2), 200 * (y - x**2)])
     h = np.array([[2 - 400 * (y - x**2) + 800 * x**2, -400 * x], [-400 * x, 200.0]])
     full = sp.csc_matrix(np.ones((2, 2)))  # a fixed structure, as minimize requires
     full.data[:] = h.T.ravel()
-    return e, g, full, None
+    return e, g, full
 
 
 def test_indefinite_start_and_a_fixed_unknown():
