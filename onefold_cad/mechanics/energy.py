@@ -134,8 +134,9 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
     jz[:, :, :9, :9] = np.eye(9)
     jz[:, :, 9:, :] = dd_y
     d2u = jz.transpose(0, 1, 3, 2) @ d2u_z @ jz
-    d2d_y = maps[:, :, None].transpose(0, 1, 2, 4, 3) @ d2d_all[fd] @ maps[:, :, None]
-    d2u += np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_y)
+    # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
+    curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
+    d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
     q_uu = 2 * (_B.T @ kform @ _B)
     h_face = du.transpose(0, 2, 1) @ (stiff[:, None, None] * q_uu) @ du
     h_face += np.einsum("mi,miab->mab", w_u, d2u)

@@ -41,6 +41,30 @@ def _metric_hessian() -> F:
 METRIC_HESSIAN = _metric_hessian()
 
 
+def _slope_patterns() -> tuple[F, F, F]:
+    """Constant pieces of the Hessians in ``director_slopes`` over ``(x0, x1, x2, d_i)``:
+    ``A = d_i . (x_i - x_{i+1})`` has (3, 12, 12) Hessians ``d2A_i``; ``B = d_i . N`` has
+    ``d2B_i = sum_c d_ic P1[c] + sum_(v, c) E_vc P2[v, c]`` (E_v the edge vectors)."""
+    d2a = np.zeros((3, 12, 12))
+    for i in range(3):
+        for v, sign in ((i, 1.0), ((i + 1) % 3, -1.0)):
+            d2a[i, 3 * v : 3 * v + 3, 9:] += sign * _I3
+            d2a[i, 9:, 3 * v : 3 * v + 3] += sign * _I3
+    basis = skew(_I3)  # [e_c]x
+    p1 = np.zeros((3, 12, 12))
+    p2 = np.zeros((3, 3, 12, 12))
+    for v in range(3):
+        nxt, prv = 3 * ((v + 2) % 3), 3 * ((v + 1) % 3)
+        p1[:, 3 * v : 3 * v + 3, nxt : nxt + 3] += basis
+        p1[:, 3 * v : 3 * v + 3, prv : prv + 3] -= basis
+        p2[v, :, 3 * v : 3 * v + 3, 9:] -= basis
+        p2[v, :, 9:, 3 * v : 3 * v + 3] -= basis.transpose(0, 2, 1)
+    return d2a, p1, p2.reshape(9, 144)
+
+
+_SLOPE_PATTERNS = _slope_patterns()
+
+
 def face_metric(x: F) -> tuple[F, F]:
     """The metric ``(a11, a12, a22)`` of ``x(u, v) = x0 + u e1 + v e2`` and its gradient.
 
@@ -265,16 +289,14 @@ def transported_director(
     r2 = -plus[:, :, None, None] * big_a[:, None, :, :]
     r2 -= _I3[None, :, :, None] * a[:, None, None, :] + _I3[None, :, None, :] * a[:, None, :, None]
     # q2_ijk = (e_j x dr/dt_k + e_k x dr/dt_j + t x d2r/dt_j dt_k)_i
-    eps = np.zeros((3, 3, 3))
-    eps[0, 1, 2] = eps[1, 2, 0] = eps[2, 0, 1] = 1.0
-    eps[0, 2, 1] = eps[2, 1, 0] = eps[1, 0, 2] = -1.0
-    cross_jk = np.einsum("ijl,nlk->nijk", eps, r1)  # (e_j x r1[:, :, k])_i
-    q2 = cross_jk + cross_jk.transpose(0, 1, 3, 2) + np.einsum("ijl,nj,nlab->niab", eps, t, r2)
+    cross_jk = np.stack([np.cross(_I3[j], r1.transpose(0, 2, 1)) for j in range(3)], axis=2)
+    cross_jk = cross_jk.transpose(0, 3, 2, 1)  # (k, i, j, k')
+    t_r2 = np.cross(t[:, None, None, :], r2.transpose(0, 2, 3, 1)).transpose(0, 3, 1, 2)
+    q2 = cross_jk + cross_jk.transpose(0, 1, 3, 2) + t_r2
     d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
     d2d = np.zeros((k, 3, 4, 4))
-    d2d[:, :, :3, :3] = np.einsum("nibc,nbj,nck->nijk", d_tt, dt, dt) + np.einsum(
-        "nib,nbjk->nijk", d_t, d2t
-    )
+    dtt = dt.transpose(0, 2, 1)[:, None]
+    d2d[:, :, :3, :3] = dtt @ d_tt @ dt[:, None] + np.einsum("nib,nbjk->nijk", d_t, d2t)
     mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
     d2d[:, :, :3, 3] = mixed
     d2d[:, :, 3, :3] = mixed
@@ -336,33 +358,22 @@ def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
     d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
     d2f -= 2 * df[:, :, None] * df[:, None, :]
     d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
-    d2u = np.zeros((m, 3, 12, 12))
-    for i in range(3):
-        j = (i + 1) % 3
-        d2a = np.zeros((m, 12, 12))
-        d2a[:, 3 * i : 3 * i + 3, 9:] = _I3
-        d2a[:, 3 * j : 3 * j + 3, 9:] = -_I3
-        d2a[:, 9:, :9] = d2a[:, :9, 9:].transpose(0, 2, 1)
-        d2b = np.zeros((m, 12, 12))
-        wd = skew(d[:, i])
-        for v in range(3):
-            d2b[:, 3 * v : 3 * v + 3, 3 * ((v + 2) % 3) : 3 * ((v + 2) % 3) + 3] += wd
-            d2b[:, 3 * v : 3 * v + 3, 3 * ((v + 1) % 3) : 3 * ((v + 1) % 3) + 3] -= wd
-            d2b[:, 3 * v : 3 * v + 3, 9:] = -skew(edge[:, v])
-        d2b[:, 9:, :9] = d2b[:, :9, 9:].transpose(0, 2, 1)
-        b, bb = den[:, i, None, None], db[:, i]
-        m_full = np.zeros((m, 12))
-        m_full[:, :9] = dm
-        d2g = np.zeros((m, 12, 12))
-        d2g[:, :9, :9] = d2m / b
-        d2g -= (m_full[:, :, None] * bb[:, None, :] + bb[:, :, None] * m_full[:, None, :]) / b**2
-        d2g -= norm[:, None, None] * d2b / b**2
-        d2g += 2 * norm[:, None, None] * bb[:, :, None] * bb[:, None, :] / b**3
-        ai, gi = da[:, i], dg[:, i]
-        d2u[:, i] = (
-            g[:, i, None, None] * d2a
-            + ai[:, :, None] * gi[:, None, :]
-            + gi[:, :, None] * ai[:, None, :]
-            + num[:, i, None, None] * d2g
-        )
+    # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
+    #   + dA dG^T + dG dA^T - (A / B^2)(dM dB^T + dB dM^T) + (2 A M / B^3) dB dB^T.
+    ab2 = num / den**2
+    # The dense part as V^T C V, V = (dA, dG, dM, dB): one batched product.
+    v = np.zeros((m, 3, 4, 12))
+    v[:, :, 0], v[:, :, 1], v[:, :, 3] = da, dg, db
+    v[:, :, 2, :9] = dm[:, None, :]
+    c = np.zeros((m, 3, 4, 4))
+    c[:, :, 0, 1] = c[:, :, 1, 0] = 1.0
+    c[:, :, 2, 3] = c[:, :, 3, 2] = -ab2
+    c[:, :, 3, 3] = 2 * ab2 * norm[:, None] / den
+    d2u = v.transpose(0, 1, 3, 2) @ c @ v
+    d2u[:, :, :9, :9] += (num / den)[:, :, None, None] * d2m[:, None]
+    # The constant-pattern parts: G d2A - (A M / B^2) d2B, d2B linear in d_i and in x.
+    d2b = (d @ _SLOPE_PATTERNS[1].reshape(3, 144)) + (edge.reshape(m, 1, 9) @ _SLOPE_PATTERNS[2])
+    d2u += g[:, :, None, None] * _SLOPE_PATTERNS[0] - (ab2 * norm[:, None])[:, :, None, None] * (
+        d2b.reshape(m, 3, 12, 12)
+    )
     return u, du, d2u
