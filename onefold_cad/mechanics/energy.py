@@ -77,29 +77,76 @@ def second_fundamental_form(shell: Shell, q: F) -> F:
     return director_slopes(x[mesh.triangles], d[mesh.face_directors], 0)[0] @ _B.T
 
 
-def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
-    """The energy (order 0), its gradient (1) and Hessian (2) at state ``q`` ((N,))."""
-    mesh, mat = shell.mesh, shell.material
-    x, theta = unpack(mesh, q)
-    m = mesh.n_faces
-    xf = x[mesh.triangles]
-    area, kform = shell.ref_area, shell.form
+#: Faces per chunk of the vectorised face terms (keeps the (c, 3, 12, 12) temporaries
+#: in cache).
+CHUNK = 2048
 
-    # Membrane.
+
+def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
+    """Membrane and bending of a run of faces: energies (J) and, with ``order``, the
+    (c, 12) gradients and (c, 12, 12) Hessians over the faces' own unknowns."""
+    mesh, mat = shell.mesh, shell.material
+    d_all, dd_all, d2d_all = directors
+    tri = mesh.triangles[faces]
+    c = len(tri)
+    xf = x[tri]
+    area, kform = shell.ref_area[faces], shell.form[faces]
     a, da = face_metric(xf)
-    eps = (a - shell.ref_metric) / 2
+    eps = (a - shell.ref_metric[faces]) / 2
     keps = np.einsum("mij,mj->mi", kform, eps)
     cm = area * mat.membrane_stiffness / 2
     e_mem = float(np.sum(cm * np.einsum("mi,mi->m", eps, keps)))
-
-    # Bending.
-    d_all, dd_all, d2d_all = _directors(shell, x, theta, order)
-    fd = mesh.face_directors
+    fd = mesh.face_directors[faces]
     u, du_z, d2u_z = director_slopes(xf, d_all[fd], order)
-    r = u @ _B.T - shell.rest_curvature
+    r = u @ _B.T - shell.rest_curvature[faces]
     kr = np.einsum("mij,mj->mi", kform, r)
     stiff = area * mat.bending_stiffness / 2
     e_bend = float(np.sum(stiff * np.einsum("mi,mi->m", r, kr)))
+    if order == 0:
+        return e_mem, e_bend, None, None
+    # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
+    maps = shell.edge_maps[faces]
+    dd_y = dd_all[fd] @ maps  # (c, 3, 3, 12): d d_i / d y
+    du = du_z[:, :, :9] @ np.eye(9, 12) + np.einsum("mik,mikj->mij", du_z[:, :, 9:], dd_y)
+    w_u = stiff[:, None] * (2 * kr @ _B)  # dW/du
+    g_face = np.einsum("mi,mij->mj", w_u, du)
+    g_face[:, :9] += np.einsum("mi,mij->mj", keps * cm[:, None], da)
+    if order == 1:
+        return e_mem, e_bend, g_face, None
+    jz = np.zeros((c, 3, 12, 12))  # dz/dy
+    jz[:, :, :9, :9] = np.eye(9)
+    jz[:, :, 9:, :] = dd_y
+    d2u = jz.transpose(0, 1, 3, 2) @ d2u_z @ jz
+    # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
+    curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
+    d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
+    q_uu = 2 * (_B.T @ kform @ _B)
+    h_face = du.transpose(0, 2, 1) @ (stiff[:, None, None] * q_uu) @ du
+    h_face += np.einsum("mi,miab->mab", w_u, d2u)
+    h_face[:, :9, :9] += cm[:, None, None] * (
+        0.5 * (da.transpose(0, 2, 1) @ (kform @ da))
+        + (keps @ METRIC_HESSIAN.reshape(3, 81)).reshape(c, 9, 9)
+    )
+    return e_mem, e_bend, g_face, h_face
+
+
+def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
+    """The energy (order 0), its gradient (1) and Hessian (2) at state ``q`` ((N,))."""
+    mesh = shell.mesh
+    x, theta = unpack(mesh, q)
+    m = mesh.n_faces
+    directors = _directors(shell, x, theta, order)
+    e_mem = e_bend = 0.0
+    g_face = np.empty((m, 12)) if order >= 1 else None
+    h_face = np.empty((m, 12, 12)) if order >= 2 else None
+    for start in range(0, m, CHUNK):
+        run = slice(start, min(start + CHUNK, m))
+        em, eb, g, h = _face_terms(shell, x, directors, run, order)
+        e_mem, e_bend = e_mem + em, e_bend + eb
+        if g_face is not None:
+            g_face[run] = g
+        if h_face is not None:
+            h_face[run] = h
 
     # Crease hinges: the angle between the two sides' directors.
     kc = len(mesh.crease_edges)
@@ -114,35 +161,12 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
     total = e_mem + e_bend + e_crease + e_grav
     if order == 0:
         return Evaluation(total, parts)
-
     pattern = pattern_of(mesh)
-    # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
-    maps = shell.edge_maps
-    dd_y = dd_all[fd] @ maps  # (m, 3, 3, 12): d d_i / d y
-    du = du_z[:, :, :9] @ np.eye(9, 12) + np.einsum("mik,mikj->mij", du_z[:, :, 9:], dd_y)
-    w_u = stiff[:, None] * (2 * kr @ _B)  # dW/du
-    g_face = np.einsum("mi,mij->mj", w_u, du)
-    g_face[:, :9] += np.einsum("mi,mij->mj", keps * cm[:, None], da)
     g_crease = np.zeros((kc, 2))
     g_crease[:, 0], g_crease[:, 1] = ck * delta, -ck * delta
     gradient = pattern.vector(g_face, g_crease)
     gradient[: 3 * mesh.n_nodes] += weight.ravel()
     if order == 1:
         return Evaluation(total, parts, gradient)
-
-    jz = np.zeros((m, 3, 12, 12))  # dz/dy
-    jz[:, :, :9, :9] = np.eye(9)
-    jz[:, :, 9:, :] = dd_y
-    d2u = jz.transpose(0, 1, 3, 2) @ d2u_z @ jz
-    # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
-    curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
-    d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
-    q_uu = 2 * (_B.T @ kform @ _B)
-    h_face = du.transpose(0, 2, 1) @ (stiff[:, None, None] * q_uu) @ du
-    h_face += np.einsum("mi,miab->mab", w_u, d2u)
-    h_face[:, :9, :9] += cm[:, None, None] * (
-        0.5 * (da.transpose(0, 2, 1) @ (kform @ da))
-        + (keps @ METRIC_HESSIAN.reshape(3, 81)).reshape(m, 9, 9)
-    )
     h_crease = ck[:, None, None] * np.array([[1.0, -1.0], [-1.0, 1.0]])
     return Evaluation(total, parts, gradient, pattern.matrix(h_face, h_crease))

@@ -1,11 +1,13 @@
-"""Small geometric functions of a triangle or an edge, with gradients and Hessians.
+"""Small geometric functions of a triangle, an edge or a director, with gradients
+and Hessians.
 
 Vectorised over elements. A face's 9 local variables are its vertices'
 coordinates ``(x0, x1, x2)`` (3 each, in that order); an edge's 12 are
 ``(a, b, c, d)``: the edge ``a -> b`` as it runs in its first face ``T0 = (a, b, c)``,
-and ``d`` the vertex opposite it in ``T1 = (b, a, d)``. Derivations are in
-docs/mechanics.md; tests/mechanics/test_kinematics.py checks every derivative
-against finite differences.
+and ``d`` the vertex opposite it in ``T1 = (b, a, d)``; a director's 4 are its
+edge vector and its angle. Derivations are in docs/mechanics.md;
+tests/mechanics/test_kinematics.py checks every derivative against finite
+differences.
 """
 
 from __future__ import annotations
@@ -13,7 +15,16 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["dihedral", "face_heights", "face_metric", "skew", "METRIC_HESSIAN"]
+__all__ = [
+    "METRIC_HESSIAN",
+    "dihedral",
+    "director_slopes",
+    "face_heights",
+    "face_metric",
+    "skew",
+    "transported_director",
+    "unit_derivatives",
+]
 
 F = NDArray[np.float64]
 _I3 = np.eye(3)

@@ -5,7 +5,7 @@ Edge ``i`` of a triangle is the one opposite its vertex ``i``. Every edge is sto
 in the direction it runs in its first face ``T0`` (counter-clockwise), so it runs
 the other way in ``T1``; boundary edges have ``T1 = -1``.
 
-Director angles (the bending model's extra unknowns, see ``bending``) are numbered
+Director angles (the bending model's extra unknowns, see ``energy``) are numbered
 one per edge (``0 .. k-1``, by edge id) plus a second one for each crease edge
 (``k .. k+kc-1``, in the order of ``crease_edges``): on a crease, ``T0`` uses the
 first and ``T1`` the second.
