@@ -13,6 +13,7 @@ __all__ = [
     "NoSolutionError",
     "ExportError",
     "FabricationError",
+    "ConvergenceError",
 ]
 
 
@@ -59,3 +60,20 @@ class FabricationError(OneFoldError, ValueError):
     def __init__(self, parameter: str, message: str) -> None:
         super().__init__(f"{parameter}: {message}")
         self.parameter = parameter
+
+
+class ConvergenceError(OneFoldError, RuntimeError):
+    """An iterative solver (the mechanics' Newton method) did not converge.
+
+    No unconverged state is ever returned as a result: the solver raises this
+    instead, naming its iteration count and last residual.
+
+    Attributes:
+        iterations: the steps taken.
+        residual: the last residual (N, as the solver measures it).
+    """
+
+    def __init__(self, message: str, *, iterations: int, residual: float) -> None:
+        super().__init__(message)
+        self.iterations = iterations
+        self.residual = residual

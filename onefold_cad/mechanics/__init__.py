@@ -1,0 +1,69 @@
+"""The sheet as steel: a shell model of the flat sheet and its static equilibria.
+
+Plain arrays in, plain arrays out, SI units (m, N, Pa, J). The layer imports
+nothing from the rest of onefold_cad but its errors.
+
+- ``mesh``: the triangulation (``mesh_sheet``, ``build_mesh``, ``SheetMesh``);
+- ``material``, ``shell``: the material and the model (``ShellMaterial``, ``Shell``);
+- ``kinematics``, ``energy``, ``assembly``: the energies with exact gradients and
+  sparse Hessians (``evaluate``);
+- ``plastic``: the elastic-perfectly-plastic bending law and the faces' states;
+- ``newton``, ``equilibrium``: Newton's method, supports, ground contact,
+  continuation, forming and the plastic re-solve.
+"""
+
+from onefold_cad.mechanics.energy import Evaluation, evaluate, second_fundamental_form
+from onefold_cad.mechanics.equilibrium import (
+    Equilibrium,
+    Ground,
+    PlasticResult,
+    form_sheet,
+    solve,
+    solve_directors,
+    solve_path,
+    solve_plastic,
+)
+from onefold_cad.mechanics.material import ShellMaterial
+from onefold_cad.mechanics.mesh import BOUNDARY, CREASE, INTERIOR, SheetMesh, build_mesh, mesh_sheet
+from onefold_cad.mechanics.newton import NewtonResult, minimize
+from onefold_cad.mechanics.plastic import PlasticState
+from onefold_cad.mechanics.shell import (
+    Shell,
+    director_angles,
+    flat_positions,
+    hinge_stiffness,
+    pack,
+    rigid_dofs,
+    unpack,
+)
+
+__all__ = [
+    "BOUNDARY",
+    "CREASE",
+    "INTERIOR",
+    "Equilibrium",
+    "Evaluation",
+    "Ground",
+    "NewtonResult",
+    "PlasticResult",
+    "PlasticState",
+    "SheetMesh",
+    "Shell",
+    "ShellMaterial",
+    "build_mesh",
+    "director_angles",
+    "evaluate",
+    "flat_positions",
+    "form_sheet",
+    "hinge_stiffness",
+    "mesh_sheet",
+    "minimize",
+    "pack",
+    "rigid_dofs",
+    "second_fundamental_form",
+    "solve",
+    "solve_directors",
+    "solve_path",
+    "solve_plastic",
+    "unpack",
+]

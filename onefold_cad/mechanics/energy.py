@@ -1,0 +1,172 @@
+"""The total energy of a shell and its exact gradient and sparse Hessian.
+
+``E = membrane + bending + crease + gravity`` (J), all vectorised over elements:
+
+- membrane (CST, St Venant-Kirchhoff, plane stress):
+  ``Abar E' t / 2 * Q(eps)``, ``eps = (a - abar) / 2``;
+- bending (mid-edge directors): per face ``b = 2 [[u0 + u1, u0], [u0, u0 + u2]]``,
+  ``u_i = h_i tan(phi_i)``, ``phi_i`` the angle of edge i's director from the face
+  normal (``kinematics.director_slopes``); a director is its edge's reference
+  director transported to the edge's current direction and turned by the
+  director angle about it (``kinematics.transported_director``); energy
+  ``Abar D / 2 Q(b - bbar)``;
+- crease hinges: ``k_c / 2 * lbar * (theta+ - theta- - psi_set)^2``, the angle
+  between the two sides' directors;
+- gravity: ``-sum m_i g . x_i``.
+
+``Q(s) = s^T K s`` is the isotropic form of ``material.strain_form``. A face's
+energy depends on its 9 coordinates and its 3 director angles only.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+from onefold_cad.mechanics.assembly import pattern_of
+from onefold_cad.mechanics.kinematics import (
+    METRIC_HESSIAN,
+    director_slopes,
+    face_metric,
+    transported_director,
+)
+from onefold_cad.mechanics.shell import Shell, unpack
+
+__all__ = ["Evaluation", "evaluate", "second_fundamental_form"]
+
+F = NDArray[np.float64]
+#: b = B u
+_B = np.array([[2.0, 2.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, 2.0]])
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """The energy at one state.
+
+    Attributes:
+        energy: total (J).
+        parts: the terms ``membrane``, ``bending``, ``crease``, ``gravity`` (J).
+        gradient: (N,) dE/dq (N for coordinates, N m for director angles), or None.
+        hessian: (N, N) CSC on the mesh's fixed pattern, or None.
+    """
+
+    energy: float
+    parts: dict[str, float]
+    gradient: F | None = None
+    hessian: sp.csc_matrix | None = None
+
+
+def _directors(shell: Shell, x: F, theta: F, order: int):
+    """Every director (n_dir, 3) with its derivatives in ``(edge vector, angle)``."""
+    mesh = shell.mesh
+    edge = np.concatenate([np.arange(mesh.n_edges), mesh.crease_edges])
+    t0, r0 = shell.edge_frames
+    vec = x[mesh.edges[edge, 1]] - x[mesh.edges[edge, 0]]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return transported_director(t0[edge], r0[edge], vec, theta, order)
+
+
+def second_fundamental_form(shell: Shell, q: F) -> F:
+    """(m, 3) the faces' second fundamental forms ``(b11, b12, b22)`` at state ``q`` (m)."""
+    mesh = shell.mesh
+    x, theta = unpack(mesh, q)
+    d = _directors(shell, x, theta, 0)[0]
+    return director_slopes(x[mesh.triangles], d[mesh.face_directors], 0)[0] @ _B.T
+
+
+#: Faces per chunk of the vectorised face terms (keeps the (c, 3, 12, 12) temporaries
+#: in cache).
+CHUNK = 2048
+
+
+def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
+    """Membrane and bending of a run of faces: energies (J) and, with ``order``, the
+    (c, 12) gradients and (c, 12, 12) Hessians over the faces' own unknowns."""
+    mesh, mat = shell.mesh, shell.material
+    d_all, dd_all, d2d_all = directors
+    tri = mesh.triangles[faces]
+    c = len(tri)
+    xf = x[tri]
+    area, kform = shell.ref_area[faces], shell.form[faces]
+    a, da = face_metric(xf)
+    eps = (a - shell.ref_metric[faces]) / 2
+    keps = np.einsum("mij,mj->mi", kform, eps)
+    cm = area * mat.membrane_stiffness / 2
+    e_mem = float(np.sum(cm * np.einsum("mi,mi->m", eps, keps)))
+    fd = mesh.face_directors[faces]
+    u, du_z, d2u_z = director_slopes(xf, d_all[fd], order)
+    r = u @ _B.T - shell.rest_curvature[faces]
+    kr = np.einsum("mij,mj->mi", kform, r)
+    stiff = area * mat.bending_stiffness / 2
+    e_bend = float(np.sum(stiff * np.einsum("mi,mi->m", r, kr)))
+    if order == 0:
+        return e_mem, e_bend, None, None
+    # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
+    maps = shell.edge_maps[faces]
+    dd_y = dd_all[fd] @ maps  # (c, 3, 3, 12): d d_i / d y
+    du = du_z[:, :, :9] @ np.eye(9, 12) + np.einsum("mik,mikj->mij", du_z[:, :, 9:], dd_y)
+    w_u = stiff[:, None] * (2 * kr @ _B)  # dW/du
+    g_face = np.einsum("mi,mij->mj", w_u, du)
+    g_face[:, :9] += np.einsum("mi,mij->mj", keps * cm[:, None], da)
+    if order == 1:
+        return e_mem, e_bend, g_face, None
+    jz = np.zeros((c, 3, 12, 12))  # dz/dy
+    jz[:, :, :9, :9] = np.eye(9)
+    jz[:, :, 9:, :] = dd_y
+    d2u = jz.transpose(0, 1, 3, 2) @ d2u_z @ jz
+    # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
+    curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
+    d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
+    q_uu = 2 * (_B.T @ kform @ _B)
+    h_face = du.transpose(0, 2, 1) @ (stiff[:, None, None] * q_uu) @ du
+    h_face += np.einsum("mi,miab->mab", w_u, d2u)
+    h_face[:, :9, :9] += cm[:, None, None] * (
+        0.5 * (da.transpose(0, 2, 1) @ (kform @ da))
+        + (keps @ METRIC_HESSIAN.reshape(3, 81)).reshape(c, 9, 9)
+    )
+    return e_mem, e_bend, g_face, h_face
+
+
+def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
+    """The energy (order 0), its gradient (1) and Hessian (2) at state ``q`` ((N,))."""
+    mesh = shell.mesh
+    x, theta = unpack(mesh, q)
+    m = mesh.n_faces
+    directors = _directors(shell, x, theta, order)
+    e_mem = e_bend = 0.0
+    g_face = np.empty((m, 12)) if order >= 1 else None
+    h_face = np.empty((m, 12, 12)) if order >= 2 else None
+    for start in range(0, m, CHUNK):
+        run = slice(start, min(start + CHUNK, m))
+        em, eb, g, h = _face_terms(shell, x, directors, run, order)
+        e_mem, e_bend = e_mem + em, e_bend + eb
+        if g_face is not None:
+            g_face[run] = g
+        if h_face is not None:
+            h_face[run] = h
+
+    # Crease hinges: the angle between the two sides' directors.
+    kc = len(mesh.crease_edges)
+    delta = theta[mesh.crease_edges] - theta[mesh.n_edges :] - shell.crease_angle
+    ck = shell.crease_stiffness * shell.crease_length
+    e_crease = float(np.sum(ck * delta**2 / 2))
+
+    # Gravity.
+    weight = -shell.node_mass[:, None] * shell.gravity[None, :]  # dE/dx, (n, 3)
+    e_grav = float(np.sum(weight * x))
+    parts = {"membrane": e_mem, "bending": e_bend, "crease": e_crease, "gravity": e_grav}
+    total = e_mem + e_bend + e_crease + e_grav
+    if order == 0:
+        return Evaluation(total, parts)
+    pattern = pattern_of(mesh)
+    g_crease = np.zeros((kc, 2))
+    g_crease[:, 0], g_crease[:, 1] = ck * delta, -ck * delta
+    gradient = pattern.vector(g_face, g_crease)
+    gradient[: 3 * mesh.n_nodes] += weight.ravel()
+    if order == 1:
+        return Evaluation(total, parts, gradient)
+    h_crease = ck[:, None, None] * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    return Evaluation(total, parts, gradient, pattern.matrix(h_face, h_crease))

@@ -1,0 +1,380 @@
+"""Static equilibrium of a shell: supports, the ground as contact, reactions, and
+the plastic re-solve.
+
+The ground is the plane ``z = height``, an active set of touching nodes:
+``anchored`` fixes a touching node in x, y and z, ``frictionless`` in z only (the
+caller then supplies a minimal in-plane restraint). Nodes that sink below the
+ground join the set (put on it), nodes whose reaction pulls leave it; repeat
+until neither happens. Reactions (N) are the energy's gradient at the fixed
+coordinates: the forces the supports exert on the sheet.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from onefold_cad.errors import ConvergenceError, InvalidParameterError
+from onefold_cad.mechanics import plastic
+from onefold_cad.mechanics.energy import evaluate, second_fundamental_form
+from onefold_cad.mechanics.newton import NewtonResult, Progress, minimize
+from onefold_cad.mechanics.shell import Shell, director_angles, unpack
+
+__all__ = [
+    "Equilibrium",
+    "Ground",
+    "PlasticResult",
+    "form_sheet",
+    "solve",
+    "solve_directors",
+    "solve_path",
+    "solve_plastic",
+]
+
+F = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Ground:
+    """The ground plane as a one-sided contact.
+
+    Attributes:
+        mode: ``"anchored"`` (touching nodes fixed in x, y, z) or ``"frictionless"`` (z only).
+        height: the plane's z (m).
+    """
+
+    mode: Literal["anchored", "frictionless"] = "anchored"
+    height: float = 0.0
+
+    def __post_init__(self) -> None:
+        if self.mode not in ("anchored", "frictionless"):
+            raise InvalidParameterError(
+                "supports", f"must be anchored or frictionless, got {self.mode!r}"
+            )
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """A converged equilibrium.
+
+    Attributes:
+        q: (N,) the state (see ``shell``).
+        positions: (n, 3) node positions (m).
+        energy: total energy (J); ``parts`` its terms.
+        reactions: (n, 3) support forces on the sheet (N), zero at free coordinates.
+        director_reactions: (n_dir,) support moments at fixed director angles (N m).
+        contacts: (n,) bool, nodes on the ground.
+        iterations: Newton steps over all passes; ``passes`` the solves.
+        residual: the last solve's residual (N) and ``tolerance`` its bound.
+    """
+
+    q: F
+    positions: F
+    energy: float
+    parts: dict[str, float]
+    reactions: F
+    director_reactions: F
+    contacts: NDArray[np.bool_]
+    iterations: int
+    passes: int
+    residual: float
+    tolerance: float
+
+
+def _dof_mask(shell: Shell, dofs: ArrayLike) -> NDArray[np.bool_]:
+    mask = np.zeros(shell.mesh.n_dofs, dtype=bool)
+    d = np.asarray(dofs, dtype=np.int64).ravel()
+    if d.size:
+        mask[d] = True
+    return mask
+
+
+def _residual_scale(shell: Shell, length: float | None) -> F:
+    n = shell.mesh.n_nodes
+    length = float(np.mean(shell.mesh.edge_lengths)) if length is None else length
+    return np.concatenate([np.ones(3 * n), np.full(shell.mesh.n_directors, 1.0 / length)])
+
+
+def _newton(
+    shell: Shell,
+    q: F,
+    fixed: NDArray[np.bool_],
+    *,
+    rtol: float,
+    max_iter: int,
+    force_scale: float | None,
+    length_scale: float | None,
+    callback: Progress | None,
+) -> NewtonResult:
+    def fun(state: F, order: int):
+        ev = evaluate(shell, state, order)
+        return ev.energy, ev.gradient, ev.hessian
+
+    mat = shell.material
+    x = unpack(shell.mesh, q)[0]
+    # The membrane forces' round-off is about eps E' t |x| (measured: 1.1 times that).
+    size = max(float(np.max(np.abs(x))), float(np.ptp(shell.reference, axis=0).max()))
+    atol = 10 * np.finfo(float).eps * mat.membrane_stiffness * size
+    return minimize(
+        fun,
+        q,
+        fixed,
+        residual_scale=_residual_scale(shell, length_scale),
+        force_scale=shell.weight if force_scale is None else force_scale,
+        rtol=rtol,
+        atol=atol,
+        max_iter=max_iter,
+        callback=callback,
+    )
+
+
+def solve(
+    shell: Shell,
+    q0: ArrayLike,
+    *,
+    fixed: ArrayLike = (),
+    ground: Ground | None = None,
+    contacts: ArrayLike | None = None,
+    rtol: float = 1e-9,
+    max_iter: int = 60,
+    max_passes: int = 30,
+    force_scale: float | None = None,
+    length_scale: float | None = None,
+    callback: Progress | None = None,
+) -> Equilibrium:
+    """The equilibrium nearest ``q0`` (Newton from it), with supports and ground.
+
+    Args:
+        shell: the model.
+        q0: (N,) start.
+        fixed: DOF ids held at their start values (supports, clamps, rigid restraints).
+        ground: the ground contact, or None.
+        contacts: (n,) bool, nodes on the ground at the start (default: those at or
+            below it); they are moved onto the plane. Nodes held in z by ``fixed``
+            are never contacts.
+        rtol: residual tolerance relative to ``force_scale`` (default: the weight,
+            or the start's residual when that is larger).
+        length_scale: turns director moments into forces (default: mean edge length).
+        callback: progress, ``callback(iteration, residual N, energy J)``.
+
+    Raises:
+        ConvergenceError: a Newton solve or the contact iteration did not converge.
+    """
+    mesh = shell.mesh
+    n = mesh.n_nodes
+    q = np.array(q0, dtype=float)
+    base = _dof_mask(shell, fixed)
+    if ground is None:
+        active = np.zeros(n, dtype=bool)
+    elif contacts is None:
+        active = unpack(mesh, q)[0][:, 2] <= ground.height
+    else:
+        active = np.asarray(contacts, dtype=bool).copy()
+    held_z = base[2 : 3 * n : 3]  # nodes the caller holds in z cannot be contacts
+    active &= ~held_z
+    total_iter = 0
+    result = None
+    passes = 0
+    for _ in range(max_passes):
+        passes += 1
+        fixed_mask = base.copy()
+        if ground is not None:
+            x = q[: 3 * n].reshape(n, 3)
+            x[active, 2] = ground.height
+            fixed_mask[3 * np.flatnonzero(active) + 2] = True
+            if ground.mode == "anchored":
+                fixed_mask[3 * np.flatnonzero(active)] = True
+                fixed_mask[3 * np.flatnonzero(active) + 1] = True
+        result = _newton(
+            shell,
+            q,
+            fixed_mask,
+            rtol=rtol,
+            max_iter=max_iter,
+            force_scale=force_scale,
+            length_scale=length_scale,
+            callback=callback,
+        )
+        total_iter += result.iterations
+        q = result.q
+        if ground is None:
+            break
+        x = q[: 3 * n].reshape(n, 3)
+        rz = result.gradient[2 : 3 * n : 3]
+        slack = max(result.tolerance, 1e-12 * max(shell.weight, 1e-300))
+        sinking = ~active & ~held_z & (x[:, 2] < ground.height - 1e-9 * (1.0 + abs(ground.height)))
+        pulling = active & (rz < -slack)
+        if not sinking.any() and not pulling.any():
+            break
+        active = (active & ~pulling) | sinking
+    else:
+        raise ConvergenceError(
+            f"the ground contact did not settle in {max_passes} passes",
+            iterations=total_iter,
+            residual=result.residual if result else float("nan"),
+        )
+    ev = evaluate(shell, q, 1)
+    fixed_final = base.copy()
+    if ground is not None:
+        fixed_final[3 * np.flatnonzero(active) + 2] = True
+        if ground.mode == "anchored":
+            fixed_final[3 * np.flatnonzero(active)] = True
+            fixed_final[3 * np.flatnonzero(active) + 1] = True
+    react = np.where(fixed_final, ev.gradient, 0.0)
+    node_react = react[: 3 * n].reshape(n, 3).copy()
+    return Equilibrium(
+        q=q,
+        positions=q[: 3 * n].reshape(n, 3).copy(),
+        energy=ev.energy,
+        parts=ev.parts,
+        reactions=node_react,
+        director_reactions=react[3 * n :],
+        contacts=active,
+        iterations=total_iter,
+        passes=passes,
+        residual=result.residual,
+        tolerance=result.tolerance,
+    )
+
+
+def solve_path(
+    shell_at: Callable[[float], Shell],
+    q0: ArrayLike,
+    *,
+    first_step: float = 0.25,
+    min_step: float = 1e-3,
+    step_iter: int = 25,
+    callback: Progress | None = None,
+    **options: object,
+) -> Equilibrium:
+    """Continuation: equilibria of ``shell_at(s)`` for ``s`` from 0 to 1, each solve
+    started from the last (a load or rest-form ramp for large motions).
+
+    The step in ``s`` halves when a solve fails and grows after quick ones; the
+    final solve at ``s = 1`` uses ``options`` as given (``solve``'s), the steps
+    before it at most ``step_iter`` Newton iterations.
+
+    Raises:
+        ConvergenceError: the step fell below ``min_step``.
+    """
+    q = np.asarray(q0, dtype=float)
+    s, ds, total = 0.0, first_step, 0
+    while True:
+        target = min(1.0, s + ds)
+        opts = dict(options)
+        if target < 1.0:
+            opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
+        try:
+            eq = solve(shell_at(target), q, callback=callback, **opts)  # type: ignore[arg-type]
+        except ConvergenceError as err:
+            ds /= 2
+            if ds < min_step:
+                raise ConvergenceError(
+                    f"continuation stalled at s = {s:.4g} (step {2 * ds:.3g}): {err}",
+                    iterations=total + err.iterations,
+                    residual=err.residual,
+                ) from err
+            continue
+        total += eq.iterations
+        q, s = eq.q, target
+        if s >= 1.0:
+            return replace(eq, iterations=total)
+        if eq.iterations <= 6:
+            ds = min(2 * ds, 1.0)
+
+
+def solve_directors(shell: Shell, q0: ArrayLike, **options: object) -> Equilibrium:
+    """Hold every node where ``q0`` puts it and solve for the director angles (an
+    imposed form: the directors' moments balance)."""
+    n = shell.mesh.n_nodes
+    return solve(shell, q0, fixed=np.arange(3 * n), **options)  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class PlasticResult:
+    """An equilibrium consistent with the plastic law.
+
+    Attributes:
+        equilibrium: the converged state.
+        state: the faces' plastic states after it.
+        updates: face-state updates made (faces that followed the skeleton again).
+        reverse: (m,) bool, faces that yielded in reverse (not modelled: reported).
+    """
+
+    equilibrium: Equilibrium
+    state: plastic.PlasticState
+    updates: int
+    reverse: NDArray[np.bool_]
+
+
+def solve_plastic(
+    shell: Shell,
+    q0: ArrayLike,
+    state: plastic.PlasticState,
+    *,
+    max_rounds: int = 50,
+    rtol: float = 1e-4,
+    **options: object,
+) -> PlasticResult:
+    """Equilibrium with every face unloading elastically from its plastic state.
+
+    A face whose equivalent curvature goes past its reached one (by more than
+    ``rtol``) follows the skeleton again: its state moves on to its current
+    curvature and the shell is solved again, until no face is beyond. (Each
+    re-solve is elastic; under a fixed load a face deep in the plastic range
+    converges slowly, as ``1 - (kappa_y / k)^3`` per round.) ``options`` go to
+    ``solve``; curvatures are measured from the flat sheet.
+
+    Raises:
+        ConvergenceError: a solve failed, or faces were still beyond after
+            ``max_rounds`` re-solves.
+    """
+    mat, kform = shell.material, shell.form
+    q = np.asarray(q0, dtype=float)
+    updates = 0
+    for _ in range(max_rounds):
+        eq = solve(shell.with_changes(rest_curvature=state.rest), q, **options)  # type: ignore[arg-type]
+        q = eq.q
+        b = second_fundamental_form(shell, q)
+        found = plastic.check(mat, kform, b, state, rtol)
+        if not found.beyond.any():
+            return PlasticResult(eq, state, updates, found.reverse)
+        updates += int(found.beyond.sum())
+        state = plastic.reload(mat, kform, b, state, found.beyond)
+    raise ConvergenceError(
+        f"the plastic re-solve left faces beyond their reached curvature after {max_rounds} rounds",
+        iterations=max_rounds,
+        residual=float("nan"),
+    )
+
+
+def form_sheet(
+    shell: Shell, x: ArrayLike, normals: ArrayLike | None = None, **options: object
+) -> tuple[Equilibrium, plastic.PlasticState, F]:
+    """Bend the flat sheet into the form ``x`` ((n, 3), m) along the plastic skeleton.
+
+    The form is imposed as a whole: nodes at ``x`` and, given the form's normals
+    (see ``director_angles``), every director along them; without normals the
+    directors are solved with the elastic law (then the free boundary's directors
+    relax, and the faces' curvature is wrong near the boundary by O(1)). Every
+    face's plastic state is then set from its curvature (``plastic.form``).
+
+    Returns:
+        The formed state, the faces' plastic states, (m,) the work of forming (J).
+    """
+    mesh = shell.mesh
+    p = np.asarray(x, dtype=float).reshape(mesh.n_nodes, 3)
+    if normals is None:
+        q0 = np.concatenate([p.ravel(), np.zeros(mesh.n_directors)])
+        flat = shell.with_changes(rest_curvature=np.zeros_like(shell.rest_curvature))
+        eq = solve_directors(flat, q0, **options)
+    else:
+        q0 = np.concatenate([p.ravel(), director_angles(shell, p, normals)])
+        eq = solve(shell, q0, fixed=np.arange(mesh.n_dofs), **options)  # type: ignore[arg-type]
+    b = second_fundamental_form(shell, eq.q)
+    state, work = plastic.form(shell.material, shell.form, b, shell.ref_area)
+    return eq, state, work

@@ -1,0 +1,390 @@
+"""Small geometric functions of a triangle, an edge or a director, with gradients
+and Hessians.
+
+Vectorised over elements. A face's 9 local variables are its vertices'
+coordinates ``(x0, x1, x2)`` (3 each, in that order); an edge's 12 are
+``(a, b, c, d)``: the edge ``a -> b`` as it runs in its first face ``T0 = (a, b, c)``,
+and ``d`` the vertex opposite it in ``T1 = (b, a, d)``; a director's 4 are its
+edge vector and its angle. Derivations are in docs/mechanics.md;
+tests/mechanics/test_kinematics.py checks every derivative against finite
+differences.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = [
+    "METRIC_HESSIAN",
+    "dihedral",
+    "director_slopes",
+    "face_heights",
+    "face_metric",
+    "skew",
+    "transported_director",
+    "unit_derivatives",
+]
+
+F = NDArray[np.float64]
+_I3 = np.eye(3)
+
+
+def skew(v: F) -> F:
+    """Cross-product matrices: ``skew(v) @ w == cross(v, w)``; (..., 3) -> (..., 3, 3)."""
+    z = np.zeros(v.shape[:-1])
+    x, y, w = v[..., 0], v[..., 1], v[..., 2]
+    return np.stack(
+        [np.stack([z, -w, y], -1), np.stack([w, z, -x], -1), np.stack([-y, x, z], -1)], -2
+    )
+
+
+def _metric_hessian() -> F:
+    """(3, 9, 9): Hessians of ``(e1.e1, e1.e2, e2.e2)``, ``e1 = x1 - x0``, ``e2 = x2 - x0``."""
+    s1 = np.zeros((3, 9))
+    s2 = np.zeros((3, 9))
+    s1[:, 0:3], s1[:, 3:6] = -_I3, _I3
+    s2[:, 0:3], s2[:, 6:9] = -_I3, _I3
+    return np.stack([2 * s1.T @ s1, s1.T @ s2 + s2.T @ s1, 2 * s2.T @ s2])
+
+
+#: Constant Hessians of the metric components with respect to the 9 coordinates.
+METRIC_HESSIAN = _metric_hessian()
+
+
+def _slope_patterns() -> tuple[F, F, F]:
+    """Constant pieces of the Hessians in ``director_slopes`` over ``(x0, x1, x2, d_i)``:
+    ``A = d_i . (x_i - x_{i+1})`` has (3, 12, 12) Hessians ``d2A_i``; ``B = d_i . N`` has
+    ``d2B_i = sum_c d_ic P1[c] + sum_(v, c) E_vc P2[v, c]`` (E_v the edge vectors)."""
+    d2a = np.zeros((3, 12, 12))
+    for i in range(3):
+        for v, sign in ((i, 1.0), ((i + 1) % 3, -1.0)):
+            d2a[i, 3 * v : 3 * v + 3, 9:] += sign * _I3
+            d2a[i, 9:, 3 * v : 3 * v + 3] += sign * _I3
+    basis = skew(_I3)  # [e_c]x
+    p1 = np.zeros((3, 12, 12))
+    p2 = np.zeros((3, 3, 12, 12))
+    for v in range(3):
+        nxt, prv = 3 * ((v + 2) % 3), 3 * ((v + 1) % 3)
+        p1[:, 3 * v : 3 * v + 3, nxt : nxt + 3] += basis
+        p1[:, 3 * v : 3 * v + 3, prv : prv + 3] -= basis
+        p2[v, :, 3 * v : 3 * v + 3, 9:] -= basis
+        p2[v, :, 9:, 3 * v : 3 * v + 3] -= basis.transpose(0, 2, 1)
+    return d2a, p1, p2.reshape(9, 144)
+
+
+_SLOPE_PATTERNS = _slope_patterns()
+
+
+def face_metric(x: F) -> tuple[F, F]:
+    """The metric ``(a11, a12, a22)`` of ``x(u, v) = x0 + u e1 + v e2`` and its gradient.
+
+    Args:
+        x: (m, 3, 3) vertex positions.
+
+    Returns:
+        a: (m, 3); da: (m, 3, 9). The Hessian is ``METRIC_HESSIAN`` (constant).
+    """
+    e1, e2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]
+    a = np.stack(
+        [
+            np.einsum("ij,ij->i", e1, e1),
+            np.einsum("ij,ij->i", e1, e2),
+            np.einsum("ij,ij->i", e2, e2),
+        ],
+        axis=1,
+    )
+    da = np.zeros((len(x), 3, 9))
+    da[:, 0, 0:3], da[:, 0, 3:6] = -2 * e1, 2 * e1
+    da[:, 1, 0:3], da[:, 1, 3:6], da[:, 1, 6:9] = -(e1 + e2), e2, e1
+    da[:, 2, 0:3], da[:, 2, 6:9] = -2 * e2, 2 * e2
+    return a, da
+
+
+def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
+    """Heights ``h_i = 2 A / l_i`` of the vertices over the opposite edges.
+
+    Args:
+        x: (m, 3, 3) vertex positions.
+        order: 0 (values), 1 (and gradients) or 2 (and Hessians).
+
+    Returns:
+        h: (m, 3); dh: (m, 3, 9); d2h: (m, 3, 9, 9).
+    """
+    m = len(x)
+    edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    nn = np.einsum("ij,ij->i", normal, normal)
+    ll = np.einsum("ijk,ijk->ij", edge, edge)
+    h = np.sqrt(nn[:, None] / ll)
+    if order == 0:
+        return h, None, None
+    # F = ln|N|, G_i = ln l_i; h_i = exp(F - G_i).
+    dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]  # (m, 3 vertices, 3)
+    df = dfx.reshape(m, 9)
+    dg = np.zeros((m, 3, 9))
+    for i in range(3):
+        j, k = (i + 2) % 3, (i + 1) % 3
+        dg[:, i, 3 * j : 3 * j + 3] = edge[:, i] / ll[:, i, None]
+        dg[:, i, 3 * k : 3 * k + 3] = -edge[:, i] / ll[:, i, None]
+    dlog = df[:, None, :] - dg
+    dh = h[:, :, None] * dlog
+    if order == 1:
+        return h, dh, None
+    # Hessian of F: (dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T.
+    # Blocks (j, l): (E_j . E_l) I - E_l E_j^T  +  [N]x (delta_{l, j+2} - delta_{l, j+1}).
+    gram = edge @ edge.transpose(0, 2, 1)
+    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
+    wn = skew(normal)
+    for j in range(3):
+        blocks[:, j, (j + 2) % 3] += wn
+        blocks[:, j, (j + 1) % 3] -= wn
+    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
+    d2f -= 2 * df[:, :, None] * df[:, None, :]
+    d2h = np.broadcast_to(d2f[:, None], (m, 3, 9, 9)).copy()
+    d2h += dlog[:, :, :, None] * dlog[:, :, None, :]
+    unit = edge / np.sqrt(ll)[:, :, None]
+    mm = (_I3 - 2 * unit[:, :, :, None] * unit[:, :, None, :]) / ll[:, :, None, None]
+    for i in range(3):
+        j, k = 3 * ((i + 2) % 3), 3 * ((i + 1) % 3)
+        d2h[:, i, j : j + 3, j : j + 3] -= mm[:, i]
+        d2h[:, i, k : k + 3, k : k + 3] -= mm[:, i]
+        d2h[:, i, j : j + 3, k : k + 3] += mm[:, i]
+        d2h[:, i, k : k + 3, j : j + 3] += mm[:, i]
+    d2h *= h[:, :, None, None]
+    return h, dh, d2h
+
+
+def dihedral(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
+    """The signed bending angle of edges: 0 flat, > 0 where the two faces form a bowl
+    (concave towards their normals).
+
+    Args:
+        x: (k, 4, 3) the positions of ``(a, b, c, d)``.
+        order: 0, 1 or 2.
+
+    Returns:
+        psi: (k,) rad in (-pi, pi); dpsi: (k, 12); d2psi: (k, 12, 12).
+    """
+    a, b, c, d = x[:, 0], x[:, 1], x[:, 2], x[:, 3]
+    e = b - a
+    n0 = np.cross(e, c - a)  # T0 = (a, b, c)
+    n1 = np.cross(a - b, d - b)  # T1 = (b, a, d)
+    ee = np.einsum("ij,ij->i", e, e)
+    le = np.sqrt(ee)
+    sin = np.einsum("ij,ij->i", np.cross(n1, n0), e) / le
+    psi = np.arctan2(sin, np.einsum("ij,ij->i", n0, n1))
+    if order == 0:
+        return psi, None, None
+    k = len(x)
+    nn0 = np.einsum("ij,ij->i", n0, n0)
+    nn1 = np.einsum("ij,ij->i", n1, n1)
+    v0 = le[:, None] * n0 / nn0[:, None]  # n0 / h0
+    v1 = le[:, None] * n1 / nn1[:, None]
+    s0 = np.einsum("ij,ij->i", c - a, e) / ee  # foot of c on a -> b
+    s1 = np.einsum("ij,ij->i", d - a, e) / ee
+    grad = np.zeros((k, 4, 3))
+    grad[:, 0] = -(1 - s0)[:, None] * v0 - (1 - s1)[:, None] * v1
+    grad[:, 1] = -s0[:, None] * v0 - s1[:, None] * v1
+    grad[:, 2] = v0
+    grad[:, 3] = v1
+    dpsi = grad.reshape(k, 12)
+    if order == 1:
+        return psi, dpsi, None
+    unit = e / le[:, None]
+    dv0 = _dv(le, n0, nn0, unit, [(0, skew(c - b)), (1, skew(a - c)), (2, skew(e))])
+    dv1 = _dv(le, n1, nn1, unit, [(1, skew(d - a)), (0, skew(b - d)), (3, skew(a - b))])
+    ds0 = _ds(e, ee, c - a, s0, 2)
+    ds1 = _ds(e, ee, d - a, s1, 3)
+    hess = np.zeros((k, 4, 3, 12))
+    hess[:, 2] = dv0
+    hess[:, 3] = dv1
+    hess[:, 0] = (
+        -(1 - s0)[:, None, None] * dv0
+        + v0[:, :, None] * ds0[:, None, :]
+        - (1 - s1)[:, None, None] * dv1
+        + v1[:, :, None] * ds1[:, None, :]
+    )
+    hess[:, 1] = (
+        -s0[:, None, None] * dv0
+        - v0[:, :, None] * ds0[:, None, :]
+        - s1[:, None, None] * dv1
+        - v1[:, :, None] * ds1[:, None, :]
+    )
+    d2psi = hess.reshape(k, 12, 12)
+    return psi, dpsi, 0.5 * (d2psi + d2psi.transpose(0, 2, 1))
+
+
+def _dv(le: F, n: F, nn: F, unit: F, dn_blocks: list[tuple[int, F]]) -> F:
+    """(k, 3, 12) Jacobian of ``v = |e| N / |N|^2`` (``e = b - a``)."""
+    k = len(n)
+    nhat = n / np.sqrt(nn)[:, None]
+    proj = (_I3 - 2 * nhat[:, :, None] * nhat[:, None, :]) * (le / nn)[:, None, None]
+    out = np.zeros((k, 3, 12))
+    for slot, block in dn_blocks:
+        out[:, :, 3 * slot : 3 * slot + 3] += proj @ block
+    pe = (n / nn[:, None])[:, :, None] * unit[:, None, :]
+    out[:, :, 0:3] -= pe
+    out[:, :, 3:6] += pe
+    return out
+
+
+def _ds(e: F, ee: F, f: F, s: F, slot: int) -> F:
+    """(k, 12) gradient of ``s = f.e / |e|^2`` with ``f = (vertex at slot) - a``."""
+    out = np.zeros((len(e), 12))
+    out[:, 0:3] = (-e - f + 2 * s[:, None] * e) / ee[:, None]
+    out[:, 3:6] = (f - 2 * s[:, None] * e) / ee[:, None]
+    out[:, 3 * slot : 3 * slot + 3] = e / ee[:, None]
+    return out
+
+
+def unit_derivatives(e: F) -> tuple[F, F, F]:
+    """``t = e / |e|`` with its Jacobian (k, 3, 3) and Hessian (k, 3, 3, 3) in ``e``."""
+    length = np.linalg.norm(e, axis=1)
+    t = e / length[:, None]
+    dt = (_I3 - t[:, :, None] * t[:, None, :]) / length[:, None, None]
+    tt = t[:, :, None, None]
+    d2t = (
+        -(
+            _I3[None, :, :, None] * t[:, None, None, :]
+            + _I3[None, :, None, :] * t[:, None, :, None]
+            + _I3[None, None, :, :] * tt
+            - 3 * tt * t[:, None, :, None] * t[:, None, None, :]
+        )
+        / (length**2)[:, None, None, None]
+    )
+    return t, dt, d2t
+
+
+def transported_director(
+    t0: F, r0: F, e: F, theta: F, order: int = 2
+) -> tuple[F, F | None, F | None]:
+    """Directors ``d = cos(theta) r + sin(theta) t x r``, ``r`` the reference director ``r0``
+    parallel-transported from the reference edge direction ``t0`` to ``t = e / |e|``.
+
+    Args:
+        t0, r0: (k, 3) unit reference edge directions and directors (``r0 . t0 = 0``).
+        e: (k, 3) current edge vectors; theta: (k,) angles (rad) about ``t``.
+        order: 0, 1 or 2.
+
+    Returns:
+        d: (k, 3); dd: (k, 3, 4) in ``(e, theta)``; d2d: (k, 3, 4, 4).
+    """
+    t, dt, d2t = unit_derivatives(e)
+    c = np.einsum("ij,ij->i", t0, t)
+    # An edge turned back on its reference direction has no transport: NaN there.
+    w = np.where(c > -1 + 1e-9, 1.0, np.nan) / np.maximum(1.0 + c, 1e-300)
+    s = np.einsum("ij,ij->i", r0, t)
+    alpha = s * w
+    plus = t0 + t
+    r = r0 - alpha[:, None] * plus
+    q = np.cross(t, r)
+    cos, sin = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    d = cos * r + sin * q
+    if order == 0:
+        return d, None, None
+    k = len(e)
+    a = w[:, None] * r0 - (s * w**2)[:, None] * t0  # d alpha / dt
+    r1 = -plus[:, :, None] * a[:, None, :] - alpha[:, None, None] * _I3  # dr_i / dt_j
+    q1 = -skew(r) + skew(t) @ r1
+    d_t = cos[:, :, None] * r1 + sin[:, :, None] * q1
+    dd = np.zeros((k, 3, 4))
+    dd[:, :, :3] = d_t @ dt
+    dd[:, :, 3] = -sin * r + cos * q
+    if order == 1:
+        return d, dd, None
+    big_a = -(w**2)[:, None, None] * (
+        r0[:, :, None] * t0[:, None, :] + t0[:, :, None] * r0[:, None, :]
+    )
+    big_a += (2 * s * w**3)[:, None, None] * t0[:, :, None] * t0[:, None, :]
+    r2 = -plus[:, :, None, None] * big_a[:, None, :, :]
+    r2 -= _I3[None, :, :, None] * a[:, None, None, :] + _I3[None, :, None, :] * a[:, None, :, None]
+    # q2_ijk = (e_j x dr/dt_k + e_k x dr/dt_j + t x d2r/dt_j dt_k)_i
+    cross_jk = np.stack([np.cross(_I3[j], r1.transpose(0, 2, 1)) for j in range(3)], axis=2)
+    cross_jk = cross_jk.transpose(0, 3, 2, 1)  # (k, i, j, k')
+    t_r2 = np.cross(t[:, None, None, :], r2.transpose(0, 2, 3, 1)).transpose(0, 3, 1, 2)
+    q2 = cross_jk + cross_jk.transpose(0, 1, 3, 2) + t_r2
+    d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
+    d2d = np.zeros((k, 3, 4, 4))
+    dtt = dt.transpose(0, 2, 1)[:, None]
+    d2d[:, :, :3, :3] = dtt @ d_tt @ dt[:, None] + np.einsum("nib,nbjk->nijk", d_t, d2t)
+    mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
+    d2d[:, :, :3, 3] = mixed
+    d2d[:, :, 3, :3] = mixed
+    d2d[:, :, 3, 3] = -d
+    return d, dd, d2d
+
+
+def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
+    """``u_i = h_i tan(phi_i) = |N| (d_i . (x_i - x_{i+1})) / (d_i . N)``: a face's
+    height over edge i times the slope of its director ``d_i`` there.
+
+    Args:
+        x: (m, 3, 3) vertex positions; d: (m, 3, 3) the directors of edges 0, 1, 2
+            (each normal to its edge).
+
+    Returns:
+        u: (m, 3); du: (m, 3, 12) and d2u: (m, 3, 12, 12) in ``(x0, x1, x2, d_i)``.
+    """
+    m = len(x)
+    edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    nn = np.einsum("ij,ij->i", normal, normal)
+    norm = np.sqrt(nn)
+    f = x - x[:, [1, 2, 0]]  # x_i - x_{i+1}
+    num = np.einsum("mij,mij->mi", d, f)
+    den = np.einsum("mij,mj->mi", d, normal)
+    u = norm[:, None] * num / den
+    if order == 0:
+        return u, None, None
+    # |N| = M: dM = M dF (F = ln|N|), d2M = M (d2F + dF dF^T).
+    dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]
+    df = dfx.reshape(m, 9)
+    dm = norm[:, None] * df
+    da = np.zeros((m, 3, 12))
+    db = np.zeros((m, 3, 12))
+    for i in range(3):
+        j = (i + 1) % 3
+        da[:, i, 3 * i : 3 * i + 3] += d[:, i]
+        da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
+        da[:, i, 9:] = f[:, i]
+        for v in range(3):
+            db[:, i, 3 * v : 3 * v + 3] = np.cross(d[:, i], edge[:, v])
+        db[:, i, 9:] = normal
+    g = norm[:, None] / den  # G = M / B
+    dg = dm[:, None, :] / den[:, :, None]
+    dg = (
+        np.concatenate([dg, np.zeros((m, 3, 3))], axis=2)
+        - (norm[:, None] / den**2)[:, :, None] * db
+    )
+    du = g[:, :, None] * da + num[:, :, None] * dg
+    if order == 1:
+        return u, du, None
+    gram = edge @ edge.transpose(0, 2, 1)
+    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
+    wn = skew(normal)
+    for j in range(3):
+        blocks[:, j, (j + 2) % 3] += wn
+        blocks[:, j, (j + 1) % 3] -= wn
+    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
+    d2f -= 2 * df[:, :, None] * df[:, None, :]
+    d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
+    # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
+    #   + dA dG^T + dG dA^T - (A / B^2)(dM dB^T + dB dM^T) + (2 A M / B^3) dB dB^T.
+    ab2 = num / den**2
+    # The dense part as V^T C V, V = (dA, dG, dM, dB): one batched product.
+    v = np.zeros((m, 3, 4, 12))
+    v[:, :, 0], v[:, :, 1], v[:, :, 3] = da, dg, db
+    v[:, :, 2, :9] = dm[:, None, :]
+    c = np.zeros((m, 3, 4, 4))
+    c[:, :, 0, 1] = c[:, :, 1, 0] = 1.0
+    c[:, :, 2, 3] = c[:, :, 3, 2] = -ab2
+    c[:, :, 3, 3] = 2 * ab2 * norm[:, None] / den
+    d2u = v.transpose(0, 1, 3, 2) @ c @ v
+    d2u[:, :, :9, :9] += (num / den)[:, :, None, None] * d2m[:, None]
+    # The constant-pattern parts: G d2A - (A M / B^2) d2B, d2B linear in d_i and in x.
+    d2b = (d @ _SLOPE_PATTERNS[1].reshape(3, 144)) + (edge.reshape(m, 1, 9) @ _SLOPE_PATTERNS[2])
+    d2u += g[:, :, None, None] * _SLOPE_PATTERNS[0] - (ab2 * norm[:, None])[:, :, None, None] * (
+        d2b.reshape(m, 3, 12, 12)
+    )
+    return u, du, d2u

@@ -1,0 +1,229 @@
+"""Newton's method on an energy with a sparse Hessian: line search, regularisation,
+fixed unknowns eliminated.
+
+Each step solves ``(H_ff + lambda diag|H_ff|) p = -g_f`` with SuperLU (symmetric
+mode, diagonal pivots, so the signs of ``U``'s diagonal are the matrix's inertia):
+``lambda = 0`` first, then growing shifts while the factorisation fails, the
+matrix is not positive definite or the step is no descent direction. Full steps
+are taken under a watchdog: when a few of them have not brought the energy
+sufficiently (Armijo) below the last reference point, the method returns there
+and backtracks along its direction. Convergence: the
+largest residual component, directors' moments divided by a length, at most
+``max(rtol * force_scale, atol)``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from onefold_cad.errors import ConvergenceError
+
+__all__ = ["NewtonResult", "Progress", "minimize", "restrict"]
+
+F = NDArray[np.float64]
+#: ``fun(q, order) -> (energy, gradient, hessian)``, gradient and Hessian None below
+#: orders 1 and 2; the Hessian's structure must not change between calls.
+EnergyFunction = Callable[[F, int], tuple[float, F | None, sp.csc_matrix | None]]
+Progress = Callable[[int, float, float], None]
+
+_SHIFTS = (0.0, 1e-8, 1e-6, 1e-4, 1e-3, 1e-2, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0, 1e3)
+
+
+@dataclass(frozen=True)
+class NewtonResult:
+    """A converged minimiser.
+
+    Attributes:
+        q: (N,) the state.
+        energy: its energy (J).
+        gradient: (N,) the full gradient there (at fixed DOFs: the reactions).
+        residual: the final scaled residual (N).
+        tolerance: the residual it had to reach (N).
+        iterations: Newton steps taken.
+    """
+
+    q: F
+    energy: float
+    gradient: F
+    residual: float
+    tolerance: float
+    iterations: int
+
+
+def restrict(h: sp.csc_matrix, free: NDArray[np.bool_]) -> tuple[NDArray[np.int64], Callable]:
+    """A fast restriction of matrices with ``h``'s structure to the free rows and columns.
+
+    Returns the kept data positions and a function mapping a matrix with the same
+    structure to its free-free block.
+    """
+    cols = np.repeat(np.arange(h.shape[1]), np.diff(h.indptr))
+    keep = np.flatnonzero(free[h.indices] & free[cols])
+    renumber = np.cumsum(free) - 1
+    r = int(free.sum())
+    indices = renumber[h.indices[keep]]
+    indptr = np.searchsorted(renumber[cols[keep]], np.arange(r + 1)).astype(np.int64)
+
+    def block(full: sp.csc_matrix) -> sp.csc_matrix:
+        return sp.csc_matrix((full.data[keep], indices, indptr), shape=(r, r))
+
+    return keep, block
+
+
+def _factor(a: sp.csc_matrix) -> tuple[spla.SuperLU | None, bool]:
+    """SuperLU of a symmetric matrix and whether it is positive definite."""
+    try:
+        lu = spla.splu(
+            a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
+        )
+    except RuntimeError:
+        return None, False
+    pivots = lu.U.diagonal()
+    symmetric = np.array_equal(lu.perm_r, lu.perm_c)
+    return lu, bool(symmetric and np.all(pivots > 0) and np.all(np.isfinite(pivots)))
+
+
+def minimize(
+    fun: EnergyFunction,
+    q0: ArrayLike,
+    fixed: NDArray[np.bool_],
+    *,
+    residual_scale: F | None = None,
+    force_scale: float = 0.0,
+    rtol: float = 1e-9,
+    atol: float = 0.0,
+    max_iter: int = 60,
+    watchdog: int = 6,
+    callback: Progress | None = None,
+) -> NewtonResult:
+    """Minimise ``fun`` over the free unknowns, starting from ``q0``.
+
+    Args:
+        fun: the energy with gradient and sparse (CSC, fixed structure) Hessian.
+        q0: (N,) start; fixed entries keep their values.
+        fixed: (N,) bool, unknowns held at their start values.
+        residual_scale: (N,) factors turning gradient entries into forces (1 for
+            coordinates, 1 / length for angles); default all 1.
+        force_scale: the load scale (N); the tolerance is ``rtol`` times the
+            larger of it and the start's residual, floored at ``atol``.
+        max_iter: Newton steps allowed.
+        watchdog: full Newton steps allowed without a sufficient decrease of the
+            energy below the last reference point before going back to it for a
+            line search (the watchdog technique: thin shells' stiff membranes make
+            a monotone search crawl at steps of about a thickness).
+        callback: ``callback(iteration, residual, energy)`` before every step.
+
+    Raises:
+        ConvergenceError: no convergence in ``max_iter`` steps, or no step that
+            lowers the energy could be found.
+    """
+    q = np.array(q0, dtype=float)
+    free = ~np.asarray(fixed, dtype=bool)
+    scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
+    energy, grad, hess = fun(q, 2)
+    _, block = restrict(hess, free)
+
+    def residual(g: F) -> float:
+        return float(np.max(np.abs(g[free] * scale[free]), initial=0.0))
+
+    res = residual(grad)
+    tol = max(rtol * max(force_scale, res), atol)
+    shift_start, relaxed = 0, 0
+    before = (math.inf, math.inf)  # residual and energy before the last full step
+    ref: tuple[F, float, F, sp.csc_matrix, float] | None = None
+    for it in range(max_iter + 1):
+        if callback is not None:
+            callback(it, res, energy)
+        if not math.isfinite(res):
+            break
+        if res <= tol:
+            return NewtonResult(q, energy, grad, res, tol, it)
+        if it == max_iter:
+            break
+        # Full steps may climb once (a thin shell's rotation stretches it for a step);
+        # a later one that raises both the energy and the residual ends them.
+        worse = relaxed >= 2 and res > before[0] and energy > before[1]
+        monotone = relaxed >= watchdog or worse
+        if monotone and ref is not None:
+            # The full steps since the reference did not lower the energy enough:
+            # back to it, and search along a line there.
+            q, energy, grad, hess = ref[0].copy(), ref[1], ref[2], ref[3]
+        taken = False
+        for p, slope, k in _directions(block(hess), grad[free], shift_start):
+            if monotone:
+                accepted = _line_search(fun, q, free, p, energy, slope)
+                if accepted is None:
+                    continue
+                q, energy = accepted
+                relaxed = 0
+            else:
+                if relaxed == 0:
+                    ref = (q.copy(), energy, grad, hess, slope)
+                before = (res, energy)
+                trial = q.copy()
+                trial[free] += p
+                e = fun(trial, 0)[0]
+                if not math.isfinite(e):
+                    continue
+                assert ref is not None
+                slack = 1e-13 * max(abs(ref[1]), 1e-300)
+                relaxed = 0 if e <= ref[1] + 1e-4 * ref[4] + slack else relaxed + 1
+                q, energy = trial, e
+            shift_start = max(k - 1, 0)
+            taken = True
+            break
+        if not taken:
+            raise ConvergenceError(
+                f"Newton found no descent step at iteration {it}: residual {res:.3g} N "
+                f"(tolerance {tol:.3g} N)",
+                iterations=it,
+                residual=res,
+            )
+        energy, grad, hess = fun(q, 2)
+        res = residual(grad)
+    raise ConvergenceError(
+        f"Newton did not converge in {max_iter} iterations: residual {res:.3g} N "
+        f"(tolerance {tol:.3g} N)",
+        iterations=max_iter,
+        residual=res,
+    )
+
+
+def _directions(hf: sp.csc_matrix, gf: F, shift_start: int):
+    """Newton directions ``p`` with ``slope = g.p < 0`` from ``(H + lambda diag|H|) p = -g``
+    for growing shifts ``lambda`` (only positive definite matrices are used).
+    Yields ``(p, slope, k)``, ``k`` the shift's index (0: unshifted)."""
+    diag = np.abs(hf.diagonal())
+    diag = np.where(diag > 0, diag, max(float(diag.max(initial=0.0)), 1.0))
+    for k in range(shift_start, len(_SHIFTS)):
+        lam = _SHIFTS[k]
+        a = hf if lam == 0 else (hf + sp.diags(lam * diag)).tocsc()
+        lu, definite = _factor(a)
+        if lu is None or not definite:
+            continue
+        p = -lu.solve(gf)
+        slope = float(gf @ p)
+        if slope < 0 and np.all(np.isfinite(p)):
+            yield p, slope, k
+
+
+def _line_search(
+    fun: EnergyFunction, q: F, free: NDArray[np.bool_], p: F, energy: float, slope: float
+) -> tuple[F, float] | None:
+    """Backtracking Armijo search along ``p`` (free entries); None if it fails."""
+    alpha = 1.0
+    slack = 1e-13 * max(abs(energy), 1e-300)
+    trial = q.copy()
+    for _ in range(40):
+        trial[free] = q[free] + alpha * p
+        e = fun(trial, 0)[0]
+        if math.isfinite(e) and e <= energy + 1e-4 * alpha * slope + slack:
+            return trial, e
+        alpha *= 0.5
+    return None

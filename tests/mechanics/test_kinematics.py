@@ -1,0 +1,150 @@
+"""Local geometric functions (mechanics/kinematics.py) against finite differences and
+hand values."""
+
+from __future__ import annotations
+
+import math
+from functools import partial
+
+import numpy as np
+
+from onefold_cad.mechanics.kinematics import (
+    METRIC_HESSIAN,
+    dihedral,
+    director_slopes,
+    face_heights,
+    face_metric,
+    transported_director,
+)
+from tests.mechanics.helpers import central_difference
+
+RNG = np.random.default_rng(7)
+
+
+def _element(fun, x, e, part, order, y):
+    """``fun(x with element e replaced by y)[part][e]`` (y flattened)."""
+    z = x.copy()
+    z[e] = y.reshape(x.shape[1:])
+    return np.atleast_1d(fun(z, order)[part][e])
+
+
+def _close(a, b):
+    np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-7 * np.abs(b).max())
+
+
+def test_dihedral_derivatives():
+    x = RNG.normal(size=(20, 4, 3))
+    _, dpsi, d2psi = dihedral(x)
+    for e in range(len(x)):
+        g = central_difference(partial(_element, dihedral, x, e, 0, 0), x[e].ravel(), 1e-4)
+        h = central_difference(partial(_element, dihedral, x, e, 1, 1), x[e].ravel(), 1e-4)
+        _close(g[:, 0], dpsi[e])
+        _close(h, d2psi[e])
+
+
+def test_dihedral_sign_and_value():
+    # Edge along x, T0 = (a, b, c) with c at +y, T1's d at -y; both lifted: a bowl.
+    for angle in (0.3, 1.0, 2.5):
+        up = math.tan(angle / 2)
+        x = np.array([[[0, 0, 0], [1, 0, 0], [0.3, 1, up], [0.6, -1, up]]], dtype=float)
+        assert math.isclose(dihedral(x, 0)[0][0], angle, rel_tol=1e-12)
+        x[0, 2:, 2] *= -1
+        assert math.isclose(dihedral(x, 0)[0][0], -angle, rel_tol=1e-12)
+
+
+def test_heights_derivatives_and_values():
+    x = RNG.normal(size=(20, 3, 3))
+    h, dh, d2h = face_heights(x)
+    area = 0.5 * np.linalg.norm(np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]), axis=1)
+    for i in range(3):
+        length = np.linalg.norm(x[:, (i + 2) % 3] - x[:, (i + 1) % 3], axis=1)
+        np.testing.assert_allclose(h[:, i], 2 * area / length, rtol=1e-13)
+    for f in range(len(x)):
+        g = central_difference(partial(_element, face_heights, x, f, 0, 0), x[f].ravel(), 1e-4)
+        hh = central_difference(partial(_element, face_heights, x, f, 1, 1), x[f].ravel(), 1e-4)
+        _close(g.T, dh[f])
+        _close(np.moveaxis(hh, 0, -1), d2h[f])
+
+
+def test_metric_derivatives():
+    x = RNG.normal(size=(5, 3, 3))
+    _, da = face_metric(x)
+    metric = lambda z, order: face_metric(z)  # noqa: E731
+    for f in range(len(x)):
+        g = central_difference(partial(_element, metric, x, f, 0, 0), x[f].ravel(), 1e-3)
+        hh = central_difference(partial(_element, metric, x, f, 1, 0), x[f].ravel(), 1e-3)
+        np.testing.assert_allclose(g.T, da[f], atol=1e-9)
+        np.testing.assert_allclose(np.moveaxis(hh, 0, -1), METRIC_HESSIAN, atol=1e-9)
+
+
+def _frames(k):
+    t0 = RNG.normal(size=(k, 3))
+    t0 /= np.linalg.norm(t0, axis=1)[:, None]
+    r0 = RNG.normal(size=(k, 3))
+    r0 -= np.einsum("ij,ij->i", r0, t0)[:, None] * t0
+    return t0, r0 / np.linalg.norm(r0, axis=1)[:, None]
+
+
+def _director(t0, r0, e, theta, e_id, order, y):
+    ee, tt = e.copy(), theta.copy()
+    ee[e_id], tt[e_id] = y[:3], y[3]
+    return transported_director(t0, r0, ee, tt, order)[order][e_id]
+
+
+def test_transported_director():
+    k = 15
+    t0, r0 = _frames(k)
+    e = 2 * t0 + 0.5 * RNG.normal(size=(k, 3))
+    theta = RNG.normal(size=k)
+    d, dd, d2d = transported_director(t0, r0, e, theta)
+    np.testing.assert_allclose(np.linalg.norm(d, axis=1), 1, atol=1e-15)
+    assert np.abs(np.einsum("ij,ij->i", d, e)).max() < 1e-14, "normal to its edge"
+    same = transported_director(t0, r0, 3 * t0, np.zeros(k), 0)[0]
+    np.testing.assert_allclose(same, r0, atol=1e-15), "no transport along t0"
+    # Transport along a great circle: r0 turns with t if r0 is normal to both.
+    axis = np.cross(t0, r0)
+    turned = np.cos(0.8) * t0 + np.sin(0.8) * r0  # t0 rotated about axis by 0.8
+    moved = transported_director(t0, r0, turned, np.zeros(k), 0)[0]
+    np.testing.assert_allclose(moved, np.cos(0.8) * r0 - np.sin(0.8) * t0, atol=1e-14)
+    assert np.abs(np.einsum("ij,ij->i", moved, axis)).max() < 1e-14
+    for i in range(k):
+        y = np.concatenate([e[i], [theta[i]]])
+        g = central_difference(partial(_director, t0, r0, e, theta, i, 0), y, 1e-4)
+        h = central_difference(partial(_director, t0, r0, e, theta, i, 1), y, 1e-4)
+        _close(g.T, dd[i])
+        _close(np.moveaxis(h, 0, -1), d2d[i])
+
+
+def _slopes(x, d, f, i, order, y):
+    xx, dd = x.copy(), d.copy()
+    xx[f], dd[f, i] = y[:9].reshape(3, 3), y[9:]
+    return director_slopes(xx, dd, order)[order][f, i]
+
+
+def test_director_slopes():
+    m = 8
+    x = RNG.normal(size=(m, 3, 3))
+    edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    d = RNG.normal(size=(m, 3, 3))
+    d -= (np.einsum("mij,mij->mi", d, edge) / np.einsum("mij,mij->mi", edge, edge))[
+        :, :, None
+    ] * edge
+    u, du, d2u = director_slopes(x, d)
+    # u_i = h_i tan(phi_i), phi_i from the face normal towards the face's inside.
+    h = face_heights(x, 0)[0]
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    for i in range(3):
+        unit = edge[:, i] / np.linalg.norm(edge[:, i], axis=1)[:, None]
+        inward = x[:, i] - x[:, (i + 1) % 3]
+        inward -= np.einsum("ij,ij->i", inward, unit)[:, None] * unit
+        inward /= np.linalg.norm(inward, axis=1)[:, None]
+        tan = np.einsum("ij,ij->i", d[:, i], inward) / np.einsum("ij,ij->i", d[:, i], normal)
+        np.testing.assert_allclose(u[:, i], h[:, i] * tan, rtol=1e-12, atol=1e-13)
+    for f in range(3):
+        for i in range(3):
+            y = np.concatenate([x[f].ravel(), d[f, i]])
+            g = central_difference(partial(_slopes, x, d, f, i, 0), y, 1e-4)
+            hh = central_difference(partial(_slopes, x, d, f, i, 1), y, 1e-4)
+            _close(g, du[f, i])
+            _close(hh, d2u[f, i])

@@ -1,0 +1,48 @@
+"""Newton's method (mechanics/newton.py): no unconverged result, progress, shifts."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from onefold_cad.errors import ConvergenceError, OneFoldError
+from onefold_cad.mechanics import minimize, solve
+from tests.mechanics.helpers import cantilever, rectangle
+from tests.mechanics.test_equilibrium import STEEL0, _gravity_for, _start
+
+
+def test_unconverged_newton_raises_with_its_residual():
+    mesh = rectangle(1.0, 0.1, 0.05)
+    shell, fixed = cantilever(mesh, STEEL0, _gravity_for(2.0))
+    seen = []
+    with pytest.raises(ConvergenceError) as info:
+        solve(shell, _start(mesh), fixed=fixed, max_iter=1, callback=lambda *a: seen.append(a))
+    err = info.value
+    assert isinstance(err, OneFoldError) and isinstance(err, RuntimeError)
+    assert err.iterations == 1 and err.residual > 0
+    assert "1 iterations" in str(err) and f"{err.residual:.3g}" in str(err)
+    assert [s[0] for s in seen] == [0, 1], "progress before every step and at the end"
+    assert seen[-1][1] == err.residual
+
+
+def _rosenbrock(q, order):
+    x, y = q
+    e = (1 - x) ** 2 + 100 * (y - x**2) ** 2
+    if order == 0:
+        return e, None, None
+    g = np.array([-2 * (1 - x) - 400 * x * (y - x**2), 200 * (y - x**2)])
+    h = np.array([[2 - 400 * (y - x**2) + 800 * x**2, -400 * x], [-400 * x, 200.0]])
+    full = sp.csc_matrix(np.ones((2, 2)))  # a fixed structure, as minimize requires
+    full.data[:] = h.T.ravel()
+    return e, g, full
+
+
+def test_indefinite_start_and_a_fixed_unknown():
+    # At (0, 1) Rosenbrock's Hessian is indefinite: the shifted steps still descend.
+    result = minimize(_rosenbrock, [0.0, 1.0], np.zeros(2, bool), rtol=0, atol=1e-10, max_iter=100)
+    np.testing.assert_allclose(result.q, [1.0, 1.0], atol=1e-8)
+    # Holding y = 4: a minimiser over x alone, dE/dx = 0 there.
+    held = minimize(_rosenbrock, [0.5, 4.0], np.array([False, True]), rtol=0, atol=1e-10)
+    assert held.q[1] == 4.0
+    assert abs(held.gradient[0]) < 1e-10 and held.gradient[1] != 0
