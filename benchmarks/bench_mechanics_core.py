@@ -35,7 +35,7 @@ from onefold_cad.mechanics import (  # noqa: E402
     rigid_dofs,
 )
 from onefold_cad.mechanics.assembly import pattern_of  # noqa: E402
-from onefold_cad.mechanics.newton import _factor, restrict  # noqa: E402
+from onefold_cad.mechanics.newton import factor, restrict  # noqa: E402
 
 STEEL = ShellMaterial(youngs_modulus=193e9, poisson=0.29, thickness=3.57e-3, density=7900.0)
 
@@ -76,7 +76,7 @@ def main(argv: list[str] | None = None) -> int:
         stats = interleave(
             {
                 "evaluate": lambda shell=shell, q=q: evaluate(shell, q),
-                "factor": lambda hf=hf: _factor(hf),
+                "factor": lambda hf=hf: factor(hf),
             },
             rounds=args.rounds,
             batch_time=0.0,

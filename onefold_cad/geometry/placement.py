@@ -49,7 +49,9 @@ from onefold_cad.geometry.topple import com_depth, com_outside, roll
 __all__ = [
     "RestingPlacement",
     "rest_form",
+    "rotation_to_up",
     "stability_warnings",
+    "tipping_margin",
     "TIPPING_WARNING_DEG",
 ]
 
@@ -316,7 +318,7 @@ def rest_form(
         if level >= plane - contact_tol and (rocks or holds(on_ground, com, g, tol)):
             settled = True
             break
-    rot = _rotation_to_up(g)
+    rot = rotation_to_up(g)
     level = float(lows[0][2] @ g)
     # stand the lowest point on z = 0, the centre of mass over the origin
     com_r = rot @ com
@@ -326,7 +328,7 @@ def rest_form(
     # a rocking form balances its centre of mass over the line through two
     # tangencies, whose places along their curves are known to about 1e-8 of
     # the size (ground.rock settles for 1e-6 of it)
-    margin, edge = _tipping(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
+    margin, edge = tipping_margin(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
     bounds = _bounds(form, samples, rot, shift, band)
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
@@ -378,7 +380,7 @@ def _surface_centre(folded: FoldedSheet, material: Material | None) -> Array:
     return mass_properties(Body(folded, thin, "shell"))[1]
 
 
-def _rotation_to_up(g: Array) -> Array:
+def rotation_to_up(g: Array) -> Array:
     """The smallest rotation taking unit vector ``g`` to (0, 0, 1)."""
     target = np.array([0.0, 0.0, 1.0])
     axis = cross3(g, target)
@@ -391,7 +393,7 @@ def _rotation_to_up(g: Array) -> Array:
     return np.eye(3) + s * kx + (1 - c) * (kx @ kx)
 
 
-def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, int]]:
+def tipping_margin(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, int]]:
     """The tipping margin (deg) of a centre of mass ``(3,)`` over a support
     polygon ``(m, 2)`` and the edge it is smallest about. Two corners (a form
     that rocks on a curved edge): 0 while the centre of mass lies over the

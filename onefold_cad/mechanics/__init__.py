@@ -16,6 +16,7 @@ from onefold_cad.mechanics.energy import Evaluation, evaluate, second_fundamenta
 from onefold_cad.mechanics.equilibrium import (
     Equilibrium,
     Ground,
+    PathStalled,
     PlasticResult,
     form_sheet,
     solve,
@@ -45,6 +46,7 @@ __all__ = [
     "Evaluation",
     "Ground",
     "NewtonResult",
+    "PathStalled",
     "PlasticResult",
     "PlasticState",
     "SheetMesh",

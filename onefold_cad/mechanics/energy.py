@@ -9,7 +9,9 @@
   normal (``kinematics.director_slopes``); a director is its edge's reference
   director transported to the edge's current direction and turned by the
   director angle about it (``kinematics.transported_director``); energy
-  ``Abar D / 2 Q(b - bbar)``;
+  ``Abar D / 2 Q(b - bbar)``, or with the faces' accumulated plastic curvature
+  (``Shell.accumulated``) the elastic-plastic law's ``Abar W(sqrt(Q(b - bbar)))``
+  (``plastic.moment``);
 - crease hinges: ``k_c / 2 * lbar * (theta+ - theta- - psi_set)^2``, the angle
   between the two sides' directors;
 - gravity: ``-sum m_i g . x_i``.
@@ -33,6 +35,7 @@ from onefold_cad.mechanics.kinematics import (
     face_metric,
     transported_director,
 )
+from onefold_cad.mechanics.plastic import moment
 from onefold_cad.mechanics.shell import Shell, unpack
 
 __all__ = ["Evaluation", "evaluate", "second_fundamental_form"]
@@ -98,17 +101,32 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     e_mem = float(np.sum(cm * np.einsum("mi,mi->m", eps, keps)))
     fd = mesh.face_directors[faces]
     u, du_z, d2u_z = director_slopes(xf, d_all[fd], order)
-    r = u @ _B.T - shell.rest_curvature[faces]
+    b = u @ _B.T
+    r = b - shell.rest_curvature[faces]
     kr = np.einsum("mij,mj->mi", kform, r)
     stiff = area * mat.bending_stiffness / 2
-    e_bend = float(np.sum(stiff * np.einsum("mi,mi->m", r, kr)))
+    rkr = np.einsum("mi,mi->m", r, kr)
+    e_face = stiff * rkr
+    # dW/dr = coef K r; d2W/dr2 = coef K + extra (K r)(K r)^T (elastic: coef = Abar D, extra 0)
+    coef = 2 * stiff
+    extra = None
+    if shell.accumulated is not None:
+        s_tr = np.sqrt(np.maximum(rkr, 0.0))
+        m_law, slope, work = moment(mat, s_tr, shell.accumulated[faces])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            phi = np.where(s_tr > 0, m_law / s_tr, mat.bending_stiffness)
+            psi = np.where(s_tr > 0, (slope - phi) / np.maximum(s_tr, 1e-300) ** 2, 0.0)
+        e_face = area * work
+        coef = area * phi
+        extra = area * psi
+    e_bend = float(np.sum(e_face))
     if order == 0:
         return e_mem, e_bend, None, None
     # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
     maps = shell.edge_maps[faces]
     dd_y = dd_all[fd] @ maps  # (c, 3, 3, 12): d d_i / d y
     du = du_z[:, :, :9] @ np.eye(9, 12) + np.einsum("mik,mikj->mij", du_z[:, :, 9:], dd_y)
-    w_u = stiff[:, None] * (2 * kr @ _B)  # dW/du
+    w_u = coef[:, None] * (kr @ _B)  # dW/du
     g_face = np.einsum("mi,mij->mj", w_u, du)
     g_face[:, :9] += np.einsum("mi,mij->mj", keps * cm[:, None], da)
     if order == 1:
@@ -120,8 +138,12 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
     curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
     d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
-    q_uu = 2 * (_B.T @ kform @ _B)
-    h_face = du.transpose(0, 2, 1) @ (stiff[:, None, None] * q_uu) @ du
+    q_uu = _B.T @ kform @ _B
+    h_uu = coef[:, None, None] * q_uu
+    if extra is not None:
+        kb = kr @ _B
+        h_uu = h_uu + extra[:, None, None] * np.einsum("mi,mj->mij", kb, kb)
+    h_face = du.transpose(0, 2, 1) @ h_uu @ du
     h_face += np.einsum("mi,miab->mab", w_u, d2u)
     h_face[:, :9, :9] += cm[:, None, None] * (
         0.5 * (da.transpose(0, 2, 1) @ (kform @ da))
@@ -157,8 +179,11 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
     # Gravity.
     weight = -shell.node_mass[:, None] * shell.gravity[None, :]  # dE/dx, (n, 3)
     e_grav = float(np.sum(weight * x))
+    e_load = 0.0 if shell.load is None else -float(shell.load @ q)
     parts = {"membrane": e_mem, "bending": e_bend, "crease": e_crease, "gravity": e_grav}
-    total = e_mem + e_bend + e_crease + e_grav
+    if shell.load is not None:
+        parts["load"] = e_load
+    total = e_mem + e_bend + e_crease + e_grav + e_load
     if order == 0:
         return Evaluation(total, parts)
     pattern = pattern_of(mesh)
@@ -166,6 +191,8 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
     g_crease[:, 0], g_crease[:, 1] = ck * delta, -ck * delta
     gradient = pattern.vector(g_face, g_crease)
     gradient[: 3 * mesh.n_nodes] += weight.ravel()
+    if shell.load is not None:
+        gradient -= shell.load
     if order == 1:
         return Evaluation(total, parts, gradient)
     h_crease = ck[:, None, None] * np.array([[1.0, -1.0], [-1.0, 1.0]])

@@ -27,6 +27,7 @@ from onefold_cad.mechanics.shell import Shell, director_angles, unpack
 __all__ = [
     "Equilibrium",
     "Ground",
+    "PathStalled",
     "PlasticResult",
     "form_sheet",
     "solve",
@@ -241,6 +242,28 @@ def solve(
     )
 
 
+class PathStalled(ConvergenceError):
+    """A continuation that found no equilibrium past ``reached`` (0..1) of its path.
+
+    Attributes:
+        reached: the path parameter of the last equilibrium found.
+        last: that equilibrium (None when even the first step failed).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        iterations: int,
+        residual: float,
+        reached: float,
+        last: Equilibrium | None,
+    ) -> None:
+        super().__init__(message, iterations=iterations, residual=residual)
+        self.reached = reached
+        self.last = last
+
+
 def solve_path(
     shell_at: Callable[[float], Shell],
     q0: ArrayLike,
@@ -259,10 +282,12 @@ def solve_path(
     before it at most ``step_iter`` Newton iterations.
 
     Raises:
-        ConvergenceError: the step fell below ``min_step``.
+        PathStalled: the step fell below ``min_step`` (a ConvergenceError that
+            holds the last equilibrium and how far along the path it is).
     """
     q = np.asarray(q0, dtype=float)
     s, ds, total = 0.0, first_step, 0
+    last: Equilibrium | None = None
     while True:
         target = min(1.0, s + ds)
         opts = dict(options)
@@ -273,14 +298,16 @@ def solve_path(
         except ConvergenceError as err:
             ds /= 2
             if ds < min_step:
-                raise ConvergenceError(
+                raise PathStalled(
                     f"continuation stalled at s = {s:.4g} (step {2 * ds:.3g}): {err}",
                     iterations=total + err.iterations,
                     residual=err.residual,
+                    reached=s,
+                    last=last,
                 ) from err
             continue
         total += eq.iterations
-        q, s = eq.q, target
+        q, s, last = eq.q, target, eq
         if s >= 1.0:
             return replace(eq, iterations=total)
         if eq.iterations <= 6:
@@ -301,8 +328,9 @@ class PlasticResult:
     Attributes:
         equilibrium: the converged state.
         state: the faces' plastic states after it.
-        updates: face-state updates made (faces that followed the skeleton again).
-        reverse: (m,) bool, faces that yielded in reverse (not modelled: reported).
+        updates: faces that yielded along the path.
+        reverse: (m,) bool, faces past a rectangular section's reverse yield
+            (``plastic.check``: reported, not modelled).
     """
 
     equilibrium: Equilibrium
@@ -312,44 +340,66 @@ class PlasticResult:
 
 
 def solve_plastic(
-    shell: Shell,
+    shell_at: Callable[[float], Shell],
     q0: ArrayLike,
     state: plastic.PlasticState,
     *,
-    max_rounds: int = 50,
-    rtol: float = 1e-4,
+    first_step: float = 0.25,
+    min_step: float = 1e-3,
+    step_iter: int = 25,
+    callback: Progress | None = None,
     **options: object,
 ) -> PlasticResult:
-    """Equilibrium with every face unloading elastically from its plastic state.
+    """Incremental elastic-plastic equilibria along a load path ``shell_at(s)``,
+    ``s`` from 0 to 1, from the equilibrium ``q0`` of ``shell_at(0)``.
 
-    A face whose equivalent curvature goes past its reached one (by more than
-    ``rtol``) follows the skeleton again: its state moves on to its current
-    curvature and the shell is solved again, until no face is beyond. (Each
-    re-solve is elastic; under a fixed load a face deep in the plastic range
-    converges slowly, as ``1 - (kappa_y / k)^3`` per round.) ``options`` go to
-    ``solve``; curvatures are measured from the flat sheet.
+    Each increment is one Newton solve with every face on the elastic-plastic
+    law from its state at the increment's start (``Shell.accumulated``: smooth,
+    with its exact tangent); then the states move on (``plastic.update``, the
+    return mapping) and the next increment starts. An increment that fails is
+    halved, one that converges quickly doubles the next. ``options`` go to
+    ``solve``; ``shell_at(s)``'s rest curvature is replaced by the faces'
+    plastic rest forms.
 
     Raises:
-        ConvergenceError: a solve failed, or faces were still beyond after
-            ``max_rounds`` re-solves.
+        PathStalled: an increment fell below ``min_step`` (holds the last
+            equilibrium and how far along the path it is).
     """
-    mat, kform = shell.material, shell.form
     q = np.asarray(q0, dtype=float)
-    updates = 0
-    for _ in range(max_rounds):
-        eq = solve(shell.with_changes(rest_curvature=state.rest), q, **options)  # type: ignore[arg-type]
-        q = eq.q
-        b = second_fundamental_form(shell, q)
-        found = plastic.check(mat, kform, b, state, rtol)
-        if not found.beyond.any():
-            return PlasticResult(eq, state, updates, found.reverse)
-        updates += int(found.beyond.sum())
-        state = plastic.reload(mat, kform, b, state, found.beyond)
-    raise ConvergenceError(
-        f"the plastic re-solve left faces beyond their reached curvature after {max_rounds} rounds",
-        iterations=max_rounds,
-        residual=float("nan"),
-    )
+    s, ds, total, yielded = 0.0, first_step, 0, np.zeros(len(state.rest), dtype=bool)
+    last: Equilibrium | None = None
+    while s < 1.0:
+        target = min(1.0, s + ds)
+        current = shell_at(target).with_changes(
+            rest_curvature=state.rest, accumulated=state.accumulated
+        )
+        opts = dict(options)
+        if target < 1.0:
+            opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
+        try:
+            eq = solve(current, q, callback=callback, **opts)  # type: ignore[arg-type]
+        except ConvergenceError as err:
+            ds /= 2
+            if ds < min_step:
+                raise PathStalled(
+                    f"the plastic load path stalled at s = {s:.4g}: {err}",
+                    iterations=total + err.iterations,
+                    residual=err.residual,
+                    reached=s,
+                    last=last,
+                ) from err
+            continue
+        b = second_fundamental_form(current, eq.q)
+        state, now = plastic.update(current.material, current.form, b, state)
+        yielded |= now
+        q, s, last = eq.q, target, eq
+        total += eq.iterations
+        if eq.iterations <= 6:
+            ds = min(2 * ds, 1.0)
+    assert last is not None
+    final = shell_at(1.0)
+    reverse = plastic.check(final.material, final.form, second_fundamental_form(final, q), state)
+    return PlasticResult(replace(last, iterations=total), state, int(yielded.sum()), reverse)
 
 
 def form_sheet(

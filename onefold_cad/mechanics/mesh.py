@@ -264,6 +264,7 @@ def mesh_sheet(
     hole_radius: float = 0.0,
     hole_centre: ArrayLike = (0.0, 0.0),
     creases: Sequence[ArrayLike] = (),
+    boundary_points: ArrayLike = (),
     min_angle: float = 28.0,
     max_passes: int = 20,
 ) -> SheetMesh:
@@ -280,6 +281,8 @@ def mesh_sheet(
         creases: segments ``((x0, y0), (x1, y1))``; they are kept as mesh edges
             (no triangle crosses them). An end on the outline or the hole's rim
             becomes a vertex of it.
+        boundary_points: (b, 2) points on the outline that must be mesh nodes
+            (ground contacts, say).
         min_angle: Triangle's quality bound (degrees).
         max_passes: refinement passes allowed to reach the size everywhere.
 
@@ -298,23 +301,19 @@ def mesh_sheet(
     diam = float(np.ptp(poly, axis=0).max())
     tol = 1e-9 * diam
     segs = [np.asarray(c, dtype=float).reshape(2, 2) for c in creases]
+    marked = [p for s in segs for p in s]
+    marked += list(np.asarray(boundary_points, dtype=float).reshape(-1, 2))
 
-    # Outline: split its sides at crease ends that lie on them.
+    # Outline: split its sides at crease ends and boundary points on them.
     pts: list[NDArray[np.float64]] = []
     for i in range(len(poly)):
         a, b = poly[i], poly[(i + 1) % len(poly)]
         pts.append(a)
         hits = []
-        for s in segs:
-            for p in s:
-                t = _on_segment(p, a, b, tol)
-                if (
-                    t is not None
-                    and 0 < t < 1
-                    and np.hypot(*(p - a)) > tol
-                    and np.hypot(*(p - b)) > tol
-                ):
-                    hits.append((t, p))
+        for p in marked:
+            t = _on_segment(p, a, b, tol)
+            if t is not None and 0 < t < 1 and min(np.hypot(*(p - a)), np.hypot(*(p - b))) > tol:
+                hits.append((t, p))
         pts.extend(p for _, p in sorted(hits, key=lambda h: h[0]))
     outline_pts = np.array(pts)
     vertices = [outline_pts]

@@ -76,7 +76,7 @@ def restrict(h: sp.csc_matrix, free: NDArray[np.bool_]) -> tuple[NDArray[np.int6
     return keep, block
 
 
-def _factor(a: sp.csc_matrix) -> tuple[spla.SuperLU | None, bool]:
+def factor(a: sp.csc_matrix) -> tuple[spla.SuperLU | None, bool]:
     """SuperLU of a symmetric matrix and whether it is positive definite."""
     try:
         lu = spla.splu(
@@ -204,7 +204,7 @@ def _directions(hf: sp.csc_matrix, gf: F, shift_start: int):
     for k in range(shift_start, len(_SHIFTS)):
         lam = _SHIFTS[k]
         a = hf if lam == 0 else (hf + sp.diags(lam * diag)).tocsc()
-        lu, definite = _factor(a)
+        lu, definite = factor(a)
         if lu is None or not definite:
             continue
         p = -lu.solve(gf)

@@ -22,6 +22,8 @@ from onefold_cad.mechanics.mesh import SheetMesh
 __all__ = [
     "Shell",
     "director_angles",
+    "directors",
+    "moved",
     "hinge_stiffness",
     "flat_positions",
     "pack",
@@ -47,6 +49,12 @@ class Shell:
             valley: the faces' normals turn towards each other).
         crease_stiffness: (kc,) hinge stiffness ``k_c`` per unit length (N m/m per rad^2).
         gravity: (3,) acceleration (m/s^2), e.g. ``(0, 0, -9.80665)``.
+        accumulated: (m,) or None: the faces' accumulated plastic curvature
+            (1/m); with it bending follows the elastic-plastic law about the
+            rest form (``plastic.moment``), without it bending is elastic.
+        load: (N,) or None: external generalised forces on the unknowns (N on
+            coordinates, N m on director angles), energy ``-load . q`` (a
+            forming machine's grip, say).
 
     Director angles are measured about each edge from its reference director
     (``edge_frames``: made in the reference form, carried along the edge by
@@ -60,6 +68,8 @@ class Shell:
     crease_angle: F
     crease_stiffness: F
     gravity: F
+    accumulated: F | None = None
+    load: F | None = None
 
     @classmethod
     def create(
@@ -210,6 +220,32 @@ def director_angles(shell: Shell, x: ArrayLike, normals: ArrayLike) -> F:
     r = transported_director(t0[edge], r0[edge], vec, np.zeros(len(edge)), 0)[0]
     t = vec / np.linalg.norm(vec, axis=1)[:, None]
     return np.arctan2(np.einsum("ij,ij->i", np.cross(r, d), t), np.einsum("ij,ij->i", r, d))
+
+
+def directors(shell: Shell, q: ArrayLike) -> F:
+    """(n_dir, 3) the unit directors of a state (in the order of the director angles)."""
+    mesh = shell.mesh
+    x, angles = unpack(mesh, q)
+    edge = np.concatenate([np.arange(mesh.n_edges), mesh.crease_edges])
+    t0, r0 = shell.edge_frames
+    vec = x[mesh.edges[edge, 1]] - x[mesh.edges[edge, 0]]
+    return transported_director(t0[edge], r0[edge], vec, angles, 0)[0]
+
+
+def moved(shell: Shell, q: ArrayLike, rotation: ArrayLike, translation: ArrayLike) -> F:
+    """The state ``q`` moved rigidly, ``x -> rotation @ x + translation``, its
+    directors turning with it (director angles are measured from directors
+    transported along each edge from the reference, which a rigid motion of
+    the state alone does not turn: the angles are found again).
+
+    Raises:
+        InvalidParameterError: an edge of the moved state points against its
+            reference direction.
+    """
+    rot = np.asarray(rotation, dtype=float)
+    x = unpack(shell.mesh, q)[0] @ rot.T + np.asarray(translation, dtype=float)
+    turned = directors(shell, q) @ rot.T
+    return pack(x, director_angles(shell, x, turned))
 
 
 def flat_positions(mesh: SheetMesh) -> F:

@@ -503,14 +503,14 @@ def test_tipping_margin_is_zero_for_a_centre_of_mass_on_an_edge_within_tol() -> 
     # a right triangle (0,0), (4,0), (0,3) and a centre of mass at height 2
     # below the middle of its hypotenuse, moved out across it by 0.5 and by
     # 2 x tol: balanced on the edge (margin 0), then minus atan(2 tol / 2)
-    from onefold_cad.geometry.placement import _tipping
+    from onefold_cad.geometry.placement import tipping_margin
 
     tri = np.array([[0.0, 0.0], [4.0, 0.0], [0.0, 3.0]])
     tol = 1e-6
     out = np.array([3.0, 4.0]) / 5.0  # the hypotenuse's outward normal
     for shift, want in ((0.5 * tol, 0.0), (2.0 * tol, -math.degrees(math.atan(tol)))):
         com = np.array([2.0, 1.5, 2.0]) + np.append(shift * out, 0.0)
-        margin, edge = _tipping(tri, com, tol)
+        margin, edge = tipping_margin(tri, com, tol)
         assert set(edge) == {1, 2}
         assert margin == pytest.approx(want, rel=1e-9, abs=0.0)
     base = rest_form(build_design(load_template(find_template("patkau-one-fold"))))

@@ -163,3 +163,27 @@ def test_cylinder_shape_operator_converges():
     order = np.polyfit(np.log(sizes), np.log(errors), 1)[0]
     assert order > 1.8
     assert errors[-1] < 3e-4
+
+
+def test_faces_loading_on_the_skeleton_have_exact_derivatives(random_state):
+    """Faces bending on along the plastic skeleton (``Shell.loading``): energy
+    ``Abar W_s(k)``, checked against finite differences with half the faces
+    loading, most of them past the yield curvature."""
+    shell, q = random_state
+    k = np.sqrt(
+        np.einsum(
+            "mi,mij,mj->m", *(lambda b: (b, shell.form, b))(second_fundamental_form(shell, q))
+        )
+    )
+    material = shell.material.with_changes(yield_stress=float(np.median(k)) * 0.2 * 1e3 * 0.05 / 2)
+    loading = RNG.random(shell.mesh.n_faces) < 0.5
+    plastic_shell = shell.with_changes(material=material, loading=loading)
+    assert np.mean(k[loading] > material.yield_curvature) > 0.5, "the plastic range is exercised"
+    ev = evaluate(plastic_shell, q)
+    g = central_difference(lambda y: np.array([evaluate(plastic_shell, y, 0).energy]), q, 1e-5)[
+        :, 0
+    ]
+    assert np.abs(g - ev.gradient).max() / np.abs(ev.gradient).max() < 1e-6
+    h = central_difference(lambda y: evaluate(plastic_shell, y, 1).gradient, q, 1e-5)
+    dense = ev.hessian.toarray()
+    assert np.abs(h - dense).max() / np.abs(dense).max() < 1e-6

@@ -1,0 +1,341 @@
+"""``onefold simulate``'s computation: a design's sheet as steel.
+
+:func:`simulate` runs the stages on the mesh of the chosen level and again on
+the next finer one (twice the nodes) and reports the first with the second's
+change of the largest deviation (``convergence.max_deviation_change``).
+
+- reference 'flat' (default): the sheet is cut flat and stress-free, bent into
+  the design (``formed``: where it yields), let go (``released``: the
+  springback), and stood on the ground under its weight (``standing``);
+- reference 'designed': the designed form is taken as stress-free (as an
+  engineer checks a built shell in an FE program) and stood on its resting
+  contacts under its weight (``designed``: sag and stress).
+
+Progress goes to ``progress(stage, iteration, residual_N)``.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import replace
+
+import numpy as np
+
+from onefold_cad.design import Design
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.hull import convex_hull_2d
+from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.placement import tipping_margin
+from onefold_cad.mechanics.deviation import best_fit, surface_distance
+from onefold_cad.mechanics.equilibrium import PathStalled
+from onefold_cad.mechanics.model import SheetModel, finer, sheet_model
+from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation, Standing
+from onefold_cad.mechanics.shell import director_angles, pack, unpack
+from onefold_cad.mechanics.stages import Placed, form, place, release, stand
+from onefold_cad.mechanics.stress import face_stress
+
+__all__ = ["REFERENCES", "SUPPORTS", "simulate"]
+
+SUPPORTS = ("anchored", "frictionless")
+REFERENCES = ("flat", "designed")
+
+Progress = Callable[[str, int, float], None]
+
+
+def _check(name: str, value: str, allowed: tuple[str, ...]) -> None:
+    if value not in allowed:
+        raise InvalidParameterError(name, f"must be one of {', '.join(allowed)}, got {value!r}")
+
+
+def _stage_progress(progress: Progress | None, stage: str):
+    if progress is None:
+        return None
+    return lambda it, res, energy: progress(stage, it, res)
+
+
+def _formed_result(model: SheetModel, formed) -> FormedResult:
+    shell, mesh = model.shell, model.mesh
+    yielded = formed.state.plastic(model.material)
+    area = shell.ref_area
+    centroid = mesh.nodes[mesh.triangles].mean(axis=1)
+    radius = np.hypot(centroid[:, 0], centroid[:, 1])
+    return FormedResult(
+        bending_energy_J=float(formed.work.sum()),
+        plastic_area_share=float(area[yielded].sum() / area.sum()),
+        plastic_radius_max=float(radius[yielded].max() / model.scale) if yielded.any() else 0.0,
+    )
+
+
+def _share(model: SheetModel, faces: np.ndarray) -> float:
+    """The share of the sheet's area on ``faces`` (m,) bool."""
+    area = model.shell.ref_area
+    return float(area[faces].sum() / area.sum())
+
+
+def _aligned_deviation(model: SheetModel, folded: FoldedSheet, x: Array) -> tuple[float, float]:
+    """Max and rms distance (design unit) of nodes ``x`` (m) from the designed
+    form after the best rigid alignment."""
+    mass = model.shell.node_mass
+    fit = best_fit(x, model.designed, mass)
+    d = surface_distance(folded, fit.apply(x) / model.scale, model.hole_radius / model.scale)
+    return float(d.max()), float(np.sqrt(np.average(d**2, weights=mass)))
+
+
+def _standing_deviation(model: SheetModel, folded: FoldedSheet, x: Array) -> Array:
+    """``(n,)`` distance (design unit) of standing nodes ``x`` (m, resting frame)
+    from the designed form as it stands."""
+    rot, shift = model.standing_frame()
+    back = (x - shift) @ rot  # to the fold frame
+    return surface_distance(folded, back / model.scale, model.hole_radius / model.scale)
+
+
+def _standing(
+    model: SheetModel,
+    folded: FoldedSheet,
+    placed: Placed,
+    rest_curvature,
+    state,
+    supports,
+    progress,
+):
+    """The standing stage and its measures (a stall is an answer: it does not stand)."""
+    s = model.scale
+    try:
+        stage = stand(model, placed, rest_curvature, state, supports, progress)
+    except PathStalled as err:
+        reason = (
+            f"no equilibrium under its full weight on {supports} supports: the load path ends at "
+            f"{err.reached:.3g} of the weight (Newton's residual there {err.residual:.3g} N)"
+        )
+        last = err.last
+        spread = None
+        if last is not None:
+            x0 = unpack(model.mesh, placed.q)[0]
+            spread = float(np.max(np.linalg.norm(last.positions - x0, axis=1)) / s)
+            reason += f"; the last equilibrium had moved by up to {spread:.4g}"
+        empty = np.zeros((0, 3))
+        return (
+            Standing(
+                False,
+                reason,
+                err.reached,
+                None,
+                None,
+                spread,
+                None,
+                None,
+                None,
+                empty,
+                None,
+                None,
+                None,
+                err.iterations,
+                0,
+            ),
+            None,
+            None,
+        )
+    eq = stage.equilibrium
+    x = eq.positions
+    loaded = model.shell.with_changes(rest_curvature=rest_curvature)
+    stress = face_stress(loaded, eq.q, state if state is not None else None) / 1e6
+    dev = _standing_deviation(model, folded, x)
+    mass = model.shell.node_mass
+    contacts = x[eq.contacts] / s
+    com = mass @ x / mass.sum() / s
+    margin = None
+    if len(contacts) >= 1:
+        hull = contacts[convex_hull_2d(contacts[:, :2], 1e-9 * float(np.ptp(x)) / s), :2]
+        margin = float(tipping_margin(hull, com, 1e-9 * float(np.ptp(x)) / s)[0])
+    stands = margin is not None and margin > 0.0
+    reason = "" if stands else "its centre of mass is not over its contacts' support polygon"
+    x0 = unpack(model.mesh, placed.q)[0]
+    return (
+        Standing(
+            stands=stands,
+            reason=reason,
+            load_factor=1.0,
+            max_deviation=float(dev.max()),
+            rms_deviation=float(np.sqrt(np.average(dev**2, weights=mass))),
+            max_displacement=float(np.max(np.linalg.norm(x - x0, axis=1)) / s),
+            height=float(x[:, 2].max() / s),
+            span=float(np.ptp(x[:, 0]) / s),
+            reactions_total_N=float(eq.reactions[:, 2].sum()),
+            contacts=contacts,
+            tipping_margin_deg=margin,
+            max_stress_MPa=float(stress.max()),
+            utilisation=float(stress.max() / (model.material.yield_stress / 1e6)),
+            iterations=eq.iterations,
+            reloaded_area_share=_share(model, stage.reloaded),
+            positions=x,
+        ),
+        stress,
+        dev,
+    )
+
+
+def run(
+    design: Design,
+    folded: FoldedSheet,
+    *,
+    supports: str = "anchored",
+    reference: str = "flat",
+    crease: str = "held",
+    level: str = "normal",
+    h_max: float | None = None,
+    yield_stress_MPa: float | None = None,
+    progress: Progress | None = None,
+) -> Simulation:
+    """The stages on one mesh (see the module docstring); no convergence check."""
+    _check("supports", supports, SUPPORTS)
+    _check("reference", reference, REFERENCES)
+    times: dict[str, float] = {}
+    clock = time.process_time()
+
+    def lap(name: str) -> None:
+        nonlocal clock
+        now = time.process_time()
+        times[name] = now - clock
+        clock = now
+
+    model = sheet_model(
+        design, folded, h_max=h_max, level=level, crease=crease, yield_stress_MPa=yield_stress_MPa
+    )
+    lap("mesh")
+    s, mat = model.scale, model.material
+    formed_result = released = designed = None
+    reverse = 0
+    if reference == "flat":
+        formed = form(model)
+        formed_result = _formed_result(model, formed)
+        lap("formed")
+        rel = release(model, formed, _stage_progress(progress, "released"))
+        xr = rel.equilibrium.positions
+        max_dev, rms_dev = _aligned_deviation(model, folded, xr)
+        placed = place(model, rel.equilibrium.q)
+        xp = unpack(model.mesh, placed.q)[0]
+        released = Released(
+            max_dev,
+            rms_dev,
+            float(xp[:, 2].max() / s),
+            float(np.ptp(xp[:, 0]) / s),
+            rel.equilibrium.iterations,
+            _share(model, rel.reloaded),
+        )
+        reverse = int(rel.reverse.sum())
+        rest_curvature, state = rel.state.rest, rel.state
+        lap("released")
+    else:
+        q = pack(model.designed, director_angles(model.shell, model.designed, model.normals))
+        placed = place(model, q)
+        rest_curvature, state = model.shell.rest_curvature, None
+    standing, stress, dev = _standing(
+        model,
+        folded,
+        placed,
+        rest_curvature,
+        state,
+        supports,
+        _stage_progress(progress, "standing"),
+    )
+    lap("standing")
+    if reference == "designed":
+        designed = Designed(standing.max_displacement, standing.max_stress_MPa)
+    warnings = []
+    if released is not None and released.reloaded_area_share > 0:
+        warnings.append(
+            f"in springback {100 * released.reloaded_area_share:.3g} % of the sheet's area bends "
+            "past its elastic range; the model unloads every face elastically, so the springback "
+            "there is underestimated"
+        )
+    if standing.reloaded_area_share > 0:
+        warnings.append(
+            f"standing, {100 * standing.reloaded_area_share:.3g} % of the sheet's area yields "
+            "under its weight (taken elastically)"
+        )
+    if reverse:
+        warnings.append(
+            f"{reverse} faces unload in springback by more than 2 M_y, past a rectangular "
+            "section's reverse yield (kept elastic: the springback there is an estimate)"
+        )
+    if not standing.stands:
+        warnings.append(f"it does not stand: {standing.reason}")
+    elif standing.utilisation is not None and standing.utilisation >= 1.0:
+        warnings.append(
+            f"it yields under its own weight: the largest stress {standing.max_stress_MPa:.4g} MPa "
+            f"reaches the yield stress {mat.yield_stress / 1e6:.4g} MPa"
+        )
+    return Simulation(
+        unit=design.units.value,
+        supports=supports,
+        reference=reference,
+        crease=crease,
+        weight_N=model.weight_N,
+        nodes=model.mesh.n_nodes,
+        triangles=model.mesh.n_faces,
+        h_max=model.h_max / s,
+        youngs_modulus_GPa=mat.youngs_modulus / 1e9,
+        poisson=mat.poisson,
+        yield_stress_MPa=mat.yield_stress / 1e6,
+        thickness=mat.thickness / s,
+        formed=formed_result,
+        released=released,
+        standing=standing,
+        designed=designed,
+        convergence=None,
+        reverse_yield_faces=reverse,
+        warnings=tuple(warnings),
+        timings_s=times,
+        face_stress_MPa=stress,
+        deviation=dev,
+    )
+
+
+def _measure(sim: Simulation) -> tuple[str, float | None]:
+    """The quantity the convergence check follows: the standing form's largest
+    deviation, or the released form's when it does not stand."""
+    if sim.standing.max_deviation is not None:
+        return "standing.max_deviation", sim.standing.max_deviation
+    if sim.released is not None:
+        return "released.max_deviation", sim.released.max_deviation
+    return "standing.load_factor", sim.standing.load_factor
+
+
+def simulate(
+    design: Design,
+    folded: FoldedSheet,
+    *,
+    convergence: bool = True,
+    level: str = "normal",
+    h_max: float | None = None,
+    progress: Progress | None = None,
+    **options: object,
+) -> Simulation:
+    """:func:`run` on the level's mesh and, with ``convergence``, on the next
+    finer one: the first's results with the relative change of their largest
+    deviation on the second (``convergence.max_deviation_change``).
+
+    Raises:
+        InvalidParameterError: the design cannot be simulated (named value).
+        ConvergenceError: a stage did not converge (never an unconverged result).
+    """
+    base = run(design, folded, level=level, h_max=h_max, progress=progress, **options)
+    if not convergence:
+        return base
+    h = base.h_max * design.units.mm / 1000.0
+    check = run(design, folded, h_max=finer(h), progress=progress, **options)
+    name, a = _measure(base)
+    _, b = _measure(check)
+    change = None if a is None or b is None or b == 0 else abs(a - b) / abs(b)
+    data = {
+        "quantity": name,
+        "value": a,
+        "finer_mesh": {"nodes": check.nodes, "triangles": check.triangles, "h_max": check.h_max},
+        "finer_value": b,
+        "max_deviation_change": change,
+    }
+    times = dict(base.timings_s)
+    times["convergence_check"] = float(sum(check.timings_s.values()))
+    return replace(base, convergence=data, timings_s=times)
