@@ -270,7 +270,7 @@ def _figure(
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(lo[2] if frame else 0.0, hi[2])
-    ax.set_box_aspect(tuple(span), zoom=0.95 if annotate else 1.4)
+    ax.set_box_aspect(tuple(span), zoom=0.95 if annotate else 1.2)
     ax.view_init(elev=elev, azim=azim)
     if not annotate:
         ax.set_axis_off()

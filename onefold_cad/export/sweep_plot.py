@@ -111,12 +111,7 @@ def draw_parallel_coordinates(
             Line2D([], [], color=_FRONT, lw=2.0, label=f"Pareto front ({int((keep & on).sum())})")
         )
     fig.legend(
-        handles=handles,
-        loc="upper right",
-        bbox_to_anchor=(0.86, 1.0),
-        ncols=2,
-        fontsize=9,
-        frameon=False,
+        handles=handles, loc="lower right", bbox_to_anchor=(0.995, 0.005), fontsize=9, frameon=False
     )
     if title:
         fig.suptitle(title, fontsize=11, x=0.02, ha="left")
