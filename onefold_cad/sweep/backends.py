@@ -32,6 +32,7 @@ from onefold_cad.sweep.evaluate import Batch, evaluate_batch
 
 __all__ = [
     "INSTALL_CLUSTER",
+    "DaskSession",
     "check_dask",
     "dask_rows",
     "default_workers",
@@ -140,51 +141,72 @@ def pool_rows(next_batch: NextBatch, workers: int) -> Iterator[Rows]:
         pool.shutdown(wait=False, cancel_futures=True)
 
 
-def dask_rows(next_batch: NextBatch, address: str, workers: int | None) -> Iterator[Rows]:
-    """Evaluate the batches on the Dask cluster at ``address`` (``tcp://HOST:8786``),
-    or on a new ``LocalCluster`` of ``workers`` processes (``address`` 'local')."""
-    check_dask()
-    from dask.distributed import Client, LocalCluster, as_completed
+class DaskSession:
+    """A connection to a Dask cluster (a context manager): ``Client(address)``,
+    or a new ``LocalCluster`` of ``workers`` processes for ``address`` 'local'.
+    Connecting is the first thing a sweep on a cluster does, so an address
+    that answers nothing is an error before any file is written."""
 
-    cluster = None
-    if address == "local":
-        cluster = LocalCluster(
-            n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
-            dashboard_address=None, silence_logs=40,
-        )  # fmt: skip
-    try:
-        client = Client(cluster if cluster is not None else address, timeout="20s")
-    except OSError as exc:
-        if cluster is not None:
-            cluster.close()
-        raise UsageError(f"--scheduler {address}: cannot reach the scheduler ({exc})") from None
-    try:
-        slots = workers or max(1, sum(client.nthreads().values()))
-        futures = as_completed()
-        batches: dict[Any, Batch] = {}
+    def __init__(self, address: str, workers: int | None) -> None:
+        check_dask()
+        from dask.distributed import Client, LocalCluster
 
-        def submit() -> bool:
-            batch = next_batch()
-            if batch is None:
-                return False
-            fut = client.submit(evaluate_batch, batch, pure=False)
-            batches[fut.key] = batch
-            futures.add(fut)
-            return True
+        self.address, self.cluster = address, None
+        if address == "local":
+            self.cluster = LocalCluster(
+                n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
+                dashboard_address=None, silence_logs=40,
+            )  # fmt: skip
+        try:
+            self.client = Client(self.cluster or address, timeout="20s")
+        except OSError as exc:
+            self.close()
+            raise UsageError(f"--scheduler {address}: no scheduler answers ({exc})") from None
+        self.slots = workers or max(1, sum(self.client.nthreads().values()))
 
-        for _ in range(2 * slots):
-            if not submit():
-                break
-        for fut in futures:
-            batch = batches.pop(fut.key)
-            try:
-                rows = fut.result()
-            except Exception as exc:  # the worker died (KilledWorker) or the task could not run
-                rows = lost_rows(batch, exc)
-            fut.release()
-            yield rows
-            submit()
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+    def __enter__(self) -> DaskSession:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        if getattr(self, "client", None) is not None:
+            self.client.close()
+            self.client = None
+        if self.cluster is not None:
+            self.cluster.close()
+            self.cluster = None
+
+
+def dask_rows(next_batch: NextBatch, session: DaskSession) -> Iterator[Rows]:
+    """Evaluate the batches on the session's cluster: futures of
+    :func:`evaluate_batch`, about two per worker in flight, taken as they
+    complete (``as_completed``)."""
+    from dask.distributed import as_completed
+
+    client = session.client
+    futures = as_completed()
+    batches: dict[Any, Batch] = {}
+
+    def submit() -> bool:
+        batch = next_batch()
+        if batch is None:
+            return False
+        fut = client.submit(evaluate_batch, batch, pure=False)
+        batches[fut.key] = batch
+        futures.add(fut)
+        return True
+
+    for _ in range(2 * session.slots):
+        if not submit():
+            break
+    for fut in futures:
+        batch = batches.pop(fut.key)
+        try:
+            rows = fut.result()
+        except Exception as exc:  # the worker died (KilledWorker) or the task could not run
+            rows = lost_rows(batch, exc)
+        fut.release()
+        yield rows
+        submit()

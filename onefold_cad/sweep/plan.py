@@ -16,7 +16,7 @@ from __future__ import annotations
 import hashlib
 import json
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
@@ -245,9 +245,10 @@ def make_plan(
         for v in values:
             _check_value((raw, str(path), template is None, fixed), s, v)
     digest = hashlib.sha1(json.dumps(raw, sort_keys=True, default=str).encode()).hexdigest()
-    unique = {_design_key(digest, {**fixed, **p}): p for p in reversed(pts)}  # first kept
-    keys = tuple(reversed(unique))
-    pts = [unique[k] for k in keys]
+    unique: dict[str, dict[str, Any]] = {}
+    for p in pts:  # a point made twice (rounded whole numbers) is one design, where first made
+        unique.setdefault(_design_key(digest, {**fixed, **p}), p)
+    keys, pts = tuple(unique), list(unique.values())
     plan = SweepPlan(
         str(path), raw, template is None, fixed, tuple(specs), sampler, samples, seed, mnames,
         len(pts) <= IMAGES_UP_TO if images is None else images, (), tuple(pts), keys,
@@ -256,5 +257,5 @@ def make_plan(
         cols = [*plan.input_columns, *plan.output_columns]
         hint = {c.name: m for m in measure_names() for c in MEASURES[m].columns}
         objs = parse_objectives(objectives, cols, hint)
-        plan = SweepPlan(**{**plan.__dict__, "objectives": objs})
+        plan = replace(plan, objectives=objs)
     return plan

@@ -12,6 +12,7 @@ stopped (Ctrl-C, SIGTERM) or fails.
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -19,9 +20,15 @@ from pathlib import Path
 from typing import Any
 
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.sweep.backends import dask_rows, default_workers, inline_rows, pool_rows
+from onefold_cad.sweep.backends import (
+    DaskSession,
+    dask_rows,
+    default_workers,
+    inline_rows,
+    pool_rows,
+)
 from onefold_cad.sweep.evaluate import Batch
-from onefold_cad.sweep.journal import Journal, read_journal
+from onefold_cad.sweep.journal import JOURNAL, Journal, read_journal
 from onefold_cad.sweep.outputs import SweepFiles, write_outputs
 from onefold_cad.sweep.plan import SweepPlan, input_values
 from onefold_cad.sweep.progress import Progress
@@ -98,9 +105,11 @@ class _Batches:
         return Batch(p.template, p.raw, p.implicit, designs, p.measures, p.images)
 
 
-def _backend(batches: _Batches, jobs: int, scheduler: str | None) -> Iterator[list[dict[str, Any]]]:
-    if scheduler:
-        return dask_rows(batches, scheduler, jobs)
+def _backend(
+    batches: _Batches, jobs: int, session: DaskSession | None
+) -> Iterator[list[dict[str, Any]]]:
+    if session is not None:
+        return dask_rows(batches, session)
     if jobs <= 1:
         return inline_rows(batches)
     return pool_rows(batches, jobs)
@@ -128,24 +137,35 @@ def run_sweep(
     out = Path(folder)
     workers = jobs or default_workers()
     index = {k: i for i, k in enumerate(plan.keys)}
-    with Journal(out) as journal:
-        known = read_journal(journal.path)
-        todo = [i for i, k in enumerate(plan.keys) if not is_finished(known.get(k), plan, out)]
+    if scheduler and _todo(plan, out, read_journal(out / JOURNAL)):
+        session: Any = DaskSession(scheduler, jobs)  # before any file: an address may not answer
+    else:
+        session = contextlib.nullcontext()
+    with session, Journal(out) as journal:
+        todo = _todo(plan, out, read_journal(journal.path))
         skipped = len(plan.keys) - len(todo)
         progress = Progress(len(plan.keys), skipped, quiet)
-        batches = _Batches(plan, todo, workers if scheduler or workers > 1 else 1)
+        lanes = session.slots if isinstance(session, DaskSession) else workers
+        batches = _Batches(plan, todo, lanes)
+        dask = session if isinstance(session, DaskSession) else None
         try:
             if todo:
-                for rows in _backend(batches, workers, scheduler):
-                    batches.record(rows)
-                    for r in rows:
-                        journal.append(_journal_row(plan, index[r["key"]], r, out))
-                    progress.add(len(rows), sum(r["status"] != "ok" for r in rows))
+                with contextlib.closing(_backend(batches, workers, dask)) as results:
+                    for rows in results:
+                        batches.record(rows)
+                        for r in rows:
+                            journal.append(_journal_row(plan, index[r["key"]], r, out))
+                        progress.add(len(rows), sum(r["status"] != "ok" for r in rows))
         finally:
             files = write_outputs(plan, out)
     progress.finish()
     failed = files.rows - files.ok
     return SweepRun(len(plan.keys), skipped, progress.done, failed, progress.rate, files)
+
+
+def _todo(plan: SweepPlan, out: Path, known: dict[str, dict[str, Any]]) -> list[int]:
+    """The designs of ``plan`` the journal's rows ``known`` do not finish."""
+    return [i for i, k in enumerate(plan.keys) if not is_finished(known.get(k), plan, out)]
 
 
 def _journal_row(plan: SweepPlan, i: int, row: dict[str, Any], out: Path) -> dict[str, Any]:

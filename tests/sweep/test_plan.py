@@ -41,9 +41,18 @@ def test_keys_are_stable_and_follow_the_inputs(tmp_path):
     assert not set(make_plan(str(copy), ["alpha=30,40"]).keys) & set(a.keys)
 
 
-def test_repeated_points_are_one_design():
+def test_repeated_points_are_one_design_where_first_made():
     plan = make_plan("table1-row1", ["divisions=10:12"], sampler="lhs", samples=20)
     assert len(plan.points) == len(plan.keys) == 3
+    grid = make_plan("table1-row1", ["divisions=1:3:5", "alpha=30,40"])
+    assert [(p["divisions"], p["alpha"]) for p in grid.points] == [
+        (1, 30.0),
+        (1, 40.0),
+        (2, 30.0),
+        (2, 40.0),
+        (3, 30.0),
+        (3, 40.0),
+    ]
 
 
 @pytest.mark.parametrize(

@@ -152,3 +152,31 @@ def test_a_killed_sweep_keeps_its_rows_and_a_rerun_ends_with_every_row_once(tmp_
     assert len(lines) == 80 and all(json.loads(line) for line in lines)  # each row once
     after = read_journal(tmp_path / JOURNAL)
     assert all(after[k] == r for k, r in before.items())  # kept, not done again
+
+
+def test_ctrl_c_keeps_the_rows_rebuilds_the_files_and_says_so(tmp_path):
+    from tests.processes import interruptible
+
+    cmd = [ONEFOLD, "sweep", SMALL[0], "--vary", "alpha=20:60:10", "--vary", "beta=20:60:8",
+           "-o", str(tmp_path), "-j", "2", "--no-images", "-q"]  # fmt: skip
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        preexec_fn=interruptible,
+    )  # fmt: skip
+    journal = tmp_path / JOURNAL
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if journal.exists() and journal.read_bytes().count(b"\n") >= 3:
+            break
+        time.sleep(0.01)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert err.splitlines()[-1] == (
+        f"onefold: interrupted; the finished designs are kept in {journal} and the files "
+        "rebuilt from them; rerun the same command to resume"
+    )
+    assert "Traceback" not in err
+    kept = read_journal(journal)
+    assert 3 <= len(kept) < 80
+    assert sorted(r["key"] for r in table_rows(tmp_path)) == sorted(kept)
