@@ -67,7 +67,7 @@ def test_a_rerun_skips_the_designs_done_and_does_the_new_ones(small_run, tmp_pat
 
 
 def _kill_half_way(folder: Path, jobs: int, mark: str) -> int:
-    """Start a sweep of 80 designs, SIGKILL it once 3 rows are journaled;
+    """Start a sweep of 48 designs, SIGKILL it once 3 rows are journaled;
     the rows journaled by then."""
     env = {**os.environ, "ONEFOLD_TEST_MARK": mark}
     cmd = [
@@ -75,7 +75,7 @@ def _kill_half_way(folder: Path, jobs: int, mark: str) -> int:
         "sweep",
         SMALL[0],
         "--vary",
-        "alpha=20:60:10",
+        "alpha=20:60:6",
         "--vary",
         "beta=20:60:8",
         "-o",
@@ -129,7 +129,7 @@ def test_a_killed_sweep_keeps_its_rows_and_a_rerun_ends_with_every_row_once(tmp_
             "sweep",
             SMALL[0],
             "--vary",
-            "alpha=20:60:10",
+            "alpha=20:60:6",
             "--vary",
             "beta=20:60:8",
             "-o",
@@ -147,9 +147,9 @@ def test_a_killed_sweep_keeps_its_rows_and_a_rerun_ends_with_every_row_once(tmp_
     assert f"({len(before)} from an earlier run)" in proc.stderr
     rows = table_rows(tmp_path)
     keys = [r["key"] for r in rows]
-    assert len(keys) == len(set(keys)) == 80
+    assert len(keys) == len(set(keys)) == 48
     lines = (tmp_path / JOURNAL).read_text().splitlines()
-    assert len(lines) == 80 and all(json.loads(line) for line in lines)  # each row once
+    assert len(lines) == 48 and all(json.loads(line) for line in lines)  # each row once
     after = read_journal(tmp_path / JOURNAL)
     assert all(after[k] == r for k, r in before.items())  # kept, not done again
 
@@ -157,7 +157,7 @@ def test_a_killed_sweep_keeps_its_rows_and_a_rerun_ends_with_every_row_once(tmp_
 def test_ctrl_c_keeps_the_rows_rebuilds_the_files_and_says_so(tmp_path):
     from tests.processes import interruptible
 
-    cmd = [ONEFOLD, "sweep", SMALL[0], "--vary", "alpha=20:60:10", "--vary", "beta=20:60:8",
+    cmd = [ONEFOLD, "sweep", SMALL[0], "--vary", "alpha=20:60:6", "--vary", "beta=20:60:8",
            "-o", str(tmp_path), "-j", "2", "--no-images", "-q"]  # fmt: skip
     proc = subprocess.Popen(
         cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
@@ -178,5 +178,5 @@ def test_ctrl_c_keeps_the_rows_rebuilds_the_files_and_says_so(tmp_path):
     )
     assert "Traceback" not in err
     kept = read_journal(journal)
-    assert 3 <= len(kept) < 80
+    assert 3 <= len(kept) < 48
     assert sorted(r["key"] for r in table_rows(tmp_path)) == sorted(kept)
