@@ -17,7 +17,8 @@ BLOCKS = {
     "fabrication.md": ["bend-example"],
     "templates.md": ["templates"],
     "cli.md": ["cli"],
-    "benchmarks.md": ["bench_solver", "bench_pipeline"],
+    "benchmarks.md": ["bench_solver", "bench_pipeline", "bench_sweep"],
+    "sweep.md": ["sweep-study"],
 }
 
 
@@ -48,6 +49,7 @@ def test_pages_exist():
         "cli.md",
         "templates.md",
         "benchmarks.md",
+        "sweep.md",
         "api.md",
     ):
         assert page in names

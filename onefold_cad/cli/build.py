@@ -236,6 +236,10 @@ STATE: dict[str, Any] = {}
 
 
 def interrupted_text() -> str:
+    """What a stopped command leaves behind (a command may say it in
+    ``STATE["interrupted"]``; a build says whether its files were written)."""
+    if "interrupted" in STATE:
+        return str(STATE["interrupted"])
     staging = STATE.get("staging")
     if staging is not None and staging.committed:
         return "every file of the build had been written"

@@ -1,5 +1,5 @@
 """The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
-``explore`` and ``fit``, each ``cmd_NAME(namespace) -> exit status``, and
+``explore``, ``fit`` and ``sweep``, each ``cmd_NAME(namespace) -> exit status``, and
 the table :data:`COMMANDS` of all of them."""
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from onefold_cad.flags.jobs import load_jobs
 
 if TYPE_CHECKING:
     pass
-from onefold_cad.cli.build import cmd_build
+from onefold_cad.cli.build import STATE, cmd_build
 from onefold_cad.cli.output import warn
 from onefold_cad.cli.parser import build_parser
 from onefold_cad.flags.parser import design_flag_values
@@ -104,10 +104,51 @@ def cmd_fit(ns: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_sweep(ns: argparse.Namespace) -> int:
+    """Evaluate many designs of one template (``onefold_cad.sweep``)."""
+    import os
+
+    from onefold_cad.flags.parser import UsageError
+    from onefold_cad.sweep.backends import check_dask
+    from onefold_cad.sweep.plan import make_plan
+    from onefold_cad.sweep.runner import run_sweep
+
+    scheduler = ns.scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
+    if scheduler:
+        check_dask()
+    if ns.jobs is not None and ns.jobs < 1:
+        raise UsageError(f"--jobs: must be at least 1, got {ns.jobs}")
+    if ns.outdir.exists() and not ns.outdir.is_dir():
+        raise UsageError(f"-o {ns.outdir}: exists and is not a folder")
+    plan = make_plan(
+        ns.template,
+        ns.vary,
+        fixed=design_flag_values(ns),
+        sampler=ns.sampler,
+        samples=ns.samples,
+        seed=ns.seed,
+        measures=[m for text in ns.measure for m in text.split(",") if m.strip()],
+        objectives=ns.objectives,
+        images=ns.images,
+    )
+    STATE["interrupted"] = (
+        f"the finished designs are kept in {ns.outdir / 'journal.jsonl'} and the files "
+        "rebuilt from them; rerun the same command to resume"
+    )
+    run = run_sweep(plan, ns.outdir, jobs=ns.jobs, scheduler=scheduler, quiet=ns.quiet)
+    f = run.files
+    failed = f" ({run.failed} failed: see the error column)" if run.failed else ""
+    front = f", {f.front} on the Pareto front" if plan.objectives else ""
+    names = ", ".join(p.name for p in f.files)
+    print(f"{ns.outdir}: {f.rows} designs{failed}{front}; wrote {names}")
+    return 0
+
+
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "build": cmd_build,
     "solve": cmd_solve,
     "templates": cmd_templates,
     "explore": cmd_explore,
     "fit": cmd_fit,
+    "sweep": cmd_sweep,
 }

@@ -92,9 +92,11 @@ def main(argv: Sequence[str] | None = None) -> int:
             if not args or args[0] not in COMMANDS:
                 if args and not args[0].startswith("-"):
                     raise UsageError(f"unknown command {args[0]!r} (choose from build, "
-                                     "solve, templates, explore, fit)")  # fmt: skip
+                                     "solve, templates, explore, fit, sweep)")  # fmt: skip
                 parsers[""].parse_args(args or ["--help"])  # --help, --version or an error
-                raise UsageError("a command is needed: build, solve, templates, explore or fit")
+                raise UsageError(
+                    "a command is needed: build, solve, templates, explore, fit or sweep"
+                )
             ns = parsers[args[0]].parse_intermixed_args(args[1:])
             return COMMANDS[args[0]](ns)
     except SystemExit as exc:  # --help, --version

@@ -72,7 +72,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  solve      solve a design and print the result (writes nothing)\n"
         "  templates  list the shipped templates\n"
         "  explore    explore a design in the browser (sliders, 3D form, flat pattern)\n"
-        "  fit        find the frame whose resting form has a target height and span\n\n"
+        "  fit        find the frame whose resting form has a target height and span\n"
+        "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
@@ -227,7 +228,116 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "templates": templates,
         "explore": explore,
         "fit": fit,
+        "sweep": _sweep_parser(),
     }
+
+
+def _sweep_parser() -> FlagParser:
+    """``onefold sweep``: the sweep's options, then the design flags (fixed for
+    every design). The measures' and samplers' names come from the sweep's
+    registries (imported here: standard library only)."""
+    from onefold_cad.sweep.measures import measure_help
+    from onefold_cad.sweep.samplers import SAMPLERS
+
+    p = FlagParser(
+        prog=f"{PROG} sweep",
+        usage=f"{PROG} sweep [TEMPLATE] --vary NAME=SPEC [--vary ...] -o DIR [options]",
+        description=_fill(
+            "Evaluate many designs of one template: every design is solved, folded and "
+            "stood on the ground (the STEP's body), on a local process pool or a Dask "
+            "cluster. Writes DIR/results.parquet (every input and output, units in its "
+            "metadata), DIR/data.csv (Design Explorer), DIR/pareto.csv (with --objectives) "
+            "and DIR/parallel.png. Rows are journaled as they finish (DIR/journal.jsonl): "
+            "rerun the same command to resume. A design that fails records its error. The design "
+            "flags below, when given, apply to every design."
+        ),
+        epilog=(
+            "NAME is a design flag without its dashes (alpha, hc, apex-fraction, rectangle, ...).\n"
+            "SPEC: LO:HI:N (N values from LO to HI), LO:HI (a range for --sampler lhs|sobol,\n"
+            "or --samples values on a grid), V,V,... (a list; a polygon's list uses |), V.\n"
+            "e.g. onefold sweep patkau-one-fold --vary alpha=10:80:15 --vary hc=-50,0,50 -o out\n\n"
+            f"measures (--measure NAME,...):\n{measure_help()}"
+        ),
+        formatter_class=_raw_formatter,
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
+        f"name (default: {DEFAULT_TEMPLATE})"
+    )  # fmt: skip
+    g = p.add_argument_group("sweep")
+    g.add_argument(
+        "--vary",
+        action="append",
+        default=[],
+        metavar="NAME=SPEC",
+        help="a design flag to vary and its values (repeat for more flags)",
+    )
+    g.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        required=True,
+        metavar="DIR",
+        help="output folder (its journal resumes a stopped sweep)",
+    )
+    g.add_argument(
+        "--sampler",
+        type=parse_choice(SAMPLERS),
+        default="grid",
+        metavar="|".join(SAMPLERS),
+        help="grid: every combination (default); lhs, "
+        "sobol: --samples space-filling points of the LO:HI ranges",
+    )
+    g.add_argument(
+        "--samples",
+        type=parse_int,
+        metavar="N",
+        help="points for lhs/sobol; values per LO:HI range on a grid",
+    )
+    g.add_argument(
+        "--seed",
+        type=parse_int,
+        default=0,
+        metavar="N",
+        help="seed of lhs/sobol (default 0: the same points every run)",
+    )
+    g.add_argument(
+        "--measure",
+        action="append",
+        default=[],
+        metavar="NAME,...",
+        help="what each design gets beyond solve + fold + rest (see below)",
+    )
+    g.add_argument(
+        "--objectives",
+        metavar="LIST",
+        help="Pareto objectives: max:COLUMN, min:COLUMN, target:COLUMN=VALUE, "
+        "comma-separated (e.g. max:tipping_margin_deg,target:height=3000)",
+    )
+    g.add_argument(
+        "--images",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="a 3D thumbnail per design in DIR/img/ (default: on up to 1000 designs)",
+    )
+    g.add_argument(
+        "-j",
+        "--jobs",
+        type=parse_int,
+        metavar="N",
+        help="worker processes (default: every core; 1: in this process)",
+    )
+    g.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run on a Dask cluster: tcp://HOST:8786 (default: "
+        "$DASK_SCHEDULER_ADDRESS if set), or 'local' for a LocalCluster of -j "
+        "workers; needs onefold_cad[cluster]",
+    )
+    g.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    add_design_flags(p)
+    return p
 
 
 def help_text(command: str = "") -> str:

@@ -7,6 +7,8 @@ apex (H) as a dot; the form's outline on the ground (its shadow from above);
 the support polygon (the hull of the points that touch the ground) and the
 centre of mass with a plumb line to its ground point. Under the view: the fold
 angles and bend directions, the height and footprint, and whether it stands.
+:func:`thumbnail_png` draws the same view small, without the words (a
+sweep's picture of each design).
 With ``frame=True`` (``build --placement frame``, like the STEP and GLB) the
 form is drawn in the fold frame instead (apex above H), without the ground,
 support polygon and centre of mass; the caption still gives how it stands.
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,7 +35,7 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.placement import RestingPlacement
 
-__all__ = ["render_folded_preview", "resting_mesh", "support_and_centre"]
+__all__ = ["render_folded_preview", "resting_mesh", "support_and_centre", "thumbnail_png"]
 
 _TOP = np.array([0.86, 0.62, 0.30])  # the flat sheet's top (+z) face
 _BOTTOM = np.array([0.55, 0.63, 0.72])
@@ -156,6 +159,51 @@ def render_folded_preview(
     Raises:
         ExportError: the image could not be written.
     """
+    out = Path(path)
+    fig = _figure(folded, placement, frame, title, units, size_px, elev, azim, annotate=True)
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ExportError(f"cannot write preview {str(out)!r}: {exc.strerror or exc}") from exc
+    with atomic_output(out) as tmp:
+        # zlib level 1: a third of the encoding time, a slightly larger file
+        fig.savefig(tmp, format="png", dpi=fig.dpi, pil_kwargs={"compress_level": 1})
+    return out
+
+
+def thumbnail_png(
+    folded: FoldedSheet,
+    placement: RestingPlacement | None = None,
+    size_px: tuple[int, int] = (240, 180),
+    elev: float = 20.0,
+    azim: float = -110.0,
+) -> bytes:
+    """A small picture of the form as it stands (PNG bytes): the shaded
+    surface, the crease, the apex, the outline on the ground, the support
+    polygon and the centre of mass, as :func:`render_folded_preview` draws
+    them, without legend, caption, labels or axes (a sweep's thumbnail).
+    ``size_px`` is width and height in pixels."""
+    import io
+
+    fig = _figure(folded, placement, False, "", "", size_px, elev, azim, annotate=False)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=fig.dpi, pil_kwargs={"compress_level": 6})
+    return buf.getvalue()
+
+
+def _figure(
+    folded: FoldedSheet,
+    placement: RestingPlacement | None,
+    frame: bool,
+    title: str,
+    units: str,
+    size_px: tuple[int, int],
+    elev: float,
+    azim: float,
+    annotate: bool,
+) -> Any:
+    """The preview's figure (on an Agg canvas); ``annotate``: with legend,
+    caption, fold-angle labels and axes."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
@@ -163,7 +211,6 @@ def render_folded_preview(
     from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
-    out = Path(path)
     rest = rest_once(folded) if placement is None else placement
     move = (lambda p: np.asarray(p, dtype=float)) if frame else rest.apply
     verts, faces = folded.mesh(angular=_ANGULAR, radial=_RADIAL)
@@ -179,8 +226,9 @@ def render_folded_preview(
     FigureCanvasAgg(fig)
     # explicit drawing order (ground, surface, crease, labels, dots): the dots
     # and labels stay visible where the surface would hide them
-    bottom = 60.0 / size_px[1]  # room for the three caption lines
-    ax = fig.add_axes((0.0, bottom, 0.8, 0.99 - bottom), projection="3d", computed_zorder=False)
+    bottom = 60.0 / size_px[1] if annotate else 0.0  # room for the three caption lines
+    box = (0.0, bottom, 0.8, 0.99 - bottom) if annotate else (0.0, 0.0, 1.0, 1.0)
+    ax = fig.add_axes(box, projection="3d", computed_zorder=False)
     edge = move(folded.boundary_3d)
     edge = np.vstack([edge, edge[:1]])
     if not frame:
@@ -202,7 +250,7 @@ def render_folded_preview(
     crease = move(np.array([[folded.apex, c.end_3d] for c in folded.crease]).reshape(-1, 3))
     crease = crease.reshape(-1, 2, 3)
     ax.add_collection3d(Line3DCollection(crease, colors=_CREASE, linewidths=1.8, zorder=4))
-    for (p, q), half in zip(crease, folded.crease, strict=True):
+    for (p, q), half in zip(crease, folded.crease, strict=True) if annotate else ():
         label = f"{half.fold_angle_deg:.1f}\N{DEGREE SIGN}"
         ax.text(
             *(0.5 * (p + q)),
@@ -212,17 +260,21 @@ def render_folded_preview(
             zorder=5,
             bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.75},
         )
+    dot = 30 if annotate else 10
     if not frame:
-        ax.scatter(*centre, color=_COM, s=30, depthshade=False, zorder=6)
-    ax.scatter(*apex, color=_APEX, s=30, depthshade=False, zorder=6)
+        ax.scatter(*centre, color=_COM, s=dot, depthshade=False, zorder=6)
+    ax.scatter(*apex, color=_APEX, s=dot, depthshade=False, zorder=6)
 
     lo, hi = verts.min(axis=0), verts.max(axis=0)
     span = np.maximum(hi - lo, 1e-9 * float(np.max(hi - lo)))
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(lo[2] if frame else 0.0, hi[2])
-    ax.set_box_aspect(tuple(span), zoom=0.95)
+    ax.set_box_aspect(tuple(span), zoom=0.95 if annotate else 1.2)
     ax.view_init(elev=elev, azim=azim)
+    if not annotate:
+        ax.set_axis_off()
+        return fig
     unit = f" ({units})" if units else ""
     ax.set_xlabel(f"x{unit}", fontsize=8)
     ax.set_ylabel(f"y{unit}", fontsize=8)
@@ -247,11 +299,4 @@ def render_folded_preview(
     fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
     fig.text(0.015, 0.015, _caption(folded, rest, units, frame), fontsize=8.5, va="bottom")
 
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ExportError(f"cannot write preview {str(out)!r}: {exc.strerror or exc}") from exc
-    with atomic_output(out) as tmp:
-        # zlib level 1: a third of the encoding time, a slightly larger file
-        fig.savefig(tmp, format="png", dpi=dpi, pil_kwargs={"compress_level": 1})
-    return out
+    return fig

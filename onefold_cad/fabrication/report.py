@@ -50,6 +50,7 @@ __all__ = [
     "check_finite",
     "design_report",
     "design_warnings",
+    "report_flat_pattern",
     "report_json",
     "resting_numbers",
 ]
@@ -117,10 +118,16 @@ def _solid_min_hole(design: Design, folded: FoldedSheet, warnings: list[str]) ->
         return None
 
 
-def _flat_pattern(
-    design: Design, folded: FoldedSheet, warnings: list[str], compensation: Compensation
+def report_flat_pattern(
+    design: Design,
+    folded: FoldedSheet,
+    warnings: list[str] | None = None,
+    compensation: Compensation | str = Compensation.SHARP,
 ) -> FlatPattern | None:
-    """The flat pattern, or None with the writer's refusal as a warning."""
+    """The flat pattern the report measures (its size, net area and mass):
+    past the bend model's limits the uncompensated one; None when the writer
+    refuses it, with its refusal appended to ``warnings`` (if given)."""
+    warnings = [] if warnings is None else warnings
     try:
         try:
             return flat_pattern_once(design, folded, compensation)
@@ -272,7 +279,7 @@ def design_report(
     m = derived(folded, "developability", lambda: developability(folded))
     comp = Compensation.parse(compensation)
     notes = [*warnings, *design_warnings(design, folded, comp, body)]
-    fp = _flat_pattern(design, folded, notes, comp) if pattern is None else pattern
+    fp = report_flat_pattern(design, folded, notes, comp) if pattern is None else pattern
     own = sheet.to_sheet.apply(sheet.vertices)
     flat_size = own.max(axis=0) - own.min(axis=0)
     gammas = sol.gammas_deg

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError
@@ -17,7 +18,7 @@ if TYPE_CHECKING:
     from onefold_cad.design import Design
 from onefold_cad.flags.overrides import Overrides, changed_flags, derived_name, mark_changes
 
-__all__ = ["Job", "load_jobs"]
+__all__ = ["Job", "load_jobs", "template_job"]
 
 
 MATERIAL_KEYS = (
@@ -68,51 +69,61 @@ def _sources(
 
 def load_jobs(refs: Sequence[str], flags: dict[str, Any], name: str | None = None) -> list[Job]:
     """The designs of the templates ``refs`` (the default one if none) with the
-    design flags applied.
-
-    A template's values are converted into ``--units`` first (when given), so
-    flag values are read in that unit. The design is named ``name`` if given;
-    else the template's name, with the flags given appended; without a
-    template, ``onefold-`` and the flags (never the default template's name).
-    """
-    from onefold_cad.templates import (
-        design_from_data,
-        design_to_data,
-        find_template,
-        read_template,
-        template_units,
-    )
+    design flags applied (:func:`template_job` for each template read)."""
+    from onefold_cad.templates import find_template, read_template
 
     implicit = not refs
     jobs = []
     for ref in refs or [DEFAULT_TEMPLATE]:
         path = find_template(ref)
-        raw = read_template(path)
-        units = template_units(raw, path)
-        template = str(raw.get("name", path.stem))
-        data = raw
-        try:
-            if flags.get("units") and flags["units"] != units.lower():
-                base = design_from_data(raw)
-                data = {**raw, **design_to_data(base.in_units(flags["units"]))}
-            given = {k: v for k, v in flags.items() if v is not None}
-            if name is not None:
-                stem = name
-            elif implicit:
-                stem = derived_name("onefold", given) if given else template
-            else:
-                stem = derived_name(template, given)
-            changed, names = Overrides(**flags, name=stem).apply(data)
-            if name is None:
-                names.pop("name")
-            which = changed_flags(design_to_data(design_from_data(data)), changed, names)
-            changed = mark_changes(changed, given, which, template, implicit)
-            design = design_from_data(changed, key_names=names)
-        except InvalidParameterError as exc:
-            if exc.parameter.startswith("--"):
-                raise
-            raise type(exc)(
-                f"{path}: {exc.parameter}", str(exc)[len(exc.parameter) + 2 :]
-            ) from None
-        jobs.append(Job(design, template, _sources(raw, names, template, implicit)))
+        jobs.append(template_job(read_template(path), path, flags, name, implicit))
     return jobs
+
+
+def template_job(
+    raw: dict[str, Any],
+    path: str | Path,
+    flags: dict[str, Any],
+    name: str | None = None,
+    implicit: bool = False,
+) -> Job:
+    """The design of a template's data ``raw`` (read from ``path``) with the
+    design flags applied, as ``onefold solve`` makes it.
+
+    A template's values are converted into ``--units`` first (when given), so
+    flag values are read in that unit. The design is named ``name`` if given;
+    else the template's name, with the flags given appended; without a
+    template (``implicit``: the default one stands in), ``onefold-`` and the
+    flags (never the default template's name).
+
+    Raises:
+        InvalidParameterError: a flag value the design refuses (named by its
+            flag) or a template value (named with the template's path).
+    """
+    from onefold_cad.templates import design_from_data, design_to_data, template_units
+
+    units = template_units(raw, path)
+    template = str(raw.get("name", Path(path).stem))
+    data = raw
+    try:
+        if flags.get("units") and flags["units"] != units.lower():
+            base = design_from_data(raw)
+            data = {**raw, **design_to_data(base.in_units(flags["units"]))}
+        given = {k: v for k, v in flags.items() if v is not None}
+        if name is not None:
+            stem = name
+        elif implicit:
+            stem = derived_name("onefold", given) if given else template
+        else:
+            stem = derived_name(template, given)
+        changed, names = Overrides(**flags, name=stem).apply(data)
+        if name is None:
+            names.pop("name")
+        which = changed_flags(design_to_data(design_from_data(data)), changed, names)
+        changed = mark_changes(changed, given, which, template, implicit)
+        design = design_from_data(changed, key_names=names)
+    except InvalidParameterError as exc:
+        if exc.parameter.startswith("--"):
+            raise
+        raise type(exc)(f"{path}: {exc.parameter}", str(exc)[len(exc.parameter) + 2 :]) from None
+    return Job(design, template, _sources(raw, names, template, implicit))

@@ -28,7 +28,8 @@ ONEFOLD = str(BIN) if BIN.exists() else shutil.which("onefold")
 SUFFIXES = (
     ".step", ".dxf", "-cut.dxf", "-bends.csv", ".fold", ".glb", ".json", "-3d.png", "-flat.svg"
 )  # fmt: skip
-HEAVY = ("build123d", "OCP", "matplotlib", "ezdxf", "scipy.spatial", "typer", "rich", "pydantic")
+HEAVY = ("build123d", "OCP", "matplotlib", "ezdxf", "scipy.spatial", "typer", "rich", "pydantic",
+         "pyarrow", "dask", "distributed")  # fmt: skip
 
 
 def run(*args: str, cwd: Path | None = None, env: dict | None = None):
@@ -89,6 +90,10 @@ def test_version_is_the_installed_package_s():
         (["build"], "usage: onefold build [TEMPLATE ...] [options]"),
         (["solve"], "usage: onefold solve [TEMPLATE] [options]"),
         (["templates"], "usage: onefold templates"),
+        (
+            ["sweep"],
+            "usage: onefold sweep [TEMPLATE] --vary NAME=SPEC [--vary ...] -o DIR [options]",
+        ),
     ],
 )
 def test_help_has_a_clean_usage_line(cmd, usage):
@@ -119,7 +124,8 @@ def test_no_arguments_prints_the_help():
 
 
 @pytest.mark.parametrize(
-    "argv", [["--help"], ["templates"], ["solve", "table1-row4"], ["solve", "--json"]]
+    "argv",
+    [["--help"], ["templates"], ["sweep", "--help"], ["solve", "table1-row4"], ["solve", "--json"]],
 )
 def test_solve_templates_and_help_import_no_cad_library(argv):
     """Issue 14: the quick commands load numpy and the geometry core only."""
@@ -647,7 +653,7 @@ def test_unknown_command_and_main_exit_codes(capfd):
     assert main(["frobnicate"]) == 2
     assert capfd.readouterr().err == (
         "onefold: error: unknown command 'frobnicate' "
-        "(choose from build, solve, templates, explore, fit)\n"
+        "(choose from build, solve, templates, explore, fit, sweep)\n"
     )
     assert main(["templates"]) == 0
     assert main(["solve", "--beta", "90"]) == 2

@@ -10,7 +10,12 @@ import numpy as np
 import pytest
 
 from onefold_cad import Design, ExportError, FrameCurve, Sheet, build_design
-from onefold_cad.export.preview import render_folded_preview, resting_mesh, support_and_centre
+from onefold_cad.export.preview import (
+    render_folded_preview,
+    resting_mesh,
+    support_and_centre,
+    thumbnail_png,
+)
 from onefold_cad.geometry.placement import rest_form
 
 
@@ -52,6 +57,20 @@ def test_render_writes_a_png_of_the_requested_size(tmp_path, folded):
     warm = (img[:, :, 0] - img[:, :, 2]) > 0.15
     cool = (img[:, :, 2] - img[:, :, 0]) > 0.08
     assert warm.sum() + cool.sum() > 0.02 * img.shape[0] * img.shape[1]
+
+
+def test_a_thumbnail_is_the_same_view_small_and_without_words(folded):
+    import io
+
+    import matplotlib.image as mpimg
+
+    data = thumbnail_png(folded, size_px=(240, 180))
+    assert _png_size(data) == (240, 180)
+    img = mpimg.imread(io.BytesIO(data), format="png")[:, :, :3]
+    warm = (img[:, :, 0] - img[:, :, 2]) > 0.15
+    cool = (img[:, :, 2] - img[:, :, 0]) > 0.08
+    assert warm.sum() + cool.sum() > 0.05 * img.shape[0] * img.shape[1]  # the form fills it
+    assert thumbnail_png(folded, size_px=(240, 180)) == data  # the same picture every time
 
 
 def test_render_failure_raises_export_error_and_leaves_nothing(tmp_path, folded):

@@ -1,0 +1,212 @@
+"""Where a sweep's batches run: this process, a local process pool, or a Dask
+cluster. Each backend takes batches from ``next_batch`` (None: no more),
+keeps about two per worker in flight and yields the rows of each batch as
+it finishes; the runner journals them.
+
+* :func:`inline_rows`: in this process, one batch at a time (``-j 1``).
+* :func:`pool_rows`: a ``concurrent.futures`` process pool of ``-j N``
+  workers, started once (a forkserver that has imported the evaluation
+  code: no worker imports anything per design). Workers ignore Ctrl-C (the
+  sweep stops them) and leave when the sweep's process is gone.
+* :func:`dask_rows`: a Dask distributed cluster, ``Client(address)`` with
+  futures and ``as_completed``; ``local`` starts a ``LocalCluster`` of ``-j
+  N`` worker processes. dask is imported here only.
+
+A batch whose worker died (a crash, not an exception of a design: those are
+rows) comes back as rows of status ``lost``, which a rerun runs again.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import multiprocessing
+import os
+import signal
+import threading
+import time
+from collections.abc import Callable, Iterator
+from typing import Any
+
+from onefold_cad.flags.parser import UsageError
+from onefold_cad.sweep.evaluate import Batch, evaluate_batch
+
+__all__ = [
+    "INSTALL_CLUSTER",
+    "DaskSession",
+    "check_dask",
+    "dask_rows",
+    "default_workers",
+    "inline_rows",
+    "lost_rows",
+    "pool_rows",
+]
+
+NextBatch = Callable[[], Batch | None]
+Rows = list[dict[str, Any]]
+
+#: What to install for ``--scheduler``.
+INSTALL_CLUSTER = "pip install 'onefold_cad[cluster]' (dask[distributed])"
+
+
+def default_workers() -> int:
+    """The cores this process may run on."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def check_dask() -> None:
+    """Raise :class:`UsageError` (one line: what to install) without dask.distributed."""
+    if importlib.util.find_spec("distributed") is None:
+        raise UsageError(f"--scheduler: runs on a Dask cluster, which needs {INSTALL_CLUSTER}")
+
+
+def lost_rows(batch: Batch, why: BaseException) -> Rows:
+    """Rows of status ``lost`` for the designs of a batch whose worker died."""
+    text = " ".join(f"{type(why).__name__}: {why}".split())
+    return [
+        {"key": key, "name": None, "status": "lost", "error": f"worker lost: {text}",
+         "seconds": 0.0}
+        for key, _ in batch.designs
+    ]  # fmt: skip
+
+
+def inline_rows(next_batch: NextBatch) -> Iterator[Rows]:
+    """Evaluate the batches in this process, one after the other."""
+    while (batch := next_batch()) is not None:
+        yield evaluate_batch(batch)
+
+
+def _worker_start(parent: int) -> None:
+    """A pool worker's start: Ctrl-C is the sweep's to handle, and the worker
+    leaves when the process that started the pool is gone (even SIGKILLed)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def watch() -> None:
+        while True:
+            time.sleep(0.5)
+            try:
+                os.kill(parent, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:
+                pass
+
+    threading.Thread(target=watch, daemon=True, name="onefold-sweep-parent-watch").start()
+
+
+def _context() -> Any:
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        ctx = multiprocessing.get_context("forkserver")
+        ctx.set_forkserver_preload(["onefold_cad.sweep.evaluate"])
+        return ctx
+    return multiprocessing.get_context("spawn")
+
+
+def pool_rows(next_batch: NextBatch, workers: int) -> Iterator[Rows]:
+    """Evaluate the batches on a local pool of ``workers`` processes."""
+    from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+    from concurrent.futures.process import BrokenProcessPool
+
+    def start() -> ProcessPoolExecutor:
+        return ProcessPoolExecutor(
+            workers, mp_context=_context(), initializer=_worker_start, initargs=(os.getpid(),)
+        )
+
+    pool = start()
+    pending: dict[Future[Rows], Batch] = {}
+    try:
+        while True:
+            while len(pending) < 2 * workers and (batch := next_batch()) is not None:
+                pending[pool.submit(evaluate_batch, batch)] = batch
+            if not pending:
+                return
+            done, _ = wait(pending, return_when=FIRST_COMPLETED)
+            broken = False
+            for fut in done:
+                batch = pending.pop(fut)
+                try:
+                    yield fut.result()
+                except BrokenProcessPool as exc:
+                    broken = True
+                    yield lost_rows(batch, exc)
+            if broken:  # every batch in flight is lost with the pool: start another
+                for batch in list(pending.values()):
+                    yield lost_rows(batch, BrokenProcessPool("a worker of the pool died"))
+                pending.clear()
+                pool.shutdown(wait=False, cancel_futures=True)
+                pool = start()
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+class DaskSession:
+    """A connection to a Dask cluster (a context manager): ``Client(address)``,
+    or a new ``LocalCluster`` of ``workers`` processes for ``address`` 'local'.
+    Connecting is the first thing a sweep on a cluster does, so an address
+    that answers nothing is an error before any file is written."""
+
+    def __init__(self, address: str, workers: int | None) -> None:
+        check_dask()
+        from dask.distributed import Client, LocalCluster
+
+        self.address, self.cluster = address, None
+        if address == "local":
+            self.cluster = LocalCluster(
+                n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
+                dashboard_address=None, silence_logs=40,
+            )  # fmt: skip
+        try:
+            self.client = Client(self.cluster or address, timeout="20s")
+        except OSError as exc:
+            self.close()
+            raise UsageError(f"--scheduler {address}: no scheduler answers ({exc})") from None
+        self.slots = workers or max(1, sum(self.client.nthreads().values()))
+
+    def __enter__(self) -> DaskSession:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        if getattr(self, "client", None) is not None:
+            self.client.close()
+            self.client = None
+        if self.cluster is not None:
+            self.cluster.close()
+            self.cluster = None
+
+
+def dask_rows(next_batch: NextBatch, session: DaskSession) -> Iterator[Rows]:
+    """Evaluate the batches on the session's cluster: futures of
+    :func:`evaluate_batch`, about two per worker in flight, taken as they
+    complete (``as_completed``)."""
+    from dask.distributed import as_completed
+
+    client = session.client
+    futures = as_completed()
+    batches: dict[Any, Batch] = {}
+
+    def submit() -> bool:
+        batch = next_batch()
+        if batch is None:
+            return False
+        fut = client.submit(evaluate_batch, batch, pure=False)
+        batches[fut.key] = batch
+        futures.add(fut)
+        return True
+
+    for _ in range(2 * session.slots):
+        if not submit():
+            break
+    for fut in futures:
+        batch = batches.pop(fut.key)
+        try:
+            rows = fut.result()
+        except Exception as exc:  # the worker died (KilledWorker) or the task could not run
+            rows = lost_rows(batch, exc)
+        fut.release()
+        yield rows
+        submit()

@@ -1,0 +1,232 @@
+"""What a sweep measures on each design: the registry :data:`MEASURES`.
+
+Every design is solved, folded and stood on the ground (the body the STEP
+holds, :func:`~onefold_cad.fabrication.rules.resting_placement`): the
+:data:`REST` columns. ``--measure NAME,...`` adds the columns of further
+:class:`Measure` entries (``bends``, ``mass``). A measure is a name, its
+columns (with their units) and a function of the design, its fold and its
+resting placement that returns one plain value per column; the runner only
+reads this table, so a new measure (say ``simulate``, from the mechanics
+layer) is one more :func:`register` call in this module and nothing else.
+
+Units are kinds (:data:`UNIT_KINDS`) resolved per design: ``length`` is the
+design's unit (``mm``, ``in``, ``ft``), ``mass`` the report's (kg for mm
+designs, lb otherwise). Every value equals the one ``onefold solve --json``
+reports for the same flags.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the parser reads this table: no numpy at import
+    from onefold_cad.design import Design
+    from onefold_cad.geometry.folding import FoldedSheet
+    from onefold_cad.geometry.placement import RestingPlacement
+
+__all__ = [
+    "MEASURES",
+    "REST",
+    "UNIT_KINDS",
+    "Column",
+    "Measure",
+    "measure_help",
+    "measure_names",
+    "register",
+    "resolve_unit",
+]
+
+#: The unit kinds of a column, and what each means.
+UNIT_KINDS = {
+    "": "no unit (a count, a ratio, a word)",
+    "deg": "degrees",
+    "length": "the design's length unit (mm, in or ft: the units column)",
+    "length^2": "the design's length unit squared",
+    "mass": "kg for mm designs, lb for inch and foot designs (the mass_unit column)",
+    "kg/m^3": "kilograms per cubic metre",
+    "s": "seconds",
+}
+
+
+@dataclass(frozen=True)
+class Column:
+    """One output column.
+
+    Attributes:
+        name: the column's name (``tipping_margin_deg``).
+        kind: its type: 'float', 'int', 'bool' or 'str'.
+        unit: its unit kind (a key of :data:`UNIT_KINDS`).
+        help: what it holds, in a few words.
+    """
+
+    name: str
+    kind: str
+    unit: str
+    help: str
+
+
+@dataclass(frozen=True)
+class Measure:
+    """A named set of output columns and how to compute them.
+
+    Attributes:
+        name: what ``--measure`` calls it.
+        help: one line for ``--help``.
+        columns: the columns it fills.
+        compute: ``(design, folded, rest) -> {column: value}``, plain values
+            (float, int, bool, str or None), in the units of ``columns``.
+    """
+
+    name: str
+    help: str
+    columns: tuple[Column, ...]
+    compute: Callable[[Design, FoldedSheet, RestingPlacement], Mapping[str, Any]]
+
+
+def resolve_unit(kind: str, units: str, mass_unit: str | None = None) -> str:
+    """The concrete unit of a column of unit ``kind`` for a design in ``units``
+    (``length`` in mm is ``mm``, ``length^2`` is ``mm^2``)."""
+    if kind == "length":
+        return units
+    if kind == "length^2":
+        return f"{units}^2"
+    if kind == "mass":
+        return mass_unit or ("kg" if units == "mm" else "lb")
+    return kind
+
+
+def _rest(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[str, Any]:
+    plus, minus = folded.crease
+    return {
+        "units": design.units.value,
+        "body": rest.body,
+        "apex_height": float(folded.solution.apex_height),
+        "fold_angle_plus_x_deg": float(plus.fold_angle_deg),
+        "fold_angle_minus_x_deg": float(minus.fold_angle_deg),
+        "bend_plus_x": plus.bend,
+        "bend_minus_x": minus.bend,
+        "height": rest.height,
+        "span": rest.width,
+        "depth": rest.depth,
+        "footprint_area": rest.footprint_area,
+        "tilt_deg": float(rest.tilt_deg),
+        "tipping_margin_deg": float(rest.tipping_margin_deg),
+        "stable": bool(rest.stable),
+        "touching_points": len(rest.contacts),
+    }
+
+
+#: What every design gets: solve, fold and rest.
+REST = Measure(
+    "rest",
+    "solve, fold and stand the design (always)",
+    (
+        Column("units", "str", "", "the design's length unit"),
+        Column("body", "str", "", "the body that stands: solid or shell (the STEP's)"),
+        Column("apex_height", "float", "length", "the paper's h at the frame radius R"),
+        Column("fold_angle_plus_x_deg", "float", "deg", "fold angle of the +x crease half"),
+        Column("fold_angle_minus_x_deg", "float", "deg", "fold angle of the -x crease half"),
+        Column("bend_plus_x", "str", "", "bend direction of the +x half: UP or DOWN"),
+        Column("bend_minus_x", "str", "", "bend direction of the -x half: UP or DOWN"),
+        Column("height", "float", "length", "height of the form as it rests"),
+        Column("span", "float", "length", "footprint width (along the resting x axis)"),
+        Column("depth", "float", "length", "footprint depth (along the resting y axis)"),
+        Column("footprint_area", "float", "length^2", "area of the form's shadow on the ground"),
+        Column("tilt_deg", "float", "deg", "tilt of the resting form from the fold frame"),
+        Column("tipping_margin_deg", "float", "deg", "smallest tilt that tips it over"),
+        Column("stable", "bool", "", "the centre of mass lies over the support polygon"),
+        Column("touching_points", "int", "", "points that touch the ground"),
+    ),
+    _rest,
+)
+
+
+def _bends(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[str, Any]:
+    from onefold_cad.fabrication.bend_checks import check_bends
+    from onefold_cad.geometry.bend_model import crease_bends
+
+    out: dict[str, Any] = {}
+    for half, bv in zip(folded.crease, crease_bends(folded, design.material), strict=True):
+        out[f"crease_length_{half.name}"] = float(half.length)
+        out[f"bend_allowance_{half.name}"] = float(bv.allowance)
+        out[f"bend_deduction_{half.name}"] = float(bv.deduction)
+    out["bend_problems"] = len(check_bends(folded, design.material, design.units))
+    return out
+
+
+def _mass(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[str, Any]:
+    from onefold_cad.fabrication.mass import design_mass
+    from onefold_cad.fabrication.report import report_flat_pattern
+
+    fp = report_flat_pattern(design, folded)
+    mass = None if fp is None else design_mass(design, fp.area)
+    return {
+        "flat_area": None if fp is None else float(fp.area),
+        "mass": None if mass is None else float(mass.value),
+        "mass_unit": None if mass is None else mass.unit,
+    }
+
+
+def _half_columns(stem: str, unit: str, what: str) -> tuple[Column, ...]:
+    return tuple(
+        Column(f"{stem}_{h}", "float", unit, f"{what} of the {s} crease half")
+        for h, s in (("plus_x", "+x"), ("minus_x", "-x"))
+    )
+
+
+#: The measures by name (``rest`` first; the order of their columns).
+MEASURES: dict[str, Measure] = {"rest": REST}
+
+
+def register(measure: Measure) -> Measure:
+    """Add ``measure`` to :data:`MEASURES` (a name already there is an error)."""
+    if measure.name in MEASURES:
+        raise ValueError(f"measure {measure.name!r} is registered already")
+    MEASURES[measure.name] = measure
+    return measure
+
+
+register(
+    Measure(
+        "bends",
+        "crease lengths, bend allowance and deduction, and the bend model's problems",
+        (
+            *_half_columns("crease_length", "length", "length"),
+            *_half_columns("bend_allowance", "length", "bend allowance"),
+            *_half_columns("bend_deduction", "length", "bend deduction"),
+            Column("bend_problems", "int", "", "limits of the bend model it breaks (0: none)"),
+        ),
+        _bends,
+    )
+)
+register(
+    Measure(
+        "mass",
+        "net area of the flat pattern and the part's mass (needs a density)",
+        (
+            Column("flat_area", "float", "length^2", "net area of the cut part"),
+            Column("mass", "float", "mass", "mass of the cut part"),
+            Column("mass_unit", "str", "", "kg or lb"),
+        ),
+        _mass,
+    )
+)
+
+
+def measure_names() -> tuple[str, ...]:
+    """The names ``--measure`` takes (every measure but the always-on ``rest``)."""
+    return tuple(n for n in MEASURES if n != REST.name)
+
+
+def measure_help() -> str:
+    """The measures, one line each (``--help``): name, what, columns."""
+    import textwrap
+
+    lines = []
+    for m in MEASURES.values():
+        cols = ", ".join(c.name for c in m.columns)
+        lines.append(f"  {m.name:<6} {m.help}; columns:")
+        lines += textwrap.wrap(cols, 96, initial_indent=" " * 9, subsequent_indent=" " * 9)
+    return "\n".join(lines)
