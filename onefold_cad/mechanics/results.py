@@ -86,6 +86,8 @@ class Standing:
         tipping_margin_deg: of the centre of mass over the contacts.
         max_stress_MPa, utilisation: the largest stress at the sheet's faces
             and its ratio to the yield stress.
+        max_stress_at: ``(2,)`` where it is on the flat sheet (length, fold
+            frame; H at the origin), None without an equilibrium.
         iterations: Newton steps.
         reloaded_area_share: the share of the sheet's area its weight bends
             past the elastic range (yielding, which the stage takes elastically).
@@ -105,6 +107,7 @@ class Standing:
     tipping_margin_deg: float | None
     max_stress_MPa: float | None
     utilisation: float | None
+    max_stress_at: Array | None
     iterations: int
     reloaded_area_share: float
     positions: Array | None = field(default=None, repr=False)
@@ -125,6 +128,9 @@ class Standing:
             "tipping_margin_deg": _f(self.tipping_margin_deg),
             "max_stress_MPa": _f(self.max_stress_MPa),
             "utilisation": _f(self.utilisation),
+            "max_stress_at": None
+            if self.max_stress_at is None
+            else np.asarray(self.max_stress_at, dtype=float).tolist(),
             "iterations": int(self.iterations),
             "reloaded_area_share": float(self.reloaded_area_share),
         }
@@ -165,6 +171,13 @@ class Simulation:
         timings_s: seconds per stage (CPU).
         face_stress_MPa, deviation: per-face stress and per-node standing
             deviation (design unit) for the pictures; arrays, not in the JSON.
+        faces: ``(m, 3)`` the mesh's triangles (node indices).
+        flat: ``(n, 2)`` the nodes on the flat sheet, fold frame (design unit).
+        designed_positions: ``(n, 3)`` the nodes on the designed form as it
+            stands (design unit, resting frame).
+        standing_positions, released_positions: ``(n, 3)`` the simulated nodes
+            (design unit; standing in the resting frame, released as the
+            standing start placed it), None when there is none.
     """
 
     unit: str
@@ -189,6 +202,11 @@ class Simulation:
     timings_s: dict[str, float]
     face_stress_MPa: Array | None = field(default=None, repr=False)
     deviation: Array | None = field(default=None, repr=False)
+    faces: Array | None = field(default=None, repr=False)
+    flat: Array | None = field(default=None, repr=False)
+    designed_positions: Array | None = field(default=None, repr=False)
+    standing_positions: Array | None = field(default=None, repr=False)
+    released_positions: Array | None = field(default=None, repr=False)
 
     def to_data(self) -> dict[str, Any]:
         """The report's ``simulation`` section."""

@@ -167,6 +167,10 @@ def _standing(
             tipping_margin_deg=margin,
             max_stress_MPa=float(stress.max()),
             utilisation=float(stress.max() / (model.material.yield_stress / 1e6)),
+            max_stress_at=model.mesh.nodes[model.mesh.triangles[int(np.argmax(stress))]].mean(
+                axis=0
+            )
+            / s,
             iterations=eq.iterations,
             reloaded_area_share=_share(model, stage.reloaded),
             positions=x,
@@ -205,7 +209,7 @@ def run(
     )
     lap("mesh")
     s, mat = model.scale, model.material
-    formed_result = released = designed = None
+    formed_result = released = designed = released_at = None
     reverse = 0
     if reference == "flat":
         formed = form(model)
@@ -216,6 +220,7 @@ def run(
         max_dev, rms_dev = _aligned_deviation(model, folded, xr)
         placed = place(model, rel.equilibrium.q)
         xp = unpack(model.mesh, placed.q)[0]
+        released_at = xp / s
         released = Released(
             max_dev,
             rms_dev,
@@ -290,6 +295,14 @@ def run(
         timings_s=times,
         face_stress_MPa=stress,
         deviation=dev,
+        faces=model.mesh.triangles,
+        flat=model.mesh.nodes / s,
+        designed_positions=(
+            model.designed @ model.standing_frame()[0].T + model.standing_frame()[1]
+        )
+        / s,
+        standing_positions=None if standing.positions is None else standing.positions / s,
+        released_positions=released_at,
     )
 
 
