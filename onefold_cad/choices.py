@@ -14,7 +14,19 @@ from typing import Self
 
 from onefold_cad.errors import InvalidParameterError
 
-__all__ = ["Body", "Choice", "Compensation", "Model", "Placement", "SheetSurface", "Units"]
+__all__ = [
+    "Body",
+    "Choice",
+    "Compensation",
+    "Crease",
+    "MeshLevel",
+    "Model",
+    "Placement",
+    "Reference",
+    "SheetSurface",
+    "Supports",
+    "Units",
+]
 
 
 class Choice(StrEnum):
@@ -122,3 +134,44 @@ class Placement(Choice):
 
     REST = "rest"
     FRAME = "frame"
+
+
+class Supports(Choice):
+    """How the ground holds a simulated sheet where it touches.
+
+    ANCHORED: a touching point does not slide (it is held in x, y and z).
+    FRICTIONLESS: a touching point slides freely on the ground (held in z only).
+    """
+
+    ANCHORED = "anchored"
+    FRICTIONLESS = "frictionless"
+
+
+class Reference(Choice):
+    """The stress-free form of a simulated sheet.
+
+    FLAT: the flat-cut sheet, bent into the design (forming, springback, standing).
+    DESIGNED: the designed form (a structural check of it under its weight).
+    """
+
+    FLAT = "flat"
+    DESIGNED = "designed"
+
+
+class Crease(Choice):
+    """How a simulated sheet's crease behaves.
+
+    HELD: each crease half keeps its set angle (a welded fold line).
+    ELASTIC: the bend zone's own stiffness, D / (psi (r + t / 2)) per length.
+    """
+
+    HELD = "held"
+    ELASTIC = "elastic"
+
+
+class MeshLevel(Choice):
+    """How fine a simulated sheet's mesh is (``coarse`` is a preview)."""
+
+    COARSE = "coarse"
+    NORMAL = "normal"
+    FINE = "fine"

@@ -1,5 +1,6 @@
 """The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
-``explore``, ``fit`` and ``sweep``, each ``cmd_NAME(namespace) -> exit status``, and
+``explore``, ``fit``, ``sweep`` and ``simulate``
+(:mod:`onefold_cad.cli.simulate`), each ``cmd_NAME(namespace) -> exit status``, and
 the table :data:`COMMANDS` of all of them."""
 
 from __future__ import annotations
@@ -8,16 +9,13 @@ import argparse
 import contextlib
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
-from onefold_cad.cli.summary import summary
-from onefold_cad.flags.jobs import load_jobs
-
-if TYPE_CHECKING:
-    pass
 from onefold_cad.cli.build import STATE, cmd_build
 from onefold_cad.cli.output import warn
 from onefold_cad.cli.parser import build_parser
+from onefold_cad.cli.simulate import cmd_simulate
+from onefold_cad.cli.summary import summary
+from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
 
 __all__ = ["COMMANDS"]
@@ -151,4 +149,5 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "explore": cmd_explore,
     "fit": cmd_fit,
     "sweep": cmd_sweep,
+    "simulate": cmd_simulate,
 }

@@ -9,7 +9,6 @@ from __future__ import annotations
 import argparse
 import textwrap
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
@@ -20,12 +19,9 @@ from onefold_cad.flags.design_flags import (
     parse_float,
     parse_int,
 )
+from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
 from onefold_cad.version import __version__
-
-if TYPE_CHECKING:
-    pass
-from onefold_cad.flags.parser import FlagParser, add_design_flags
 
 __all__ = ["build_parser", "help_text"]
 
@@ -73,7 +69,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  templates  list the shipped templates\n"
         "  explore    explore a design in the browser (sliders, 3D form, flat pattern)\n"
         "  fit        find the frame whose resting form has a target height and span\n"
-        "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n\n"
+        "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n"
+        "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
@@ -229,7 +226,76 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "explore": explore,
         "fit": fit,
         "sweep": _sweep_parser(),
+        "simulate": _simulate_parser(),
     }
+
+
+def _simulate_parser() -> FlagParser:
+    """``onefold simulate``: the mechanics' options, then the design flags."""
+    from onefold_cad.choices import Crease, MeshLevel, Reference, Supports
+
+    def words(choice: type) -> tuple[str, ...]:
+        return tuple(c.value for c in choice)
+
+    p = FlagParser(
+        prog=f"{PROG} simulate",
+        usage=f"{PROG} simulate [TEMPLATE] [--supports anchored|frictionless] "
+        "[--reference flat|designed] [--json] [-o DIR] [options]",
+        description=_fill(
+            "Simulate the design's sheet as steel: bent flat into the design (where it "
+            "yields), let go by the folding machine (its springback), and standing on the "
+            "ground under its own weight (its sag, stresses, and whether it stands), with a "
+            "shell model of the sheet calibrated to its Young's modulus, Poisson's ratio, "
+            "yield stress, thickness and density (docs/mechanics.md). With --reference "
+            "designed the designed form is taken as stress-free and checked under its weight "
+            "on its resting contacts, as an FE program does. The mesh is solved again twice as "
+            "fine to say how converged the answer is (not for --mesh coarse, a preview)."
+        ),
+        formatter_class=_raw_formatter,
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
+        f"name (default: {DEFAULT_TEMPLATE})"
+    )  # fmt: skip
+    g = p.add_argument_group("simulation")
+    g.add_argument(
+        "--supports", type=parse_choice(words(Supports)), default=Supports.ANCHORED.value,
+        metavar="anchored|frictionless", help="where the sheet touches the ground it is "
+        "anchored (does not slide; default) or slides freely",
+    )  # fmt: skip
+    g.add_argument(
+        "--reference", type=parse_choice(words(Reference)), default=Reference.FLAT.value,
+        metavar="flat|designed", help="the stress-free form: the flat sheet (forming, "
+        "springback, standing; default) or the designed form (a structural check)",
+    )  # fmt: skip
+    g.add_argument(
+        "--crease", type=parse_choice(words(Crease)), default=Crease.HELD.value,
+        metavar="held|elastic", help="the crease keeps its set angle (default), or bends "
+        "with its bend zone's own stiffness",
+    )  # fmt: skip
+    g.add_argument(
+        "--mesh", type=parse_choice(words(MeshLevel)), default=MeshLevel.NORMAL.value,
+        metavar="coarse|normal|fine", help="mesh fineness (default normal; coarse: a quick "
+        "preview without the convergence check)",
+    )  # fmt: skip
+    check = g.add_mutually_exclusive_group()
+    check.add_argument(
+        "--check", dest="check", action="store_true", default=None,
+        help="solve again on a mesh twice as fine (default, but for coarse)",
+    )  # fmt: skip
+    check.add_argument("--no-check", dest="check", action="store_false",
+                       help="skip the convergence check")  # fmt: skip
+    o = p.add_argument_group("output")
+    o.add_argument("--json", action="store_true",
+                   help="print the JSON report with its simulation section")  # fmt: skip
+    o.add_argument(
+        "-o", "--outdir", type=Path, metavar="DIR", help="write NAME.json, NAME-standing.glb, "
+        "NAME-released.glb, NAME-deviation.png and NAME-stress.png into DIR"
+    )  # fmt: skip
+    _add_common(o)
+    add_design_flags(p)
+    return p
 
 
 def _sweep_parser() -> FlagParser:

@@ -271,36 +271,52 @@ def solve_path(
     first_step: float = 0.25,
     min_step: float = 1e-3,
     step_iter: int = 25,
+    max_move: float | None = None,
+    max_solves: int = 64,
     callback: Progress | None = None,
     **options: object,
 ) -> Equilibrium:
     """Continuation: equilibria of ``shell_at(s)`` for ``s`` from 0 to 1, each solve
     started from the last (a load or rest-form ramp for large motions).
 
-    The step in ``s`` halves when a solve fails and grows after quick ones; the
-    final solve at ``s = 1`` uses ``options`` as given (``solve``'s), the steps
-    before it at most ``step_iter`` Newton iterations.
+    The step in ``s`` halves when a solve fails, or when its equilibrium lies
+    more than ``max_move`` (m) from the last one at some node (Newton jumped to
+    another branch: the path is followed, so a limit point stalls it instead of
+    snapping through), and grows after quick ones; the final solve at ``s = 1``
+    uses ``options`` as given (``solve``'s), the steps before it at most
+    ``step_iter`` Newton iterations; at most ``max_solves`` solves in all.
 
     Raises:
-        PathStalled: the step fell below ``min_step`` (a ConvergenceError that
-            holds the last equilibrium and how far along the path it is).
+        PathStalled: the step fell below ``min_step``, or ``max_solves`` solves
+            did not reach the end (a ConvergenceError that holds the last
+            equilibrium and how far along the path it is).
     """
     q = np.asarray(q0, dtype=float)
     s, ds, total = 0.0, first_step, 0
     last: Equilibrium | None = None
-    while True:
+    for _ in range(max_solves):
         target = min(1.0, s + ds)
         opts = dict(options)
         if target < 1.0:
             opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
         try:
             eq = solve(shell_at(target), q, callback=callback, **opts)  # type: ignore[arg-type]
+            n = shell_at(target).mesh.n_nodes
+            moved = float(np.max(np.linalg.norm((eq.q - q)[: 3 * n].reshape(n, 3), axis=1)))
+            if max_move is not None and moved > max_move:
+                raise ConvergenceError(
+                    f"the step to s = {target:.4g} moved a node {moved:.3g} m (more than "
+                    f"{max_move:.3g} m): another branch",
+                    iterations=eq.iterations,
+                    residual=eq.residual,
+                )
         except ConvergenceError as err:
+            total += err.iterations
             ds /= 2
             if ds < min_step:
                 raise PathStalled(
                     f"continuation stalled at s = {s:.4g} (step {2 * ds:.3g}): {err}",
-                    iterations=total + err.iterations,
+                    iterations=total,
                     residual=err.residual,
                     reached=s,
                     last=last,
@@ -312,6 +328,15 @@ def solve_path(
             return replace(eq, iterations=total)
         if eq.iterations <= 6:
             ds = min(2 * ds, 1.0)
+    residual = float("nan") if last is None else last.residual
+    raise PathStalled(
+        f"continuation did not reach the end in {max_solves} solves (at s = {s:.4g}, "
+        f"residual {residual:.3g} N)",
+        iterations=total,
+        residual=residual,
+        reached=s,
+        last=last,
+    )
 
 
 def solve_directors(shell: Shell, q0: ArrayLike, **options: object) -> Equilibrium:

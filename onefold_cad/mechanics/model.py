@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.choices import Model
+from onefold_cad.choices import Crease, MeshLevel, Model
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
@@ -37,14 +37,14 @@ __all__ = [
     "HELD_STIFFNESS",
     "MESH_LEVELS",
     "SheetModel",
-    "finer",
+    "FINER",
     "sheet_model",
     "shell_material",
 ]
 
 #: The mesh's largest edge for each ``--mesh`` level, relative to the sheet's size
 #: (``Sheet.size``: the largest distance from H to the sheet's edge).
-MESH_LEVELS = {"coarse": 1 / 10, "normal": 1 / 20, "fine": 1 / 40}
+MESH_LEVELS = {MeshLevel.COARSE: 1 / 8, MeshLevel.NORMAL: 1 / 20, MeshLevel.FINE: 1 / 40}
 #: Edge length at the relief hole's rim relative to its radius, and how fast it grows
 #: with the distance from the apex.
 _RIM, _GROWTH = 0.6, 0.25
@@ -52,7 +52,7 @@ _RIM, _GROWTH = 0.6, 0.25
 #: :data:`HELD_STIFFNESS` times stiffer than a bend zone one thickness long), as a
 #: shell FE model's welded fold line does; ``elastic`` gives it the bend zone's own
 #: stiffness D / L_bend (``hinge_stiffness``).
-CREASES = ("held", "elastic")
+CREASES = tuple(c.value for c in Crease)
 HELD_STIFFNESS = 1e4
 #: Standard gravity (m/s^2).
 GRAVITY = 9.80665
@@ -91,6 +91,11 @@ class SheetModel:
     hole_radius: float
     h_max: float
     crease: str
+
+    @property
+    def size(self) -> float:
+        """The sheet's size (m): its largest distance from H."""
+        return float(np.max(np.hypot(self.mesh.nodes[:, 0], self.mesh.nodes[:, 1])))
 
     @property
     def weight_N(self) -> float:
@@ -162,9 +167,8 @@ def _contact_points(folded: FoldedSheet, rest: RestingPlacement) -> Array:
     return folded.unfold(back)[0]
 
 
-def finer(h_max: float) -> float:
-    """The next finer mesh's largest edge (a factor sqrt(2): twice the nodes)."""
-    return h_max / math.sqrt(2.0)
+#: The convergence check's mesh: every edge length divided by this (twice the nodes).
+FINER = math.sqrt(2.0)
 
 
 def sheet_model(
@@ -175,6 +179,7 @@ def sheet_model(
     level: str = "normal",
     crease: str = "held",
     yield_stress_MPa: float | None = None,
+    refine: float = 1.0,
 ) -> SheetModel:
     """The mechanics model of ``design`` and its fold.
 
@@ -185,6 +190,8 @@ def sheet_model(
         level: 'coarse', 'normal' or 'fine' (:data:`MESH_LEVELS`).
         crease: 'held' or 'elastic' (:data:`CREASES`).
         yield_stress_MPa: overrides the material's yield stress.
+        refine: every target edge length (at the hole, its growth, the
+            largest) divided by this (:data:`FINER` for the convergence check).
 
     Raises:
         InvalidParameterError: the paper model, no thickness, no relief hole,
@@ -196,14 +203,8 @@ def sheet_model(
             "simulate needs the exact model (--model exact): the paper's fan has no "
             "smooth surface to bend",
         )
-    if level not in MESH_LEVELS:
-        raise InvalidParameterError(
-            "mesh", f"must be one of {', '.join(MESH_LEVELS)}, got {level!r}"
-        )
-    if crease not in CREASES:
-        raise InvalidParameterError(
-            "crease", f"must be one of {', '.join(CREASES)}, got {crease!r}"
-        )
+    level = MeshLevel.parse(level)
+    crease = Crease.parse(crease).value
     material = shell_material(design, yield_stress_MPa)
     scale = design.units.mm / 1000.0
     hole = 0.5 * relief_hole_diameter(design, folded) * scale
@@ -222,7 +223,7 @@ def sheet_model(
     ]
     mesh = mesh_sheet(
         design.sheet.vertices * scale,
-        size=(_RIM * hole, _GROWTH, h),
+        size=(_RIM * hole / refine, _GROWTH / refine, h / refine),
         hole_radius=hole,
         creases=creases,
         boundary_points=_contact_points(folded, rest) * scale,
@@ -251,7 +252,7 @@ def sheet_model(
         rest=rest,
         scale=scale,
         hole_radius=hole,
-        h_max=h,
+        h_max=h / refine,
         crease=crease,
     )
 

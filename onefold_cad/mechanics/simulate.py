@@ -22,15 +22,15 @@ from dataclasses import replace
 
 import numpy as np
 
+from onefold_cad.choices import Reference, Supports
 from onefold_cad.design import Design
-from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.hull import convex_hull_2d
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.placement import tipping_margin
 from onefold_cad.mechanics.deviation import best_fit, surface_distance
 from onefold_cad.mechanics.equilibrium import PathStalled
-from onefold_cad.mechanics.model import SheetModel, finer, sheet_model
+from onefold_cad.mechanics.model import FINER, SheetModel, sheet_model
 from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation, Standing
 from onefold_cad.mechanics.shell import director_angles, pack, unpack
 from onefold_cad.mechanics.stages import Placed, form, place, release, stand
@@ -38,15 +38,10 @@ from onefold_cad.mechanics.stress import face_stress
 
 __all__ = ["REFERENCES", "SUPPORTS", "simulate"]
 
-SUPPORTS = ("anchored", "frictionless")
-REFERENCES = ("flat", "designed")
+SUPPORTS = tuple(c.value for c in Supports)
+REFERENCES = tuple(c.value for c in Reference)
 
 Progress = Callable[[str, int, float], None]
-
-
-def _check(name: str, value: str, allowed: tuple[str, ...]) -> None:
-    if value not in allowed:
-        raise InvalidParameterError(name, f"must be one of {', '.join(allowed)}, got {value!r}")
 
 
 def _stage_progress(progress: Progress | None, stage: str):
@@ -99,6 +94,7 @@ def _standing(
     state,
     supports,
     progress,
+    unit: str,
 ):
     """The standing stage and its measures (a stall is an answer: it does not stand)."""
     s = model.scale
@@ -114,29 +110,26 @@ def _standing(
         if last is not None:
             x0 = unpack(model.mesh, placed.q)[0]
             spread = float(np.max(np.linalg.norm(last.positions - x0, axis=1)) / s)
-            reason += f"; the last equilibrium had moved by up to {spread:.4g}"
-        empty = np.zeros((0, 3))
-        return (
-            Standing(
-                False,
-                reason,
-                err.reached,
-                None,
-                None,
-                spread,
-                None,
-                None,
-                None,
-                empty,
-                None,
-                None,
-                None,
-                err.iterations,
-                0,
-            ),
-            None,
-            None,
+            reason += f"; at that load it had moved by up to {spread:.4g} {unit}"
+        stalled = Standing(
+            stands=False,
+            reason=reason,
+            load_factor=err.reached,
+            max_deviation=None,
+            rms_deviation=None,
+            max_displacement=spread,
+            height=None,
+            span=None,
+            reactions_total_N=None,
+            contacts=np.zeros((0, 3)),
+            tipping_margin_deg=None,
+            max_stress_MPa=None,
+            utilisation=None,
+            max_stress_at=None,
+            iterations=err.iterations,
+            reloaded_area_share=0.0,
         )
+        return stalled, None, None
     eq = stage.equilibrium
     x = eq.positions
     loaded = model.shell.with_changes(rest_curvature=rest_curvature)
@@ -190,11 +183,12 @@ def run(
     level: str = "normal",
     h_max: float | None = None,
     yield_stress_MPa: float | None = None,
+    refine: float = 1.0,
     progress: Progress | None = None,
 ) -> Simulation:
     """The stages on one mesh (see the module docstring); no convergence check."""
-    _check("supports", supports, SUPPORTS)
-    _check("reference", reference, REFERENCES)
+    supports = Supports.parse(supports).value
+    reference = Reference.parse(reference).value
     times: dict[str, float] = {}
     clock = time.process_time()
 
@@ -205,7 +199,13 @@ def run(
         clock = now
 
     model = sheet_model(
-        design, folded, h_max=h_max, level=level, crease=crease, yield_stress_MPa=yield_stress_MPa
+        design,
+        folded,
+        h_max=h_max,
+        level=level,
+        crease=crease,
+        yield_stress_MPa=yield_stress_MPa,
+        refine=refine,
     )
     lap("mesh")
     s, mat = model.scale, model.material
@@ -244,6 +244,7 @@ def run(
         state,
         supports,
         _stage_progress(progress, "standing"),
+        design.units.value,
     )
     lap("standing")
     if reference == "designed":
@@ -267,6 +268,15 @@ def run(
         )
     if not standing.stands:
         warnings.append(f"it does not stand: {standing.reason}")
+    elif (
+        standing.max_displacement is not None
+        and standing.max_displacement > 0.05 * design.sheet.size
+    ):
+        warnings.append(
+            f"it stands only after its weight moved it by up to {standing.max_displacement:.4g} "
+            f"{design.units.value} ({100 * standing.max_displacement / design.sheet.size:.2g} % of "
+            "the sheet's size): a form far from the design"
+        )
     elif standing.utilisation is not None and standing.utilisation >= 1.0:
         warnings.append(
             f"it yields under its own weight: the largest stress {standing.max_stress_MPa:.4g} MPa "
@@ -337,8 +347,9 @@ def simulate(
     base = run(design, folded, level=level, h_max=h_max, progress=progress, **options)
     if not convergence:
         return base
-    h = base.h_max * design.units.mm / 1000.0
-    check = run(design, folded, h_max=finer(h), progress=progress, **options)
+    check = run(
+        design, folded, level=level, h_max=h_max, refine=FINER, progress=progress, **options
+    )
     name, a = _measure(base)
     _, b = _measure(check)
     change = None if a is None or b is None or b == 0 else abs(a - b) / abs(b)

@@ -42,6 +42,11 @@ __all__ = ["Formed", "Placed", "Stage", "form", "place", "release", "stand"]
 
 #: Newton's tolerance: the residual force relative to the sheet's weight.
 RTOL = 1e-9
+#: The standing's load steps: at most this share of the sheet's size of
+#: movement per step (so the load path is followed and a limit point stalls
+#: it), no step smaller than this share of the weight, and at most this many
+#: Newton steps for a step short of the full weight.
+MAX_MOVE, MIN_LOAD_STEP, STEP_ITERATIONS = 0.05, 1 / 32, 12
 
 
 @dataclass(frozen=True)
@@ -207,6 +212,9 @@ def stand(
         contacts=placed.contacts,
         force_scale=model.weight_N,
         first_step=1.0,
+        min_step=MIN_LOAD_STEP,
+        step_iter=STEP_ITERATIONS,
+        max_move=MAX_MOVE * model.size,
         rtol=RTOL,
         callback=progress,
     )

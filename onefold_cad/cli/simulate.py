@@ -1,0 +1,165 @@
+"""``onefold simulate``: the sheet as steel (``onefold_cad.mechanics.simulate``).
+
+Prints the simulation (text, or the report with its ``simulation`` section as
+JSON); with ``-o DIR`` writes NAME.json (the report), NAME-standing.glb and
+NAME-released.glb (the simulated forms), NAME-deviation.png and NAME-stress.png,
+all or nothing. Progress (stage, Newton step, residual) goes to stderr.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from onefold_cad.cli.output import warn
+from onefold_cad.flags.jobs import load_jobs
+from onefold_cad.flags.parser import design_flag_values
+
+__all__ = ["cmd_simulate", "simulation_lines"]
+
+
+class _Progress:
+    """``onefold: simulate: STAGE: Newton step I, residual R N`` lines on
+    stderr, at most one every half second per stage (and each stage's first)."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.last: dict[str, float] = {}
+
+    def __call__(self, stage: str, iteration: int, residual: float) -> None:
+        now = time.monotonic()
+        if iteration and now - self.last.get(stage, -1.0) < 0.5:
+            return
+        self.last[stage] = now
+        os.write(
+            2,
+            f"{self.name}: {stage}: Newton step {iteration}, residual {residual:.3g} N\n".encode(),
+        )
+
+
+def _length(value: float | None, unit: str) -> str:
+    return "-" if value is None else f"{value:.4g} {unit}"
+
+
+def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
+    """The text ``simulate`` prints, from the report's ``simulation`` section."""
+    u = sim["units"]
+    m = sim["material"]
+    out = [
+        f"{name}  simulated as steel (E {m['youngs_modulus_GPa']:g} GPa, nu {m['poisson']:g}, "
+        f"yield stress {m['yield_stress_MPa']:g} MPa, t {m['thickness']:g} {u}; reference "
+        f"{sim['reference']}, supports {sim['supports']}, crease {sim['crease']})",
+        f"  {'weight':<24} {sim['weight_N']:.6g} N",
+    ]
+    mesh = sim["mesh"]
+    text = (
+        f"{mesh['nodes']} nodes, {mesh['triangles']} triangles (largest edge "
+        f"{mesh['h_max']:.4g} {u})"
+    )
+    conv = sim.get("convergence")
+    if conv and conv.get("max_deviation_change") is not None:
+        fine = conv["finer_mesh"]
+        text += (
+            f"; on {fine['nodes']} nodes {conv['quantity']} changes by "
+            f"{100 * conv['max_deviation_change']:.3g} %"
+        )
+    out.append(f"  {'mesh':<24} {text}")
+    if "formed" in sim:
+        f = sim["formed"]
+        out.append(
+            f"  {'formed':<24} work of bending {f['bending_energy_J']:.5g} J; "
+            f"{100 * f['plastic_area_share']:.3g} % of the sheet yields "
+            f"(out to {_length(f['plastic_radius_max'], u)} from H)"
+        )
+    if "released" in sim:
+        r = sim["released"]
+        out.append(
+            f"  {'released (springback)':<24} deviation max {_length(r['max_deviation'], u)}, rms "
+            f"{_length(r['rms_deviation'], u)}; height {_length(r['height'], u)}, span "
+            f"{_length(r['span'], u)}"
+        )
+    s = sim["standing"]
+    head = f"standing ({sim['supports']})"
+    if not s["stands"] and s["max_deviation"] is None:
+        out.append(f"  {head:<24} does not stand: {s['reason']}")
+        return out
+    verdict = "stands" if s["stands"] else f"does not stand ({s['reason']})"
+    margin = s["tipping_margin_deg"]
+    out.append(
+        f"  {head:<24} {verdict}; tipping margin {margin:.3g} deg, {len(s['contacts'])} "
+        f"contacts, ground reactions {s['reactions_total_N']:.6g} N"
+    )
+    out.append(
+        f"  {'':<24} deviation max {_length(s['max_deviation'], u)}, rms "
+        f"{_length(s['rms_deviation'], u)}; height {_length(s['height'], u)}, span "
+        f"{_length(s['span'], u)}; moved up to {_length(s['max_displacement'], u)}"
+    )
+    at = s["max_stress_at"]
+    where = f" at ({at[0]:.4g}, {at[1]:.4g}) {u} on the flat sheet" if at else ""
+    out.append(
+        f"  {'':<24} largest stress {s['max_stress_MPa']:.4g} MPa ({s['utilisation']:.3g} x "
+        f"yield){where}"
+    )
+    if "designed" in sim:
+        d = sim["designed"]
+        out.append(
+            f"  {'designed (stress-free)':<24} largest movement "
+            f"{_length(d['max_displacement'], u)}, largest stress {d['max_stress_MPa']:.4g} MPa"
+        )
+    return out
+
+
+def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Path]:
+    """Write the simulation's files into ``outdir``, all or nothing."""
+    from onefold_cad.export.atomic import Staging, check_targets, recover
+    from onefold_cad.fabrication.report import report_json
+
+    names = [f"{name}.json"]
+    outdir.mkdir(parents=True, exist_ok=True)
+    recover(outdir)
+    check_targets(outdir, names)
+    with Staging(outdir) as stage:
+        paths = [stage.path / names[0]]
+        paths[0].write_text(report_json(report))
+        return stage.commit(paths)
+
+
+def cmd_simulate(ns: argparse.Namespace) -> int:
+    """Simulate one design; print it; with ``-o`` write its files."""
+    from onefold_cad.design import build_design
+    from onefold_cad.fabrication.report import check_finite, design_report, report_json
+    from onefold_cad.mechanics.simulate import simulate
+
+    (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
+    design = job.design
+    folded = build_design(design)
+    check = ns.check if ns.check is not None else ns.mesh != "coarse"
+    progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}")
+    sim = simulate(
+        design,
+        folded,
+        supports=ns.supports,
+        reference=ns.reference,
+        crease=ns.crease,
+        level=ns.mesh,
+        convergence=check,
+        progress=progress,
+    )
+    report = design_report(design, folded, sources=job.sources)
+    report["simulation"] = sim.to_data()
+    check_finite(report)
+    for w in sim.warnings:
+        warn(w)
+    if ns.outdir is not None:
+        for path in _write(ns.outdir, design.name, report, sim):
+            if not ns.quiet:
+                os.write(2, f"wrote {path}\n".encode())
+    if ns.json:
+        sys.stdout.write(report_json(report))
+    else:
+        sys.stdout.write("\n".join(simulation_lines(design.name, report["simulation"])) + "\n")
+    return 0

@@ -1,0 +1,143 @@
+"""``simulate`` on real designs, against results not computed with the model:
+
+- (c) the formed bending energy of a design that never yields equals the cones'
+  closed form (D / 2) sum_sides int k(theta)^2 ln(rho(theta) / r_hole) dtheta,
+  with k the directrix's geodesic curvature from the fold's own frames and rho
+  the sheet's ray lengths; its plastic share equals the area inside
+  r = |k| E' t / (2 sigma_y);
+- (e) the ground's reactions carry the weight, to 1e-6;
+- the structural check against the peer FE program (Kratos, corotational thin
+  shell triangles, mesh-converged: benchmarks/kratos_shell.py, docs/mechanics.md):
+  patkau-one-fold's largest movement 55.46 mm;
+- what cannot be simulated is an error naming the value; a Newton that does not
+  converge says so.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from onefold_cad.design import build_design
+from onefold_cad.errors import ConvergenceError, InvalidParameterError
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+from onefold_cad.mechanics import equilibrium
+from onefold_cad.mechanics.simulate import run, simulate
+from onefold_cad.templates import load_template
+
+#: Kratos 10.4.4, ShellThinElementCorotational3D3N, Richardson-extrapolated from
+#: h = 5, 3.5, 2.5 cm (54.99 mm at 2.5 cm): /work notes of the peer run, reproduced
+#: by benchmarks/kratos_shell.py patkau-one-fold --h 0.025.
+KRATOS_LARGEST_MOVEMENT_MM = 55.46
+
+
+@pytest.fixture(scope="module")
+def patkau():
+    design = load_template("patkau-one-fold")
+    return design, build_design(design)
+
+
+def _cone_integrals(design, folded, k_scale: float = 1.0):
+    """``(sum int k^2 ln(rho / r_h) dtheta, area inside r_p(theta))`` from the
+    geometry alone (design units), with ``r_p = k_scale |k|``."""
+    surface, sheet = folded.solution.surface, design.sheet
+    theta = np.linspace(1e-7, surface.total_angle - 1e-7, 40001)
+    u, e = surface.frames(theta)
+    n = np.cross(u, e)
+    k = np.einsum("ij,ij->i", np.gradient(e, theta, axis=0), n)  # geodesic curvature
+    r_h = relief_hole_diameter(design, folded) / 2
+    energy = area = 0.0
+    for side in (1.0, -1.0):
+        rho = sheet.ray_lengths(side * theta)
+        energy += np.trapezoid(k**2 * np.log(rho / r_h), theta)
+        r_p = np.clip(k_scale * np.abs(k), r_h, rho)
+        area += np.trapezoid((r_p**2 - r_h**2) / 2, theta)
+    return energy, area, r_h
+
+
+def test_formed_energy_of_a_sheet_that_never_yields_is_the_cones(patkau):
+    design, folded = patkau
+    m = design.material
+    sim = run(design, folded, h_max=0.14, yield_stress_MPa=m.youngs_modulus * 1e3)
+    integral, _, _ = _cone_integrals(design, folded)
+    e = m.youngs_modulus * 1e9
+    t = m.thickness * 1e-3
+    d = e * t**3 / (12 * (1 - m.poisson**2))
+    expected = d / 2 * integral  # J: (N m) x dimensionless
+    assert sim.formed.plastic_area_share == 0.0
+    assert abs(sim.formed.bending_energy_J / expected - 1) < 0.01
+
+
+def test_plastic_share_is_the_area_inside_the_yield_radius(patkau):
+    design, folded = patkau
+    m = design.material
+    sim = run(design, folded, h_max=0.14)
+    e_plane = m.youngs_modulus * 1e9 / (1 - m.poisson**2)
+    scale = e_plane * m.thickness * 1e-3 / (2 * m.yield_stress * 1e6)  # r_p = |k| * scale (m)
+    _, area, r_h = _cone_integrals(design, folded, k_scale=scale * 1e3)  # in mm
+    sheet_area = design.sheet.area - math.pi * r_h**2
+    assert abs(sim.formed.plastic_area_share / (area / sheet_area) - 1) < 0.01
+    assert 1.4e3 < sim.formed.plastic_radius_max < 1.7e3  # r_p = 0.888 x 1.75 m
+
+
+def test_reactions_carry_the_weight(patkau):
+    design, folded = patkau
+    sim = run(design, folded, level="coarse")
+    assert sim.standing.stands
+    assert abs(sim.standing.reactions_total_N / sim.weight_N - 1) < 1e-6
+    # the weight is the density's: rho g t A, A the flat sheet less its hole
+    _, _, r_h = _cone_integrals(design, folded)
+    area_m2 = (design.sheet.area - math.pi * r_h**2) * 1e-6
+    expected = 8000.0 * 9.80665 * 3.57e-3 * area_m2
+    assert abs(sim.weight_N / expected - 1) < 2e-3  # the mesh's polygonal hole
+
+
+def test_the_structural_check_agrees_with_the_shell_fe_program(patkau):
+    """--reference designed --supports anchored, a yield stress never reached."""
+    design, folded = patkau
+    m = design.material
+    sim = run(
+        design, folded, reference="designed", h_max=0.14, yield_stress_MPa=m.youngs_modulus * 1e3
+    )
+    got = sim.designed.max_displacement
+    assert abs(got / KRATOS_LARGEST_MOVEMENT_MM - 1) < 0.10
+    assert sim.standing.stands and len(sim.standing.contacts) == 3
+
+
+def test_the_convergence_check_reports_the_change(patkau):
+    design, folded = patkau
+    sim = simulate(design, folded, level="coarse", convergence=True)
+    conv = sim.convergence
+    assert conv["quantity"] == "standing.max_deviation"
+    assert conv["finer_mesh"]["nodes"] > 1.5 * sim.nodes
+    change = abs(conv["value"] - conv["finer_value"]) / conv["finer_value"]
+    assert conv["max_deviation_change"] == pytest.approx(change)
+
+
+@pytest.mark.parametrize(
+    ("template", "changes", "name"),
+    [
+        ("paper-square", {}, "youngs_modulus"),
+        ("star-polygon", {}, "thickness"),
+        ("table1-row1", {}, "model"),
+    ],
+)
+def test_what_cannot_be_simulated_names_the_value(template, changes, name):
+    design = load_template(template)
+    with pytest.raises(InvalidParameterError) as info:
+        run(design, build_design(design), level="coarse")
+    assert info.value.parameter == name
+
+
+def test_a_newton_that_cannot_converge_says_so(patkau, monkeypatch):
+    """Two Newton steps allowed per solve: the release cannot converge, and the
+    simulation raises (naming the residual) instead of reporting a form."""
+    design, folded = patkau
+    real = equilibrium.minimize
+    monkeypatch.setattr(equilibrium, "minimize", lambda *a, **k: real(*a, **{**k, "max_iter": 2}))
+    with pytest.raises(ConvergenceError) as info:
+        run(design, folded, level="coarse")
+    assert math.isfinite(info.value.residual) and info.value.residual > 0
+    assert "residual" in str(info.value)
