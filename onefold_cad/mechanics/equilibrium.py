@@ -292,7 +292,7 @@ def solve_path(
             equilibrium and how far along the path it is).
     """
     q = np.asarray(q0, dtype=float)
-    s, ds, total = 0.0, first_step, 0
+    s, ds, total, failed = 0.0, first_step, 0, float("nan")
     last: Equilibrium | None = None
     for _ in range(max_solves):
         target = min(1.0, s + ds)
@@ -312,6 +312,7 @@ def solve_path(
                 )
         except ConvergenceError as err:
             total += err.iterations
+            failed = err.residual
             ds /= 2
             if ds < min_step:
                 raise PathStalled(
@@ -328,12 +329,11 @@ def solve_path(
             return replace(eq, iterations=total)
         if eq.iterations <= 6:
             ds = min(2 * ds, 1.0)
-    residual = float("nan") if last is None else last.residual
     raise PathStalled(
-        f"continuation did not reach the end in {max_solves} solves (at s = {s:.4g}, "
-        f"residual {residual:.3g} N)",
+        f"continuation did not reach the end in {max_solves} solves (at s = {s:.4g}; the last "
+        f"failed Newton's residual {failed:.3g} N)",
         iterations=total,
-        residual=residual,
+        residual=failed,
         reached=s,
         last=last,
     )
