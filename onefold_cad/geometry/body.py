@@ -39,9 +39,7 @@ angles in radians.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from functools import cached_property
-from itertools import combinations
 
 import numpy as np
 from numpy.typing import NDArray
@@ -49,12 +47,15 @@ from numpy.typing import NDArray
 from onefold_cad.choices import Body as BodyKind
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.arc import ArcFrames
+from onefold_cad.geometry.body_families import Sectors, Walls
+from onefold_cad.geometry.body_pieces import member_points, mitre_block, paper_pieces
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
 from onefold_cad.geometry.numeric import Array, sorted_unique
-from onefold_cad.geometry.pieces import Piece, clipped_rectangle, zoom_min
-from onefold_cad.geometry.thick_map import CreaseFrames, SideMap, mitre_depth, mitre_planes
+from onefold_cad.geometry.pieces import Piece, end_minimum, zoom_min
+from onefold_cad.geometry.thick_map import CreaseFrames, SideMap
+from onefold_cad.geometry.zoom import zoom_many
 
 __all__ = ["BODIES", "MIRROR", "Body"]
 
@@ -113,44 +114,14 @@ class Body:
         self.pieces: list[Piece] = []
         fixed: list[Array] = []
         if not self.exact:
-            fixed += self._paper_pieces()
+            pieces, more = paper_pieces(folded, self.hole)
+            self.pieces += pieces
+            fixed += more
         else:
             fixed += self._exact_pieces()
         self.fixed = np.array(fixed, dtype=float).reshape(-1, 3)
 
     # -- pieces -------------------------------------------------------------
-    def _paper_pieces(self) -> list[Array]:
-        """The paper model's shell: straight between the ruling ends and the
-        sheet's vertices, which are its extremes; the hole's edge is a circular
-        arc per triangle.
-
-        The vertices count on their own: a vertex within 1e-12 rad of a fan
-        division has no ruling of its own (the division's is used), and where
-        the edge beside it runs almost through H the division's ruling end
-        lies measurably short of the vertex (1.5e-7 of the size for an edge
-        passing 5e-10 of it from H): the folded corner, in that triangle's
-        plane, can be the lowest point."""
-        folded, rho = self.folded, self.hole
-        corners = folded.map_points(folded.sheet.vertices) - folded.apex
-        fixed = list(folded.rulings_3d[:, 1] - folded.apex) + list(corners)
-        if rho <= 0.0:
-            return [np.zeros(3), *fixed]
-        for side, thetas in enumerate(folded.ruling_angles):
-            sign = 1.0 if side == 0 else -1.0
-            for a, b in zip(thetas[:-1], thetas[1:], strict=True):
-                self.pieces.append(
-                    Piece(f"hole arc {side}", np.linspace(a, b, 4), self._paper_arc(rho, sign))
-                )
-        return fixed
-
-    def _paper_arc(self, rho: float, sign: float) -> Callable[[Array], Array]:
-        def points(theta: Array) -> Array:
-            psi = sign * theta
-            flat = rho * np.stack([np.cos(psi), np.sin(psi)], axis=-1)
-            return (self.folded.map_points(flat) - self.folded.apex)[:, None, :]
-
-        return points
-
     def _exact_pieces(self) -> list[Array]:
         """The exact model's sectors (one per sheet edge, parametrised by phi),
         and for the solid the mitre blocks."""
@@ -162,6 +133,8 @@ class Body:
         fixed: list[Array] = []
         if self.kind == "shell" and self.hole <= 0.0:
             fixed.append(np.zeros(3))
+        solid = self.kind == "solid"
+        sectors = Sectors(cone, arc, sheet, self.hole, self.s_range if solid else None, self._tol)
         v = sheet.vertices
         # sample each edge evenly on the flat sheet and evenly in its flat
         # angle (an edge passing close to H sweeps a wide angle in a short
@@ -181,116 +154,142 @@ class Body:
             flat_params.append((a, b))
             thetas.append(np.abs(np.arctan2(q[:, 1], q[:, 0])))  # the side's own flat angle
             steps.append(float(np.max(np.diff(s_all))) * length)
+        # the samples' arc parameters from the cone's table (to ~1e-10 rad:
+        # where a sample lies need not be exact), the edge ends' exact: the
+        # vertex rays' (the sheet's corners are extremes as they are)
         cuts = np.cumsum([len(t) for t in thetas])[:-1]
-        phis = np.split(cone.phi_of_theta(np.concatenate(thetas)), cuts)
+        phis = np.split(cone.phi_near(np.concatenate(thetas)), cuts)
         for k, ((a, b), theta, phi) in enumerate(zip(flat_params, thetas, phis, strict=True)):
-            lower = a[1] + b[1] < 0.0
+            lower = bool(a[1] + b[1] < 0.0)
+            for i in (0, -1):
+                theta[i], phi[i] = self._vertex_ray(lower, float(theta[i]))
+            np.clip(phi[1:-1], min(phi[0], phi[-1]), max(phi[0], phi[-1]), out=phi[1:-1])
             grid = np.maximum.accumulate(phi if phi[-1] >= phi[0] else phi[::-1])
             t_lo, t_hi = float(min(theta[0], theta[-1])), float(max(theta[0], theta[-1]))
-            fn = self._sector(arc, lower, t_lo, t_hi)
-            self.pieces.append(Piece(f"edge {k}", grid, fn, steps[k]))
-        if self.kind == "solid":
-            for lower in (False, True):
-                side = CreaseFrames(SideMap(folded, lower=lower))
+            member = sectors.add(lower, t_lo, t_hi)
+            fn = member_points(sectors, member)
+            self.pieces.append(Piece(f"edge {k}", grid, fn, steps[k], sectors, member))
+        if solid:
+            walls = Walls(self.hole, self.s_range, self._tol)
+            for side in self.crease_sides:
                 for end in (0, 1):
-                    verts, wall = self._block(side, end)
+                    verts, wall = mitre_block(side, end, self.hole, self.s_range, self._tol, walls)
                     fixed += list(verts)
                     self.pieces.append(wall)
         return fixed
 
-    def _sector(
-        self, arc: ArcFrames, lower: bool, t_lo: float, t_hi: float
-    ) -> Callable[[Array], Array]:
-        """Section corners of one sector (one sheet edge) of one side, as a
-        function of phi."""
+    @cached_property
+    def crease_sides(self) -> tuple[CreaseFrames, CreaseFrames]:
+        """The exact model's maps of the +y and the -y side (their crease
+        frames, for the mitre blocks and their mass)."""
+        return tuple(CreaseFrames(SideMap(self.folded, lower=lower)) for lower in (False, True))  # type: ignore[return-value]
+
+    @cached_property
+    def vertex_phis(self) -> tuple[Array, Array]:
+        """The arc parameters ``(m,)`` of each side's vertex rays, the flat
+        angles ``folded.sheet.side_angles`` within the cone's total angle
+        (exact model; one inversion for both)."""
         cone = self.folded.solution.surface
         assert isinstance(cone, ExactCone)
-        sheet, rho, tol = self.folded.sheet, self.hole, self._tol
-        mirror = MIRROR if lower else np.ones(3)
-        s0, s1 = self.s_range
-        solid = self.kind == "solid"
+        up, lo = (np.clip(a, 0.0, cone.total_angle) for a in self.folded.sheet.side_angles)
+        both = cone.phi_of_theta(np.concatenate([up, lo]))
+        return both[: len(up)], both[len(up) :]
 
-        def points(phi: Array) -> Array:
-            theta = np.clip(cone.theta_of_phi(phi), t_lo, t_hi)
-            r_out = sheet.ray_lengths(-theta if lower else theta)
-            if not solid:
-                u = arc.frames(phi)[0]
-                out = r_out[:, None] * u
-                if rho > 0.0:
-                    out = np.stack([rho * u, out], axis=1)
-                else:
-                    out = out[:, None, :]
-                return out * mirror
-            u, _, n = arc.frames(phi)
-            z = clipped_rectangle(np.full_like(r_out, rho), r_out, s0, s1, u[:, 1], n[:, 1], tol)
-            pts = z[..., :1] * u[:, None, :] + z[..., 1:] * n[:, None, :]
-            return pts * mirror
-
-        return points
-
-    def _block(self, side: CreaseFrames, end: int) -> tuple[Array, Piece]:
-        """The mitre block past crease half ``end`` of one side: the vertices
-        of its polytope outside the hole's disk ``(m, 3)``, and the hole's wall
-        as a piece over the distance d past the crease."""
-        s0, s1 = self.s_range
-        rho, tol = self.hole, self._tol
-        mirror = MIRROR if side.lower else np.ones(3)
-        depth = mitre_depth(side, self.s_range)
-        u, e, n = side.crease_frame(end)
-        away = -e if end == 0 else e
-        length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
-        m, c = mitre_planes(side, s1 - s0)[end]
-        basis = np.stack([u, away, n], axis=1)  # (x, d, s) -> offset from the apex
-        x_in = math.sqrt(max(rho * rho - depth * depth, 0.0))
-        # the polytope {a . (x, d, s) <= b}
-        a = np.array(
-            [
-                [-1.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, -1.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, -1.0],
-                [0.0, 0.0, 1.0],
-                -(basis[1]),  # y >= 0
-                -(m @ basis),  # (p - A) . m >= c
-            ]
-        )
-        b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
-        triples = np.array(list(combinations(range(len(a)), 3)))
-        mats = a[triples]
-        ok = np.abs(np.linalg.det(mats)) > 1e-12
-        z = np.linalg.solve(mats[ok], b[triples[ok]][..., None])[..., 0]
-        inside = np.all(z @ a.T - b <= tol, axis=1)
-        inside &= z[:, 0] ** 2 + z[:, 1] ** 2 >= rho * rho - tol * rho
-        verts = (z[inside] @ basis.T) * mirror
-
-        def wall(d: Array) -> Array:
-            x = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
-            lo, hi = np.full_like(d, s0), np.full_like(d, s1)
-            for row, off in ((a[6], b[6]), (a[7], b[7])):
-                # row . (x, d, s) <= off: a bound on s
-                rest = off - row[0] * x - row[1] * d
-                if row[2] > 0.0:
-                    hi = np.minimum(hi, rest / row[2])
-                elif row[2] < 0.0:
-                    lo = np.maximum(lo, rest / row[2])
-                else:
-                    hi = np.where(rest >= -tol, hi, -np.inf)
-            ok = lo <= hi + tol
-            s = np.stack([lo, hi], axis=1)
-            xx, dd = np.broadcast_to(x[:, None], s.shape), np.broadcast_to(d[:, None], s.shape)
-            z = np.stack([xx, dd, s], axis=-1)
-            pts = (z @ basis.T) * mirror
-            return np.where(ok[:, None, None], pts, np.nan)
-
-        name = f"mitre {end} {'lower' if side.lower else 'upper'} hole wall"
-        return verts, Piece(name, np.linspace(0.0, depth, 24), wall)
+    def _vertex_ray(self, lower: bool, theta: float) -> tuple[float, float]:
+        """The vertex ray of one side at flat angle ``theta`` (an edge's end):
+        its flat angle as the side's vertex angles give it and its arc
+        parameter (:attr:`vertex_phis`)."""
+        cone = self.folded.solution.surface
+        assert isinstance(cone, ExactCone)
+        angles = np.clip(self.folded.sheet.side_angles[int(lower)], 0.0, cone.total_angle)
+        i = int(np.argmin(np.abs(angles - theta)))
+        if abs(float(angles[i]) - theta) <= 1e-12:
+            return float(angles[i]), float(self.vertex_phis[int(lower)][i])
+        return theta, float(cone.phi_of_theta(np.array([theta]))[0])
 
     # -- sampling -------------------------------------------------------------
     @cached_property
+    def _groups(self) -> tuple[NDArray[np.int64], list[list[int]]]:
+        """Per piece the group it is evaluated with (the pieces of one family,
+        or the piece alone), and each group's pieces."""
+        gid = np.zeros(len(self.pieces), dtype=np.int64)
+        groups: list[list[int]] = []
+        seen: dict[int, int] = {}
+        for k, piece in enumerate(self.pieces):
+            key = id(piece.family) if piece.family is not None else -1 - k
+            if key not in seen:
+                seen[key] = len(groups)
+                groups.append([])
+            gid[k] = seen[key]
+            groups[gid[k]].append(k)
+        return gid, groups
+
+    def _corners(self, group: int, pieces: NDArray[np.int64], t: Array) -> Array:
+        """Corners ``(k, V, 3)`` of ``pieces`` (all of one group) at ``t``."""
+        first = self.pieces[int(pieces[0])]
+        if first.family is None:
+            return first.points(t)
+        return first.family.points(self._members[pieces], t)
+
+    @cached_property
+    def _members(self) -> NDArray[np.int64]:
+        """Each piece's index in its family."""
+        return np.array([p.member for p in self.pieces], dtype=np.int64)
+
+    @cached_property
+    def stacked(self) -> tuple[Array, NDArray[np.int64], NDArray[np.int64]]:
+        """Every piece's sections on one another: corners ``(M, V, 3)`` (V the
+        most of any piece, NaN beyond a piece's own), the piece of each row and
+        its index in that piece's grid ``(M,)``."""
+        v = max((c.shape[1] for c in self.sections), default=1)
+        rows = sum(len(c) for c in self.sections)
+        out = np.full((rows, v, 3), np.nan)
+        piece = np.empty(rows, dtype=np.int64)
+        at = 0
+        for k, c in enumerate(self.sections):
+            out[at : at + len(c), : c.shape[1]] = c
+            piece[at : at + len(c)] = k
+            at += len(c)
+        starts = np.concatenate([[0], np.cumsum([len(c) for c in self.sections])[:-1]])
+        index = np.arange(rows) - np.repeat(starts, [len(c) for c in self.sections])
+        return out, piece, index.astype(np.int64)
+
+    @cached_property
+    def stacked_params(self) -> Array:
+        """The grid parameter of each row of :attr:`stacked` ``(M,)``."""
+        return np.concatenate([p.grid for p in self.pieces]) if self.pieces else np.zeros(0)
+
+    @cached_property
     def sections(self) -> list[Array]:
-        """Per piece: the section corners ``(n, V, 3)`` at its grid."""
-        return [piece.points(piece.grid) for piece in self.pieces]
+        """Per piece: the section corners ``(n, V, 3)`` at its grid (one
+        evaluation per family)."""
+        out: list[Array] = [np.zeros((0, 1, 3))] * len(self.pieces)
+        for g, group in enumerate(self._groups[1]):
+            grids = [self.pieces[k].grid for k in group]
+            owner = np.repeat(np.array(group, dtype=np.int64), [len(x) for x in grids])
+            corners = self._corners(g, owner, np.concatenate(grids))
+            cuts = np.cumsum([len(x) for x in grids])[:-1]
+            for k, part in zip(group, np.split(corners, cuts), strict=True):
+                out[k] = part
+        return out
+
+    def lowest_corners(self, pieces: NDArray[np.int64], t: Array, g: Array) -> tuple[Array, Array]:
+        """At each (piece, parameter, direction ``(k, 3)``): the lowest corner's
+        height along the direction ``(k,)`` (+inf where the section is empty)
+        and that corner ``(k, 3)``; one evaluation per family."""
+        v = np.empty(len(t))
+        p = np.empty((len(t), 3))
+        gid = self._groups[0][pieces]
+        for group in sorted_unique(gid):
+            sel = np.flatnonzero(gid == group)
+            pts = self._corners(int(group), pieces[sel], t[sel])
+            h = np.einsum("kvj,kj->kv", pts, g[sel])
+            h[np.isnan(h)] = np.inf
+            i = np.argmin(h, axis=1)
+            rows = np.arange(len(sel))
+            v[sel] = h[rows, i]
+            p[sel] = pts[rows, i]
+        return v, p
 
     @cached_property
     def spacings(self) -> Array:
@@ -334,3 +333,52 @@ class Body:
             t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
             known = self._lowest[key] = (t, p.lowest(t, g))
         return known[0], known[1].copy()
+
+    def lowest_many(
+        self,
+        asks: list[tuple[int, float, float, Array]],
+        group: NDArray[np.int64] | None = None,
+        ceiling: Array | None = None,
+        known: Array | None = None,
+        margin: float = 0.0,
+    ) -> list[tuple[float, Array]]:
+        """:meth:`lowest` for many (piece, lo, hi, direction) at once: the zooms
+        not known yet run together (:func:`~onefold_cad.geometry.zoom.zoom_many`),
+        but for a bracket at a piece's end whose samples show the lowest point
+        there (:func:`~onefold_cad.geometry.pieces.end_minimum`). With ``group``,
+        ``ceiling`` and ``known`` (see ``zoom_many``), a zoom that cannot matter
+        stops early: its answer is a point of the bracket, not kept."""
+        keys = [
+            (k, float(lo), float(hi), (np.asarray(g, dtype=float) + 0.0).tobytes())
+            for k, lo, hi, g in asks
+        ]
+        todo: dict[tuple[int, float, float, bytes], int] = {}
+        for i, key in enumerate(keys):
+            if key in self._lowest or key in todo:
+                continue
+            k, lo, hi, g = asks[i]
+            end = end_minimum(self.pieces[k].grid, self.sections[k], lo, hi, np.asarray(g))
+            if end is not None:  # its samples show it at an end: no zoom
+                self._lowest[key] = end
+            else:
+                todo[key] = i
+        found: dict[tuple[int, float, float, bytes], tuple[float, Array]] = {}
+        if todo:
+            idx = list(todo.values())
+            pieces = np.array([asks[i][0] for i in idx], dtype=np.int64)
+            gs = np.array([asks[i][3] for i in idx], dtype=float).reshape(-1, 3)
+
+            def f(jobs: NDArray[np.int64], t: Array) -> tuple[Array, Array]:
+                return self.lowest_corners(pieces[jobs], t, gs[jobs])
+
+            lo = np.array([asks[i][1] for i in idx], dtype=float)
+            hi = np.array([asks[i][2] for i in idx], dtype=float)
+            sub = None if group is None else np.asarray(group)[idx]
+            t, _, p, done = zoom_many(f, lo, hi, sub, ceiling, known, margin)
+            for j, key in enumerate(todo):
+                (self._lowest if done[j] else found)[key] = (float(t[j]), p[j])
+        out = []
+        for key in keys:
+            t, p = self._lowest[key] if key in self._lowest else found[key]
+            out.append((t, p.copy()))
+        return out

@@ -16,7 +16,7 @@ from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import MIRROR, Body
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3, gauss_legendre, panel_rule, sorted_unique
-from onefold_cad.geometry.thick_map import CreaseFrames, SideMap, mitre_depth, mitre_planes
+from onefold_cad.geometry.thick_map import CreaseFrames, mitre_depth, mitre_planes
 
 __all__ = ["mass_properties"]
 
@@ -36,37 +36,50 @@ def mass_properties(body: Body) -> tuple[float, Array]:
         mirror = MIRROR if lower else np.ones(3)
         up, lo = folded.sheet.side_angles
         breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-        # graded towards both crease ends: the cut at the crease (thick
-        # sheet), and a sheet edge passing near H (r = d / sin(theta + psi):
-        # a peak of width psi at theta = 0 or pi, e.g. a needle's tip)
-        grade = 0.5 ** np.arange(3, 31)
-        near = breaks[1] * grade
-        far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
-        breaks = sorted_unique(np.concatenate([breaks, near, far]))
         if body.exact:
             # the rule runs in the arc's phi (no inversion at every node):
-            # dtheta = |du/dphi| dphi, theta being u's arc length
+            # dtheta = |du/dphi| dphi, theta being u's arc length; its panels
+            # end at the vertex rays (the edge radius's kinks) and are graded
+            # in phi towards the crease ends (see _graded)
             assert isinstance(cone, ExactCone)
-            phi, weights = _sector_rule(cone.phi_of_theta(breaks))
-            theta = np.clip(cone.theta_of_phi(phi), breaks[0], breaks[-1])
+            graded = _graded(breaks)
+            # the graded breaks' arc parameters from the cone's table (their
+            # errors vanish towards the crease ends, where they crowd), the
+            # vertex rays' exact
+            at = cone.phi_near(graded)
+            at[np.searchsorted(graded, breaks)] = body.vertex_phis[int(lower)]
+            phi, weights = _sector_rule(np.maximum.accumulate(at))
+            theta = np.clip(cone.theta_near(phi), graded[0], graded[-1])
             u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(
                 phi, curvature=True
             )
             weights = weights * speed
         else:  # planar triangles: no curvature within them
-            theta, weights = _sector_rule(breaks)
+            theta, weights = _sector_rule(_graded(breaks))
             u, e = cone.frames(theta)
             n, k = cross3(u, e), np.zeros(len(theta))
         vals = weights @ _slab_moments(body, theta, lower, u, n, k)
         total += vals[0]
         moment += vals[1:] * mirror
         if body.thickness > 0.0 and body.exact:
-            side = CreaseFrames(SideMap(folded, lower=lower))
+            side = body.crease_sides[int(lower)]
             for end in (0, 1):
                 vol, mom = _block_moments(body, side, end)
                 total += vol
                 moment += mom * mirror
     return total, moment / total
+
+
+def _graded(breaks: Array) -> Array:
+    """The sector breaks ``(m,)`` (flat angles, or the arc parameters of the
+    vertex rays) graded towards both crease ends, halving the distance to
+    each 28 times: the cut at the crease (thick sheet), and a sheet edge
+    passing near H (r = d / sin(theta + psi): a peak of width psi at theta =
+    0 or pi, e.g. a needle's tip)."""
+    grade = 0.5 ** np.arange(3, 31)
+    near = breaks[0] + (breaks[1] - breaks[0]) * grade
+    far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
+    return sorted_unique(np.concatenate([breaks, near, far]))
 
 
 def _slab_moments(body: Body, theta: Array, lower: bool, u: Array, n: Array, k: Array) -> Array:
@@ -88,22 +101,24 @@ def _slab_moments(body: Body, theta: Array, lower: bool, u: Array, n: Array, k: 
         s_e = np.where(ny != 0.0, -r_out * uy / ny, s0)
     cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
     cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
-    out = np.zeros((len(theta), 4))
-    nodes, weights = gauss_legendre(3)  # exact: degree 4 in s
-    for j in range(3):
-        lo, half = cuts[:, j], 0.5 * (cuts[:, j + 1] - cuts[:, j])
-        for x, w in zip(nodes, weights, strict=True):
-            s = lo + half * (1.0 + x)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                r_y = np.where(uy > 0.0, -s * ny / uy, np.where(s * ny >= 0.0, -np.inf, np.inf))
-            r_lo = np.minimum(np.maximum(rho, r_y), r_out)
-            sk = s * k
-            i0 = (r_out**2 - r_lo**2) / 2.0 - sk * (r_out - r_lo)
-            i1 = (r_out**3 - r_lo**3) / 3.0 - sk * (r_out**2 - r_lo**2) / 2.0
-            ww = w * half
-            out[:, 0] += ww * i0
-            first = (s[:, None] * n) * i0[:, None] + u * i1[:, None]
-            out[:, 1:] += ww[:, None] * first
+    # each of the three parts by 3-point Gauss-Legendre (exact: degree 4 in
+    # s), all nine offsets of all angles at once ``(k, 9)``
+    nodes, weights = gauss_legendre(3)
+    half = 0.5 * (cuts[:, 1:] - cuts[:, :3])
+    s = (cuts[:, :3, None] + half[:, :, None] * (1.0 + nodes)).reshape(len(theta), 9)
+    ww = (half[:, :, None] * weights).reshape(len(theta), 9)
+    sny, suy = s * ny[:, None], uy[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_y = np.where(suy > 0.0, -sny / suy, np.where(sny >= 0.0, -np.inf, np.inf))
+    ro = r_out[:, None]
+    r_lo = np.minimum(np.maximum(rho, r_y), ro)
+    sk = s * k[:, None]
+    i0 = (ro**2 - r_lo**2) / 2.0 - sk * (ro - r_lo)
+    i1 = (ro**3 - r_lo**3) / 3.0 - sk * (ro**2 - r_lo**2) / 2.0
+    w0 = ww * i0
+    out = np.empty((len(theta), 4))
+    out[:, 0] = w0.sum(axis=1)
+    out[:, 1:] = (w0 * s).sum(axis=1)[:, None] * n + (ww * i1).sum(axis=1)[:, None] * u
     return out
 
 
@@ -119,33 +134,33 @@ def _block_moments(body: Body, side: CreaseFrames, end: int) -> tuple[float, Arr
     depth = mitre_depth(side, body.s_range)
     m, c = mitre_planes(side, s1 - s0)[end]
     (xs, ws), (xd, wd) = gauss_legendre(8), gauss_legendre(48)
-    vol = 0.0
-    mom = np.zeros(3)
-    for si, wsi in zip(s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0), strict=True):
-        # y = d away_y + s n_y >= 0 (u_y = 0 on the crease): a bound on d
-        if away[1] < 0.0:
-            d_hi = min(depth, max(si * n[1] / -away[1], 0.0))
-        else:
-            d_hi = depth if si * n[1] >= 0.0 else 0.0
-        if d_hi <= 0.0:
-            continue
-        d = 0.5 * d_hi * (1.0 + xd)
-        wdd = wd * 0.5 * d_hi
-        xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
-        xb = np.full_like(d, length)
-        # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
-        um, c0 = float(u @ m), d * float(away @ m) + si * float(n @ m) - c
+    # the s nodes ``(8,)``, each with its d nodes ``(8, 48)``
+    si, wsi = s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0)
+    # y = d away_y + s n_y >= 0 (u_y = 0 on the crease): a bound on d
+    if away[1] < 0.0:
+        d_hi = np.minimum(depth, np.maximum(si * n[1] / -away[1], 0.0))
+    else:
+        d_hi = np.where(si * n[1] >= 0.0, depth, 0.0)
+    d = 0.5 * d_hi[:, None] * (1.0 + xd)
+    wdd = wd * 0.5 * d_hi[:, None]
+    xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
+    xb = np.full_like(d, length)
+    # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
+    um = float(u @ m)
+    c0 = d * float(away @ m) + si[:, None] * float(n @ m) - c
+    with np.errstate(divide="ignore", invalid="ignore"):
         if um > 0.0:
             xa = np.maximum(xa, -c0 / um)
         elif um < 0.0:
             xb = np.minimum(xb, -c0 / um)
         else:
             xb = np.where(c0 >= 0.0, xb, xa)
-        span = np.maximum(xb - xa, 0.0)
-        sq = np.where(span > 0.0, 0.5 * (xb**2 - xa**2), 0.0)
-        base = d[:, None] * away + si * n
-        vol += wsi * float(wdd @ span)
-        mom += wsi * ((wdd * span) @ base + float(wdd @ sq) * u)
+    span = np.maximum(xb - xa, 0.0)
+    sq = np.where(span > 0.0, 0.5 * (xb**2 - xa**2), 0.0)
+    ws_span = wsi[:, None] * wdd * span  # ``(8, 48)``
+    vol = float(ws_span.sum())
+    mom = float((ws_span * d).sum()) * away + float(ws_span.sum(axis=1) @ si) * n
+    mom += float((wsi[:, None] * wdd * sq).sum()) * u
     return vol, mom
 
 

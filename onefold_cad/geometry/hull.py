@@ -1,8 +1,13 @@
 """Convex hulls in the plane, numpy only (no scipy.spatial on the solve path).
 
-Andrew's monotone chain: sort the points, then one pass for the lower and one
-for the upper chain, O(n log n). Used for the support polygon of a resting
-form and the footprint of its shadow on the ground.
+Up to a few hundred points, Andrew's monotone chain: sort the points, then
+one pass for the lower and one for the upper chain, O(n log n), in plain
+Python floats. Beyond that (the footprint of a body's thousands of samples,
+a thousand of them on its hull), QuickHull with every edge of a level
+refined at once in numpy: each edge's farthest point outside it becomes a
+corner, the points outside the two new edges stay, the rest drop out. Used
+for the support polygon of a resting form and the footprint of its shadow
+on the ground.
 """
 
 from __future__ import annotations
@@ -52,6 +57,10 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     if len(p) == 0:
         return np.zeros(0, dtype=np.int64)
+    if len(p) > _CHAIN_MAX and tol == 0.0:
+        hull = _quickhull(p)
+        if hull is not None:
+            return hull
     keep = _outside_octagon(p)
     if len(keep) < len(p):
         return keep[convex_hull_2d(p[keep], tol)]
@@ -66,6 +75,78 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     if len(hull) < 2:  # every point on one line within tol: its two ends
         hull = [int(order[0]), int(order[-1])]
     return np.asarray(hull, dtype=np.int64)
+
+
+#: Above this many points (and with no tolerance), QuickHull in numpy instead
+#: of the chain in Python.
+_CHAIN_MAX = 256
+
+
+def _quickhull(p: Array) -> NDArray[np.int64] | None:
+    """:func:`convex_hull_2d` of many points with no tolerance, in numpy: the
+    strict corners counter-clockwise from the lowest-then-leftmost point; None
+    when the seed polygon is degenerate (the chain then decides).
+
+    Seeded with the extreme points in 8 directions and their centre; the
+    points outside the seeds' polygon sorted once by their angle about that
+    centre: the points outside an edge are then a run of that order, and so
+    are those outside the two edges its farthest point splits it into (they
+    lie in the angles between its ends), so each level of QuickHull refines
+    every edge at once, on runs, without sorting again."""
+    x, y = p[:, 0], p[:, 1]
+    s, t = x + y, x - y
+    seed = sorted_unique(
+        np.array([f(v) for v in (x, y, s, t) for f in (np.argmin, np.argmax)], dtype=np.int64)
+    )
+    cx, cy = float(x.take(seed).mean()), float(y.take(seed).mean())
+    ang = np.arctan2(y - cy, x - cx)
+    seed = seed[np.argsort(ang.take(seed))]
+    ang -= ang[seed[0]]
+    ang %= 2.0 * math.pi
+    ang[seed[0]] = 0.0
+    sx, sy = x.take(seed), y.take(seed)
+    ex, ey = np.roll(sx, -1) - sx, np.roll(sy, -1) - sy
+    if len(seed) < 3 or np.any(ex * (cy - sy) - ey * (cx - sx) <= 0.0):
+        return None  # the centre is not strictly inside the seeds' polygon
+    k = ang.take(seed).searchsorted(ang, side="right") - 1
+    # to the right of its edge (going counter-clockwise): strictly outside
+    d = ey.take(k) * (x - sx.take(k)) - ex.take(k) * (y - sy.take(k))
+    idx = np.flatnonzero(d > 0.0)
+    idx = idx[np.argsort(ang.take(idx))]
+    a_end, b_end = seed.take(k.take(idx)), np.roll(seed, -1).take(k.take(idx))
+    d = d.take(idx)
+    corners = [seed]
+    while len(idx):
+        # per run (edge): its farthest point (the first of a tie) is a corner
+        starts = np.flatnonzero(np.concatenate([[True], a_end[1:] != a_end[:-1]]))
+        lengths = np.diff(np.append(starts, len(idx)))
+        far = np.flatnonzero(d == np.repeat(np.maximum.reduceat(d, starts), lengths))
+        at = far.take(far.searchsorted(starts))
+        c = idx.take(at)
+        corners.append(c)
+        before = np.arange(len(idx)) < np.repeat(at, lengths)
+        cc = np.repeat(c, lengths)
+        a_end = np.where(before, a_end, cc)
+        b_end = np.where(before, cc, b_end)
+        ax, ay = x.take(a_end), y.take(a_end)
+        d = (y.take(b_end) - ay) * (x.take(idx) - ax) - (x.take(b_end) - ax) * (y.take(idx) - ay)
+        out = d > 0.0
+        idx, a_end, b_end, d = idx[out], a_end[out], b_end[out], d[out]
+    hull = np.concatenate(corners)
+    hull = hull[np.argsort(ang.take(hull))]
+    while len(hull) >= 3:  # a seed can lie on an edge of the hull: no corner
+        ax, ay = x.take(np.roll(hull, 1)), y.take(np.roll(hull, 1))
+        qx, qy = x.take(np.roll(hull, -1)), y.take(np.roll(hull, -1))
+        turn = (x.take(hull) - ax) * (qy - ay) - (y.take(hull) - ay) * (qx - ax) > 0.0
+        if turn.all():
+            break
+        # one of neighbours that both fail at a time (two points a rounding
+        # error apart: one of them stays, as in the chain)
+        hull = hull[turn | np.roll(~turn, 1)]
+    # counter-clockwise from the lowest x, then lowest y, as the chain
+    hx, hy = x.take(hull), y.take(hull)
+    low = np.flatnonzero(hx == hx.min())
+    return np.roll(hull, -int(low[np.argmin(hy.take(low))])).astype(np.int64)
 
 
 def _outside_octagon(p: Array) -> NDArray[np.int64]:
