@@ -69,6 +69,15 @@ _SAMPLES = 1200
 _MAX_ANGLE_STEP = math.pi / 180
 
 
+def _spread(s: Array) -> Array:
+    """Fractions along an edge ``(m,)``, sorted, with 0 and 1 and no two closer
+    than 1e-9: a sample within rounding of another (a ray's crossing on an
+    even step) would leave the bracket about it no room on that side."""
+    inner = sorted_unique(s[(s > 1e-9) & (s < 1.0 - 1e-9)])
+    inner = inner[np.concatenate([[True], np.diff(inner) > 1e-9])] if len(inner) else inner
+    return np.concatenate([[0.0], inner, [1.0]])
+
+
 class Body:
     """A folded form as written: its extreme pieces and its centre of mass.
 
@@ -136,6 +145,7 @@ class Body:
         solid = self.kind == "solid"
         sectors = Sectors(cone, arc, sheet, self.hole, self.s_range if solid else None, self._tol)
         v = sheet.vertices
+        perimeter = sheet.perimeter
         # sample each edge evenly on the flat sheet and evenly in its flat
         # angle (an edge passing close to H sweeps a wide angle in a short
         # length); the pieces run in phi
@@ -143,13 +153,13 @@ class Body:
         for k in range(len(v)):
             a, b = v[k], v[(k + 1) % len(v)]
             length = float(np.hypot(*(b - a)))
-            n = max(16, math.ceil(_SAMPLES * length / sheet.perimeter))
+            n = max(16, math.ceil(_SAMPLES * length / perimeter))
             ta, tb = (abs(math.atan2(p[1], p[0])) for p in (a, b))
             ang = np.linspace(ta, tb, max(2, math.ceil(abs(tb - ta) / _MAX_ANGLE_STEP) + 1))
             psi = np.where(a[1] + b[1] < 0.0, -ang, ang)
             ray = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
             along = np.clip((ray - a) @ (b - a) / length**2, 0.0, 1.0)
-            s_all = sorted_unique(np.concatenate([np.linspace(0.0, 1.0, n), along]))
+            s_all = _spread(np.concatenate([np.linspace(0.0, 1.0, n), along]))
             q = a + s_all[:, None] * (b - a)
             flat_params.append((a, b))
             thetas.append(np.abs(np.arctan2(q[:, 1], q[:, 0])))  # the side's own flat angle
@@ -166,7 +176,7 @@ class Body:
             np.clip(phi[1:-1], min(phi[0], phi[-1]), max(phi[0], phi[-1]), out=phi[1:-1])
             grid = np.maximum.accumulate(phi if phi[-1] >= phi[0] else phi[::-1])
             t_lo, t_hi = float(min(theta[0], theta[-1])), float(max(theta[0], theta[-1]))
-            member = sectors.add(lower, t_lo, t_hi)
+            member = sectors.add(lower, t_lo, t_hi, a, b)
             fn = member_points(sectors, member)
             self.pieces.append(Piece(f"edge {k}", grid, fn, steps[k], sectors, member))
         if solid:
@@ -191,20 +201,27 @@ class Body:
         (exact model; one inversion for both)."""
         cone = self.folded.solution.surface
         assert isinstance(cone, ExactCone)
-        up, lo = (np.clip(a, 0.0, cone.total_angle) for a in self.folded.sheet.side_angles)
+        up, lo = self._vertex_angles
         both = cone.phi_of_theta(np.concatenate([up, lo]))
         return both[: len(up)], both[len(up) :]
+
+    @cached_property
+    def _vertex_angles(self) -> tuple[Array, Array]:
+        """Each side's vertex angles within the cone's total angle."""
+        total = self.folded.solution.surface.total_angle
+        up, lo = self.folded.sheet.side_angles
+        return np.clip(up, 0.0, total), np.clip(lo, 0.0, total)
 
     def _vertex_ray(self, lower: bool, theta: float) -> tuple[float, float]:
         """The vertex ray of one side at flat angle ``theta`` (an edge's end):
         its flat angle as the side's vertex angles give it and its arc
         parameter (:attr:`vertex_phis`)."""
-        cone = self.folded.solution.surface
-        assert isinstance(cone, ExactCone)
-        angles = np.clip(self.folded.sheet.side_angles[int(lower)], 0.0, cone.total_angle)
+        angles = self._vertex_angles[int(lower)]
         i = int(np.argmin(np.abs(angles - theta)))
         if abs(float(angles[i]) - theta) <= 1e-12:
             return float(angles[i]), float(self.vertex_phis[int(lower)][i])
+        cone = self.folded.solution.surface
+        assert isinstance(cone, ExactCone)
         return theta, float(cone.phi_of_theta(np.array([theta]))[0])
 
     # -- sampling -------------------------------------------------------------

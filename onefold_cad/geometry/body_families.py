@@ -55,21 +55,38 @@ class Sectors:
     ) -> None:
         self.cone, self.arc, self.sheet = cone, arc, sheet
         self.hole, self.s_range, self.tol = hole, s_range, tol
-        self._lower: list[bool] = []
-        self._lo: list[float] = []
-        self._hi: list[float] = []
+        self._rows: list[list[float]] = []
         self.lower = np.zeros(0, dtype=bool)
         self.t_lo = self.t_hi = np.zeros(0)
 
-    def add(self, lower: bool, t_lo: float, t_hi: float) -> int:
-        """A new member: the edge on the -y side (``lower``) between the flat
-        angles ``t_lo`` and ``t_hi`` of its side; returns its index."""
-        self._lower.append(lower)
-        self._lo.append(t_lo)
-        self._hi.append(t_hi)
-        self.lower = np.array(self._lower)
-        self.t_lo, self.t_hi = np.array(self._lo), np.array(self._hi)
-        return len(self._lower) - 1
+    def add(self, lower: bool, t_lo: float, t_hi: float, a: Array, b: Array) -> int:
+        """A new member: the sheet edge from vertex ``a`` to ``b`` ``(2,)``, on
+        the -y side (``lower``), between the flat angles ``t_lo`` and ``t_hi``
+        of its side (``a``'s and ``b``'s, in either order); returns its index."""
+        ex, ey = float(b[0] - a[0]), float(b[1] - a[1])
+        ra, rb = float(np.hypot(*a)), float(np.hypot(*b))
+        ta = abs(float(np.arctan2(a[1], a[0])))
+        tb = abs(float(np.arctan2(b[1], b[0])))
+        r_lo, r_hi = (ra, rb) if ta <= tb else (rb, ra)
+        moment = float(a[0]) * ey - float(a[1]) * ex
+        self._rows.append([float(lower), t_lo, t_hi, ex, ey, moment, r_lo, r_hi])
+        rows = np.array(self._rows).T
+        self.lower = rows[0] > 0.0
+        self.t_lo, self.t_hi = rows[1], rows[2]
+        self.edge = rows[3:]  # ex, ey, the moment a x e, the radii at t_lo and t_hi
+        return len(self._rows) - 1
+
+    def edge_radius(self, members: NDArray[np.int64], theta: Array) -> Array:
+        """The distance from H to the members' edges along their flat angles
+        ``theta`` (within their ranges): one line intersection, r = (a x e) /
+        (d x e) for the ray's direction d, and the vertex's own distance at
+        an end (an edge passing close to H would lose digits there)."""
+        ex, ey, moment, r_lo, r_hi = self.edge[:, members]
+        sin = np.sin(theta)
+        sin[self.lower[members]] *= -1.0  # the -y side's polar angle is -theta
+        r = moment / (np.cos(theta) * ey - sin * ex)
+        r = np.where(theta <= self.t_lo[members], r_lo, r)
+        return np.where(theta >= self.t_hi[members], r_hi, r)
 
     @property
     def corners(self) -> int:
@@ -78,9 +95,11 @@ class Sectors:
 
     def points(self, members: NDArray[np.int64], phi: Array) -> Array:
         """Section corners ``(k, V, 3)`` of ``members`` at arc parameters ``phi``."""
-        theta = np.clip(self.cone.theta_near(phi), self.t_lo[members], self.t_hi[members])
+        theta = np.minimum(
+            np.maximum(self.cone.theta_near(phi), self.t_lo[members]), self.t_hi[members]
+        )
         lower = self.lower[members]
-        r_out = self.sheet.ray_lengths(np.where(lower, -theta, theta))
+        r_out = self.edge_radius(members, theta)
         u, _, n = self.arc.frames(phi)
         rho = self.hole
         if self.s_range is None:

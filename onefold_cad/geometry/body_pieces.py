@@ -15,7 +15,7 @@ import numpy as np
 
 from onefold_cad.geometry.body_families import Walls
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, cross3
 from onefold_cad.geometry.pieces import Family, Piece
 from onefold_cad.geometry.thick_map import CreaseFrames, mitre_depth, mitre_planes
 
@@ -110,9 +110,13 @@ def mitre_block(
         ]
     )
     b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
-    mats = a[_TRIPLES]
-    ok = np.abs(np.linalg.det(mats)) > 1e-12
-    z = np.linalg.solve(mats[ok], b[_TRIPLES[ok]][..., None])[..., 0]
+    # each triple of planes meets where Cramer's rule puts it (rows i, j, k)
+    ai, aj, ak = a[_TRIPLES[:, 0]], a[_TRIPLES[:, 1]], a[_TRIPLES[:, 2]]
+    jk, ki, ij = cross3(aj, ak), cross3(ak, ai), cross3(ai, aj)
+    det = np.einsum("ij,ij->i", ai, jk)
+    ok = np.abs(det) > 1e-12
+    bt = b[_TRIPLES[ok]]
+    z = (bt[:, :1] * jk[ok] + bt[:, 1:2] * ki[ok] + bt[:, 2:] * ij[ok]) / det[ok][:, None]
     inside = np.all(z @ a.T - b <= tol, axis=1)
     inside &= z[:, 0] ** 2 + z[:, 1] ** 2 >= rho * rho - tol * rho
     verts = (z[inside] @ basis.T) * mirror

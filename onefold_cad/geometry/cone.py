@@ -347,6 +347,8 @@ class ExactCone(DirectionSurface):
         p0, p1 = arc_range(self.frame)
         h = float(self.height) / g.radius  # type: ignore[arg-type]
         plus = phi - p0 <= 0.5 * g.span
+        if plus.all():  # one half (a zoom's bracket mostly is): no masks
+            return theta_from_nodes(self.node_table(0), g, True, h, np.maximum(phi - p0, 0.0))
         out = np.empty(len(phi))
         for k, sel in ((0, plus), (1, ~plus)):
             if sel.any():

@@ -22,7 +22,7 @@ from onefold_cad.geometry.numeric import Array, sorted_unique
 __all__ = ["convex_hull_2d", "edge_distances"]
 
 
-def _chain(xs: list[float], ys: list[float], order: list[int], tol: float) -> list[int]:
+def _chain(xs: list[float], ys: list[float], order: list[int]) -> list[int]:
     """One monotone chain (indices), turning left at every kept corner (plain
     floats: far faster than numpy scalars in this loop)."""
     out: list[int] = []
@@ -31,9 +31,8 @@ def _chain(xs: list[float], ys: list[float], order: list[int], tol: float) -> li
         while len(out) >= 2:
             a, b = out[-2], out[-1]
             ax, ay = xs[a], ys[a]
-            cross = (xs[b] - ax) * (cy - ay) - (ys[b] - ay) * (cx - ax)
-            # b's distance from the line a-c, positive when the chain turns left at b
-            if cross > tol * math.hypot(cx - ax, cy - ay):
+            # positive when the chain turns left at b
+            if (xs[b] - ax) * (cy - ay) - (ys[b] - ay) * (cx - ax) > 0.0:
                 break
             out.pop()
         out.append(i)
@@ -57,24 +56,55 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     if len(p) == 0:
         return np.zeros(0, dtype=np.int64)
-    if len(p) > _CHAIN_MAX and tol == 0.0:
+    hull = _strict_corners(p)
+    return _beyond(p, hull, tol) if tol > 0.0 and len(hull) >= 3 else hull
+
+
+def _strict_corners(p: Array) -> NDArray[np.int64]:
+    """:func:`convex_hull_2d` with no tolerance: every strict corner."""
+    if len(p) > _CHAIN_MAX:
         hull = _quickhull(p)
         if hull is not None:
             return hull
     keep = _outside_octagon(p)
     if len(keep) < len(p):
-        return keep[convex_hull_2d(p[keep], tol)]
+        return keep[_strict_corners(p[keep])]
     order = np.lexsort((p[:, 1], p[:, 0]))
     first, last = p[order[0]], p[order[-1]]
     if np.array_equal(first, last):
         return order[:1].astype(np.int64)
     xs, ys, idx = p[:, 0].tolist(), p[:, 1].tolist(), order.tolist()
-    lower = _chain(xs, ys, idx, tol)
-    upper = _chain(xs, ys, idx[::-1], tol)
+    lower = _chain(xs, ys, idx)
+    upper = _chain(xs, ys, idx[::-1])
     hull = lower[:-1] + upper[:-1]
-    if len(hull) < 2:  # every point on one line within tol: its two ends
+    if len(hull) < 2:  # every point on one line: its two ends
         hull = [int(order[0]), int(order[-1])]
     return np.asarray(hull, dtype=np.int64)
+
+
+def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
+    """The corners of ``hull`` (strict corners of ``p``, counter-clockwise)
+    more than ``tol`` from the line through their neighbours, the nearest
+    dropped first, one at a time (a corner's neighbours change as others
+    go): the hull of the points less what lies within ``tol`` of its edges;
+    the two farthest corners when all lie within ``tol`` of one line."""
+    idx = hull.copy()
+    while len(idx) >= 3:
+        q = p[idx]
+        a, c = np.roll(q, 1, axis=0), np.roll(q, -1, axis=0)
+        cross = (q[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (q[:, 1] - a[:, 1]) * (
+            c[:, 0] - a[:, 0]
+        )
+        dist = cross / np.maximum(np.hypot(c[:, 0] - a[:, 0], c[:, 1] - a[:, 1]), 1e-300)
+        i = int(np.argmin(dist))
+        if dist[i] > tol:
+            return idx
+        idx = np.delete(idx, i)
+    q = p[hull]
+    d2 = ((q[:, None, :] - q[None, :, :]) ** 2).sum(axis=-1)
+    i, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
+    ends = sorted((int(hull[i]), int(hull[j])), key=lambda k: (p[k, 0], p[k, 1]))
+    return np.asarray(ends, dtype=np.int64)
 
 
 #: Above this many points (and with no tolerance), QuickHull in numpy instead

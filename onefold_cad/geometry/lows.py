@@ -1,15 +1,15 @@
 """A body's exact lowest points along many directions, zooming only where the
 samples leave it open.
 
-Along a piece, the lowest corner's height h(t) is continuous: smooth where one
-corner stays lowest, with kinks where another takes over, and those kinks
-point up (a minimum of smooth functions), never down. Between two samples a
-smooth stretch dips below their chord by about h'' dt^2 / 8, an eighth of the
-samples' second difference; so no point of a piece's bracket about a sampled
-local minimum (its neighbours on the grid, as :func:`~.ground.lowest_points`
-zooms it) lies lower than that minimum less twice the largest deviation of a
-sample there from its neighbours' chord (the second difference: eight times
-the dip, a margin of 8), the lower bound of the bracket.
+Along a piece, the lowest corner's height h(t) is continuous and piecewise
+smooth. Between two samples dt apart a smooth stretch dips below their chord
+by at most h'' dt^2 / 8; the samples' second divided difference c = h'' / 2
+(of the parabola through three neighbours, however uneven their spacing)
+measures h''. So no point of a piece's bracket about a sampled local
+minimum (its neighbours on the grid, as :func:`~.ground.lowest_points`
+zooms it) lies lower than that minimum less 2 c L^2, L the longer interval
+beside it and c the largest of the three samples' (eight times the dip,
+whose 1/8 is c L^2 / 4): the lower bound of the bracket.
 
 Every sample is a point of the body, so the lowest sample (or fixed point)
 bounds the lowest point from above. :func:`exact_lows` zooms only the brackets
@@ -50,33 +50,41 @@ def _bounded_minima(body: Body, dirs: Array) -> tuple[Array, Array, Array]:
     first = index == 0
     last = np.append(first[1:], True)
     inner = ~(first | last)
-    # each sample's deviation from its neighbours' chord (0 at a piece's ends)
-    dev = np.zeros_like(h)
+    # the second divided difference at each inner sample (h'' / 2 of the
+    # parabola through it and its neighbours: the curvature, however uneven
+    # the spacing), 0 at a piece's ends
+    curv = np.zeros_like(h)
     if inner.any():
         i = np.flatnonzero(inner)
-        span = t[i + 1] - t[i - 1]
         with np.errstate(invalid="ignore", divide="ignore"):
-            w = np.where(span > 0.0, (t[i + 1] - t[i]) / span, 0.5)[:, None]
-            dev[i] = np.abs(h[i] - (w * h[i - 1] + (1.0 - w) * h[i + 1]))
-    # beside an empty section (a mitre wall past its block) the piece ends on
-    # a fixed point of the body, a sample itself: the piece's largest
-    # deviation there
-    bad = ~np.isfinite(dev)
+            left = (h[i] - h[i - 1]) / (t[i] - t[i - 1])[:, None]
+            right = (h[i + 1] - h[i]) / (t[i + 1] - t[i])[:, None]
+            curv[i] = np.abs(right - left) / (t[i + 1] - t[i - 1])[:, None]
+    # beside an empty section (a mitre wall past its block) or between
+    # coincident samples the piece's largest curvature
+    bad = ~np.isfinite(curv)
     if bad.any():
-        dev[bad] = 0.0
+        curv[bad] = 0.0
         starts = np.flatnonzero(first)
-        worst = np.maximum.reduceat(dev, starts, axis=0)[np.cumsum(first) - 1]
-        dev = np.where(bad, worst, dev)
-    near = dev.copy()
-    near[1:] = np.where(first[1:, None], near[1:], np.maximum(near[1:], dev[:-1]))
-    near[:-1] = np.where(last[:-1, None], near[:-1], np.maximum(near[:-1], dev[1:]))
+        worst = np.maximum.reduceat(curv, starts, axis=0)[np.cumsum(first) - 1]
+        curv = np.where(bad, worst, curv)
+    near = curv.copy()
+    near[1:] = np.where(first[1:, None], near[1:], np.maximum(near[1:], curv[:-1]))
+    near[:-1] = np.where(last[:-1, None], near[:-1], np.maximum(near[:-1], curv[1:]))
+    # the longer of the two intervals beside each sample
+    gap = np.zeros(len(t))
+    step = np.diff(t)
+    gap[:-1] = np.where(last[:-1], 0.0, step)
+    gap[1:] = np.maximum(gap[1:], np.where(first[1:], 0.0, step))
     # local minima (a plateau counts once, as lowest_points has it)
     left = np.ones_like(h, dtype=bool)
     right = np.ones_like(h, dtype=bool)
     left[1:] = first[1:, None] | (h[1:] < h[:-1])
     right[:-1] = last[:-1, None] | (h[:-1] <= h[1:])
     row, d = np.nonzero(left & right & np.isfinite(h))
-    low = h[row, d] - 2.0 * near[row, d] - 1e-9 * body.size
+    # the dip of a parabola of that curvature over the interval is c L^2 / 4:
+    # eight times it
+    low = h[row, d] - 2.0 * near[row, d] * gap[row] ** 2 - 1e-9 * body.size
     # where a corner comes or goes between samples (the cut at y = 0 sweeping
     # a section's corners near the crease, faster than the samples), the
     # samples say nothing of the bracket: zoom it

@@ -139,14 +139,14 @@ def end_minimum(
     or ends with the piece, when its samples (``grid`` ``(n,)``, ``corners``
     ``(n, V, 3)``) show it at that end: ``(t, point)``; else None (zoom).
 
-    The bracket spans at most the first (last) two sample intervals; the end
-    sample is the lowest, and the next rises from it by at least twice the
-    second difference of the first three: with the piece's curvature as its
-    samples resolve it (as every bracket search here assumes), nothing of the
-    bracket then dips below the end (the slope at the end is positive for at
-    least 1.5 intervals of that curvature); and the three sections have the
-    same corners (near the crease the cut at y = 0 sweeps them faster than
-    the samples). Exactly what a zoom finds there: the end itself."""
+    The bracket spans at most the first (last) two sample intervals, and the
+    parabola through the first three samples rises from the end with a slope
+    of more than twice its curvature times the first interval: with the
+    piece's curvature as its samples resolve it (as every bracket search
+    here assumes, to a factor of two), nothing of the bracket dips below the
+    end; and the three sections have the same corners (near the crease the
+    cut at y = 0 sweeps them faster than the samples). Exactly what a zoom
+    finds there: the end itself."""
     n = len(grid)
     if n < 3:
         return None
@@ -165,9 +165,13 @@ def end_minimum(
     if not np.all(np.isfinite(h)):
         return None
     t = grid[idx]
-    w = (t[2] - t[1]) / (t[2] - t[0]) if t[2] != t[0] else 0.5
-    dev = abs(h[1] - (w * h[0] + (1.0 - w) * h[2]))
-    if not (h[1] - h[0] >= 4.0 * dev and h[1] > h[0] and h[2] > h[0]):
+    if t[1] == t[0] or t[2] == t[1]:
+        return None
+    # the parabola through the three: its slope at the end, into the piece
+    s01 = (h[1] - h[0]) / (t[1] - t[0])
+    c = ((h[2] - h[1]) / (t[2] - t[1]) - s01) / (t[2] - t[0])
+    slope = (s01 - c * (t[1] - t[0])) * np.sign(t[1] - t[0])
+    if not (slope > 4.0 * abs(c) * abs(t[1] - t[0]) and h[2] > h[0]):
         return None
     p = pts[0]
     hp = p @ g
