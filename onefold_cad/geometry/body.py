@@ -42,20 +42,19 @@ import math
 from functools import cached_property
 
 import numpy as np
-from numpy.typing import NDArray
 
 from onefold_cad.choices import Body as BodyKind
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body_families import Sectors, Walls
 from onefold_cad.geometry.body_pieces import member_points, mitre_block, paper_pieces
+from onefold_cad.geometry.body_samples import Sampled
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
 from onefold_cad.geometry.numeric import Array, sorted_unique
-from onefold_cad.geometry.pieces import Piece, end_minimum, zoom_min
+from onefold_cad.geometry.pieces import Piece, zoom_min
 from onefold_cad.geometry.thick_map import CreaseFrames, SideMap
-from onefold_cad.geometry.zoom import zoom_many
 
 __all__ = ["BODIES", "MIRROR", "Body"]
 
@@ -78,7 +77,7 @@ def _spread(s: Array) -> Array:
     return np.concatenate([[0.0], inner, [1.0]])
 
 
-class Body:
+class Body(Sampled):
     """A folded form as written: its extreme pieces and its centre of mass.
 
     Args:
@@ -224,117 +223,6 @@ class Body:
         assert isinstance(cone, ExactCone)
         return theta, float(cone.phi_of_theta(np.array([theta]))[0])
 
-    # -- sampling -------------------------------------------------------------
-    @cached_property
-    def _groups(self) -> tuple[NDArray[np.int64], list[list[int]]]:
-        """Per piece the group it is evaluated with (the pieces of one family,
-        or the piece alone), and each group's pieces."""
-        gid = np.zeros(len(self.pieces), dtype=np.int64)
-        groups: list[list[int]] = []
-        seen: dict[int, int] = {}
-        for k, piece in enumerate(self.pieces):
-            key = id(piece.family) if piece.family is not None else -1 - k
-            if key not in seen:
-                seen[key] = len(groups)
-                groups.append([])
-            gid[k] = seen[key]
-            groups[gid[k]].append(k)
-        return gid, groups
-
-    def _corners(self, group: int, pieces: NDArray[np.int64], t: Array) -> Array:
-        """Corners ``(k, V, 3)`` of ``pieces`` (all of one group) at ``t``."""
-        first = self.pieces[int(pieces[0])]
-        if first.family is None:
-            return first.points(t)
-        return first.family.points(self._members[pieces], t)
-
-    @cached_property
-    def _members(self) -> NDArray[np.int64]:
-        """Each piece's index in its family."""
-        return np.array([p.member for p in self.pieces], dtype=np.int64)
-
-    @cached_property
-    def stacked(self) -> tuple[Array, NDArray[np.int64], NDArray[np.int64]]:
-        """Every piece's sections on one another: corners ``(M, V, 3)`` (V the
-        most of any piece, NaN beyond a piece's own), the piece of each row and
-        its index in that piece's grid ``(M,)``."""
-        v = max((c.shape[1] for c in self.sections), default=1)
-        rows = sum(len(c) for c in self.sections)
-        out = np.full((rows, v, 3), np.nan)
-        piece = np.empty(rows, dtype=np.int64)
-        at = 0
-        for k, c in enumerate(self.sections):
-            out[at : at + len(c), : c.shape[1]] = c
-            piece[at : at + len(c)] = k
-            at += len(c)
-        starts = np.concatenate([[0], np.cumsum([len(c) for c in self.sections])[:-1]])
-        index = np.arange(rows) - np.repeat(starts, [len(c) for c in self.sections])
-        return out, piece, index.astype(np.int64)
-
-    @cached_property
-    def stacked_params(self) -> Array:
-        """The grid parameter of each row of :attr:`stacked` ``(M,)``."""
-        return np.concatenate([p.grid for p in self.pieces]) if self.pieces else np.zeros(0)
-
-    @cached_property
-    def sections(self) -> list[Array]:
-        """Per piece: the section corners ``(n, V, 3)`` at its grid (one
-        evaluation per family)."""
-        out: list[Array] = [np.zeros((0, 1, 3))] * len(self.pieces)
-        for g, group in enumerate(self._groups[1]):
-            grids = [self.pieces[k].grid for k in group]
-            owner = np.repeat(np.array(group, dtype=np.int64), [len(x) for x in grids])
-            corners = self._corners(g, owner, np.concatenate(grids))
-            cuts = np.cumsum([len(x) for x in grids])[:-1]
-            for k, part in zip(group, np.split(corners, cuts), strict=True):
-                out[k] = part
-        return out
-
-    def lowest_corners(self, pieces: NDArray[np.int64], t: Array, g: Array) -> tuple[Array, Array]:
-        """At each (piece, parameter, direction ``(k, 3)``): the lowest corner's
-        height along the direction ``(k,)`` (+inf where the section is empty)
-        and that corner ``(k, 3)``; one evaluation per family."""
-        v = np.empty(len(t))
-        p = np.empty((len(t), 3))
-        gid = self._groups[0][pieces]
-        for group in sorted_unique(gid):
-            sel = np.flatnonzero(gid == group)
-            pts = self._corners(int(group), pieces[sel], t[sel])
-            h = np.einsum("kvj,kj->kv", pts, g[sel])
-            h[np.isnan(h)] = np.inf
-            i = np.argmin(h, axis=1)
-            rows = np.arange(len(sel))
-            v[sel] = h[rows, i]
-            p[sel] = pts[rows, i]
-        return v, p
-
-    @cached_property
-    def spacings(self) -> Array:
-        """Per piece ``(n,)``: the largest distance between neighbouring
-        samples (length), in 3D or along the piece (on the flat sheet), plus
-        the thickness: no point of the piece lies further than that from its
-        nearest sample (the thickness covers the offsets of a thick sheet)."""
-        out = np.zeros(len(self.pieces))
-        for i, (piece, corners) in enumerate(zip(self.pieces, self.sections, strict=True)):
-            steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
-            steps = steps[~np.isnan(steps)]
-            out[i] = max(piece.step, float(steps.max()) if len(steps) else 0.0)
-        return out + self.thickness
-
-    @cached_property
-    def samples(self) -> tuple[Array, NDArray[np.int64], Array]:
-        """Sample points ``(N, 3)`` of every piece and fixed point, with the
-        piece each belongs to ``(N,)`` (-1: a fixed point) and its parameter."""
-        pts = [self.fixed]
-        owner = [np.full(len(self.fixed), -1, dtype=np.int64)]
-        param = [np.zeros(len(self.fixed))]
-        for i, (piece, p) in enumerate(zip(self.pieces, self.sections, strict=True)):
-            ok = ~np.isnan(p[..., 0])
-            pts.append(p[ok])
-            owner.append(np.full(int(ok.sum()), i, dtype=np.int64))
-            param.append(np.broadcast_to(piece.grid[:, None], ok.shape)[ok])
-        return np.concatenate(pts), np.concatenate(owner), np.concatenate(param)
-
     def lowest(self, piece: int, lo: float, hi: float, g: Array) -> tuple[float, Array]:
         """The lowest point ``(3,)`` along ``g`` of piece ``piece`` for
         parameters in [lo, hi], and its parameter.
@@ -350,52 +238,3 @@ class Body:
             t, _ = zoom_min(lambda tt: p.heights(tt, g), lo, hi)
             known = self._lowest[key] = (t, p.lowest(t, g))
         return known[0], known[1].copy()
-
-    def lowest_many(
-        self,
-        asks: list[tuple[int, float, float, Array]],
-        group: NDArray[np.int64] | None = None,
-        ceiling: Array | None = None,
-        known: Array | None = None,
-        margin: float = 0.0,
-    ) -> list[tuple[float, Array]]:
-        """:meth:`lowest` for many (piece, lo, hi, direction) at once: the zooms
-        not known yet run together (:func:`~onefold_cad.geometry.zoom.zoom_many`),
-        but for a bracket at a piece's end whose samples show the lowest point
-        there (:func:`~onefold_cad.geometry.pieces.end_minimum`). With ``group``,
-        ``ceiling`` and ``known`` (see ``zoom_many``), a zoom that cannot matter
-        stops early: its answer is a point of the bracket, not kept."""
-        keys = [
-            (k, float(lo), float(hi), (np.asarray(g, dtype=float) + 0.0).tobytes())
-            for k, lo, hi, g in asks
-        ]
-        todo: dict[tuple[int, float, float, bytes], int] = {}
-        for i, key in enumerate(keys):
-            if key in self._lowest or key in todo:
-                continue
-            k, lo, hi, g = asks[i]
-            end = end_minimum(self.pieces[k].grid, self.sections[k], lo, hi, np.asarray(g))
-            if end is not None:  # its samples show it at an end: no zoom
-                self._lowest[key] = end
-            else:
-                todo[key] = i
-        found: dict[tuple[int, float, float, bytes], tuple[float, Array]] = {}
-        if todo:
-            idx = list(todo.values())
-            pieces = np.array([asks[i][0] for i in idx], dtype=np.int64)
-            gs = np.array([asks[i][3] for i in idx], dtype=float).reshape(-1, 3)
-
-            def f(jobs: NDArray[np.int64], t: Array) -> tuple[Array, Array]:
-                return self.lowest_corners(pieces[jobs], t, gs[jobs])
-
-            lo = np.array([asks[i][1] for i in idx], dtype=float)
-            hi = np.array([asks[i][2] for i in idx], dtype=float)
-            sub = None if group is None else np.asarray(group)[idx]
-            t, _, p, done = zoom_many(f, lo, hi, sub, ceiling, known, margin)
-            for j, key in enumerate(todo):
-                (self._lowest if done[j] else found)[key] = (float(t[j]), p[j])
-        out = []
-        for key in keys:
-            t, p = self._lowest[key] if key in self._lowest else found[key]
-            out.append((t, p.copy()))
-        return out

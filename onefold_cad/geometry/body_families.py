@@ -95,6 +95,15 @@ class Sectors:
 
     def points(self, members: NDArray[np.int64], phi: Array) -> Array:
         """Section corners ``(k, V, 3)`` of ``members`` at arc parameters ``phi``."""
+        return self.sections(members, phi)[0]
+
+    def sections(
+        self, members: NDArray[np.int64], phi: Array, box: bool = False
+    ) -> tuple[Array, Array | None]:
+        """:meth:`points`, and with ``box`` the corners ``(k, 4, 3)`` of each
+        solid section's rectangle before the cut at y = 0 (r from the hole to
+        the edge, s across the thickness: every point of the section lies
+        within it; None for the shell)."""
         theta = np.minimum(
             np.maximum(self.cone.theta_near(phi), self.t_lo[members]), self.t_hi[members]
         )
@@ -102,6 +111,7 @@ class Sectors:
         r_out = self.edge_radius(members, theta)
         u, _, n = self.arc.frames(phi)
         rho = self.hole
+        rect = None
         if self.s_range is None:
             out = r_out[:, None] * u
             out = np.stack([rho * u, out], axis=1) if rho > 0.0 else out[:, None, :]
@@ -110,8 +120,13 @@ class Sectors:
             inner = np.full_like(r_out, rho)
             z = clipped_rectangle(inner, r_out, s0, s1, u[:, 1], n[:, 1], self.tol)
             out = z[..., :1] * u[:, None, :] + z[..., 1:] * n[:, None, :]
+            if box:
+                rs = np.stack([inner, r_out, r_out, inner], axis=1)[..., None]
+                ss = np.array([s0, s0, s1, s1])[None, :, None]
+                rect = rs * u[:, None, :] + ss * n[:, None, :]
+                rect[lower, :, 1] *= -1.0
         out[lower, :, 1] *= -1.0
-        return out
+        return out, rect
 
 
 class Walls:

@@ -101,25 +101,54 @@ def _slab_moments(body: Body, theta: Array, lower: bool, u: Array, n: Array, k: 
         s_e = np.where(ny != 0.0, -r_out * uy / ny, s0)
     cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
     cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
-    # each of the three parts by 3-point Gauss-Legendre (exact: degree 4 in
-    # s), all nine offsets of all angles at once ``(k, 9)``
-    nodes, weights = gauss_legendre(3)
-    half = 0.5 * (cuts[:, 1:] - cuts[:, :3])
-    s = (cuts[:, :3, None] + half[:, :, None] * (1.0 + nodes)).reshape(len(theta), 9)
-    ww = (half[:, :, None] * weights).reshape(len(theta), 9)
+    lo, hi = cuts[:, :3], cuts[:, 1:]
+    out = np.zeros((len(theta), 4))
+    ro = r_out[:, None]
+    # on each part r_lo (the cut's r, clipped to [rho, r_out]) is rho, the
+    # cut's line (linear in s) or r_out throughout: which, at its middle
+    mid = 0.5 * (lo + hi)
+    r_mid = _cut_radius(mid, uy, ny)
+    at_rho = (r_mid <= rho) & (hi > lo) & (ro > rho)  # (no sheet inside the hole)
+    # r_lo = rho: the moments are polynomials in s of degree 2, in closed form
+    d1 = np.where(at_rho, hi - lo, 0.0)
+    d2 = d1 * (lo + hi) / 2.0  # (hi^2 - lo^2) / 2
+    d3 = d1 * (lo * lo + lo * hi + hi * hi) / 3.0  # (hi^3 - lo^3) / 3
+    a2, b1 = (ro**2 - rho**2) / 2.0, ro - rho
+    a3 = (ro**3 - rho**3) / 3.0
+    kk = k[:, None]
+    m0 = (a2 * d1 - kk * b1 * d2).sum(axis=1)
+    m1 = (a2 * d2 - kk * b1 * d3).sum(axis=1)
+    m2 = (a3 * d1 - kk * a2 * d2).sum(axis=1)
+    # r_lo on the cut's line: 3-point Gauss-Legendre (exact: degree 4 in s),
+    # on those parts only (r_lo = r_out leaves nothing)
+    ti, pi = np.nonzero((r_mid > rho) & (r_mid < ro) & (hi > lo))
+    if len(ti):
+        nodes, weights = gauss_legendre(3)
+        half = 0.5 * (hi[ti, pi] - lo[ti, pi])
+        ss = lo[ti, pi][:, None] + half[:, None] * (1.0 + nodes)  # (c, 3)
+        ww = half[:, None] * weights
+        rc = ro[ti]
+        r_lo = np.minimum(np.maximum(rho, _cut_radius(ss, uy[ti], ny[ti])), rc)
+        sk = ss * kk[ti]
+        i0 = (rc**2 - r_lo**2) / 2.0 - sk * (rc - r_lo)
+        i1 = (rc**3 - r_lo**3) / 3.0 - sk * (rc**2 - r_lo**2) / 2.0
+        w0 = ww * i0
+        n_t = len(theta)
+        m0 += np.bincount(ti, w0.sum(axis=1), n_t)
+        m1 += np.bincount(ti, (w0 * ss).sum(axis=1), n_t)
+        m2 += np.bincount(ti, (ww * i1).sum(axis=1), n_t)
+    out[:, 0] = m0
+    out[:, 1:] = m1[:, None] * n + m2[:, None] * u
+    return out
+
+
+def _cut_radius(s: Array, uy: Array, ny: Array) -> Array:
+    """The r at which y = r u_y + s n_y = 0 cuts each ruling at offsets ``s``
+    ``(k, m)`` (u_y, n_y ``(k,)``): -s n_y / u_y; -inf (no cut) or +inf (all
+    cut) where u_y = 0."""
     sny, suy = s * ny[:, None], uy[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
-        r_y = np.where(suy > 0.0, -sny / suy, np.where(sny >= 0.0, -np.inf, np.inf))
-    ro = r_out[:, None]
-    r_lo = np.minimum(np.maximum(rho, r_y), ro)
-    sk = s * k[:, None]
-    i0 = (ro**2 - r_lo**2) / 2.0 - sk * (ro - r_lo)
-    i1 = (ro**3 - r_lo**3) / 3.0 - sk * (ro**2 - r_lo**2) / 2.0
-    w0 = ww * i0
-    out = np.empty((len(theta), 4))
-    out[:, 0] = w0.sum(axis=1)
-    out[:, 1:] = (w0 * s).sum(axis=1)[:, None] * n + (ww * i1).sum(axis=1)[:, None] * u
-    return out
+        return np.where(suy > 0.0, -sny / suy, np.where(sny >= 0.0, -np.inf, np.inf))
 
 
 def _block_moments(body: Body, side: CreaseFrames, end: int) -> tuple[float, Array]:

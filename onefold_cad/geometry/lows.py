@@ -28,8 +28,10 @@ of a degree of the crease) the bracket is zoomed. Lengths in the design unit.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body_samples import Rows
 from onefold_cad.geometry.ground import CONTACT_TOLERANCE, Samples
 from onefold_cad.geometry.numeric import Array
 
@@ -38,63 +40,76 @@ __all__ = ["exact_lows"]
 Low = tuple[int, float, Array]
 
 
-def _bounded_minima(body: Body, dirs: Array) -> tuple[Array, Array, Array]:
-    """Every piece's sampled local minima along each of ``dirs`` ``(D, 3)``:
-    their rows in :attr:`Body.stacked` and their directions, and the lower
-    bounds of their brackets (see the module docstring); ``(c,)`` each."""
-    corners, piece, index = body.stacked
-    h = corners @ dirs.T  # (M, V, D)
-    h[np.isnan(h)] = np.inf
-    h = h.min(axis=1)  # (M, D): the lowest corner's height
-    t = body.stacked_params
-    first = index == 0
-    last = np.append(first[1:], True)
-    inner = ~(first | last)
-    # the second divided difference at each inner sample (h'' / 2 of the
-    # parabola through it and its neighbours: the curvature, however uneven
-    # the spacing), 0 at a piece's ends
-    curv = np.zeros_like(h)
-    if inner.any():
-        i = np.flatnonzero(inner)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            left = (h[i] - h[i - 1]) / (t[i] - t[i - 1])[:, None]
-            right = (h[i + 1] - h[i]) / (t[i + 1] - t[i])[:, None]
-            curv[i] = np.abs(right - left) / (t[i + 1] - t[i - 1])[:, None]
-    # beside an empty section (a mitre wall past its block) or between
-    # coincident samples the piece's largest curvature
-    bad = ~np.isfinite(curv)
-    if bad.any():
-        curv[bad] = 0.0
-        starts = np.flatnonzero(first)
-        worst = np.maximum.reduceat(curv, starts, axis=0)[np.cumsum(first) - 1]
-        curv = np.where(bad, worst, curv)
-    near = curv.copy()
-    near[1:] = np.where(first[1:, None], near[1:], np.maximum(near[1:], curv[:-1]))
-    near[:-1] = np.where(last[:-1, None], near[:-1], np.maximum(near[:-1], curv[1:]))
-    # the longer of the two intervals beside each sample
-    gap = np.zeros(len(t))
-    step = np.diff(t)
-    gap[:-1] = np.where(last[:-1], 0.0, step)
-    gap[1:] = np.maximum(gap[1:], np.where(first[1:], 0.0, step))
+def _window(rows: Rows, row: Array, h: Array, d: Array) -> tuple[Array, Array]:
+    """Heights ``h`` ``(M, D)`` and parameters at the five rows about each
+    candidate (``row``, direction ``d``; ``(c,)``): ``(c, 5)`` each, NaN past
+    the ends of the candidate's piece."""
+    off = np.arange(-2, 3)
+    rr = np.clip(row[:, None] + off, 0, len(rows.t) - 1)
+    ok = (rows.piece[rr] == rows.piece[row][:, None]) & (row[:, None] + off == rr)
+    return np.where(ok, h[rr, d[:, None]], np.nan), np.where(ok, rows.t[rr], np.nan)
+
+
+def _dip(hw: Array, tw: Array) -> Array:
+    """How far ``(c,)`` the heights may dip below their samples in the bracket
+    about the middle of each window ``(c, 5)`` (eight times the parabola's
+    dip, 2 c L^2: see the module docstring); inf where unknown."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        slope = np.diff(hw, axis=1) / np.diff(tw, axis=1)  # (c, 4)
+        curv = np.abs(np.diff(slope, axis=1)) / (tw[:, 2:] - tw[:, :-2])  # at -1, 0, +1
+    near = np.nanmax(np.where(np.isnan(curv), -1.0, curv), axis=1)  # absent: no bound
+    near = np.where(np.all(np.isnan(curv), axis=1), 0.0, near)
+    gap = np.nanmax(np.abs(np.diff(tw[:, 1:4], axis=1)), axis=1)
+    gap = np.where(np.isnan(gap), 0.0, gap)
+    bad = np.any(np.isinf(hw[:, 1:4]) & ~np.isnan(hw[:, 1:4]), axis=1) | np.isinf(near)
+    return np.where(bad, np.inf, 2.0 * near * gap**2)
+
+
+def _bounded_minima(
+    body: Body, hs: Array, dirs: Array
+) -> tuple[NDArray[np.int64], NDArray[np.int64], Array]:
+    """Every piece's sampled local minima along each of ``dirs`` ``(D, 3)``
+    (``hs`` ``(N, D)``: the body's samples' heights): their rows
+    (:attr:`Body.rows`) and directions, and the lower bounds of their
+    brackets (see the module docstring); ``(c,)`` each."""
+    rows = body.rows
+    h = np.full((len(rows.t), len(dirs)), np.inf)  # the lowest corner's height
+    full = rows.count > 0
+    h[full] = np.minimum.reduceat(hs, rows.start[full], axis=0)
     # local minima (a plateau counts once, as lowest_points has it)
     left = np.ones_like(h, dtype=bool)
     right = np.ones_like(h, dtype=bool)
-    left[1:] = first[1:, None] | (h[1:] < h[:-1])
-    right[:-1] = last[:-1, None] | (h[:-1] <= h[1:])
+    left[1:] = rows.first[1:, None] | (h[1:] < h[:-1])
+    right[:-1] = rows.last[:-1, None] | (h[:-1] <= h[1:])
     row, d = np.nonzero(left & right & np.isfinite(h))
-    # the dip of a parabola of that curvature over the interval is c L^2 / 4:
-    # eight times it
-    low = h[row, d] - 2.0 * near[row, d] * gap[row] ** 2 - 1e-9 * body.size
+    slack = 1e-9 * body.size
+    hw, tw = _window(rows, row, h, d)
+    low = h[row, d] - _dip(hw, tw) - slack
     # where a corner comes or goes between samples (the cut at y = 0 sweeping
-    # a section's corners near the crease, faster than the samples), the
-    # samples say nothing of the bracket: zoom it
-    gone = np.isnan(corners[..., 0])
-    comes = np.zeros(len(first), dtype=bool)
-    comes[1:] = np.any(gone[1:] != gone[:-1], axis=1) & ~first[1:]
-    moved = comes[row] | np.append(comes[1:], False)[row]
-    low = np.where(np.isfinite(low) & ~moved, low, -np.inf)
+    # a section's corners near the crease, faster than the samples) the
+    # samples of the cut section say nothing of the bracket; the rectangle
+    # before the cut holds it, and its corners move smoothly
+    moved = rows.comes[row] | np.append(rows.comes[1:], False)[row]
+    if moved.any():
+        m = np.flatnonzero(moved)
+        boxes = np.concatenate(
+            [
+                np.full((len(c), 4, 3), np.nan) if b is None else b
+                for c, b in zip(body.sections, body.boxes, strict=True)
+            ]
+        )
+        off = np.arange(-2, 3)
+        rr = np.clip(row[m][:, None] + off, 0, len(rows.t) - 1)
+        ok = (rows.piece[rr] == rows.piece[row[m]][:, None]) & (row[m][:, None] + off == rr)
+        bh = np.einsum("cwvj,cj->cwv", boxes[rr], dirs[d[m]]).min(axis=2)
+        bh = np.where(ok, bh, np.nan)
+        mid = bh[:, 1:4]
+        lowest = np.where(np.isnan(mid), np.inf, mid).min(axis=1)
+        box = lowest - _dip(bh, np.where(ok, rows.t[rr], np.nan)) - slack
+        low[m] = np.where(np.isfinite(box), box, -np.inf)
+    low[~np.isfinite(low)] = -np.inf
     # and no point of a piece lies further from the apex than its radius
-    radius = np.array([p.radius for p in body.pieces])[piece[row]]
+    radius = np.array([p.radius for p in body.pieces])[rows.piece[row]]
     return row, d, np.maximum(low, -radius * np.linalg.norm(dirs, axis=1)[d])
 
 
@@ -122,12 +137,13 @@ def exact_lows(
     asks: list[tuple[int, float, float, Array]] = []
     whose: list[int] = []
     if body.pieces:
-        row, d, low = _bounded_minima(body, dirs)
+        nbody = len(body.samples[0])  # the body's own samples (the first rows)
+        row, d, low = _bounded_minima(body, hs[len(body.fixed) : nbody], dirs)
         zoom = low <= zoom_below[d]
-        owner, params = body.stacked[1], body.stacked_params
+        rows = body.rows
         for r, dd in zip(row[zoom].tolist(), d[zoom].tolist(), strict=True):
-            k = int(owner[r])
-            lo, hi = body.pieces[k].bracket(float(params[r]), float(params[r]))
+            k = int(rows.piece[r])
+            lo, hi = body.pieces[k].bracket(float(rows.t[r]), float(rows.t[r]))
             asks.append((k, lo, hi, dirs[dd]))
             whose.append(dd)
     # only a direction's lowest point matters, and what lies below its ceiling
