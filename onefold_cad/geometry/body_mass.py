@@ -11,6 +11,7 @@ relative to the apex; lengths in the design unit.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import MIRROR, Body
@@ -28,46 +29,65 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     The thickness and reference surface are the material's whichever
     body is written (the part that stands is the thick sheet); the relief
     hole is left out; for the exact model the solid's mitre blocks count."""
-    total = 0.0
-    moment = np.zeros(3)
     folded = body.folded
     cone = folded.solution.surface
+    up, lo = folded.sheet.side_angles
+    sides = []
     for lower in (False, True):
-        mirror = MIRROR if lower else np.ones(3)
-        up, lo = folded.sheet.side_angles
         breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-        if body.exact:
-            # the rule runs in the arc's phi (no inversion at every node):
-            # dtheta = |du/dphi| dphi, theta being u's arc length; its panels
-            # end at the vertex rays (the edge radius's kinks) and are graded
-            # in phi towards the crease ends (see _graded)
-            assert isinstance(cone, ExactCone)
-            graded = _graded(breaks)
-            # the graded breaks' arc parameters from the cone's table (their
-            # errors vanish towards the crease ends, where they crowd), the
-            # vertex rays' exact
-            at = cone.phi_near(graded)
-            at[np.searchsorted(graded, breaks)] = body.vertex_phis[int(lower)]
-            phi, weights = _sector_rule(np.maximum.accumulate(at))
-            theta = np.clip(cone.theta_near(phi), graded[0], graded[-1])
-            u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(
-                phi, curvature=True
-            )
-            weights = weights * speed
-        else:  # planar triangles: no curvature within them
+        sides.append((lower, breaks))
+    if body.exact:
+        total, moment = _exact_slabs(body, sides)
+    else:  # planar triangles: no curvature within them
+        total, moment = 0.0, np.zeros(3)
+        for lower, breaks in sides:
             theta, weights = _sector_rule(_graded(breaks))
             u, e = cone.frames(theta)
             n, k = cross3(u, e), np.zeros(len(theta))
-        vals = weights @ _slab_moments(body, theta, lower, u, n, k)
-        total += vals[0]
-        moment += vals[1:] * mirror
-        if body.thickness > 0.0 and body.exact:
-            side = body.crease_sides[int(lower)]
-            for end in (0, 1):
-                vol, mom = _block_moments(body, side, end)
-                total += vol
-                moment += mom * mirror
+            vals = weights @ _slab_moments(body, theta, np.full(len(theta), lower), u, n, k)
+            total += vals[0]
+            moment += vals[1:] * (MIRROR if lower else np.ones(3))
     return total, moment / total
+
+
+def _exact_slabs(body: Body, sides: list[tuple[bool, Array]]) -> tuple[float, Array]:
+    """The exact model's measure and first moment (see :func:`mass_properties`)
+    from both sides' ``(lower, vertex angles)``, their rules evaluated together.
+
+    The rule runs in the arc's phi (no inversion at every node): dtheta =
+    |du/dphi| dphi, theta being u's arc length; its panels end at the vertex
+    rays (the edge radius's kinks) and are graded towards the crease ends
+    (:func:`_graded`), the graded breaks' arc parameters from the cone's
+    table (their errors vanish towards the crease ends, where they crowd),
+    the vertex rays' exact."""
+    folded = body.folded
+    cone = folded.solution.surface
+    assert isinstance(cone, ExactCone)
+    rules = []
+    for lower, breaks in sides:
+        graded = _graded(breaks)
+        at = cone.phi_near(graded)
+        at[np.searchsorted(graded, breaks)] = body.vertex_phis[int(lower)]
+        phi, weights = _sector_rule(np.maximum.accumulate(at))
+        rules.append((phi, weights, graded))
+    phi = np.concatenate([r[0] for r in rules])
+    lower = np.repeat([False, True], [len(r[0]) for r in rules])
+    theta = cone.theta_near(phi)
+    for side, (_, _, graded) in enumerate(rules):
+        np.clip(theta, graded[0], graded[-1], out=theta, where=lower == bool(side))
+    u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(phi, curvature=True)
+    slab = _slab_moments(body, theta, lower, u, n, k) * speed[:, None]
+    total, moment = 0.0, np.zeros(3)
+    for side, (_, weights, _) in enumerate(rules):
+        vals = weights @ slab[lower == bool(side)]
+        total += vals[0]
+        moment += vals[1:] * (MIRROR if side else np.ones(3))
+        if body.thickness > 0.0:
+            for end in (0, 1):
+                vol, mom = _block_moments(body, body.crease_sides[side], end)
+                total += vol
+                moment += mom * (MIRROR if side else np.ones(3))
+    return total, moment
 
 
 def _graded(breaks: Array) -> Array:
@@ -82,12 +102,15 @@ def _graded(breaks: Array) -> Array:
     return sorted_unique(np.concatenate([breaks, near, far]))
 
 
-def _slab_moments(body: Body, theta: Array, lower: bool, u: Array, n: Array, k: Array) -> Array:
-    """Per flat angle ``(k,)`` (ruling direction u, top normal n and
-    curvature k there): the section's measure and first moment ``(k, 4)``
-    (per radian), in the +y side's coordinates."""
+def _slab_moments(
+    body: Body, theta: Array, lower: NDArray[np.bool_], u: Array, n: Array, k: Array
+) -> Array:
+    """Per flat angle ``(k,)`` of the -y side or not (``lower``), with the
+    ruling direction u, top normal n and curvature k there: the section's
+    measure and first moment ``(k, 4)`` (per radian), in the +y side's
+    coordinates."""
     rho = body.hole
-    r_out = body.folded.sheet.ray_lengths(-theta if lower else theta)
+    r_out = body.folded.sheet.ray_lengths(np.where(lower, -theta, theta))
     if body.thickness <= 0.0:
         i0 = 0.5 * (r_out**2 - rho**2)
         i1 = (r_out**3 - rho**3) / 3.0
