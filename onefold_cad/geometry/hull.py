@@ -84,22 +84,28 @@ def _strict_corners(p: Array) -> NDArray[np.int64]:
 
 def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
     """The corners of ``hull`` (strict corners of ``p``, counter-clockwise)
-    more than ``tol`` from the line through their neighbours, the nearest
-    dropped first, one at a time (a corner's neighbours change as others
-    go): the hull of the points less what lies within ``tol`` of its edges;
-    the two farthest corners when all lie within ``tol`` of one line."""
+    more than ``tol`` from the line through their neighbours: the hull of
+    the points less what lies within ``tol`` of its edges; the two farthest
+    corners when all lie within ``tol`` of one line. Each pass drops every
+    other corner of each run of corners that fail (never two neighbours at
+    once: each one's neighbours change as the other goes), until none fails."""
     idx = hull.copy()
     while len(idx) >= 3:
         q = p[idx]
         a, c = np.roll(q, 1, axis=0), np.roll(q, -1, axis=0)
-        cross = (q[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (q[:, 1] - a[:, 1]) * (
-            c[:, 0] - a[:, 0]
-        )
-        dist = cross / np.maximum(np.hypot(c[:, 0] - a[:, 0], c[:, 1] - a[:, 1]), 1e-300)
-        i = int(np.argmin(dist))
-        if dist[i] > tol:
+        ab, ac = q - a, c - a
+        cross = ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0]
+        fail = cross <= tol * np.hypot(ac[:, 0], ac[:, 1])
+        if not fail.any():
             return idx
-        idx = np.delete(idx, i)
+        pos = np.arange(len(idx))
+        start = np.maximum.accumulate(np.where(fail & ~np.roll(fail, 1), pos, 0))
+        drop = fail & ((pos - start) % 2 == 0)
+        if drop[0] and drop[-1]:  # a run across the end: not both
+            drop[-1] = False
+        if drop.all():
+            drop[1:] = False
+        idx = idx[~drop]
     q = p[hull]
     d2 = ((q[:, None, :] - q[None, :, :]) ** 2).sum(axis=-1)
     i, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
