@@ -22,7 +22,7 @@ from onefold_cad.geometry.numeric import Array, sorted_unique
 __all__ = ["convex_hull_2d", "edge_distances"]
 
 
-def _chain(xs: list[float], ys: list[float], order: list[int]) -> list[int]:
+def _chain(xs: list[float], ys: list[float], order: list[int], tol: float) -> list[int]:
     """One monotone chain (indices), turning left at every kept corner (plain
     floats: far faster than numpy scalars in this loop)."""
     out: list[int] = []
@@ -31,8 +31,9 @@ def _chain(xs: list[float], ys: list[float], order: list[int]) -> list[int]:
         while len(out) >= 2:
             a, b = out[-2], out[-1]
             ax, ay = xs[a], ys[a]
-            # positive when the chain turns left at b
-            if (xs[b] - ax) * (cy - ay) - (ys[b] - ay) * (cx - ax) > 0.0:
+            cross = (xs[b] - ax) * (cy - ay) - (ys[b] - ay) * (cx - ax)
+            # b's distance from the line a-c, positive when the chain turns left at b
+            if cross > tol * math.hypot(cx - ax, cy - ay):
                 break
             out.pop()
         out.append(i)
@@ -52,12 +53,24 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         counter-clockwise order, without repeating the first; one index for
         coincident points, two for collinear ones (the ends), and an empty
         array for no points.
+
+    With a tolerance, the monotone chain decides each turn within it, which
+    can drop a true corner (points a rounding error apart on a nearly
+    vertical edge: the chain's first and second point lie on one line with
+    the third, within the tolerance); the hull without tolerance checks it
+    and, where it left a corner out, the corners of that hull more than
+    ``tol`` from their neighbours' line are taken instead (:func:`_beyond`).
     """
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     if len(p) == 0:
         return np.zeros(0, dtype=np.int64)
-    hull = _strict_corners(p)
-    return _beyond(p, hull, tol) if tol > 0.0 and len(hull) >= 3 else hull
+    if tol <= 0.0:
+        return _strict_corners(p)
+    hull = _chained(p, tol)
+    exact = _strict_corners(p)
+    if len(exact) < 3 or _covers(p[hull], p[exact], tol):
+        return hull
+    return _beyond(p, exact, tol)
 
 
 def _strict_corners(p: Array) -> NDArray[np.int64]:
@@ -66,20 +79,37 @@ def _strict_corners(p: Array) -> NDArray[np.int64]:
         hull = _quickhull(p)
         if hull is not None:
             return hull
+    return _chained(p, 0.0)
+
+
+def _chained(p: Array, tol: float) -> NDArray[np.int64]:
+    """The monotone chain's hull of ``p`` with the tolerance ``tol`` in its turns."""
     keep = _outside_octagon(p)
     if len(keep) < len(p):
-        return keep[_strict_corners(p[keep])]
+        return keep[_chained(p[keep], tol)]
     order = np.lexsort((p[:, 1], p[:, 0]))
     first, last = p[order[0]], p[order[-1]]
     if np.array_equal(first, last):
         return order[:1].astype(np.int64)
     xs, ys, idx = p[:, 0].tolist(), p[:, 1].tolist(), order.tolist()
-    lower = _chain(xs, ys, idx)
-    upper = _chain(xs, ys, idx[::-1])
+    lower = _chain(xs, ys, idx, tol)
+    upper = _chain(xs, ys, idx[::-1], tol)
     hull = lower[:-1] + upper[:-1]
-    if len(hull) < 2:  # every point on one line: its two ends
+    if len(hull) < 2:  # every point on one line within tol: its two ends
         hull = [int(order[0]), int(order[-1])]
     return np.asarray(hull, dtype=np.int64)
+
+
+def _covers(poly: Array, corners: Array, tol: float) -> bool:
+    """Whether every one of ``corners`` ``(k, 2)`` lies within twice ``tol`` of
+    the polygon (or segment, or point) ``poly`` ``(m, 2)``, counter-clockwise."""
+    if len(poly) >= 3:
+        inside = min(float(edge_distances(c, poly).min()) for c in corners)
+        return inside >= -2.0 * tol
+    a, b = poly[0], poly[-1]
+    d = b - a
+    t = np.clip((corners - a) @ d / max(float(d @ d), 1e-300), 0.0, 1.0)
+    return float(np.max(np.hypot(*(a + t[:, None] * d - corners).T))) <= 2.0 * tol
 
 
 def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
@@ -89,6 +119,10 @@ def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
     corners when all lie within ``tol`` of one line. Each pass drops every
     other corner of each run of corners that fail (never two neighbours at
     once: each one's neighbours change as the other goes), until none fails."""
+    if len(hull) <= 32:  # a few corners (contacts): plain floats, far faster
+        kept = _beyond_small(p[hull, 0].tolist(), p[hull, 1].tolist(), tol)
+        if len(kept) >= 3:
+            return hull[kept]
     idx = hull.copy()
     while len(idx) >= 3:
         q = p[idx]
@@ -111,6 +145,34 @@ def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
     i, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
     ends = sorted((int(hull[i]), int(hull[j])), key=lambda k: (p[k, 0], p[k, 1]))
     return np.asarray(ends, dtype=np.int64)
+
+
+def _beyond_small(xs: list[float], ys: list[float], tol: float) -> list[int]:
+    """:func:`_beyond` on a few corners given as floats: the positions kept
+    (fewer than three: all lie within ``tol`` of one line)."""
+    idx = list(range(len(xs)))
+    while len(idx) >= 3:
+        n = len(idx)
+        fail = []
+        for i in range(n):
+            a, b, c = idx[i - 1], idx[i], idx[(i + 1) % n]
+            ax, ay = xs[a], ys[a]
+            cx, cy = xs[c] - ax, ys[c] - ay
+            cross = (xs[b] - ax) * cy - (ys[b] - ay) * cx
+            fail.append(cross <= tol * math.hypot(cx, cy))
+        if not any(fail):
+            return idx
+        drop = [False] * n
+        run = 0
+        for i in range(n):  # every other corner of each run of failures
+            run = run + 1 if fail[i] and i > 0 and fail[i - 1] else 0
+            drop[i] = fail[i] and run % 2 == 0
+        if drop[0] and drop[-1]:
+            drop[-1] = False
+        if all(drop):
+            drop[1:] = [False] * (n - 1)
+        idx = [k for k, d in zip(idx, drop, strict=True) if not d]
+    return idx
 
 
 #: Above this many points (and with no tolerance), QuickHull in numpy instead
