@@ -47,7 +47,7 @@ from onefold_cad.choices import Body as BodyKind
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body_families import Sectors, Walls
-from onefold_cad.geometry.body_pieces import member_points, mitre_block, paper_pieces
+from onefold_cad.geometry.body_pieces import member_points, mitre_blocks, paper_pieces
 from onefold_cad.geometry.body_samples import Sampled
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
@@ -180,11 +180,11 @@ class Body(Sampled):
             self.pieces.append(Piece(f"edge {k}", grid, fn, steps[k], sectors, member))
         if solid:
             walls = Walls(self.hole, self.s_range, self._tol)
-            for side in self.crease_sides:
-                for end in (0, 1):
-                    verts, wall = mitre_block(side, end, self.hole, self.s_range, self._tol, walls)
-                    fixed += list(verts)
-                    self.pieces.append(wall)
+            verts, pieces = mitre_blocks(
+                self.crease_sides, self.hole, self.s_range, self._tol, walls
+            )
+            fixed += list(verts)
+            self.pieces += pieces
         return fixed
 
     @cached_property

@@ -19,12 +19,14 @@ from onefold_cad.geometry.numeric import Array, cross3
 from onefold_cad.geometry.pieces import Family, Piece
 from onefold_cad.geometry.thick_map import CreaseFrames, mitre_depth, mitre_planes
 
-__all__ = ["member_points", "mitre_block", "paper_pieces"]
+__all__ = ["member_points", "mitre_blocks", "paper_pieces"]
 
 #: The mirror image in the xz-plane (the -y side of the +y side).
 _MIRROR = np.array([1.0, -1.0, 1.0])
 #: The triples of a mitre block's eight planes (its polytope's vertices).
 _TRIPLES = np.array(list(combinations(range(8), 3)))
+#: The first six of them: x, d and s between bounds.
+_BOX = np.array([[-1.0, 0, 0], [1.0, 0, 0], [0, -1.0, 0], [0, 1.0, 0], [0, 0, -1.0], [0, 0, 1.0]])
 
 
 def member_points(family: Family, member: int) -> Callable[[Array], Array]:
@@ -75,53 +77,57 @@ def _paper_arc(folded: FoldedSheet, rho: float, sign: float) -> Callable[[Array]
     return points
 
 
-def mitre_block(
-    side: CreaseFrames,
-    end: int,
+def mitre_blocks(
+    sides: tuple[CreaseFrames, CreaseFrames],
     rho: float,
     s_range: tuple[float, float],
     tol: float,
     walls: Walls,
-) -> tuple[Array, Piece]:
-    """The mitre block past crease half ``end`` of one side (faces at
-    ``s_range``, hole radius ``rho``): the vertices of its polytope outside
-    the hole's disk ``(m, 3)`` (within ``tol``, length), and the hole's wall
-    as a piece over the distance d past the crease, a member of ``walls``."""
+) -> tuple[Array, list[Piece]]:
+    """The mitre blocks past both crease halves of both sides (faces at
+    ``s_range``, hole radius ``rho``): the vertices of their polytopes outside
+    the hole's disk ``(m, 3)`` (within ``tol``, length), and each block's
+    hole wall as a piece over the distance d past the crease, a member of
+    ``walls``. The four polytopes' vertices are solved together."""
     s0, s1 = s_range
-    mirror = _MIRROR if side.lower else np.ones(3)
-    depth = mitre_depth(side, s_range)
-    u, e, n = side.crease_frame(end)
-    away = -e if end == 0 else e
-    length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
-    m, c = mitre_planes(side, s1 - s0)[end]
-    basis = np.stack([u, away, n], axis=1)  # (x, d, s) -> offset from the apex
-    x_in = math.sqrt(max(rho * rho - depth * depth, 0.0))
-    # the polytope {a . (x, d, s) <= b}
-    a = np.array(
-        [
-            [-1.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, -1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, -1.0],
-            [0.0, 0.0, 1.0],
-            -(basis[1]),  # y >= 0
-            -(m @ basis),  # (p - A) . m >= c
-        ]
-    )
-    b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
+    blocks = []
+    for side in sides:
+        depth = mitre_depth(side, s_range)
+        planes = mitre_planes(side, s1 - s0)
+        for end in (0, 1):
+            u, e, n = side.crease_frame(end)
+            away = -e if end == 0 else e
+            length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
+            m, c = planes[end]
+            basis = np.stack([u, away, n], axis=1)  # (x, d, s) -> offset from the apex
+            x_in = math.sqrt(max(rho * rho - depth * depth, 0.0))
+            # the polytope {a . (x, d, s) <= b}
+            a = np.empty((8, 3))
+            a[:6] = _BOX
+            a[6] = -basis[1]  # y >= 0
+            a[7] = -(m @ basis)  # (p - A) . m >= c
+            b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
+            blocks.append((side, end, depth, basis, a, b))
+    a = np.array([blk[4] for blk in blocks])  # (4, 8, 3)
+    b = np.array([blk[5] for blk in blocks])  # (4, 8)
     # each triple of planes meets where Cramer's rule puts it (rows i, j, k)
-    ai, aj, ak = a[_TRIPLES[:, 0]], a[_TRIPLES[:, 1]], a[_TRIPLES[:, 2]]
+    ai, aj, ak = (a[:, _TRIPLES[:, i]] for i in range(3))  # (4, 56, 3)
     jk, ki, ij = cross3(aj, ak), cross3(ak, ai), cross3(ai, aj)
-    det = np.einsum("ij,ij->i", ai, jk)
+    det = np.einsum("bij,bij->bi", ai, jk)
+    bt = b[:, _TRIPLES]  # (4, 56, 3)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = (bt[..., :1] * jk + bt[..., 1:2] * ki + bt[..., 2:] * ij) / det[..., None]
     ok = np.abs(det) > 1e-12
-    bt = b[_TRIPLES[ok]]
-    z = (bt[:, :1] * jk[ok] + bt[:, 1:2] * ki[ok] + bt[:, 2:] * ij[ok]) / det[ok][:, None]
-    inside = np.all(z @ a.T - b <= tol, axis=1)
-    inside &= z[:, 0] ** 2 + z[:, 1] ** 2 >= rho * rho - tol * rho
-    verts = (z[inside] @ basis.T) * mirror
-    member = walls.add(a[6:], b[6:], basis, mirror)
-    name = f"mitre {end} {'lower' if side.lower else 'upper'} hole wall"
-    grid = np.linspace(0.0, depth, 24)
+    inside = ok & np.all(np.einsum("bkj,bij->bki", z, a) - b[:, None, :] <= tol, axis=2)
+    inside &= z[..., 0] ** 2 + z[..., 1] ** 2 >= rho * rho - tol * rho
+    verts, pieces = [], []
     reach = math.sqrt(rho * rho + max(s0 * s0, s1 * s1))  # x^2 + d^2 = rho^2 on the wall
-    return verts, Piece(name, grid, member_points(walls, member), 0.0, walls, member, reach)
+    for k, (side, end, depth, basis, ak_, bk) in enumerate(blocks):
+        mirror = _MIRROR if side.lower else np.ones(3)
+        verts.append((z[k][inside[k]] @ basis.T) * mirror)
+        member = walls.add(ak_[6:], bk[6:], basis, mirror)
+        name = f"mitre {end} {'lower' if side.lower else 'upper'} hole wall"
+        grid = np.linspace(0.0, depth, 24)
+        fn = member_points(walls, member)
+        pieces.append(Piece(name, grid, fn, 0.0, walls, member, reach))
+    return np.concatenate(verts), pieces

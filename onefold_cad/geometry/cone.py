@@ -342,7 +342,7 @@ class ExactCone(DirectionSurface):
     def theta_near(self, phi: Array) -> Array:
         """:meth:`theta_of_phi` of arc parameters ``phi`` ``(k,)``, integrated from
         the nearest node of the rule (:func:`~onefold_cad.geometry.cone_nodes.theta_from_nodes`):
-        the same to a few rounding errors, at a third of the work."""
+        the same to a few rounding errors, at a fifth of the work."""
         g = self.geometry
         p0, p1 = arc_range(self.frame)
         h = float(self.height) / g.radius  # type: ignore[arg-type]

@@ -7,12 +7,14 @@ half of the arc, theta, the distance s from that half's end and |u'| =
 dtheta/ds, ascending in s). Two things follow from it cheaply:
 
 * :func:`theta_from_nodes`: theta at any s, integrated from the *nearest*
-  node with a 6-point Gauss-Legendre rule instead of from its panel's start
-  with 20 points. The nodes of a 20-point rule lie a few hundredths of a
-  panel apart and the panels keep the integrand's complex singularities
-  several panel widths away (``REACH``), so that short integral is exact to
-  rounding: the same values as ``theta_of_phi`` to a few units in the last
-  place (held in tests/geometry/test_cone_nodes.py), at a third of the work.
+  node with a 4-point Gauss-Legendre rule instead of from its panel's start
+  with 20 points. The nodes of a 20-point rule lie at most 0.16 of a panel's
+  half-width apart and the panels keep the integrand's complex singularities
+  at least 2.5 half-widths away (``REACH`` 0.4), so that short integral (at
+  most 1/60 of the distance to a singularity across) is exact to rounding:
+  the same values as ``theta_of_phi`` to a few units in the last place (held
+  in tests/geometry/test_lowest_search.py; 3 points already are), at a fifth
+  of the work.
 * :func:`hermite_s`: s at a given theta by cubic Hermite interpolation of the
   table (slopes ds/dtheta = 1 / |u'|): the first guess of the cone's Newton
   inversion, good to about 1e-10 rad, and all a sample's place needs.
@@ -32,7 +34,7 @@ from onefold_cad.geometry.numeric import Array, gauss_legendre
 __all__ = ["NEAR_NODES", "hermite_s", "theta_from_nodes"]
 
 #: Gauss-Legendre points of the integral from the nearest node.
-NEAR_NODES = 6
+NEAR_NODES = 4
 
 Table = tuple[Array, Array, Array]
 

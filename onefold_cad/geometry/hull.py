@@ -104,8 +104,11 @@ def _covers(poly: Array, corners: Array, tol: float) -> bool:
     """Whether every one of ``corners`` ``(k, 2)`` lies within twice ``tol`` of
     the polygon (or segment, or point) ``poly`` ``(m, 2)``, counter-clockwise."""
     if len(poly) >= 3:
-        inside = min(float(edge_distances(c, poly).min()) for c in corners)
-        return inside >= -2.0 * tol
+        d = np.roll(poly, -1, axis=0) - poly  # (m, 2) edges
+        length = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
+        rel = corners[:, None, :] - poly[None, :, :]  # (k, m, 2)
+        inside = (d[:, 0] * rel[..., 1] - d[:, 1] * rel[..., 0]) / length
+        return bool(np.all(inside.min(axis=1) >= -2.0 * tol))
     a, b = poly[0], poly[-1]
     d = b - a
     t = np.clip((corners - a) @ d / max(float(d @ d), 1e-300), 0.0, 1.0)

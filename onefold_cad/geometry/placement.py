@@ -327,7 +327,7 @@ def rest_form(
     # tangencies, whose places along their curves are known to about 1e-8 of
     # the size (ground.rock settles for 1e-6 of it)
     margin, edge = _tipping(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
-    bounds = _bounds(form, samples, rot, shift)
+    bounds = _bounds(form, samples, rot, shift, lows[0][2])
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
     tilt = math.degrees(math.acos(float(np.clip(g[2], -1.0, 1.0))))
@@ -419,14 +419,17 @@ def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, 
     return math.degrees(math.atan2(inside, z)), (i, (i + 1) % m)
 
 
-def _bounds(form: Body, samples: Samples, rot: Array, translation: Array) -> Array:
-    """The placed body's exact lowest and highest x, y, z ``(2, 3)`` (the six
-    searches run together)."""
-    dirs = np.array([s * rot[axis] for axis in range(3) for s in (1.0, -1.0)])
+def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, lowest: Array) -> Array:
+    """The placed body's exact lowest and highest x, y, z ``(2, 3)``: the
+    lowest z is that of ``lowest`` (its lowest point along the ground's
+    normal, the resting frame's z axis), the five other searches run
+    together."""
+    dirs = np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
     lows = exact_lows(form, samples, dirs)
     out = np.zeros((2, 3))
     for axis in range(3):
         d = rot[axis]  # the resting frame's axis in the fold frame
-        out[0, axis] = float(lows[2 * axis][0][2] @ d) + translation[axis]
-        out[1, axis] = float(lows[2 * axis + 1][0][2] @ d) + translation[axis]
+        low = lowest if axis == 2 else lows[2 * axis][0][2]
+        out[0, axis] = float(low @ d) + translation[axis]
+        out[1, axis] = float(lows[2 * axis + 1 if axis < 2 else 4][0][2] @ d) + translation[axis]
     return out
