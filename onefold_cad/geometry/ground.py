@@ -10,13 +10,16 @@ contact is moved to the exact lowest point of its piece near it (a tangency
 of a boundary curve, a corner, the apex, a mitre vertex) and the plane is put
 through three of them, alternately, until it no longer moves (the points move
 along their curves, in the plane to first order: the plane converges
-quadratically; :func:`settle`). On two contacts, one of them a curved edge,
-the body rocks: the plane is then the one on which they balance the centre of
-mass (:func:`rock`). :func:`lowest_points` finds the exact lowest points of
-every piece that comes near the ground, to check the plane; a point below
-it (the apex, met while the body rocks along two curved edges towards their
-balance) joins the features and the plane is settled again
-(:func:`exact_features`, :func:`onefold_cad.geometry.placement.rest_form`).
+quadratically; :func:`settle`; the features' zooms run together,
+:meth:`Body.lowest_many`). On two contacts, one of them a curved edge, the
+body rocks: the plane is then the one on which they balance the centre of
+mass (:func:`rock`). The exact lowest points of every piece that may come
+near the ground check the plane (:func:`onefold_cad.geometry.lows.exact_lows`,
+which zooms only where the samples leave it open; :func:`lowest_points`
+zooms every piece within a band); a point below it (the apex, met while the
+body rocks along two curved edges towards their balance) joins the features
+and the plane is settled again (:func:`exact_features`,
+:func:`onefold_cad.geometry.placement.rest_form`).
 
 Points are in the body's frame (relative to the apex); lengths in the design
 unit.
@@ -43,7 +46,6 @@ __all__ = [
     "features",
     "holds",
     "lowest_points",
-    "lowest_points_many",
     "rock",
     "sample_spacing",
     "settle",
@@ -330,26 +332,10 @@ def lowest_points(
     A piece's own spacing, not the body's largest, keeps the work small on a
     sheet of many vertices, where a long edge's samples lie far apart and
     every other edge would come within the body's band."""
-    return lowest_points_many(body, samples, [g], band)[0]
-
-
-def lowest_points_many(
-    body: Body, samples: Samples, directions: list[Array], band: float
-) -> list[list[tuple[int, float, Array]]]:
-    """:func:`lowest_points` along each of ``directions``, their zooms run
-    together (:meth:`Body.lowest_many`)."""
-    found: list[list[tuple[int, float, Array]]] = []
-    asks: list[tuple[int, float, float, Array]] = []
-    whose: list[int] = []
-    for d, g in enumerate(directions):
-        fixed, more = _candidates(body, samples, g, band)
-        found.append(fixed)
-        asks += more
-        whose += [d] * len(more)
-    for d, (k, _, _, _), (tb, p) in zip(whose, asks, body.lowest_many(asks), strict=True):
-        found[d].append((k, tb, p))
-    for d, g in enumerate(directions):
-        found[d].sort(key=lambda item, g=g: float(item[2] @ g))
+    found, asks = _candidates(body, samples, g, band)
+    for (k, _, _, _), (tb, p) in zip(asks, body.lowest_many(asks), strict=True):
+        found.append((k, tb, p))
+    found.sort(key=lambda item: float(item[2] @ g))
     return found
 
 

@@ -67,10 +67,15 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     if tol <= 0.0:
         return _strict_corners(p)
     hull = _chained(p, tol)
-    exact = _strict_corners(p)
-    if len(exact) < 3 or _covers(p[hull], p[exact], tol):
-        return hull
-    return _beyond(p, exact, tol)
+    if len(p) <= 64:  # a few points (contacts): all of them against the hull
+        if _covers(p[hull], p, tol):
+            return hull
+        exact = _strict_corners(p)
+    else:
+        exact = _strict_corners(p)
+        if _covers(p[hull], p[exact], tol):
+            return hull
+    return _beyond(p, exact, tol) if len(exact) >= 3 else hull
 
 
 def _strict_corners(p: Array) -> NDArray[np.int64]:

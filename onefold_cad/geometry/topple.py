@@ -154,9 +154,9 @@ def _topple(
             w = push * cross3(g, axis)
             push, wn = 0.0, float(np.linalg.norm(w))
         w /= wn
-        # heights above p0 and distances towards the centre of mass, from one product
-        ab = points @ np.column_stack([g, w]) - p0 @ np.column_stack([g, w])
-        a, b = ab[:, 0], ab[:, 1]
+        rel = points - p0
+        a = rel @ g
+        b = rel @ w
         # the contacts are on the ground: one lumped in by the tolerance can
         # lie a little below p0 and just across the edge (a support polygon
         # a few tolerances wide, a needle's), and would tip the body back
