@@ -121,3 +121,12 @@ def test_bench_min_hole_runs_on_one_template(capsys):
     assert bench_min_hole.main(["--rounds", "1", "--only", "paper-square"]) == 0
     rows = [line for line in capsys.readouterr().out.splitlines() if line.startswith("| paper")]
     assert len(rows) == 1
+
+
+def test_bench_rest_runs_on_one_template(capsys):
+    import bench_rest
+
+    # the baseline from git is left out when its commit is not there
+    assert bench_rest.main(["--rounds", "1", "--only", "table1-row1", "--baseline", "0" * 40]) == 0
+    out = capsys.readouterr().out
+    assert "| table1-row1 | shell |" in out and "no baseline" in out

@@ -11,12 +11,13 @@ relative to the apex; lengths in the design unit.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import MIRROR, Body
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3, gauss_legendre, panel_rule, sorted_unique
-from onefold_cad.geometry.thick_map import CreaseFrames, SideMap, mitre_depth, mitre_planes
+from onefold_cad.geometry.thick_map import CreaseFrames, mitre_depth, mitre_planes
 
 __all__ = ["mass_properties"]
 
@@ -28,53 +29,88 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     The thickness and reference surface are the material's whichever
     body is written (the part that stands is the thick sheet); the relief
     hole is left out; for the exact model the solid's mitre blocks count."""
-    total = 0.0
-    moment = np.zeros(3)
     folded = body.folded
     cone = folded.solution.surface
+    up, lo = folded.sheet.side_angles
+    sides = []
     for lower in (False, True):
-        mirror = MIRROR if lower else np.ones(3)
-        up, lo = folded.sheet.side_angles
         breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-        # graded towards both crease ends: the cut at the crease (thick
-        # sheet), and a sheet edge passing near H (r = d / sin(theta + psi):
-        # a peak of width psi at theta = 0 or pi, e.g. a needle's tip)
-        grade = 0.5 ** np.arange(3, 31)
-        near = breaks[1] * grade
-        far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
-        breaks = sorted_unique(np.concatenate([breaks, near, far]))
-        if body.exact:
-            # the rule runs in the arc's phi (no inversion at every node):
-            # dtheta = |du/dphi| dphi, theta being u's arc length
-            assert isinstance(cone, ExactCone)
-            phi, weights = _sector_rule(cone.phi_of_theta(breaks))
-            theta = np.clip(cone.theta_of_phi(phi), breaks[0], breaks[-1])
-            u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(
-                phi, curvature=True
-            )
-            weights = weights * speed
-        else:  # planar triangles: no curvature within them
-            theta, weights = _sector_rule(breaks)
+        sides.append((lower, breaks))
+    if body.exact:
+        total, moment = _exact_slabs(body, sides)
+    else:  # planar triangles: no curvature within them
+        total, moment = 0.0, np.zeros(3)
+        for lower, breaks in sides:
+            theta, weights = _sector_rule(_graded(breaks))
             u, e = cone.frames(theta)
             n, k = cross3(u, e), np.zeros(len(theta))
-        vals = weights @ _slab_moments(body, theta, lower, u, n, k)
-        total += vals[0]
-        moment += vals[1:] * mirror
-        if body.thickness > 0.0 and body.exact:
-            side = CreaseFrames(SideMap(folded, lower=lower))
-            for end in (0, 1):
-                vol, mom = _block_moments(body, side, end)
-                total += vol
-                moment += mom * mirror
+            vals = weights @ _slab_moments(body, theta, np.full(len(theta), lower), u, n, k)
+            total += vals[0]
+            moment += vals[1:] * (MIRROR if lower else np.ones(3))
     return total, moment / total
 
 
-def _slab_moments(body: Body, theta: Array, lower: bool, u: Array, n: Array, k: Array) -> Array:
-    """Per flat angle ``(k,)`` (ruling direction u, top normal n and
-    curvature k there): the section's measure and first moment ``(k, 4)``
-    (per radian), in the +y side's coordinates."""
+def _exact_slabs(body: Body, sides: list[tuple[bool, Array]]) -> tuple[float, Array]:
+    """The exact model's measure and first moment (see :func:`mass_properties`)
+    from both sides' ``(lower, vertex angles)``, their rules evaluated together.
+
+    The rule runs in the arc's phi (no inversion at every node): dtheta =
+    |du/dphi| dphi, theta being u's arc length; its panels end at the vertex
+    rays (the edge radius's kinks) and are graded towards the crease ends
+    (:func:`_graded`), the graded breaks' arc parameters from the cone's
+    table (their errors vanish towards the crease ends, where they crowd),
+    the vertex rays' exact."""
+    folded = body.folded
+    cone = folded.solution.surface
+    assert isinstance(cone, ExactCone)
+    rules = []
+    for lower, breaks in sides:
+        graded = _graded(breaks)
+        at = cone.phi_near(graded)
+        at[np.searchsorted(graded, breaks)] = body.vertex_phis[int(lower)]
+        phi, weights = _sector_rule(np.maximum.accumulate(at))
+        rules.append((phi, weights, graded))
+    phi = np.concatenate([r[0] for r in rules])
+    lower = np.repeat([False, True], [len(r[0]) for r in rules])
+    theta = cone.theta_near(phi)
+    for side, (_, _, graded) in enumerate(rules):
+        np.clip(theta, graded[0], graded[-1], out=theta, where=lower == bool(side))
+    u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(phi, curvature=True)
+    slab = _slab_moments(body, theta, lower, u, n, k) * speed[:, None]
+    total, moment = 0.0, np.zeros(3)
+    for side, (_, weights, _) in enumerate(rules):
+        vals = weights @ slab[lower == bool(side)]
+        total += vals[0]
+        moment += vals[1:] * (MIRROR if side else np.ones(3))
+        if body.thickness > 0.0:
+            for end in (0, 1):
+                vol, mom = _block_moments(body, body.crease_sides[side], end)
+                total += vol
+                moment += mom * (MIRROR if side else np.ones(3))
+    return total, moment
+
+
+def _graded(breaks: Array) -> Array:
+    """The sector breaks ``(m,)`` (flat angles, or the arc parameters of the
+    vertex rays) graded towards both crease ends, halving the distance to
+    each 28 times: the cut at the crease (thick sheet), and a sheet edge
+    passing near H (r = d / sin(theta + psi): a peak of width psi at theta =
+    0 or pi, e.g. a needle's tip)."""
+    grade = 0.5 ** np.arange(3, 31)
+    near = breaks[0] + (breaks[1] - breaks[0]) * grade
+    far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
+    return sorted_unique(np.concatenate([breaks, near, far]))
+
+
+def _slab_moments(
+    body: Body, theta: Array, lower: NDArray[np.bool_], u: Array, n: Array, k: Array
+) -> Array:
+    """Per flat angle ``(k,)`` of the -y side or not (``lower``), with the
+    ruling direction u, top normal n and curvature k there: the section's
+    measure and first moment ``(k, 4)`` (per radian), in the +y side's
+    coordinates."""
     rho = body.hole
-    r_out = body.folded.sheet.ray_lengths(-theta if lower else theta)
+    r_out = body.folded.sheet.ray_lengths(np.where(lower, -theta, theta))
     if body.thickness <= 0.0:
         i0 = 0.5 * (r_out**2 - rho**2)
         i1 = (r_out**3 - rho**3) / 3.0
@@ -88,23 +124,54 @@ def _slab_moments(body: Body, theta: Array, lower: bool, u: Array, n: Array, k: 
         s_e = np.where(ny != 0.0, -r_out * uy / ny, s0)
     cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
     cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
+    lo, hi = cuts[:, :3], cuts[:, 1:]
     out = np.zeros((len(theta), 4))
-    nodes, weights = gauss_legendre(3)  # exact: degree 4 in s
-    for j in range(3):
-        lo, half = cuts[:, j], 0.5 * (cuts[:, j + 1] - cuts[:, j])
-        for x, w in zip(nodes, weights, strict=True):
-            s = lo + half * (1.0 + x)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                r_y = np.where(uy > 0.0, -s * ny / uy, np.where(s * ny >= 0.0, -np.inf, np.inf))
-            r_lo = np.minimum(np.maximum(rho, r_y), r_out)
-            sk = s * k
-            i0 = (r_out**2 - r_lo**2) / 2.0 - sk * (r_out - r_lo)
-            i1 = (r_out**3 - r_lo**3) / 3.0 - sk * (r_out**2 - r_lo**2) / 2.0
-            ww = w * half
-            out[:, 0] += ww * i0
-            first = (s[:, None] * n) * i0[:, None] + u * i1[:, None]
-            out[:, 1:] += ww[:, None] * first
+    ro = r_out[:, None]
+    # on each part r_lo (the cut's r, clipped to [rho, r_out]) is rho, the
+    # cut's line (linear in s) or r_out throughout: which, at its middle
+    mid = 0.5 * (lo + hi)
+    r_mid = _cut_radius(mid, uy, ny)
+    at_rho = (r_mid <= rho) & (hi > lo) & (ro > rho)  # (no sheet inside the hole)
+    # r_lo = rho: the moments are polynomials in s of degree 2, in closed form
+    d1 = np.where(at_rho, hi - lo, 0.0)
+    d2 = d1 * (lo + hi) / 2.0  # (hi^2 - lo^2) / 2
+    d3 = d1 * (lo * lo + lo * hi + hi * hi) / 3.0  # (hi^3 - lo^3) / 3
+    a2, b1 = (ro**2 - rho**2) / 2.0, ro - rho
+    a3 = (ro**3 - rho**3) / 3.0
+    kk = k[:, None]
+    m0 = (a2 * d1 - kk * b1 * d2).sum(axis=1)
+    m1 = (a2 * d2 - kk * b1 * d3).sum(axis=1)
+    m2 = (a3 * d1 - kk * a2 * d2).sum(axis=1)
+    # r_lo on the cut's line: 3-point Gauss-Legendre (exact: degree 4 in s),
+    # on those parts only (r_lo = r_out leaves nothing)
+    ti, pi = np.nonzero((r_mid > rho) & (r_mid < ro) & (hi > lo))
+    if len(ti):
+        nodes, weights = gauss_legendre(3)
+        half = 0.5 * (hi[ti, pi] - lo[ti, pi])
+        ss = lo[ti, pi][:, None] + half[:, None] * (1.0 + nodes)  # (c, 3)
+        ww = half[:, None] * weights
+        rc = ro[ti]
+        r_lo = np.minimum(np.maximum(rho, _cut_radius(ss, uy[ti], ny[ti])), rc)
+        sk = ss * kk[ti]
+        i0 = (rc**2 - r_lo**2) / 2.0 - sk * (rc - r_lo)
+        i1 = (rc**3 - r_lo**3) / 3.0 - sk * (rc**2 - r_lo**2) / 2.0
+        w0 = ww * i0
+        n_t = len(theta)
+        m0 += np.bincount(ti, w0.sum(axis=1), n_t)
+        m1 += np.bincount(ti, (w0 * ss).sum(axis=1), n_t)
+        m2 += np.bincount(ti, (ww * i1).sum(axis=1), n_t)
+    out[:, 0] = m0
+    out[:, 1:] = m1[:, None] * n + m2[:, None] * u
     return out
+
+
+def _cut_radius(s: Array, uy: Array, ny: Array) -> Array:
+    """The r at which y = r u_y + s n_y = 0 cuts each ruling at offsets ``s``
+    ``(k, m)`` (u_y, n_y ``(k,)``): -s n_y / u_y; -inf (no cut) or +inf (all
+    cut) where u_y = 0."""
+    sny, suy = s * ny[:, None], uy[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(suy > 0.0, -sny / suy, np.where(sny >= 0.0, -np.inf, np.inf))
 
 
 def _block_moments(body: Body, side: CreaseFrames, end: int) -> tuple[float, Array]:
@@ -119,33 +186,33 @@ def _block_moments(body: Body, side: CreaseFrames, end: int) -> tuple[float, Arr
     depth = mitre_depth(side, body.s_range)
     m, c = mitre_planes(side, s1 - s0)[end]
     (xs, ws), (xd, wd) = gauss_legendre(8), gauss_legendre(48)
-    vol = 0.0
-    mom = np.zeros(3)
-    for si, wsi in zip(s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0), strict=True):
-        # y = d away_y + s n_y >= 0 (u_y = 0 on the crease): a bound on d
-        if away[1] < 0.0:
-            d_hi = min(depth, max(si * n[1] / -away[1], 0.0))
-        else:
-            d_hi = depth if si * n[1] >= 0.0 else 0.0
-        if d_hi <= 0.0:
-            continue
-        d = 0.5 * d_hi * (1.0 + xd)
-        wdd = wd * 0.5 * d_hi
-        xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
-        xb = np.full_like(d, length)
-        # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
-        um, c0 = float(u @ m), d * float(away @ m) + si * float(n @ m) - c
+    # the s nodes ``(8,)``, each with its d nodes ``(8, 48)``
+    si, wsi = s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0)
+    # y = d away_y + s n_y >= 0 (u_y = 0 on the crease): a bound on d
+    if away[1] < 0.0:
+        d_hi = np.minimum(depth, np.maximum(si * n[1] / -away[1], 0.0))
+    else:
+        d_hi = np.where(si * n[1] >= 0.0, depth, 0.0)
+    d = 0.5 * d_hi[:, None] * (1.0 + xd)
+    wdd = wd * 0.5 * d_hi[:, None]
+    xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
+    xb = np.full_like(d, length)
+    # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
+    um = float(u @ m)
+    c0 = d * float(away @ m) + si[:, None] * float(n @ m) - c
+    with np.errstate(divide="ignore", invalid="ignore"):
         if um > 0.0:
             xa = np.maximum(xa, -c0 / um)
         elif um < 0.0:
             xb = np.minimum(xb, -c0 / um)
         else:
             xb = np.where(c0 >= 0.0, xb, xa)
-        span = np.maximum(xb - xa, 0.0)
-        sq = np.where(span > 0.0, 0.5 * (xb**2 - xa**2), 0.0)
-        base = d[:, None] * away + si * n
-        vol += wsi * float(wdd @ span)
-        mom += wsi * ((wdd * span) @ base + float(wdd @ sq) * u)
+    span = np.maximum(xb - xa, 0.0)
+    sq = np.where(span > 0.0, 0.5 * (xb**2 - xa**2), 0.0)
+    ws_span = wsi[:, None] * wdd * span  # ``(8, 48)``
+    vol = float(ws_span.sum())
+    mom = float((ws_span * d).sum()) * away + float(ws_span.sum(axis=1) @ si) * n
+    mom += float((wsi[:, None] * wdd * sq).sum()) * u
     return vol, mom
 
 

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.geometry.arc import arc_range, end_relative
+from onefold_cad.geometry.cone_nodes import hermite_s, theta_from_nodes
 from onefold_cad.geometry.cone_rule import (
     GL_NODES,
     GL_WEIGHTS,
@@ -250,10 +251,10 @@ class ExactCone(DirectionSurface):
         theta = self._theta_lo[k].take(j) + half * (speed[:, :20] @ GL_WEIGHTS)
         return theta, speed[:, 20]
 
-    def _node_table(self, k: int) -> tuple[Array, Array, Array]:
+    def node_table(self, k: int) -> tuple[Array, Array, Array]:
         """theta from half k's end, s and |u'| = d theta / d s, ascending in s,
-        at the end, every node and the midpoint (for first guesses of the
-        inverse)."""
+        at the end, every node of the verified rule and the midpoint (first
+        guesses of the inverse, :mod:`onefold_cad.geometry.cone_nodes`)."""
         if self._tables is None:
             assert self._apex_rule is not None and self._speed_at is not None
             assert self._theta_lo is not None and self.height is not None
@@ -282,27 +283,8 @@ class ExactCone(DirectionSurface):
         does not depend on which other angles share the call (up to the
         rounding of the vectorised sums): one call over many angles gives
         what one call per angle gives."""
-        th_tab, s_tab, sp_tab = self._node_table(k)
-        j = th_tab.searchsorted(theta, side="right")
-        j -= 1
-        np.clip(j, 0, len(th_tab) - 2, out=j)
-        t0, t1 = th_tab.take(j), th_tab.take(j + 1)
-        s0, s1 = s_tab.take(j), s_tab.take(j + 1)
-        # the first guess: cubic Hermite interpolation of s(theta) between
-        # the table's points (slopes d s / d theta = 1 / |u'|), kept between them
-        dt, ds = t1 - t0, s1 - s0
-        sp0, sp1 = sp_tab.take(j), sp_tab.take(j + 1)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            x = np.where(dt > 0.0, (theta - t0) / dt, 0.0)
-            m0, m1 = dt / sp0, dt / sp1
-            # |u''| / |u'| across the table's interval
-            bend = np.where(ds > 0.0, np.abs(sp1 - sp0) / (ds * np.minimum(sp0, sp1)), 0.0)
-        x2 = x * x
-        h01 = x2 * (3.0 - 2.0 * x)
-        s = s0 + h01 * ds + (x2 * x - 2.0 * x2 + x) * m0 + (x2 * x - x2) * m1
-        s = np.where(np.isfinite(s), s, s0 + x * ds)
-        np.clip(s, s0, s1, out=s)
-        top = float(s_tab[-1])
+        s, bend = hermite_s(self.node_table(k), theta)  # the first guess
+        top = float(self.node_table(k)[1][-1])
         todo = np.arange(len(s))  # the angles still iterating
         sa, ta = s, theta
         for _ in range(30):
@@ -356,6 +338,37 @@ class ExactCone(DirectionSurface):
         _, plus, s = self._split(theta)
         p0, p1 = arc_range(self.frame)
         return np.where(plus, p0 + s, p1 - s)
+
+    def theta_near(self, phi: Array) -> Array:
+        """:meth:`theta_of_phi` of arc parameters ``phi`` ``(k,)``, integrated from
+        the nearest node of the rule (:func:`~onefold_cad.geometry.cone_nodes.theta_from_nodes`):
+        the same to a few rounding errors, at a fifth of the work."""
+        g = self.geometry
+        p0, p1 = arc_range(self.frame)
+        h = float(self.height) / g.radius  # type: ignore[arg-type]
+        plus = phi - p0 <= 0.5 * g.span
+        if plus.all():  # one half (a zoom's bracket mostly is): no masks
+            return theta_from_nodes(self.node_table(0), g, True, h, np.maximum(phi - p0, 0.0))
+        out = np.empty(len(phi))
+        for k, sel in ((0, plus), (1, ~plus)):
+            if sel.any():
+                s = np.maximum(phi[sel] - p0 if k == 0 else p1 - phi[sel], 0.0)
+                th = theta_from_nodes(self.node_table(k), g, k == 0, h, s)
+                out[sel] = th if k == 0 else self.total_angle - th
+        return out
+
+    def phi_near(self, theta: Array) -> Array:
+        """Arc parameters at developed angles ``theta`` ``(k,)`` to about 1e-10 rad:
+        the first guess of :meth:`phi_of_theta` (no Newton step), for samples."""
+        p0, p1 = arc_range(self.frame)
+        plus = theta <= self._half_total[0]
+        out = np.empty(len(theta))
+        if plus.any():
+            out[plus] = p0 + hermite_s(self.node_table(0), np.maximum(theta[plus], 0.0))[0]
+        if (~plus).any():
+            back = np.maximum(self.total_angle - theta[~plus], 0.0)
+            out[~plus] = p1 - hermite_s(self.node_table(1), back)[0]
+        return out
 
     def _vectors(self, plus: NDArray[np.bool_] | bool, s: Array) -> tuple[Array, Array]:
         """Unit directions ``u`` from the apex and the arc's unit tangents

@@ -10,13 +10,16 @@ contact is moved to the exact lowest point of its piece near it (a tangency
 of a boundary curve, a corner, the apex, a mitre vertex) and the plane is put
 through three of them, alternately, until it no longer moves (the points move
 along their curves, in the plane to first order: the plane converges
-quadratically; :func:`settle`). On two contacts, one of them a curved edge,
-the body rocks: the plane is then the one on which they balance the centre of
-mass (:func:`rock`). :func:`lowest_points` finds the exact lowest points of
-every piece that comes near the ground, to check the plane; a point below
-it (the apex, met while the body rocks along two curved edges towards their
-balance) joins the features and the plane is settled again
-(:func:`exact_features`, :func:`onefold_cad.geometry.placement.rest_form`).
+quadratically; :func:`settle`; the features' zooms run together,
+:meth:`Body.lowest_many`). On two contacts, one of them a curved edge, the
+body rocks: the plane is then the one on which they balance the centre of
+mass (:func:`rock`). The exact lowest points of every piece that may come
+near the ground check the plane (:func:`onefold_cad.geometry.lows.exact_lows`,
+which zooms only where the samples leave it open; :func:`lowest_points`
+zooms every piece within a band); a point below it (the apex, met while the
+body rocks along two curved edges towards their balance) joins the features
+and the plane is settled again (:func:`exact_features`,
+:func:`onefold_cad.geometry.placement.rest_form`).
 
 Points are in the body's frame (relative to the apex); lengths in the design
 unit.
@@ -111,23 +114,28 @@ def exact_features(body: Body, lows: list[tuple[int, float, Array]]) -> list[_Fe
     return out
 
 
-def _locate(body: Body, f: _Feature, g: Array) -> Array:
-    """Move feature ``f`` to the exact lowest point of its bracket along ``g``,
-    widening the bracket while the lowest point sits on an end of it."""
-    if f.piece < 0:
-        return f.point
-    piece = body.pieces[f.piece]
+def _locate(body: Body, features: list[_Feature], g: Array) -> list[Array]:
+    """Move each feature to the exact lowest point of its bracket along ``g``,
+    widening a bracket while the lowest point sits on an end of it (the
+    features' zooms run together, :meth:`Body.lowest_many`)."""
+    todo = [f for f in features if f.piece >= 0]
     for _ in range(8):
-        t, p = body.lowest(f.piece, f.lo, f.hi, g)
-        width = f.hi - f.lo
-        at_lo = t <= f.lo + 1e-3 * width and f.lo > piece.t0
-        at_hi = t >= f.hi - 1e-3 * width and f.hi < piece.t1
-        f.point = p
-        if not (at_lo or at_hi):
+        if not todo:
             break
-        f.lo = max(piece.t0, t - width)
-        f.hi = min(piece.t1, t + width)
-    return f.point
+        found = body.lowest_many([(f.piece, f.lo, f.hi, g) for f in todo])
+        wider = []
+        for f, (t, p) in zip(todo, found, strict=True):
+            piece = body.pieces[f.piece]
+            width = f.hi - f.lo
+            at_lo = t <= f.lo + 1e-3 * width and f.lo > piece.t0
+            at_hi = t >= f.hi - 1e-3 * width and f.hi < piece.t1
+            f.point = p
+            if at_lo or at_hi:
+                f.lo = max(piece.t0, t - width)
+                f.hi = min(piece.t1, t + width)
+                wider.append(f)
+        todo = wider
+    return [f.point for f in features]
 
 
 #: above this many points, the candidate triangles are the lower facets of
@@ -230,7 +238,7 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
     rocks = False
     least, stale = math.inf, 0
     for _ in range(40):
-        pts = _distinct([_locate(body, f, g) for f in features], tol)
+        pts = _distinct(_locate(body, features, g), tol)
         if len(pts) == 2:
             g, rocks = rock(body, features, com, g)
             break
@@ -249,7 +257,7 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
         least, stale = (moved, 0) if moved < 0.5 * least else (least, stale + 1)
         if stale >= 4:
             break
-    pts = np.array([_locate(body, f, g) for f in features])
+    pts = np.array(_locate(body, features, g))
     return g, float(np.min(pts @ g)), rocks
 
 
@@ -262,19 +270,19 @@ def rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[Ar
     converged with the centre of mass between the two points (else ``g``
     unchanged)."""
     tol = CONTACT_TOLERANCE * body.size
-    pts = [_locate(body, f, g) for f in features]
+    pts = _locate(body, features, g)
     first = pts[0]
     far = max(range(len(pts)), key=lambda i: float(np.linalg.norm(pts[i] - first)))
     pair = [features[0], features[far]]
 
     def residual(gg: Array) -> Array:
-        q1, q2 = (_locate(body, f, gg) for f in pair)
+        q1, q2 = _locate(body, pair, gg)
         e = q2 - q1
         e /= max(float(np.linalg.norm(e)), 1e-300)
         return np.array([gg @ (q2 - q1), (com - q1) @ cross3(gg, e)])
 
     def balanced(gg: Array) -> tuple[Array, bool]:
-        q1, q2 = (_locate(body, f, gg) for f in pair)
+        q1, q2 = _locate(body, pair, gg)
         span2 = float((q2 - q1) @ (q2 - q1))
         along = float((com - q1) @ (q2 - q1)) / span2 if span2 > tol * tol else -1.0
         return (gg, True) if 0.0 < along < 1.0 else (start, False)
@@ -324,16 +332,28 @@ def lowest_points(
     A piece's own spacing, not the body's largest, keeps the work small on a
     sheet of many vertices, where a long edge's samples lie far apart and
     every other edge would come within the body's band."""
+    found, asks = _candidates(body, samples, g, band)
+    for (k, _, _, _), (tb, p) in zip(asks, body.lowest_many(asks), strict=True):
+        found.append((k, tb, p))
+    found.sort(key=lambda item: float(item[2] @ g))
+    return found
+
+
+def _candidates(
+    body: Body, samples: Samples, g: Array, band: float
+) -> tuple[list[tuple[int, float, Array]], list[tuple[int, float, float, Array]]]:
+    """The fixed points within ``band`` of the lowest sample along ``g`` (as
+    (piece -1, 0, point)), and the zooms :func:`lowest_points` needs (piece,
+    bracket, direction)."""
     h = samples.points @ g
     floor = float(h.min())
-    found: list[tuple[int, float, Array]] = []
     fixed = samples.owner < 0
-    for idx in np.flatnonzero(fixed & (h <= floor + band)):
-        found.append((-1, 0.0, samples.points[idx]))
+    found = [(-1, 0.0, samples.points[i]) for i in np.flatnonzero(fixed & (h <= floor + band))]
     reach = np.minimum(band, 2.0 * body.spacings + 1e-10 * body.size)
     near = np.zeros(len(h), dtype=bool)
     if len(reach):  # the paper shell without a hole has fixed points only
         near[~fixed] = h[~fixed] <= floor + reach[samples.owner[~fixed]]
+    asks: list[tuple[int, float, float, Array]] = []
     for k in sorted_unique(samples.owner[near]):
         piece = body.pieces[int(k)]
         corners = body.sections[int(k)]
@@ -343,10 +363,8 @@ def lowest_points(
         right = np.concatenate([hk[:-1] <= hk[1:], [True]])
         for tj in piece.grid[(hk <= floor + reach[int(k)]) & left & right]:
             lo, hi = piece.bracket(float(tj), float(tj))
-            tb, p = body.lowest(int(k), lo, hi, g)
-            found.append((int(k), tb, p))
-    found.sort(key=lambda item: float(item[2] @ g))
-    return found
+            asks.append((int(k), lo, hi, g))
+    return found, asks
 
 
 def sample_spacing(body: Body) -> float:

@@ -1,8 +1,13 @@
 """Convex hulls in the plane, numpy only (no scipy.spatial on the solve path).
 
-Andrew's monotone chain: sort the points, then one pass for the lower and one
-for the upper chain, O(n log n). Used for the support polygon of a resting
-form and the footprint of its shadow on the ground.
+Up to a few hundred points, Andrew's monotone chain: sort the points, then
+one pass for the lower and one for the upper chain, O(n log n), in plain
+Python floats. Beyond that (the footprint of a body's thousands of samples,
+a thousand of them on its hull), QuickHull with every edge of a level
+refined at once in numpy: each edge's farthest point outside it becomes a
+corner, the points outside the two new edges stay, the rest drop out. Used
+for the support polygon of a resting form and the footprint of its shadow
+on the ground.
 """
 
 from __future__ import annotations
@@ -48,13 +53,45 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         counter-clockwise order, without repeating the first; one index for
         coincident points, two for collinear ones (the ends), and an empty
         array for no points.
+
+    With a tolerance, the monotone chain decides each turn within it, which
+    can drop a true corner (points a rounding error apart on a nearly
+    vertical edge: the chain's first and second point lie on one line with
+    the third, within the tolerance); the hull without tolerance checks it
+    and, where it left a corner out, the corners of that hull more than
+    ``tol`` from their neighbours' line are taken instead (:func:`_beyond`).
     """
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     if len(p) == 0:
         return np.zeros(0, dtype=np.int64)
+    if tol <= 0.0:
+        return _strict_corners(p)
+    hull = _chained(p, tol)
+    if len(p) <= 64:  # a few points (contacts): all of them against the hull
+        if _covers(p[hull], p, tol):
+            return hull
+        exact = _strict_corners(p)
+    else:
+        exact = _strict_corners(p)
+        if _covers(p[hull], p[exact], tol):
+            return hull
+    return _beyond(p, exact, tol) if len(exact) >= 3 else hull
+
+
+def _strict_corners(p: Array) -> NDArray[np.int64]:
+    """:func:`convex_hull_2d` with no tolerance: every strict corner."""
+    if len(p) > _CHAIN_MAX:
+        hull = _quickhull(p)
+        if hull is not None:
+            return hull
+    return _chained(p, 0.0)
+
+
+def _chained(p: Array, tol: float) -> NDArray[np.int64]:
+    """The monotone chain's hull of ``p`` with the tolerance ``tol`` in its turns."""
     keep = _outside_octagon(p)
     if len(keep) < len(p):
-        return keep[convex_hull_2d(p[keep], tol)]
+        return keep[_chained(p[keep], tol)]
     order = np.lexsort((p[:, 1], p[:, 0]))
     first, last = p[order[0]], p[order[-1]]
     if np.array_equal(first, last):
@@ -66,6 +103,156 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     if len(hull) < 2:  # every point on one line within tol: its two ends
         hull = [int(order[0]), int(order[-1])]
     return np.asarray(hull, dtype=np.int64)
+
+
+def _covers(poly: Array, corners: Array, tol: float) -> bool:
+    """Whether every one of ``corners`` ``(k, 2)`` lies within twice ``tol`` of
+    the polygon (or segment, or point) ``poly`` ``(m, 2)``, counter-clockwise."""
+    if len(poly) >= 3:
+        d = np.roll(poly, -1, axis=0) - poly  # (m, 2) edges
+        length = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
+        rel = corners[:, None, :] - poly[None, :, :]  # (k, m, 2)
+        inside = (d[:, 0] * rel[..., 1] - d[:, 1] * rel[..., 0]) / length
+        return bool(np.all(inside.min(axis=1) >= -2.0 * tol))
+    a, b = poly[0], poly[-1]
+    d = b - a
+    t = np.clip((corners - a) @ d / max(float(d @ d), 1e-300), 0.0, 1.0)
+    return float(np.max(np.hypot(*(a + t[:, None] * d - corners).T))) <= 2.0 * tol
+
+
+def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
+    """The corners of ``hull`` (strict corners of ``p``, counter-clockwise)
+    more than ``tol`` from the line through their neighbours: the hull of
+    the points less what lies within ``tol`` of its edges; the two farthest
+    corners when all lie within ``tol`` of one line. Each pass drops every
+    other corner of each run of corners that fail (never two neighbours at
+    once: each one's neighbours change as the other goes), until none fails."""
+    if len(hull) <= 32:  # a few corners (contacts): plain floats, far faster
+        kept = _beyond_small(p[hull, 0].tolist(), p[hull, 1].tolist(), tol)
+        if len(kept) >= 3:
+            return hull[kept]
+    idx = hull.copy()
+    while len(idx) >= 3:
+        q = p[idx]
+        a, c = np.roll(q, 1, axis=0), np.roll(q, -1, axis=0)
+        ab, ac = q - a, c - a
+        cross = ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0]
+        fail = cross <= tol * np.hypot(ac[:, 0], ac[:, 1])
+        if not fail.any():
+            return idx
+        pos = np.arange(len(idx))
+        start = np.maximum.accumulate(np.where(fail & ~np.roll(fail, 1), pos, 0))
+        drop = fail & ((pos - start) % 2 == 0)
+        if drop[0] and drop[-1]:  # a run across the end: not both
+            drop[-1] = False
+        if drop.all():
+            drop[1:] = False
+        idx = idx[~drop]
+    q = p[hull]
+    d2 = ((q[:, None, :] - q[None, :, :]) ** 2).sum(axis=-1)
+    i, j = np.unravel_index(int(np.argmax(d2)), d2.shape)
+    ends = sorted((int(hull[i]), int(hull[j])), key=lambda k: (p[k, 0], p[k, 1]))
+    return np.asarray(ends, dtype=np.int64)
+
+
+def _beyond_small(xs: list[float], ys: list[float], tol: float) -> list[int]:
+    """:func:`_beyond` on a few corners given as floats: the positions kept
+    (fewer than three: all lie within ``tol`` of one line)."""
+    idx = list(range(len(xs)))
+    while len(idx) >= 3:
+        n = len(idx)
+        fail = []
+        for i in range(n):
+            a, b, c = idx[i - 1], idx[i], idx[(i + 1) % n]
+            ax, ay = xs[a], ys[a]
+            cx, cy = xs[c] - ax, ys[c] - ay
+            cross = (xs[b] - ax) * cy - (ys[b] - ay) * cx
+            fail.append(cross <= tol * math.hypot(cx, cy))
+        if not any(fail):
+            return idx
+        drop = [False] * n
+        run = 0
+        for i in range(n):  # every other corner of each run of failures
+            run = run + 1 if fail[i] and i > 0 and fail[i - 1] else 0
+            drop[i] = fail[i] and run % 2 == 0
+        if drop[0] and drop[-1]:
+            drop[-1] = False
+        if all(drop):
+            drop[1:] = [False] * (n - 1)
+        idx = [k for k, d in zip(idx, drop, strict=True) if not d]
+    return idx
+
+
+#: Above this many points (and with no tolerance), QuickHull in numpy instead
+#: of the chain in Python.
+_CHAIN_MAX = 256
+
+
+def _quickhull(p: Array) -> NDArray[np.int64] | None:
+    """:func:`convex_hull_2d` of many points with no tolerance, in numpy: the
+    strict corners counter-clockwise from the lowest-then-leftmost point; None
+    when the seed polygon is degenerate (the chain then decides).
+
+    Seeded with the extreme points in 8 directions and their centre; the
+    points outside the seeds' polygon sorted once by their angle about that
+    centre: the points outside an edge are then a run of that order, and so
+    are those outside the two edges its farthest point splits it into (they
+    lie in the angles between its ends), so each level of QuickHull refines
+    every edge at once, on runs, without sorting again."""
+    x, y = p[:, 0], p[:, 1]
+    s, t = x + y, x - y
+    seed = sorted_unique(
+        np.array([f(v) for v in (x, y, s, t) for f in (np.argmin, np.argmax)], dtype=np.int64)
+    )
+    cx, cy = float(x.take(seed).mean()), float(y.take(seed).mean())
+    ang = np.arctan2(y - cy, x - cx)
+    seed = seed[np.argsort(ang.take(seed))]
+    ang -= ang[seed[0]]
+    ang %= 2.0 * math.pi
+    ang[seed[0]] = 0.0
+    sx, sy = x.take(seed), y.take(seed)
+    ex, ey = np.roll(sx, -1) - sx, np.roll(sy, -1) - sy
+    if len(seed) < 3 or np.any(ex * (cy - sy) - ey * (cx - sx) <= 0.0):
+        return None  # the centre is not strictly inside the seeds' polygon
+    k = ang.take(seed).searchsorted(ang, side="right") - 1
+    # to the right of its edge (going counter-clockwise): strictly outside
+    d = ey.take(k) * (x - sx.take(k)) - ex.take(k) * (y - sy.take(k))
+    idx = np.flatnonzero(d > 0.0)
+    idx = idx[np.argsort(ang.take(idx))]
+    a_end, b_end = seed.take(k.take(idx)), np.roll(seed, -1).take(k.take(idx))
+    d = d.take(idx)
+    corners = [seed]
+    while len(idx):
+        # per run (edge): its farthest point (the first of a tie) is a corner
+        starts = np.flatnonzero(np.concatenate([[True], a_end[1:] != a_end[:-1]]))
+        lengths = np.diff(np.append(starts, len(idx)))
+        far = np.flatnonzero(d == np.repeat(np.maximum.reduceat(d, starts), lengths))
+        at = far.take(far.searchsorted(starts))
+        c = idx.take(at)
+        corners.append(c)
+        before = np.arange(len(idx)) < np.repeat(at, lengths)
+        cc = np.repeat(c, lengths)
+        a_end = np.where(before, a_end, cc)
+        b_end = np.where(before, cc, b_end)
+        ax, ay = x.take(a_end), y.take(a_end)
+        d = (y.take(b_end) - ay) * (x.take(idx) - ax) - (x.take(b_end) - ax) * (y.take(idx) - ay)
+        out = d > 0.0
+        idx, a_end, b_end, d = idx[out], a_end[out], b_end[out], d[out]
+    hull = np.concatenate(corners)
+    hull = hull[np.argsort(ang.take(hull))]
+    while len(hull) >= 3:  # a seed can lie on an edge of the hull: no corner
+        ax, ay = x.take(np.roll(hull, 1)), y.take(np.roll(hull, 1))
+        qx, qy = x.take(np.roll(hull, -1)), y.take(np.roll(hull, -1))
+        turn = (x.take(hull) - ax) * (qy - ay) - (y.take(hull) - ay) * (qx - ax) > 0.0
+        if turn.all():
+            break
+        # one of neighbours that both fail at a time (two points a rounding
+        # error apart: one of them stays, as in the chain)
+        hull = hull[turn | np.roll(~turn, 1)]
+    # counter-clockwise from the lowest x, then lowest y, as the chain
+    hx, hy = x.take(hull), y.take(hull)
+    low = np.flatnonzero(hx == hx.min())
+    return np.roll(hull, -int(low[np.argmin(hy.take(low))])).astype(np.int64)
 
 
 def _outside_octagon(p: Array) -> NDArray[np.int64]:

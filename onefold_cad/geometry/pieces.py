@@ -13,15 +13,25 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.numeric import Array
 
-__all__ = ["ZOOM_GRID", "Piece", "clipped_rectangle", "zoom_min"]
+__all__ = ["ZOOM_GRID", "Family", "Piece", "clipped_rectangle", "end_minimum", "zoom_min"]
 
 #: Points of each zoom's grid over the bracket.
 ZOOM_GRID = 33
+
+
+class Family(Protocol):
+    """Pieces evaluated together (:mod:`onefold_cad.geometry.body_families`):
+    ``points(members (k,), t (k,))`` gives the corners ``(k, V, 3)`` of piece
+    ``members[i]`` of the family at parameter ``t[i]``."""
+
+    def points(self, members: NDArray[np.int64], t: Array) -> Array: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -38,12 +48,20 @@ class Piece:
             samples, on the flat sheet for the sheet's edges (the fold keeps
             lengths: no point of the folded edge lies further than half of it
             from a sample); 0 to take the samples' 3D distances.
+        family: the family that evaluates it together with others (None:
+            alone).
+        member: its index in the family.
+        radius: no point of the piece lies further than this from the apex
+            (length; inf: no bound known).
     """
 
     name: str
     grid: Array
     points: Callable[[Array], Array]
     step: float = 0.0
+    family: Family | None = None
+    member: int = 0
+    radius: float = math.inf
 
     def heights(self, t: Array, g: Array) -> Array:
         """The lowest corner's height along ``g`` ``(3,)`` at each parameter
@@ -112,6 +130,52 @@ def zoom_min(f: Callable[[Array], Array], lo: float, hi: float) -> tuple[float, 
         if hi - lo <= 1e-13 * span or at_end >= 3:
             break
     return best_t, best_v
+
+
+def end_minimum(
+    grid: Array, corners: Array, lo: float, hi: float, g: Array
+) -> tuple[float, Array] | None:
+    """The lowest point along ``g`` of a piece's bracket [lo, hi] that starts
+    or ends with the piece, when its samples (``grid`` ``(n,)``, ``corners``
+    ``(n, V, 3)``) show it at that end: ``(t, point)``; else None (zoom).
+
+    The bracket spans at most the first (last) two sample intervals, and the
+    parabola through the first three samples rises from the end with a slope
+    of more than twice its curvature times the first interval: with the
+    piece's curvature as its samples resolve it (as every bracket search
+    here assumes, to a factor of two), nothing of the bracket dips below the
+    end; and the three sections have the same corners (near the crease the
+    cut at y = 0 sweeps them faster than the samples). Exactly what a zoom
+    finds there: the end itself."""
+    n = len(grid)
+    if n < 3:
+        return None
+    if lo == grid[0] and grid[1] <= hi <= grid[2]:
+        idx = [0, 1, 2]
+    elif hi == grid[-1] and grid[-3] <= lo <= grid[-2]:
+        idx = [n - 1, n - 2, n - 3]
+    else:
+        return None
+    pts = corners[idx]
+    gone = np.isnan(pts[..., 0])
+    if np.any(gone != gone[0]):  # a corner comes or goes: features finer than the samples
+        return None
+    h = pts @ g
+    h = np.where(np.isnan(h), np.inf, h).min(axis=1)
+    if not np.all(np.isfinite(h)):
+        return None
+    t = grid[idx]
+    if t[1] == t[0] or t[2] == t[1]:
+        return None
+    # the parabola through the three: its slope at the end, into the piece
+    s01 = (h[1] - h[0]) / (t[1] - t[0])
+    c = ((h[2] - h[1]) / (t[2] - t[1]) - s01) / (t[2] - t[0])
+    slope = (s01 - c * (t[1] - t[0])) * np.sign(t[1] - t[0])
+    if not (slope > 4.0 * abs(c) * abs(t[1] - t[0]) and h[2] > h[0]):
+        return None
+    p = pts[0]
+    hp = p @ g
+    return float(t[0]), p[int(np.argmin(np.where(np.isnan(hp), np.inf, hp)))].copy()
 
 
 def clipped_rectangle(

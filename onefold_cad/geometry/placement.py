@@ -36,12 +36,12 @@ from onefold_cad.geometry.ground import (
     exact_features,
     features,
     holds,
-    lowest_points,
     sample_spacing,
     settle,
     touching,
 )
 from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
+from onefold_cad.geometry.lows import exact_lows
 from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.numeric import Array, cross3, polygon_area
 from onefold_cad.geometry.topple import com_depth, com_outside, roll
@@ -299,7 +299,7 @@ def rest_form(
         found = features(form, samples, on)
         for _ in range(4):
             g, plane, rocks = settle(form, found, com, g)
-            lows = lowest_points(form, samples, g, band)
+            lows = exact_lows(form, samples, g, np.array([plane]))[0]
             level = float(lows[0][2] @ g)
             # the exact plane cuts the body: on its way there (rocking along
             # two curved edges, say) the body met another point first, the
@@ -329,7 +329,7 @@ def rest_form(
     # tangencies, whose places along their curves are known to about 1e-8 of
     # the size (ground.rock settles for 1e-6 of it)
     margin, edge = tipping_margin(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
-    bounds = _bounds(form, samples, rot, shift, band)
+    bounds = _bounds(form, samples, rot, shift, lows[0][2])
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
     tilt = math.degrees(math.acos(float(np.clip(g[2], -1.0, 1.0))))
@@ -363,7 +363,7 @@ def _cut(
     contact_tol = CONTACT_TOLERANCE * form.size
     lows: list[tuple[int, float, Array]] = []
     for _ in range(8):
-        lows = lowest_points(form, samples, g, band)
+        lows = exact_lows(form, samples, g)[0]
         floor = float(np.min(samples.points @ g))
         below = [x for x in lows if float(x[2] @ g) < floor - contact_tol]
         if not below:
@@ -421,13 +421,17 @@ def tipping_margin(polygon: Array, com: Array, tol: float) -> tuple[float, tuple
     return math.degrees(math.atan2(inside, z)), (i, (i + 1) % m)
 
 
-def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, band: float) -> Array:
-    """The placed body's exact lowest and highest x, y, z ``(2, 3)``."""
+def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, lowest: Array) -> Array:
+    """The placed body's exact lowest and highest x, y, z ``(2, 3)``: the
+    lowest z is that of ``lowest`` (its lowest point along the ground's
+    normal, the resting frame's z axis), the five other searches run
+    together."""
+    dirs = np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
+    lows = exact_lows(form, samples, dirs)
     out = np.zeros((2, 3))
     for axis in range(3):
         d = rot[axis]  # the resting frame's axis in the fold frame
-        lo = float(lowest_points(form, samples, d, band)[0][2] @ d)
-        hi = float(lowest_points(form, samples, -d, band)[0][2] @ d)
-        out[0, axis] = lo + translation[axis]
-        out[1, axis] = hi + translation[axis]
+        low = lowest if axis == 2 else lows[2 * axis][0][2]
+        out[0, axis] = float(low @ d) + translation[axis]
+        out[1, axis] = float(lows[2 * axis + 1 if axis < 2 else 4][0][2] @ d) + translation[axis]
     return out

@@ -33,7 +33,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, cross3
 
 __all__ = [
     "MITRE_CLEARANCE",
@@ -85,7 +85,7 @@ class SideMap:
         u /= np.linalg.norm(u)
         e -= (e @ u) * u
         e /= np.linalg.norm(e)
-        return u, e, np.cross(u, e)
+        return u, e, cross3(u, e)
 
     def frames(self, theta: Array) -> tuple[Array, Array, Array]:
         """Ruling direction u, in-surface direction e (of increasing theta) and
