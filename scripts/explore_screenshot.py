@@ -8,7 +8,10 @@ Debian's Chromium (playwright, software WebGL) at 1500 x 880 and saves:
 - ``explore.png``: the default template as it opens;
 - ``explore-star.png``: the star-polygon template after moving alpha to 40;
 - ``explore-error.png``: the default template with alpha typed as 95 (the
-  message, the marked control, the last good form dimmed).
+  message, the marked control, the last good form dimmed);
+- ``explore-simulate.png``: the default template after Simulate (the standing
+  steel sheet coloured by its deviation over the translucent design, the
+  legend and the numbers).
 """
 
 from __future__ import annotations
@@ -65,11 +68,17 @@ def main(argv: list[str] | None = None) -> int:
             page.locator("#alpha-num").fill("95")
             _wait(page, 5)
             page.screenshot(path=args.outdir / "explore-error.png")
+
+            page.locator("#alpha-num").fill("30")
+            _wait(page, 6)
+            page.locator("#simulate").click()
+            page.locator("body[data-simulations='1']").wait_for(state="attached", timeout=300_000)
+            page.screenshot(path=args.outdir / "explore-simulate.png")
             browser.close()
     finally:
         server.shutdown()
         server.server_close()
-    for name in ("explore.png", "explore-star.png", "explore-error.png"):
+    for name in ("explore.png", "explore-star.png", "explore-error.png", "explore-simulate.png"):
         print(args.outdir / name)
     return 0
 

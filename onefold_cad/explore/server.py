@@ -7,6 +7,10 @@ It listens on 127.0.0.1 and answers GET requests only:
 - ``/api/templates``: the templates the page can switch between;
 - ``/api/state?alpha=..&beta=..``: the design of those values solved,
   folded, placed, meshed and measured (:func:`onefold_cad.explore.state.design_state`);
+- ``/api/simulate?...`` (the same query): the design as steel on the coarse
+  mesh, standing under its weight
+  (:func:`onefold_cad.explore.simulation.simulation_state`; seconds: each
+  request has its own thread, so the page's other requests go on meanwhile);
 - ``/download/{dxf,step,json,toml}?...``: the design's file.
 
 Requests whose ``Host`` is not this server's own address (DNS rebinding),
@@ -39,6 +43,7 @@ from onefold_cad.explore.controls import (
     parse_query,
 )
 from onefold_cad.explore.downloads import KINDS, make_download
+from onefold_cad.explore.simulation import simulation_state
 from onefold_cad.explore.state import design_state, problem_state
 
 __all__ = ["DEFAULT_PORT", "MAX_TARGET", "ExploreServer", "load_templates", "make_server", "serve"]
@@ -54,6 +59,7 @@ _JS = "text/javascript; charset=utf-8"
 STATIC: dict[str, tuple[str, str]] = {
     "/": ("index.html", "text/html; charset=utf-8"),
     "/static/explore.js": ("explore.js", _JS),
+    "/static/simulate.js": ("simulate.js", _JS),
     "/static/explore.css": ("explore.css", "text/css; charset=utf-8"),
     "/static/three/three.module.js": ("three/three.module.js", _JS),
     "/static/three/three.core.js": ("three/three.core.js", _JS),
@@ -210,6 +216,8 @@ class ExploreHandler(BaseHTTPRequestHandler):
                 self._templates()
             elif path == "/api/state":
                 self._state(query)
+            elif path == "/api/simulate":
+                self._simulate(query)
             elif path.startswith("/download/") and path[len("/download/") :] in KINDS:
                 self._download(path[len("/download/") :], query)
             else:
@@ -259,6 +267,20 @@ class ExploreHandler(BaseHTTPRequestHandler):
                 ],
             }
             self._json(HTTPStatus.INTERNAL_SERVER_ERROR, state)
+            return
+        self._json(HTTPStatus.OK, state)
+
+    def _simulate(self, query: str) -> None:
+        try:
+            state = simulation_state(self._design(query))
+        except ParameterProblem as exc:
+            state = {"ok": False, "error": " ".join(exc.message.split())}
+        except QueryError:
+            raise
+        except Exception as exc:  # the page shows this line instead of a result
+            traceback.print_exc(file=sys.stderr)
+            text = f"internal error ({type(exc).__name__}: {' '.join(str(exc).split())})"
+            self._json(HTTPStatus.INTERNAL_SERVER_ERROR, {"ok": False, "error": text})
             return
         self._json(HTTPStatus.OK, state)
 

@@ -39,6 +39,7 @@ from onefold_cad.choices import Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
+from onefold_cad.export.colour_scale import STEEL_GREY
 from onefold_cad.export.part import build_part
 from onefold_cad.geometry.folding import FoldedSheet
 
@@ -49,7 +50,7 @@ LINEAR_DEFLECTION = 1e-4
 #: Largest turn of the surface across one triangle (radians).
 ANGULAR_DEFLECTION = 0.05
 #: The material's base colour (sRGB), a light steel grey.
-COLOUR = (0.72, 0.74, 0.78)
+COLOUR = STEEL_GREY
 
 _UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
 

@@ -29,8 +29,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.design import rest_once
-from onefold_cad.errors import ExportError
-from onefold_cad.export.atomic import atomic_output
+from onefold_cad.export.figure3d import (
+    agg_figure,
+    fit_axes,
+    label_axes,
+    lambert,
+    save_png,
+    view_direction,
+)
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.placement import RestingPlacement
@@ -39,7 +45,6 @@ __all__ = ["render_folded_preview", "resting_mesh", "support_and_centre", "thumb
 
 _TOP = np.array([0.86, 0.62, 0.30])  # the flat sheet's top (+z) face
 _BOTTOM = np.array([0.55, 0.63, 0.72])
-_LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
 _CREASE, _APEX, _GROUND = "#222222", "#c0392b", "#8a8a8a"
 _SUPPORT, _COM = "#2e8b57", "#6a1b9a"
 #: Mesh density: rays of each side, points along each ray. The surface is
@@ -88,11 +93,7 @@ def support_and_centre(placement: RestingPlacement) -> tuple[Array, Array]:
 def _face_colours(tri: NDArray[np.float64], view: NDArray[np.float64]) -> NDArray[np.float64]:
     """Lambert-shaded RGBA per triangle ``(m, 3, 3)``: the side facing the
     viewer decides whether the top or the bottom colour shows."""
-    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
-    facing_top = (n @ view) > 0.0
-    n = np.where(facing_top[:, None], n, -n)
-    shade = 0.45 + 0.55 * np.clip(n @ _LIGHT, 0.0, 1.0)
+    facing_top, shade = lambert(tri, view)
     base = np.where(facing_top[:, None], _TOP, _BOTTOM)
     rgb = np.clip(base * shade[:, None], 0.0, 1.0)
     return np.concatenate([rgb, np.ones((len(rgb), 1))], axis=1)
@@ -159,16 +160,8 @@ def render_folded_preview(
     Raises:
         ExportError: the image could not be written.
     """
-    out = Path(path)
     fig = _figure(folded, placement, frame, title, units, size_px, elev, azim, annotate=True)
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ExportError(f"cannot write preview {str(out)!r}: {exc.strerror or exc}") from exc
-    with atomic_output(out) as tmp:
-        # zlib level 1: a third of the encoding time, a slightly larger file
-        fig.savefig(tmp, format="png", dpi=fig.dpi, pil_kwargs={"compress_level": 1})
-    return out
+    return save_png(fig, path, "preview")
 
 
 def thumbnail_png(
@@ -204,11 +197,8 @@ def _figure(
 ) -> Any:
     """The preview's figure (on an Agg canvas); ``annotate``: with legend,
     caption, fold-angle labels and axes."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
-    from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
     rest = rest_once(folded) if placement is None else placement
@@ -216,14 +206,11 @@ def _figure(
     verts, faces = folded.mesh(angular=_ANGULAR, radial=_RADIAL)
     verts = move(verts)
     tri = verts[faces]
-    e, a = np.radians(elev), np.radians(azim)
-    view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    view = view_direction(elev, azim)
     apex = move(folded.apex[None, :])[0]
     support, centre = support_and_centre(rest)
 
-    dpi = 100
-    fig = Figure(figsize=(size_px[0] / dpi, size_px[1] / dpi), dpi=dpi)
-    FigureCanvasAgg(fig)
+    fig = agg_figure(size_px)
     # explicit drawing order (ground, surface, crease, labels, dots): the dots
     # and labels stay visible where the surface would hide them
     bottom = 60.0 / size_px[1] if annotate else 0.0  # room for the three caption lines
@@ -265,23 +252,11 @@ def _figure(
         ax.scatter(*centre, color=_COM, s=dot, depthshade=False, zorder=6)
     ax.scatter(*apex, color=_APEX, s=dot, depthshade=False, zorder=6)
 
-    lo, hi = verts.min(axis=0), verts.max(axis=0)
-    span = np.maximum(hi - lo, 1e-9 * float(np.max(hi - lo)))
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(lo[1], hi[1])
-    ax.set_zlim(lo[2] if frame else 0.0, hi[2])
-    ax.set_box_aspect(tuple(span), zoom=0.95 if annotate else 1.2)
-    ax.view_init(elev=elev, azim=azim)
+    fit_axes(ax, verts, ground=not frame, elev=elev, azim=azim, zoom=0.95 if annotate else 1.2)
     if not annotate:
         ax.set_axis_off()
         return fig
-    unit = f" ({units})" if units else ""
-    ax.set_xlabel(f"x{unit}", fontsize=8)
-    ax.set_ylabel(f"y{unit}", fontsize=8)
-    ax.set_zlabel(f"z{unit}", fontsize=8)
-    ax.tick_params(labelsize=7, pad=0)
-    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):  # few ticks: tick labels cost most
-        axis.set_major_locator(MaxNLocator(nbins=4))
+    label_axes(ax, units)
     if title:
         fig.suptitle(title, fontsize=11, y=0.985)
     handles = [

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import io
 import json
 import re
 from collections.abc import Iterator
@@ -11,55 +10,9 @@ from urllib.parse import urlencode
 import ezdxf
 import numpy as np
 import pytest
-from PIL import Image
 
 from onefold_cad.cli.main import main
-from tests.explore.conftest import get
-
-TIMEOUT_MS = 60_000
-
-
-class Page:
-    """A fresh tab on the explorer with the console's errors and the page's exceptions."""
-
-    def __init__(self, page, url: str) -> None:
-        self.page = page
-        self.errors: list[str] = []
-        self.foreign: list[str] = []  # requests to anywhere but the server: none (offline)
-        origin = url.rstrip("/")
-
-        def only_ours(route) -> None:
-            if route.request.url.startswith(origin + "/") or route.request.url.startswith("blob:"):
-                route.continue_()
-            else:
-                self.foreign.append(route.request.url)
-                route.abort()
-
-        page.route("**/*", only_ours)
-        page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
-        page.on("pageerror", lambda e: self.errors.append(f"page error: {e}"))
-        page.set_default_timeout(TIMEOUT_MS)
-        page.goto(url)
-        self.wait_for_update(1)
-
-    def updates(self) -> int:
-        return int(self.page.locator("body").get_attribute("data-updates") or 0)
-
-    def wait_for_update(self, n: int) -> None:
-        self.page.locator(f"body[data-updates='{n}']").wait_for(state="attached")
-
-    def change(self, selector: str, value: str) -> None:
-        """Set a control as a user would and wait until the page has drawn the answer."""
-        n = self.updates()
-        self.page.locator(selector).fill(value)
-        self.wait_for_update(n + 1)
-
-    def canvas(self) -> np.ndarray:
-        png = self.page.locator("#view").screenshot()
-        return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
-
-    def text(self, selector: str) -> str:
-        return self.page.locator(selector).inner_text()
+from tests.explore.conftest import TIMEOUT_MS, Page, get
 
 
 @pytest.fixture

@@ -1,9 +1,10 @@
 // onefold explore: the page draws what the server computes; it computes no geometry.
 // Each control change asks /api/state for the design's new state (the Python
 // solver is the one source of truth) and draws the form, the flat pattern, the
-// numbers and the messages it returns.
+// numbers and the messages it returns. The Simulate button is simulate.js's.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/OrbitControls.js';
+import { createSimulation } from './simulate.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -200,7 +201,11 @@ function render() {
   renderer.render(scene, camera);
 }
 
-new ResizeObserver(resize).observe(canvas.parentElement);
+const resizer = new ResizeObserver(resize);
+resizer.observe(canvas.parentElement);
+resizer.observe(canvas); // the simulation panel below it grows and shrinks
+
+const simulation = createSimulation({ scene, form, render, query: () => query() });
 
 // -- numbers and messages ---------------------------------------------------
 function fmt(x, digits = 5) {
@@ -260,6 +265,7 @@ let inflight = false;
 let pending = null; // {templateOnly, fit}
 
 function request(templateOnly = false, fit = false) {
+  simulation.clear(); // a simulation shows the design it was asked for only
   pending = { templateOnly: templateOnly || pending?.templateOnly || false, fit: fit || pending?.fit || false };
   if (!inflight) run();
 }
@@ -297,6 +303,7 @@ function apply(state, job, q) {
   }
   showMessages(state.messages || []);
   document.body.classList.toggle('has-error', !state.ok);
+  simulation.setEnabled(state.ok && !pending);
   if (!state.ok) {
     setDownloads(q || '', false);
     return;

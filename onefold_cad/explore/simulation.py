@@ -1,0 +1,141 @@
+"""The page's Simulate button: a coarse simulation of the current design.
+
+:func:`simulation_state` runs :func:`onefold_cad.mechanics.simulate.simulate`
+on the coarse mesh without its convergence check (seconds, not minutes) and
+returns what the page draws: the standing form (or, without a standing
+equilibrium, the released form) and the designed form on the simulation's
+own mesh, both in its resting frame (z up, ground z = 0, design units), each
+vertex's colour on the deviation scale of
+:mod:`onefold_cad.export.colour_scale` (the colours of NAME-deviation.png
+and the simulation's GLB), the scale's legend, and the numbers. The page
+computes nothing.
+
+One simulation runs at a time (the machine's cores are the solver's); the
+server answers each request on its own thread, so the page's other requests
+are answered meanwhile. A design that cannot be simulated (the paper model,
+no thickness, no elastic data, ...) answers ``ok: false`` with the one-line
+message ``onefold simulate`` would print.
+"""
+
+from __future__ import annotations
+
+import base64
+import threading
+import time
+from typing import Any
+
+import numpy as np
+
+from onefold_cad.design import Design, build_design
+from onefold_cad.errors import OneFoldError
+from onefold_cad.export.colour_scale import (
+    DEVIATION_STOPS,
+    deviation_label,
+    deviation_range,
+    ramp,
+    to_uint8,
+)
+from onefold_cad.mechanics.results import Simulation
+
+__all__ = ["LEVEL", "simulation_numbers", "simulation_state"]
+
+#: The mesh level the page simulates on.
+LEVEL = "coarse"
+
+_ONE_AT_A_TIME = threading.Lock()
+
+
+def _b64(a: np.ndarray, dtype: str) -> str:
+    return base64.b64encode(np.ascontiguousarray(a, dtype=dtype).tobytes()).decode("ascii")
+
+
+def _line(text: object) -> str:
+    return " ".join(str(text).split())
+
+
+def simulation_numbers(sim: Simulation) -> dict[str, Any]:
+    """The numbers the page prints (design unit, MPa, shares 0..1); None where
+    the simulation has none (no standing equilibrium, reference 'designed')."""
+    s = sim.standing
+    return {
+        "stands": bool(s.stands),
+        "reason": s.reason,
+        "max_deviation": s.max_deviation,
+        "rms_deviation": s.rms_deviation,
+        "height": s.height,
+        "span": s.span,
+        "tipping_margin_deg": s.tipping_margin_deg,
+        "springback_max_deviation": None if sim.released is None else sim.released.max_deviation,
+        "plastic_area_share": None if sim.formed is None else sim.formed.plastic_area_share,
+        "max_stress_MPa": s.max_stress_MPa,
+        "yield_stress_MPa": sim.yield_stress_MPa,
+        "utilisation": s.utilisation,
+        "weight_N": sim.weight_N,
+        "nodes": sim.nodes,
+        "triangles": sim.triangles,
+    }
+
+
+def _mesh(sim: Simulation) -> dict[str, Any]:
+    """The forms and their colours for the page (float32, uint16/uint32, uint8)."""
+    if sim.standing_positions is not None:
+        kind, shown = "standing", sim.standing_positions
+    elif sim.released_positions is not None:
+        kind, shown = "released", sim.released_positions
+    else:
+        kind, shown = None, None
+    faces = np.asarray(sim.faces)
+    small = len(sim.designed_positions) < 2**16
+    out: dict[str, Any] = {
+        "form": kind,
+        "designed": _b64(sim.designed_positions, "<f4"),
+        "positions": None if shown is None else _b64(shown, "<f4"),
+        "indices": _b64(faces, "<u2" if small else "<u4"),
+        "index_type": "uint16" if small else "uint32",
+        "vertex_count": int(len(sim.designed_positions)),
+        "triangle_count": int(len(faces)),
+        "colours": None,
+    }
+    if kind == "standing" and sim.deviation is not None:
+        out["colours"] = _b64(to_uint8(ramp(sim.deviation, *deviation_range(sim.deviation))), "u1")
+    return out
+
+
+def _scale(sim: Simulation) -> dict[str, Any] | None:
+    if sim.standing_positions is None or sim.deviation is None:
+        return None
+    lo, hi = deviation_range(sim.deviation)
+    return {"label": deviation_label(sim.unit), "min": lo, "max": hi, "stops": DEVIATION_STOPS}
+
+
+def simulation_state(design: Design) -> dict[str, Any]:
+    """Simulate ``design`` coarsely for the page.
+
+    Returns:
+        A JSON-ready dict: ``ok``; without it ``error`` (one line); with it
+        ``units``, ``level``, ``mesh`` (``form`` 'standing', 'released' or
+        None, the ``designed`` and shown ``positions`` as base64 float32 on
+        one triangle list ``indices``, ``colours`` as base64 sRGB bytes per
+        vertex or None), ``scale`` (the deviation legend: ``label``, ``min``,
+        ``max`` in the design unit, ``stops``) or None, ``numbers``
+        (:func:`simulation_numbers`), ``warnings`` and ``server_ms``.
+    """
+    from onefold_cad.mechanics.simulate import simulate
+
+    t0 = time.perf_counter()
+    try:
+        folded = build_design(design)
+        with _ONE_AT_A_TIME:
+            sim = simulate(design, folded, level=LEVEL, convergence=False)
+    except OneFoldError as exc:
+        return {"ok": False, "error": f"cannot simulate this design: {_line(exc)}"}
+    return {
+        "ok": True,
+        "units": sim.unit,
+        "level": LEVEL,
+        "mesh": _mesh(sim),
+        "scale": _scale(sim),
+        "numbers": simulation_numbers(sim),
+        "warnings": [_line(w) for w in sim.warnings],
+        "server_ms": 1e3 * (time.perf_counter() - t0),
+    }

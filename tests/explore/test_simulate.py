@@ -1,0 +1,155 @@
+"""The Simulate button and /api/simulate: one coarse simulation, clicked in Chromium."""
+
+from __future__ import annotations
+
+import base64
+import json
+from urllib.parse import parse_qsl, urlencode, urlsplit
+
+import numpy as np
+import pytest
+
+from onefold_cad.explore.controls import PAGE_FLAGS
+from onefold_cad.export.colour_scale import DEVIATION_STOPS, deviation_range, ramp, to_uint8
+from tests.explore.conftest import TIMEOUT_MS, Page, get
+
+
+def _fmt(x: float, digits: int = 4) -> str:
+    """A number as the page prints it (JS ``String(Number(x.toPrecision(d)))``)."""
+    text = f"{float(f'{x:.{digits}g}'):.{digits + 2}g}"
+    return text
+
+
+def _decode(mesh: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def arr(key: str, dtype: str, width: int) -> np.ndarray:
+        return np.frombuffer(base64.b64decode(mesh[key]), dtype=dtype).reshape(-1, width)
+
+    kind = {"uint16": "<u2", "uint32": "<u4"}[mesh["index_type"]]
+    return (
+        arr("designed", "<f4", 3),
+        arr("positions", "<f4", 3),
+        arr("indices", kind, 3),
+        arr("colours", "u1", 3),
+    )
+
+
+def _simulate(server, query: str = "") -> tuple[int, dict]:
+    status, headers, body = get(server, f"/api/simulate?{query}")
+    assert headers["content-type"] == "application/json"
+    return status, json.loads(body)
+
+
+@pytest.mark.parametrize(
+    ("query", "error"),
+    [
+        ({"model": "paper"}, "cannot simulate this design: model: simulate needs the exact model"),
+        ({"thickness": "0"}, "cannot simulate this design: thickness: simulate needs a sheet"),
+        ({"alpha": "95"}, "--alpha: must be in (0, 90) deg, got 95"),
+    ],
+    ids=["paper", "no-thickness", "bad-value"],
+)
+def test_a_design_that_cannot_be_simulated_answers_one_line(server, query, error):
+    status, data = _simulate(server, urlencode(query))
+    assert status == 200 and data["ok"] is False
+    assert data["error"].startswith(error) and "\n" not in data["error"]
+
+
+def test_simulate_is_refused_like_every_route(server):
+    assert get(server, "/api/simulate", {"Host": "evil.example"})[0] == 403
+    assert get(server, "/api/simulate", {"Sec-Fetch-Site": "cross-site"})[0] == 403
+    assert get(server, "/api/simulate", method="POST")[0] == 405
+    assert get(server, "/api/simulate?nonsense=1")[0] == 400
+
+
+def test_an_unexpected_failure_is_an_error_line(server, monkeypatch, capsys):
+    import onefold_cad.explore.server as srv
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(srv, "simulation_state", broken)
+    status, data = _simulate(server)
+    assert status == 500 and data == {"ok": False, "error": "internal error (RuntimeError: boom)"}
+    assert "RuntimeError: boom" in capsys.readouterr().err
+
+
+def _check_answer(data: dict) -> None:
+    """The answer of the default design: the forms on one mesh, the colours the scale's."""
+    assert data["ok"] and data["level"] == "coarse" and data["units"] == "mm"
+    mesh, n = data["mesh"], data["numbers"]
+    designed, standing, faces, colours = _decode(mesh)
+    assert mesh["form"] == "standing" and n["stands"] is True
+    assert designed.shape == standing.shape == (mesh["vertex_count"], 3) == (n["nodes"], 3)
+    assert faces.shape == (mesh["triangle_count"], 3) and faces.max() < len(designed)
+    size = float(np.ptp(designed, axis=0).max())
+    assert abs(designed[:, 2].min()) <= 1e-6 * size and abs(standing[:, 2].min()) <= 1e-6 * size
+    assert float(standing[:, 2].max()) == pytest.approx(n["height"], rel=1e-6)
+    # the deviation: the largest node's distance; its colour the scale's top
+    dev = np.linalg.norm(standing - designed, axis=1)  # at least the surface distance ...
+    assert n["max_deviation"] <= dev.max() * (1 + 1e-6)
+    scale = data["scale"]
+    assert scale["label"] == "deviation from the design (mm)"
+    assert scale["min"] == 0.0 and scale["max"] == pytest.approx(n["max_deviation"])
+    assert tuple(scale["stops"]) == DEVIATION_STOPS
+    top = to_uint8(ramp(np.array([scale["max"]]), *deviation_range(np.array([scale["max"]]))))
+    assert (np.all(colours == top, axis=1)).sum() >= 1
+    for key in ("rms_deviation", "span", "springback_max_deviation", "plastic_area_share"):
+        assert n[key] is not None and n[key] > 0
+    assert n["max_stress_MPa"] > 0 and n["yield_stress_MPa"] == 215.0
+
+
+def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(browser, server):
+    """The round trip: click Simulate, the page asks /api/simulate with the state's
+    query, draws the coloured standing form over the design with its legend and
+    numbers; a control change clears it; a paper model answers one error line."""
+    context = browser.new_context(viewport={"width": 1400, "height": 860})
+    try:
+        tab = Page(context.new_page(), server.url)
+        page = tab.page
+        assert page.locator("#simulate").is_enabled()
+        assert page.locator("#sim-legend").is_hidden()
+        before = tab.canvas()
+        with page.expect_response("**/api/simulate?**", timeout=4 * TIMEOUT_MS) as answer:
+            page.locator("#simulate").click()
+        page.locator("body[data-simulations='1']").wait_for(state="attached")
+        data = answer.value.json()
+        _check_answer(data)
+        query = dict(parse_qsl(urlsplit(answer.value.url).query, keep_blank_values=True))
+        assert query["template"] == "patkau-one-fold" and set(query) - {"template"} <= set(
+            PAGE_FLAGS
+        )
+        n = data["numbers"]
+        assert tab.text("#sim-deviation") == (
+            f"max {_fmt(n['max_deviation'])} mm, rms {_fmt(n['rms_deviation'])} mm"
+        )
+        assert tab.text("#sim-stands").startswith("yes (tipping margin ")
+        assert tab.text("#sim-size") == f"{_fmt(n['height'])} mm · {_fmt(n['span'])} mm"
+        assert _fmt(n["max_stress_MPa"]) in tab.text("#sim-stress")
+        assert (
+            tab.text("#sim-springback") == f"max deviation {_fmt(n['springback_max_deviation'])} mm"
+        )
+        assert page.locator("#sim-legend").is_visible()
+        assert "deviation from the design (mm)" in tab.text("#sim-legend")
+        assert tab.text("#sim-max") == _fmt(data["scale"]["max"])
+        assert tab.text("#sim-status").startswith("simulated in ")
+        after = tab.canvas()
+        assert np.any(np.abs(after - before) > 8, axis=-1).mean() > 0.01
+        r, g, b = after[..., 0], after[..., 1], after[..., 2]
+        assert ((b - g > 30) & (r - g > 15)).sum() > 200  # viridis's purples: the scale's low end
+
+        tab.change("#alpha-num", "31")  # the design changed: the simulation goes
+        assert page.locator("#sim-legend").is_hidden() and tab.text("#sim-deviation") == "–"
+        assert tab.text("#sim-status").startswith("steel under its own weight")
+
+        n_updates = tab.updates()
+        page.locator("#model").select_option("paper")
+        tab.wait_for_update(n_updates + 1)
+        page.locator("#simulate").click()
+        page.locator("body[data-simulations='2']").wait_for(state="attached")
+        status = tab.text("#sim-status")
+        assert status.startswith("cannot simulate this design: model: ") and "\n" not in status
+        assert "error" in (page.locator("#sim-status").get_attribute("class") or "")
+        assert page.locator("#sim-legend").is_hidden()
+        assert tab.errors == [] and tab.foreign == []
+    finally:
+        context.close()
