@@ -114,17 +114,37 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
 
 
 def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Path]:
-    """Write the simulation's files into ``outdir``, all or nothing."""
+    """Write the simulation's files into ``outdir``, all or nothing.
+
+    NAME.json, NAME-deviation.png and NAME-stress.png always; NAME-standing.glb
+    when the sheet found a standing equilibrium, NAME-released.glb when there
+    is a released form (reference 'flat'). A form that does not exist is not
+    written, and a warning says which file is missing and why.
+    """
     from onefold_cad.export.atomic import Staging, check_targets, recover
+    from onefold_cad.export.simulation_glb import write_simulation_glb
+    from onefold_cad.export.simulation_pictures import render_deviation, render_stress
     from onefold_cad.fabrication.report import report_json
 
-    names = [f"{name}.json"]
+    forms = []
+    if sim.standing_positions is not None:
+        forms.append("standing")
+    else:
+        warn(f"no {name}-standing.glb: no standing equilibrium ({sim.standing.reason})")
+    if sim.released_positions is not None:
+        forms.append("released")
+    names = [f"{name}.json", f"{name}-deviation.png", f"{name}-stress.png"]
+    names += [f"{name}-{form}.glb" for form in forms]
     outdir.mkdir(parents=True, exist_ok=True)
     recover(outdir)
     check_targets(outdir, names)
     with Staging(outdir) as stage:
-        paths = [stage.path / names[0]]
+        paths = [stage.path / n for n in names]
         paths[0].write_text(report_json(report))
+        render_deviation(sim, paths[1], title=name)
+        render_stress(sim, paths[2], title=name)
+        for form, path in zip(forms, paths[3:], strict=True):
+            write_simulation_glb(sim, path, form)
         return stage.commit(paths)
 
 

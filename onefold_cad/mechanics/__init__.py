@@ -17,13 +17,11 @@ from onefold_cad.mechanics.equilibrium import (
     Equilibrium,
     Ground,
     PathStalled,
-    PlasticResult,
-    form_sheet,
     solve,
     solve_directors,
     solve_path,
-    solve_plastic,
 )
+from onefold_cad.mechanics.forming import PlasticResult, form_sheet, solve_plastic
 from onefold_cad.mechanics.material import ShellMaterial
 from onefold_cad.mechanics.mesh import BOUNDARY, CREASE, INTERIOR, SheetMesh, build_mesh, mesh_sheet
 from onefold_cad.mechanics.newton import NewtonResult, minimize

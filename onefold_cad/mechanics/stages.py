@@ -28,12 +28,8 @@ from onefold_cad.geometry.topple import roll
 from onefold_cad.mechanics import plastic
 from onefold_cad.mechanics.deviation import best_fit
 from onefold_cad.mechanics.energy import second_fundamental_form
-from onefold_cad.mechanics.equilibrium import (
-    Equilibrium,
-    Ground,
-    form_sheet,
-    solve_path,
-)
+from onefold_cad.mechanics.equilibrium import Equilibrium, Ground, solve_path
+from onefold_cad.mechanics.forming import form_sheet
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.shell import Shell, moved, rigid_dofs, unpack

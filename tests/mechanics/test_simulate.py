@@ -132,11 +132,11 @@ def test_what_cannot_be_simulated_names_the_value(template, changes, name):
 
 
 def test_a_newton_that_cannot_converge_says_so(patkau, monkeypatch):
-    """Two Newton steps allowed per solve: the release cannot converge, and the
+    """One Newton step allowed per solve: the release cannot converge, and the
     simulation raises (naming the residual) instead of reporting a form."""
     design, folded = patkau
     real = equilibrium.minimize
-    monkeypatch.setattr(equilibrium, "minimize", lambda *a, **k: real(*a, **{**k, "max_iter": 2}))
+    monkeypatch.setattr(equilibrium, "minimize", lambda *a, **k: real(*a, **{**k, "max_iter": 1}))
     with pytest.raises(ConvergenceError) as info:
         run(design, folded, level="coarse")
     assert math.isfinite(info.value.residual) and info.value.residual > 0

@@ -1,0 +1,101 @@
+"""``onefold simulate`` as a user runs it: the files of ``-o``, the text and the
+JSON agreeing, bad input (exit 2, one line naming the parameter, no file), a
+Newton that cannot converge reported with its residual and no file."""
+
+from __future__ import annotations
+
+import json
+import struct
+
+import numpy as np
+import pytest
+import trimesh
+
+from onefold_cad.cli.main import main
+from onefold_cad.mechanics import equilibrium
+from tests.cli.test_main import no_traceback, run
+
+NAME = "patkau-one-fold"
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    out = tmp_path_factory.mktemp("sim") / "out"
+    proc = run("simulate", NAME, "--mesh", "coarse", "-o", str(out), "--json")
+    assert proc.returncode == 0, proc.stderr
+    return out, proc
+
+
+def test_o_writes_the_report_the_forms_and_the_pictures(written):
+    out, proc = written
+    names = {f"{NAME}{s}" for s in (".json", "-deviation.png", "-stress.png")}
+    names |= {f"{NAME}-standing.glb", f"{NAME}-released.glb"}
+    assert {p.name for p in out.iterdir()} == names
+    report = json.loads((out / f"{NAME}.json").read_text())
+    assert report == json.loads(proc.stdout), "the file is what --json prints"
+    sim = report["simulation"]
+    for png in ("-deviation.png", "-stress.png"):
+        head = (out / f"{NAME}{png}").read_bytes()[:24]
+        assert head[:8] == b"\x89PNG\r\n\x1a\n"
+        assert struct.unpack(">II", head[16:24]) == (900, 700)
+    for form in ("standing", "released"):
+        scene = trimesh.load(out / f"{NAME}-{form}.glb")
+        (mesh,) = scene.geometry.values()
+        assert len(mesh.faces) == sim["mesh"]["triangles"]
+        assert len(mesh.vertices) == sim["mesh"]["nodes"]
+        # glTF is metres, y up, on the ground: the height is the report's (mm)
+        ys = np.asarray(mesh.vertices)[:, 1]
+        assert ys.min() == pytest.approx(0.0, abs=1e-6)
+        assert 1000 * ys.max() == pytest.approx(sim[form]["height"], rel=1e-6)
+
+
+def test_progress_goes_to_stderr_and_the_stages_to_the_report(written):
+    _, proc = written
+    assert "released: Newton step" in proc.stderr and "standing: Newton step" in proc.stderr
+    sim = json.loads(proc.stdout)["simulation"]
+    assert set(sim) >= {"weight_N", "mesh", "formed", "released", "standing"}
+    assert sim["standing"]["reactions_total_N"] == pytest.approx(sim["weight_N"], rel=1e-6)
+
+
+BAD = [
+    (["--youngs-modulus", "-193"], "youngs-modulus", "> 0"),
+    (["--poisson", "0.5"], "poisson", "< 0.5"),
+    (["--poisson", "-1.2"], "poisson", "> -1"),
+    (["--thickness", "0"], "thickness", "thickness > 0"),
+    (["--yield-stress", "0"], "yield-stress", "> 0"),
+    (["--supports", "floor"], "supports", "anchored, frictionless"),
+    (["--reference", "built"], "reference", "flat, designed"),
+    (["--mesh", "huge"], "mesh", "coarse, normal, fine"),
+]
+TEMPLATES = [
+    ("star-polygon", "thickness", "thickness > 0"),  # a paper design: no solid to bend
+    ("paper-square", "youngs_modulus", "--youngs-modulus"),
+    ("table1-row1", "model", "--model exact"),
+]
+CASES = [([NAME, *a], p, w) for a, p, w in BAD] + [([t], p, w) for t, p, w in TEMPLATES]
+
+
+@pytest.mark.parametrize(("args", "param", "words"), CASES, ids=[" ".join(c[0]) for c in CASES])
+def test_bad_input_exits_2_with_one_line_and_no_file(tmp_path, args, param, words):
+    # the case's flags come last: its own --mesh wins over the coarse default
+    out = str(tmp_path / "out")
+    proc = run("simulate", args[0], "--mesh", "coarse", "-o", out, *args[1:], cwd=tmp_path)
+    assert proc.returncode == 2, (proc.stdout, proc.stderr)
+    no_traceback(proc)
+    lines = [ln for ln in proc.stderr.splitlines() if not ln.startswith("onefold: warning: ")]
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith("onefold: error: ")
+    assert param in lines[0] and words in lines[0], lines[0]
+    assert proc.stdout == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_newton_that_cannot_converge_is_an_error_with_its_residual(tmp_path, monkeypatch, capfd):
+    real = equilibrium.minimize
+    monkeypatch.setattr(equilibrium, "minimize", lambda *a, **k: real(*a, **{**k, "max_iter": 1}))
+    rc = main(["simulate", NAME, "--mesh", "coarse", "-q", "-o", str(tmp_path / "out")])
+    out, err = capfd.readouterr()
+    assert rc == 2 and out == ""
+    lines = [ln for ln in err.splitlines() if not ln.startswith("onefold: warning: ")]
+    assert len(lines) == 1 and "residual" in lines[0], err
+    assert list(tmp_path.iterdir()) == []
