@@ -7,7 +7,7 @@ polygon as outline, the relief hole as a polygon hole, the crease (the x axis
 from the hole to the boundary, both halves) as constrained segments, so no
 triangle crosses the crease; the two sides share the crease nodes (a welded
 crease). Every node is folded with :meth:`FoldedSheet.map_points` and stood
-with the zero-thickness shell's resting placement (``folded.resting``: z up,
+with the zero-thickness shell's resting placement (``rest_once(folded)``: z up,
 ground z = 0), in metres.
 
 Kratos solves it with ``ShellThinElementCorotational3D3N`` (nonlinear:
@@ -195,7 +195,7 @@ class StandingMesh:
         nodes: ``(n, 3)`` the nodes of the designed form standing (m; z up,
             ground z = 0).
         triangles: ``(m, 3)`` node indices.
-        contacts: ``(3,)`` the nodes nearest to ``folded.resting.contacts``.
+        contacts: ``(3,)`` the nodes nearest to ``rest_once(folded).contacts``.
         contact_gap: ``(3,)`` their distances from those contacts (m).
         corners: ``(k,)`` the nodes of the sheet's vertices, in order.
         lifted_corner: the index into ``corners`` of the vertex that is no contact.
@@ -225,8 +225,9 @@ class StandingMesh:
 def standing_mesh(template: str, h: float, *, hole_segments: int = 16) -> StandingMesh:
     """Mesh the template's flat sheet at edge length ``h`` (m) and stand its
     designed form on the ground (:func:`mesh_sheet`, ``folded.map_points``,
-    ``folded.resting.apply``). The design must be in millimetres."""
-    from onefold_cad.design import build_design, relief_hole_diameter
+    ``rest_once(folded).apply``). The design must be in millimetres."""
+    from onefold_cad.design import build_design, rest_once
+    from onefold_cad.fabrication.relief_hole import relief_hole_diameter
     from onefold_cad.templates import find_template, load_template
 
     timings: dict[str, float] = {}
@@ -234,7 +235,7 @@ def standing_mesh(template: str, h: float, *, hole_segments: int = 16) -> Standi
     if design.units.value != "mm":
         raise ValueError(f"{template}: the check expects a millimetre design")
     folded = build_design(design)
-    rest = folded.resting  # the package's own work: not timed as the mesh's
+    rest = rest_once(folded)  # the package's own work: not timed as the mesh's
     hole = relief_hole_diameter(design, folded)
     polygon = np.asarray(design.sheet.vertices, dtype=float)
     with _timed(timings, "mesh"), _timed(timings, "triangle"):
