@@ -62,3 +62,23 @@ def test_tests_import_the_public_name_where_there_is_one():
         if name.lstrip("_") in public.get(module, set())
     ]
     assert found == []
+
+
+def test_no_file_holds_a_merge_conflict_marker():
+    """A merge left half-resolved shows in no source, doc or template."""
+    root = ROOT
+    marker = ("<" * 7 + " ", "=" * 7 + "\n", ">" * 7 + " ")
+    found = []
+    for sub in ("onefold_cad", "tests", "docs", "benchmarks", "scripts", "templates"):
+        for path in (root / sub).rglob("*"):
+            if path.suffix not in {".py", ".md", ".toml", ".js", ".html", ".css", ".txt"}:
+                continue
+            for i, line in enumerate(path.read_text(encoding="utf-8").splitlines(True), 1):
+                if line.startswith(marker):
+                    found.append(f"{path.relative_to(root)}:{i}")
+    for name in ("README.md", "Makefile", "pyproject.toml"):
+        text = (root / name).read_text(encoding="utf-8")
+        found += [
+            f"{name}:{i}" for i, ln in enumerate(text.splitlines(True), 1) if ln.startswith(marker)
+        ]
+    assert found == []

@@ -16,6 +16,7 @@ Progress goes to ``progress(stage, iteration, residual_N)``.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import replace
@@ -36,7 +37,10 @@ from onefold_cad.mechanics.shell import director_angles, pack, unpack
 from onefold_cad.mechanics.stages import Placed, form, place, release, stand
 from onefold_cad.mechanics.stress import face_stress
 
-__all__ = ["REFERENCES", "SUPPORTS", "simulate"]
+__all__ = ["CONVERGED", "REFERENCES", "SUPPORTS", "simulate"]
+
+#: The convergence check's bound: a larger relative change is warned about.
+CONVERGED = 0.02
 
 SUPPORTS = tuple(c.value for c in Supports)
 REFERENCES = tuple(c.value for c in Reference)
@@ -258,8 +262,9 @@ def run(
         )
     if standing.reloaded_area_share > 0:
         warnings.append(
-            f"standing, {100 * standing.reloaded_area_share:.3g} % of the sheet's area yields "
-            "under its weight (taken elastically)"
+            f"standing, {100 * standing.reloaded_area_share:.3g} % of the sheet's area is bent "
+            "past its elastic range (springback and weight together; taken elastically, so the "
+            "form there is an estimate)"
         )
     if reverse:
         warnings.append(
@@ -278,9 +283,12 @@ def run(
             "the sheet's size): a form far from the design"
         )
     elif standing.utilisation is not None and standing.utilisation >= 1.0:
+        at = standing.max_stress_at
+        where = "" if at is None else f" {math.hypot(at[0], at[1]):.4g} {design.units.value} from H"
         warnings.append(
-            f"it yields under its own weight: the largest stress {standing.max_stress_MPa:.4g} MPa "
-            f"reaches the yield stress {mat.yield_stress / 1e6:.4g} MPa"
+            f"standing, the largest stress {standing.max_stress_MPa:.4g} MPa{where} reaches the "
+            f"yield stress {mat.yield_stress / 1e6:.4g} MPa (residual bending and membrane "
+            "stress, both taken elastic: past yield it is an estimate)"
         )
     return Simulation(
         unit=design.units.value,
@@ -362,4 +370,10 @@ def simulate(
     }
     times = dict(base.timings_s)
     times["convergence_check"] = float(sum(check.timings_s.values()))
-    return replace(base, convergence=data, timings_s=times)
+    warnings = list(base.warnings)
+    if change is not None and change > CONVERGED:
+        warnings.append(
+            f"not mesh-converged: {name} changes by {100 * change:.3g} % on a mesh of "
+            f"{check.nodes} nodes (more than {100 * CONVERGED:g} %); a finer --mesh is closer"
+        )
+    return replace(base, convergence=data, timings_s=times, warnings=type(base.warnings)(warnings))

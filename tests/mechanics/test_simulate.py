@@ -114,6 +114,8 @@ def test_the_convergence_check_reports_the_change(patkau):
     assert conv["finer_mesh"]["nodes"] > 1.5 * sim.nodes
     change = abs(conv["value"] - conv["finer_value"]) / conv["finer_value"]
     assert conv["max_deviation_change"] == pytest.approx(change)
+    warned = any(w.startswith("not mesh-converged") for w in sim.warnings)
+    assert warned == (change > 0.02)
 
 
 @pytest.mark.parametrize(
