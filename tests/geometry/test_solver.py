@@ -479,6 +479,7 @@ def test_fast_frame_paths_agree_with_frames(model: str) -> None:
 @example(alpha=0.003303354767010754, beta=0.00014072288249136213, place=0.3, n=3)  # fuzz 27
 @example(alpha=0.552622617407186, beta=0.0011683992612339642, place=-0.2, n=4)  # fuzz 44
 @example(alpha=89.99, beta=89.99, place=1 - 1e-9, n=2)
+@example(alpha=1.0, beta=9.067655089676125e-73, place=0.0, n=2)  # S - pi ~ 1e-148
 def test_s_max_is_the_maximum_of_a_dense_independent_evaluation(
     alpha: float, beta: float, place: float, n: int
 ) -> None:
@@ -490,14 +491,17 @@ def test_s_max_is_the_maximum_of_a_dense_independent_evaluation(
     except NoSolutionError:
         assume(False)
         raise
-    pts = mp_points(frame, 40)
     ours = sol.s_max_minus_pi
-    # S at the reported height is the reported value (40-digit fan)
-    at = float(mp_fan_excess(pts, sol.s_max_height, 40))
+    # S - pi is a sum of angles of order pi less pi: resolving it to 1e-9 takes
+    # about 10 digits more than its own size (S - pi ~ 1e-148 at beta ~ 1e-72)
+    dps = 40 + max(0, int(-math.log10(ours))) if ours > 0.0 else 40
+    pts = mp_points(frame, dps)
+    # S at the reported height is the reported value (the fan in mpmath)
+    at = float(mp_fan_excess(pts, sol.s_max_height, dps))
     assert abs(ours - at) <= 1e-9 * abs(at)
     # and no height in (0, h*] does better: 4 heights per octave over 100 octaves
     h = sol.apex_height
-    dense = max(float(mp_fan_excess(pts, h * 2.0 ** (-k / 4), 30)) for k in range(401))
+    dense = max(float(mp_fan_excess(pts, h * 2.0 ** (-k / 4), dps - 10)) for k in range(401))
     assert dense <= ours * (1 + 1e-9)
     assert ours > 0.0
 
