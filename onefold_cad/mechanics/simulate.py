@@ -37,7 +37,7 @@ from onefold_cad.mechanics.shell import director_angles, pack, unpack
 from onefold_cad.mechanics.stages import Placed, form, place, release, stand
 from onefold_cad.mechanics.stress import face_stress
 
-__all__ = ["CONVERGED", "REFERENCES", "SUPPORTS", "simulate"]
+__all__ = ["CONVERGED", "REFERENCES", "SUPPORTS", "formed_only", "run", "simulate"]
 
 #: The convergence check's bound: a larger relative change is warned about.
 CONVERGED = 0.02
@@ -65,6 +65,21 @@ def _formed_result(model: SheetModel, formed) -> FormedResult:
         plastic_area_share=float(area[yielded].sum() / area.sum()),
         plastic_radius_max=float(radius[yielded].max() / model.scale) if yielded.any() else 0.0,
     )
+
+
+def formed_only(
+    design: Design,
+    folded: FoldedSheet,
+    *,
+    level: str = "normal",
+    h_max: float | None = None,
+    yield_stress_MPa: float | None = None,
+) -> FormedResult:
+    """The ``formed`` stage alone (the flat sheet bent into the design: where it
+    yields and the work of bending), on the mesh :func:`run` would use; the
+    same numbers as ``run(...).formed`` without the stages after it."""
+    model = sheet_model(design, folded, h_max=h_max, level=level, yield_stress_MPa=yield_stress_MPa)
+    return _formed_result(model, form(model))
 
 
 def _share(model: SheetModel, faces: np.ndarray) -> float:

@@ -24,7 +24,7 @@ from onefold_cad.design import build_design
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.mechanics import equilibrium
-from onefold_cad.mechanics.simulate import run, simulate
+from onefold_cad.mechanics.simulate import formed_only, run, simulate
 from onefold_cad.templates import load_template
 
 #: Kratos 10.4.4, ShellThinElementCorotational3D3N, Richardson-extrapolated from
@@ -60,31 +60,42 @@ def _cone_integrals(design, folded, k_scale: float = 1.0):
 def test_formed_energy_of_a_sheet_that_never_yields_is_the_cones(patkau):
     design, folded = patkau
     m = design.material
-    sim = run(design, folded, h_max=0.14, yield_stress_MPa=m.youngs_modulus * 1e3)
+    formed = formed_only(design, folded, h_max=0.14, yield_stress_MPa=m.youngs_modulus * 1e3)
     integral, _, _ = _cone_integrals(design, folded)
     e = m.youngs_modulus * 1e9
     t = m.thickness * 1e-3
     d = e * t**3 / (12 * (1 - m.poisson**2))
     expected = d / 2 * integral  # J: (N m) x dimensionless
-    assert sim.formed.plastic_area_share == 0.0
-    assert abs(sim.formed.bending_energy_J / expected - 1) < 0.01
+    assert formed.plastic_area_share == 0.0
+    assert abs(formed.bending_energy_J / expected - 1) < 0.01
 
 
 def test_plastic_share_is_the_area_inside_the_yield_radius(patkau):
     design, folded = patkau
     m = design.material
-    sim = run(design, folded, h_max=0.14)
+    formed = formed_only(design, folded, h_max=0.14)
     e_plane = m.youngs_modulus * 1e9 / (1 - m.poisson**2)
     scale = e_plane * m.thickness * 1e-3 / (2 * m.yield_stress * 1e6)  # r_p = |k| * scale (m)
     _, area, r_h = _cone_integrals(design, folded, k_scale=scale * 1e3)  # in mm
     sheet_area = design.sheet.area - math.pi * r_h**2
-    assert abs(sim.formed.plastic_area_share / (area / sheet_area) - 1) < 0.01
-    assert 1.4e3 < sim.formed.plastic_radius_max < 1.7e3  # r_p = 0.888 x 1.75 m
+    assert abs(formed.plastic_area_share / (area / sheet_area) - 1) < 0.01
+    assert 1.4e3 < formed.plastic_radius_max < 1.7e3  # r_p = 0.888 x 1.75 m
 
 
-def test_reactions_carry_the_weight(patkau):
+@pytest.fixture(scope="module")
+def coarse(patkau):
     design, folded = patkau
-    sim = run(design, folded, level="coarse")
+    return run(design, folded, level="coarse")
+
+
+def test_the_formed_stage_alone_is_the_simulation_s(patkau, coarse):
+    design, folded = patkau
+    assert formed_only(design, folded, level="coarse") == coarse.formed
+
+
+def test_reactions_carry_the_weight(patkau, coarse):
+    design, folded = patkau
+    sim = coarse
     assert sim.standing.stands
     assert abs(sim.standing.reactions_total_N / sim.weight_N - 1) < 1e-6
     # the weight is the density's: rho g t A, A the flat sheet less its hole
