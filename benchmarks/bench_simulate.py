@@ -27,6 +27,12 @@ Run from the repository root::
     .venv/bin/python benchmarks/bench_simulate.py [--ours-h 0.2 0.14 0.1 0.07]
         [--kratos-python /work/kratos-venv/bin/python] [--kratos-h 0.05 0.035 0.025]
         [--repeat 1] [--json] [--write-docs]
+    .venv/bin/python benchmarks/bench_simulate.py --commands [--repeat 3] [--write-docs]
+
+``--commands`` times the whole ``onefold simulate`` processes instead (the
+normal mesh with its convergence check, and the coarse preview): CPU, wall
+and peak memory against the issue's bounds (60 s, 5 s, 2 GB), block
+``simulate-commands``.
 """
 
 from __future__ import annotations
@@ -44,6 +50,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from docs_block import ROOT, machine_line, write_block  # noqa: E402
+from interleave import run_process  # noqa: E402
 
 from onefold_cad.design import build_design  # noqa: E402
 from onefold_cad.mechanics.simulate import run  # noqa: E402
@@ -196,6 +203,44 @@ def table(results: dict[str, list[Point]]) -> tuple[str, dict[str, object]]:
     return "\n".join(lines), summary
 
 
+#: The commands the issue times, with its bounds: (label, argv tail, CPU s bound).
+COMMANDS = (
+    ("normal, convergence check", ["--json"], 60.0),
+    ("coarse preview", ["--mesh", "coarse", "--json"], 5.0),
+)
+MEMORY_BOUND = 2 * 1024**3
+
+
+def commands(template: str, repeat: int) -> str:
+    """``onefold simulate TEMPLATE ...`` as whole processes (imports included):
+    median wall and CPU (user + system) and the largest peak memory, against
+    the issue's bounds (printed as PASS or FAIL, never asserted)."""
+    exe = str(Path(sys.executable).parent / "onefold")
+    rows = [
+        "| command | CPU (s) | wall (s) | peak memory (MB) | bound |",
+        "|---|---|---|---|---|",
+    ]
+    for label, tail, bound in COMMANDS:
+        argv = [exe, "simulate", template, *tail, "-q"]
+        runs = [run_process(argv) for _ in range(repeat)]
+        if any(r.returncode for r in runs):
+            raise SystemExit(f"{' '.join(argv)} failed")
+        cpu = statistics.median(r.cpu for r in runs)
+        wall = statistics.median(r.wall for r in runs)
+        peak = max(r.peak_rss for r in runs)
+        ok = cpu < bound and peak < MEMORY_BOUND
+        rows.append(
+            f"| `onefold simulate {template} {' '.join(tail)}` ({label}) | {cpu:.1f} | "
+            f"{wall:.1f} | {peak / 2**20:.0f} | CPU < {bound:g} s, memory < 2 GB: "
+            f"{'PASS' if ok else 'FAIL'} |"
+        )
+        print(rows[-1], file=sys.stderr, flush=True)
+    load = os.getloadavg()[0]
+    return "\n".join(rows) + (
+        f"\n\nMedians of {repeat} runs; load average {load:.1f} at the end. " + machine_line()
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--template", default="patkau-one-fold")
@@ -205,7 +250,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--write-docs", action="store_true")
+    ap.add_argument(
+        "--commands",
+        action="store_true",
+        help="time the whole `onefold simulate` commands instead (normal and coarse)",
+    )
     args = ap.parse_args(argv)
+    if args.commands:
+        text = commands(args.template, args.repeat)
+        print(text)
+        if args.write_docs:
+            command = "benchmarks/bench_simulate.py " + " ".join(argv or sys.argv[1:])
+            write_block("simulate-commands", text, command.strip(), ROOT / "docs" / "mechanics.md")
+        return 0
     if len(args.ours_h) < 3 or (args.kratos_python and len(args.kratos_h) < 3):
         ap.error("Richardson needs at least three meshes per program")
     results = {"ours": ours(args.template, args.ours_h, args.repeat)}

@@ -278,9 +278,9 @@ def solve_path(
     The step in ``s`` halves when a solve fails, or when its equilibrium lies
     more than ``max_move`` (m) from the last one at some node (Newton jumped to
     another branch: the path is followed, so a limit point stalls it instead of
-    snapping through), and grows after quick ones; the final solve at ``s = 1``
-    uses ``options`` as given (``solve``'s), the steps before it at most
-    ``step_iter`` Newton iterations; at most ``max_solves`` solves in all.
+    snapping through), and grows after quick ones; every solve (``solve``'s
+    ``options``) gets at most ``step_iter`` Newton iterations (a step that
+    needs more is halved); at most ``max_solves`` solves in all.
 
     Raises:
         PathStalled: the step fell below ``min_step``, or ``max_solves`` solves
@@ -293,8 +293,9 @@ def solve_path(
     for _ in range(max_solves):
         target = min(1.0, s + ds)
         opts = dict(options)
-        if target < 1.0:
-            opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
+        # every solve, the last one too, gets at most step_iter iterations: a step
+        # Newton cannot finish quickly is halved, never ground through
+        opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
         try:
             eq = solve(shell_at(target), q, callback=callback, **opts)  # type: ignore[arg-type]
             n = shell_at(target).mesh.n_nodes

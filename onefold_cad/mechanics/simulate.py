@@ -23,7 +23,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from onefold_cad.choices import Reference, Supports
+from onefold_cad.choices import MeshLevel, Reference, Supports
 from onefold_cad.design import Design
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.hull import convex_hull_2d
@@ -287,7 +287,10 @@ def run(
             "section's reverse yield (kept elastic: the springback there is an estimate)"
         )
     if not standing.stands:
-        warnings.append(f"it does not stand: {standing.reason}")
+        hint = ""
+        if standing.max_deviation is None and MeshLevel.parse(level) is MeshLevel.COARSE:
+            hint = " (found on the coarse preview mesh: --mesh normal is the run to trust)"
+        warnings.append(f"it does not stand: {standing.reason}{hint}")
     elif (
         standing.max_displacement is not None
         and standing.max_displacement > 0.05 * design.sheet.size
