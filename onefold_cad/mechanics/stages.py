@@ -37,7 +37,7 @@ from onefold_cad.mechanics.shell import Shell, moved, rigid_dofs, unpack
 __all__ = ["Formed", "Placed", "Stage", "form", "place", "release", "stand"]
 
 #: Newton's tolerance: the residual force relative to the sheet's weight.
-RTOL = 1e-9
+RTOL = 1e-7
 #: The standing's load steps: at most this share of the sheet's size of
 #: movement per step (so the load path is followed and a limit point stalls
 #: it), no step smaller than this share of the weight, and at most this many
