@@ -279,6 +279,7 @@ def rest_form(
     if outside > tol:
         com = _surface_centre(folded, material)
     rolled: list[Array] = []
+    ahead, ahead_g = [], None
     rocks = settled = False
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
@@ -297,7 +298,10 @@ def rest_form(
         found = features(form, samples, on)
         for _ in range(4):
             g, plane, rocks = settle(form, found, com, g)
-            lows = exact_lows(form, samples, g, np.array([plane]))[0]
+            # and the bounds' five directions (the rest mostly ends here): one search
+            dirs = np.vstack([g, _bound_directions(_rotation_to_up(g))])
+            lows, *ahead = exact_lows(form, samples, dirs, np.array([plane] + [-np.inf] * 5))
+            ahead_g = g
             level = float(lows[0][2] @ g)
             # the exact plane cuts the body: on its way there (rocking along
             # two curved edges, say) the body met another point first, the
@@ -327,7 +331,7 @@ def rest_form(
     # tangencies, whose places along their curves are known to about 1e-8 of
     # the size (ground.rock settles for 1e-6 of it)
     margin, edge = _tipping(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
-    bounds = _bounds(form, samples, rot, shift, lows[0][2])
+    bounds = _bounds(form, samples, rot, shift, lows[0][2], ahead if ahead_g is g else None)
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
     tilt = math.degrees(math.acos(float(np.clip(g[2], -1.0, 1.0))))
@@ -419,13 +423,25 @@ def _tipping(polygon: Array, com: Array, tol: float) -> tuple[float, tuple[int, 
     return math.degrees(math.atan2(inside, z)), (i, (i + 1) % m)
 
 
-def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, lowest: Array) -> Array:
+def _bound_directions(rot: Array) -> Array:
+    """The directions ``(5, 3)`` of :func:`_bounds`' searches (fold frame)."""
+    return np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
+
+
+def _bounds(
+    form: Body,
+    samples: Samples,
+    rot: Array,
+    translation: Array,
+    lowest: Array,
+    lows: list[list[tuple[int, float, Array]]] | None = None,
+) -> Array:
     """The placed body's exact lowest and highest x, y, z ``(2, 3)``: the
     lowest z is that of ``lowest`` (its lowest point along the ground's
     normal, the resting frame's z axis), the five other searches run
-    together."""
-    dirs = np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
-    lows = exact_lows(form, samples, dirs)
+    together (``lows``: their results, found with the ground's)."""
+    if lows is None:
+        lows = exact_lows(form, samples, _bound_directions(rot))
     out = np.zeros((2, 3))
     for axis in range(3):
         d = rot[axis]  # the resting frame's axis in the fold frame
