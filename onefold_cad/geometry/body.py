@@ -47,7 +47,13 @@ from onefold_cad.choices import Body as BodyKind
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body_families import Sectors, Walls
-from onefold_cad.geometry.body_pieces import member_points, mitre_blocks, paper_pieces
+from onefold_cad.geometry.body_pieces import (
+    MitreFrame,
+    member_points,
+    mitre_blocks,
+    mitre_frames,
+    paper_pieces,
+)
 from onefold_cad.geometry.body_samples import Sampled
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
@@ -181,7 +187,7 @@ class Body(Sampled):
         if solid:
             walls = Walls(self.hole, self.s_range, self._tol)
             verts, pieces = mitre_blocks(
-                self.crease_sides, self.hole, self.s_range, self._tol, walls
+                self.mitre_frames, self.hole, self.s_range, self._tol, walls
             )
             fixed += list(verts)
             self.pieces += pieces
@@ -192,6 +198,11 @@ class Body(Sampled):
         """The exact model's maps of the +y and the -y side (their crease
         frames, for the mitre blocks and their mass)."""
         return tuple(CreaseFrames(SideMap(self.folded, lower=lower)) for lower in (False, True))  # type: ignore[return-value]
+
+    @cached_property
+    def mitre_frames(self) -> list[MitreFrame]:
+        """The solid's four mitre blocks' places (:func:`~.body_pieces.mitre_frames`)."""
+        return mitre_frames(self.crease_sides, self.s_range)
 
     @cached_property
     def vertex_phis(self) -> tuple[Array, Array]:
