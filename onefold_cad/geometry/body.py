@@ -163,7 +163,7 @@ class Body(Sampled):
             ang = np.linspace(ta, tb, max(2, math.ceil(abs(tb - ta) / _MAX_ANGLE_STEP) + 1))
             psi = np.where(a[1] + b[1] < 0.0, -ang, ang)
             ray = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
-            along = np.clip((ray - a) @ (b - a) / length**2, 0.0, 1.0)
+            along = np.minimum(np.maximum((ray - a) @ (b - a) / length**2, 0.0), 1.0)
             s_all = _spread(np.concatenate([np.linspace(0.0, 1.0, n), along]))
             q = a + s_all[:, None] * (b - a)
             flat_params.append((a, b))
@@ -178,7 +178,9 @@ class Body(Sampled):
             lower = bool(a[1] + b[1] < 0.0)
             for i in (0, -1):
                 theta[i], phi[i] = self._vertex_ray(lower, float(theta[i]))
-            np.clip(phi[1:-1], min(phi[0], phi[-1]), max(phi[0], phi[-1]), out=phi[1:-1])
+            inner = phi[1:-1]
+            np.maximum(inner, min(phi[0], phi[-1]), out=inner)
+            np.minimum(inner, max(phi[0], phi[-1]), out=inner)
             grid = np.maximum.accumulate(phi if phi[-1] >= phi[0] else phi[::-1])
             t_lo, t_hi = float(min(theta[0], theta[-1])), float(max(theta[0], theta[-1]))
             member = sectors.add(lower, t_lo, t_hi, a, b)

@@ -105,7 +105,8 @@ def hermite_s(table: Table, theta: Array) -> tuple[Array, Array]:
     th_tab, s_tab, sp_tab = table
     j = th_tab.searchsorted(theta, side="right")
     j -= 1
-    np.clip(j, 0, len(th_tab) - 2, out=j)
+    np.maximum(j, 0, out=j)
+    np.minimum(j, len(th_tab) - 2, out=j)
     t0, t1 = th_tab.take(j), th_tab.take(j + 1)
     s0, s1 = s_tab.take(j), s_tab.take(j + 1)
     dt, ds = t1 - t0, s1 - s0
@@ -118,5 +119,6 @@ def hermite_s(table: Table, theta: Array) -> tuple[Array, Array]:
     h01 = x2 * (3.0 - 2.0 * x)
     s = s0 + h01 * ds + (x2 * x - 2.0 * x2 + x) * m0 + (x2 * x - x2) * m1
     s = np.where(np.isfinite(s), s, s0 + x * ds)
-    np.clip(s, s0, s1, out=s)
+    np.maximum(s, s0, out=s)
+    np.minimum(s, s1, out=s)
     return s, bend

@@ -35,7 +35,7 @@ from onefold_cad.geometry.body_samples import Rows
 from onefold_cad.geometry.ground import CONTACT_TOLERANCE, Samples
 from onefold_cad.geometry.numeric import Array
 
-__all__ = ["exact_lows"]
+__all__ = ["bound_directions", "exact_bounds", "exact_lows"]
 
 Low = tuple[int, float, Array]
 
@@ -153,4 +153,35 @@ def exact_lows(
         out[dd].append((k, t, p))
     for dd in range(nd):
         out[dd].sort(key=lambda item, g=dirs[dd]: float(item[2] @ g))
+    return out
+
+
+def bound_directions(rot: Array) -> Array:
+    """The directions ``(5, 3)`` of :func:`exact_bounds`' searches (fold frame)
+    for a resting frame's rotation ``rot`` ``(3, 3)``: its lowest and highest
+    x and y, and its highest z."""
+    return np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
+
+
+def exact_bounds(
+    body: Body,
+    samples: Samples,
+    rot: Array,
+    translation: Array,
+    lowest: Array,
+    lows: list[list[Low]] | None = None,
+) -> Array:
+    """The placed body's exact lowest and highest x, y, z ``(2, 3)`` (resting
+    frame ``p' = rot p + translation``): the lowest z is that of ``lowest``
+    (its lowest point along the ground's normal, the resting frame's z
+    axis), the five other searches (:func:`bound_directions`) run together
+    (``lows``: their :func:`exact_lows`, found beforehand)."""
+    if lows is None:
+        lows = exact_lows(body, samples, bound_directions(rot))
+    out = np.zeros((2, 3))
+    for axis in range(3):
+        d = rot[axis]  # the resting frame's axis in the fold frame
+        low = lowest if axis == 2 else lows[2 * axis][0][2]
+        out[0, axis] = float(low @ d) + translation[axis]
+        out[1, axis] = float(lows[2 * axis + 1 if axis < 2 else 4][0][2] @ d) + translation[axis]
     return out
