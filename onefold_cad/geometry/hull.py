@@ -208,7 +208,9 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     ang = np.arctan2(y - cy, x - cx)
     seed = seed[np.argsort(ang.take(seed))]
     ang -= ang[seed[0]]
-    ang %= 2.0 * math.pi
+    # ang %= 2 pi for ang in [-2 pi, 2 pi], exactly as fmod's (and cheaper)
+    np.add(ang, 2.0 * math.pi, out=ang, where=ang < 0.0)
+    np.subtract(ang, 2.0 * math.pi, out=ang, where=ang >= 2.0 * math.pi)
     ang[seed[0]] = 0.0
     sx, sy = x.take(seed), y.take(seed)
     ex, ey = np.roll(sx, -1) - sx, np.roll(sy, -1) - sy
@@ -222,22 +224,28 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     a_end, b_end = seed.take(k.take(idx)), np.roll(seed, -1).take(k.take(idx))
     d = d.take(idx)
     corners = [seed]
+    px, py = x.take(idx), y.take(idx)
     while len(idx):
         # per run (edge): its farthest point (the first of a tie) is a corner
-        starts = np.flatnonzero(np.concatenate([[True], a_end[1:] != a_end[:-1]]))
-        lengths = np.diff(np.append(starts, len(idx)))
-        far = np.flatnonzero(d == np.repeat(np.maximum.reduceat(d, starts), lengths))
+        new = np.empty(len(idx), dtype=bool)
+        new[0] = True
+        np.not_equal(a_end[1:], a_end[:-1], out=new[1:])
+        starts = np.flatnonzero(new)
+        run = np.cumsum(new)
+        run -= 1
+        far = np.flatnonzero(d == np.maximum.reduceat(d, starts).take(run))
         at = far.take(far.searchsorted(starts))
         c = idx.take(at)
         corners.append(c)
-        before = np.arange(len(idx)) < np.repeat(at, lengths)
-        cc = np.repeat(c, lengths)
+        before = np.arange(len(idx)) < at.take(run)
+        cc = c.take(run)
         a_end = np.where(before, a_end, cc)
         b_end = np.where(before, cc, b_end)
         ax, ay = x.take(a_end), y.take(a_end)
-        d = (y.take(b_end) - ay) * (x.take(idx) - ax) - (x.take(b_end) - ax) * (y.take(idx) - ay)
-        out = d > 0.0
-        idx, a_end, b_end, d = idx[out], a_end[out], b_end[out], d[out]
+        d = (y.take(b_end) - ay) * (px - ax) - (x.take(b_end) - ax) * (py - ay)
+        out = np.flatnonzero(d > 0.0)
+        idx, a_end, b_end, d = idx.take(out), a_end.take(out), b_end.take(out), d.take(out)
+        px, py = px.take(out), py.take(out)
     hull = np.concatenate(corners)
     hull = hull[np.argsort(ang.take(hull))]
     while len(hull) >= 3:  # a seed can lie on an edge of the hull: no corner
