@@ -66,6 +66,10 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         return np.zeros(0, dtype=np.int64)
     if tol <= 0.0:
         return _strict_corners(p)
+    if len(p) <= _SMALL:
+        small = _small(p, tol)
+        if small is not None:
+            return small
     hull = _chained(p, tol)
     if len(p) <= 64:  # a few points (contacts): all of them against the hull
         if _covers(p[hull], p, tol):
@@ -76,6 +80,34 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         if _covers(p[hull], p[exact], tol):
             return hull
     return _beyond(p, exact, tol) if len(exact) >= 3 else hull
+
+
+#: Up to this many points (a body's contacts, as toppling meets them) with a
+#: tolerance, the chain and its check in plain floats (:func:`_small`).
+_SMALL = 16
+
+
+def _small(p: Array, tol: float) -> NDArray[np.int64] | None:
+    """:func:`convex_hull_2d` of a few points ``p`` with a tolerance, in plain
+    floats, when the chain's hull of three or more corners holds every point
+    (the same arithmetic as :func:`_chained` and :func:`_covers`); None
+    otherwise (the numpy path decides)."""
+    xs, ys = p[:, 0].tolist(), p[:, 1].tolist()
+    order = sorted(range(len(xs)), key=lambda i: (xs[i], ys[i]))  # np.lexsort's
+    hull = _chain(xs, ys, order, tol)[:-1] + _chain(xs, ys, order[::-1], tol)[:-1]
+    if len(hull) < 3:
+        return None
+    hx, hy = [xs[i] for i in hull], [ys[i] for i in hull]
+    m = len(hull)
+    dx = [hx[(i + 1) % m] - hx[i] for i in range(m)]
+    dy = [hy[(i + 1) % m] - hy[i] for i in range(m)]
+    length = np.maximum(np.hypot(dx, dy), 1e-300).tolist()
+    floor = -2.0 * tol
+    for cx, cy in zip(xs, ys, strict=True):
+        inside = min((dx[i] * (cy - hy[i]) - dy[i] * (cx - hx[i])) / length[i] for i in range(m))
+        if not inside >= floor:
+            return None
+    return np.asarray(hull, dtype=np.int64)
 
 
 def _strict_corners(p: Array) -> NDArray[np.int64]:
