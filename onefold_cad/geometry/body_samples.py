@@ -163,11 +163,16 @@ class Sampled:
         if self._grouped:
             self.sections  # noqa: B018 (the groups' corners)
             for group, (owner, _, corners) in zip(self._groups[1], self._group_rows, strict=True):
-                steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
+                d = np.diff(corners, axis=0)
+                # np.linalg.norm's sum of squares, its three terms in its order
+                steps = d[..., 0] * d[..., 0]
+                steps += d[..., 1] * d[..., 1]
+                steps += d[..., 2] * d[..., 2]
+                np.sqrt(steps, out=steps)
                 steps[owner[1:] != owner[:-1]] = np.nan  # between two pieces: none
                 # per piece (its rows' steps, then the NaN to the next piece's)
                 starts = np.searchsorted(owner, group)
-                most = np.fmax.reduceat(np.fmax.reduce(steps, axis=1), starts)
+                most = np.fmax.reduce(np.fmax.reduceat(steps, starts, axis=0), axis=1)
                 most = np.where(np.isnan(most), 0.0, most)
                 step = np.array([self.pieces[k].step for k in group])
                 out[group] = np.maximum(step, most)
