@@ -147,8 +147,22 @@ class ArcFrames:
         geodesic curvature k = det(v, v', v'') |v|^3 / |v x v'|^3 of u (the k
         of ``r - s k``) and its speed |du/dphi| = |v x v'| / |v|^2 ``(k,)``,
         with v = P - A."""
-        v = arc_points(self.frame, phi) - self.apex
-        dv = arc_tangents(self.frame, phi)
+        # arc_points and arc_tangents, sharing phi's cosine and sine with k
+        g = self.frame.geometry
+        x, d = end_relative(g, *_end_split(g, phi))
+        r = g.radius
+        v = np.empty((len(phi), 3))
+        np.multiply(x, r, out=v[:, 0])
+        np.multiply(d, r * g.cos_beta, out=v[:, 1])
+        np.multiply(d, r * g.sin_beta, out=v[:, 2])
+        v -= self.apex
+        cos, sin = np.cos(phi), np.sin(phi)
+        r = self.frame.radius
+        dv = np.empty_like(v)
+        np.multiply(sin, -r, out=dv[:, 0])
+        dd = r * cos
+        np.multiply(dd, g.cos_beta, out=dv[:, 1])
+        np.multiply(dd, g.sin_beta, out=dv[:, 2])
         w = np.sqrt(np.einsum("ij,ij->i", v, v))
         u = v / w[:, None]
         e = dv - np.einsum("ij,ij->i", dv, u)[:, None] * u
@@ -156,12 +170,11 @@ class ArcFrames:
         n = cross3(u, e)
         if not curvature:
             return u, e, n
-        r = self.frame.radius
         b = math.radians(self.frame.beta)
-        ddv = np.stack(
-            [-r * np.cos(phi), -r * np.sin(phi) * math.cos(b), -r * np.sin(phi) * math.sin(b)],
-            axis=-1,
-        )
+        ddv = np.empty_like(v)
+        np.multiply(cos, -r, out=ddv[:, 0])
+        np.multiply(-r * sin, math.cos(b), out=ddv[:, 1])
+        np.multiply(-r * sin, math.sin(b), out=ddv[:, 2])
         vxdv = cross3(v, dv)
         det = np.einsum("ij,ij->i", vxdv, ddv)
         cross = np.sqrt(np.einsum("ij,ij->i", vxdv, vxdv))

@@ -47,7 +47,13 @@ from onefold_cad.choices import Body as BodyKind
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body_families import Sectors, Walls
-from onefold_cad.geometry.body_pieces import member_points, mitre_blocks, paper_pieces
+from onefold_cad.geometry.body_pieces import (
+    MitreFrame,
+    member_points,
+    mitre_blocks,
+    mitre_frames,
+    paper_pieces,
+)
 from onefold_cad.geometry.body_samples import Sampled
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
@@ -157,7 +163,7 @@ class Body(Sampled):
             ang = np.linspace(ta, tb, max(2, math.ceil(abs(tb - ta) / _MAX_ANGLE_STEP) + 1))
             psi = np.where(a[1] + b[1] < 0.0, -ang, ang)
             ray = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
-            along = np.clip((ray - a) @ (b - a) / length**2, 0.0, 1.0)
+            along = np.minimum(np.maximum((ray - a) @ (b - a) / length**2, 0.0), 1.0)
             s_all = _spread(np.concatenate([np.linspace(0.0, 1.0, n), along]))
             q = a + s_all[:, None] * (b - a)
             flat_params.append((a, b))
@@ -172,7 +178,9 @@ class Body(Sampled):
             lower = bool(a[1] + b[1] < 0.0)
             for i in (0, -1):
                 theta[i], phi[i] = self._vertex_ray(lower, float(theta[i]))
-            np.clip(phi[1:-1], min(phi[0], phi[-1]), max(phi[0], phi[-1]), out=phi[1:-1])
+            inner = phi[1:-1]
+            np.maximum(inner, min(phi[0], phi[-1]), out=inner)
+            np.minimum(inner, max(phi[0], phi[-1]), out=inner)
             grid = np.maximum.accumulate(phi if phi[-1] >= phi[0] else phi[::-1])
             t_lo, t_hi = float(min(theta[0], theta[-1])), float(max(theta[0], theta[-1]))
             member = sectors.add(lower, t_lo, t_hi, a, b)
@@ -181,7 +189,7 @@ class Body(Sampled):
         if solid:
             walls = Walls(self.hole, self.s_range, self._tol)
             verts, pieces = mitre_blocks(
-                self.crease_sides, self.hole, self.s_range, self._tol, walls
+                self.mitre_frames, self.hole, self.s_range, self._tol, walls
             )
             fixed += list(verts)
             self.pieces += pieces
@@ -192,6 +200,11 @@ class Body(Sampled):
         """The exact model's maps of the +y and the -y side (their crease
         frames, for the mitre blocks and their mass)."""
         return tuple(CreaseFrames(SideMap(self.folded, lower=lower)) for lower in (False, True))  # type: ignore[return-value]
+
+    @cached_property
+    def mitre_frames(self) -> list[MitreFrame]:
+        """The solid's four mitre blocks' places (:func:`~.body_pieces.mitre_frames`)."""
+        return mitre_frames(self.crease_sides, self.s_range)
 
     @cached_property
     def vertex_phis(self) -> tuple[Array, Array]:

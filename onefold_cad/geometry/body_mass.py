@@ -17,7 +17,6 @@ from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import MIRROR, Body
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3, gauss_legendre, panel_rule, sorted_unique
-from onefold_cad.geometry.thick_map import CreaseFrames, mitre_depth, mitre_planes
 
 __all__ = ["mass_properties"]
 
@@ -78,15 +77,14 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array]]) -> tuple[float, Ar
     u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(phi, curvature=True)
     slab = _slab_moments(body, theta, lower, u, n, k) * speed[:, None]
     total, moment = 0.0, np.zeros(3)
+    blocks = _block_moments(body) if body.thickness > 0.0 else []
     for side, (_, weights, _) in enumerate(rules):
         vals = weights @ slab[lower == bool(side)]
         total += vals[0]
         moment += vals[1:] * (MIRROR if side else np.ones(3))
-        if body.thickness > 0.0:
-            for end in (0, 1):
-                vol, mom = _block_moments(body, body.crease_sides[side], end)
-                total += vol
-                moment += mom * (MIRROR if side else np.ones(3))
+        for vol, mom in blocks[2 * side : 2 * side + 2]:
+            total += vol
+            moment += mom * (MIRROR if side else np.ones(3))
     return total, moment
 
 
@@ -122,8 +120,12 @@ def _slab_moments(
     with np.errstate(divide="ignore", invalid="ignore"):
         s_b = np.where(ny != 0.0, -rho * uy / ny, s0)
         s_e = np.where(ny != 0.0, -r_out * uy / ny, s0)
-    cuts = np.column_stack([np.full_like(uy, s0), s_b, s_e, np.full_like(uy, s1)])
-    cuts = np.sort(np.clip(cuts, s0, s1), axis=1)
+    # s0, s_b and s_e within [s0, s1], s1: sorted (np.sort's result, cheaper)
+    s_b = np.minimum(np.maximum(s_b, s0), s1)
+    s_e = np.minimum(np.maximum(s_e, s0), s1)
+    cuts = np.column_stack(
+        [np.full_like(uy, s0), np.minimum(s_b, s_e), np.maximum(s_b, s_e), np.full_like(uy, s1)]
+    )
     lo, hi = cuts[:, :3], cuts[:, 1:]
     out = np.zeros((len(theta), 4))
     ro = r_out[:, None]
@@ -174,46 +176,56 @@ def _cut_radius(s: Array, uy: Array, ny: Array) -> Array:
         return np.where(suy > 0.0, -sny / suy, np.where(sny >= 0.0, -np.inf, np.inf))
 
 
-def _block_moments(body: Body, side: CreaseFrames, end: int) -> tuple[float, Array]:
-    """Volume and first moment ``(3,)`` of the kept part of the mitre block
-    past crease half ``end`` (+y side's coordinates): x integrated exactly,
-    Gauss-Legendre in d and s."""
+def _block_moments(body: Body) -> list[tuple[float, Array]]:
+    """Volume and first moment ``(3,)`` of the kept part of each mitre block
+    (:attr:`Body.mitre_frames`; +y side's coordinates): x integrated exactly,
+    Gauss-Legendre in d and s, the four blocks in one pass."""
     s0, s1 = body.s_range
     rho = body.hole
-    u, e, n = side.crease_frame(end)
-    away = -e if end == 0 else e
-    length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
-    depth = mitre_depth(side, body.s_range)
-    m, c = mitre_planes(side, s1 - s0)[end]
+    frames = body.mitre_frames
+    u, away, n = (np.array([f[k] for f in frames]) for k in (2, 3, 4))  # (4, 3) each
+    length, depth = (np.array([f[k] for f in frames])[:, None, None] for k in (5, 6))
+    planes = [f[7] for f in frames]
+    um, am, nm = (
+        np.array([float(v @ m) for v, m in zip(w, planes, strict=True)]) for w in (u, away, n)
+    )
+    c = np.array([f[8] for f in frames])[:, None, None]
     (xs, ws), (xd, wd) = gauss_legendre(8), gauss_legendre(48)
-    # the s nodes ``(8,)``, each with its d nodes ``(8, 48)``
+    # the s nodes ``(8,)``, each with its d nodes ``(4, 8, 48)``
     si, wsi = s0 + (s1 - s0) * 0.5 * (1.0 + xs), ws * 0.5 * (s1 - s0)
     # y = d away_y + s n_y >= 0 (u_y = 0 on the crease): a bound on d
-    if away[1] < 0.0:
-        d_hi = np.minimum(depth, np.maximum(si * n[1] / -away[1], 0.0))
-    else:
-        d_hi = np.where(si * n[1] >= 0.0, depth, 0.0)
-    d = 0.5 * d_hi[:, None] * (1.0 + xd)
-    wdd = wd * 0.5 * d_hi[:, None]
-    xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
-    xb = np.full_like(d, length)
-    # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
-    um = float(u @ m)
-    c0 = d * float(away @ m) + si[:, None] * float(n @ m) - c
+    sn = si * n[:, 1:2]
     with np.errstate(divide="ignore", invalid="ignore"):
-        if um > 0.0:
-            xa = np.maximum(xa, -c0 / um)
-        elif um < 0.0:
-            xb = np.minimum(xb, -c0 / um)
-        else:
-            xb = np.where(c0 >= 0.0, xb, xa)
+        d_hi = np.where(
+            away[:, 1:2] < 0.0,
+            np.minimum(depth[:, 0], np.maximum(sn / -away[:, 1:2], 0.0)),
+            np.where(sn >= 0.0, depth[:, 0], 0.0),
+        )
+    d = 0.5 * d_hi[..., None] * (1.0 + xd)
+    wdd = wd * 0.5 * d_hi[..., None]
+    xa = np.sqrt(np.maximum(rho * rho - d * d, 0.0))
+    xb = np.broadcast_to(length, d.shape)
+    # (p - A) . m = x (u.m) + d (away.m) + s (n.m) >= c
+    c0 = d * am[:, None, None] + si[:, None] * nm[:, None, None] - c
+    up = um[:, None, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cut = -c0 / up
+    xa = np.where(up > 0.0, np.maximum(xa, cut), xa)
+    xb = np.where(up < 0.0, np.minimum(xb, cut), xb)
+    xb = np.where((up == 0.0) & (c0 < 0.0), xa, xb)
     span = np.maximum(xb - xa, 0.0)
     sq = np.where(span > 0.0, 0.5 * (xb**2 - xa**2), 0.0)
-    ws_span = wsi[:, None] * wdd * span  # ``(8, 48)``
-    vol = float(ws_span.sum())
-    mom = float((ws_span * d).sum()) * away + float(ws_span.sum(axis=1) @ si) * n
-    mom += float((wsi[:, None] * wdd * sq).sum()) * u
-    return vol, mom
+    ws_span = wsi[:, None] * wdd * span  # ``(4, 8, 48)``
+    flat = ws_span.reshape(len(frames), -1)
+    vol = flat.sum(axis=1)
+    along = (ws_span * d).reshape(len(frames), -1).sum(axis=1)
+    ins = (wsi[:, None] * wdd * sq).reshape(len(frames), -1).sum(axis=1)
+    out = []
+    for k in range(len(frames)):
+        mom = float(along[k]) * away[k] + float(ws_span[k].sum(axis=1) @ si) * n[k]
+        mom += float(ins[k]) * u[k]
+        out.append((float(vol[k]), mom))
+    return out
 
 
 #: Panels of the 16-point Gauss-Legendre rule per sector between vertex rays.

@@ -19,7 +19,7 @@ from onefold_cad.geometry.numeric import Array, cross3
 from onefold_cad.geometry.pieces import Family, Piece
 from onefold_cad.geometry.thick_map import CreaseFrames, mitre_depth, mitre_planes
 
-__all__ = ["member_points", "mitre_blocks", "paper_pieces"]
+__all__ = ["MitreFrame", "member_points", "mitre_blocks", "mitre_frames", "paper_pieces"]
 
 #: The mirror image in the xz-plane (the -y side of the +y side).
 _MIRROR = np.array([1.0, -1.0, 1.0])
@@ -77,37 +77,55 @@ def _paper_arc(folded: FoldedSheet, rho: float, sign: float) -> Callable[[Array]
     return points
 
 
+#: A mitre block's place: its side, its crease half (0, 1), the crease
+#: ruling's u, the direction ``away`` from the side's sheet and the top
+#: normal n ``(3,)``, the crease half's length, the block's depth past it
+#: and its mitre plane ``(m (3,), c)`` (:func:`~.thick_map.mitre_planes`).
+MitreFrame = tuple[CreaseFrames, int, Array, Array, Array, float, float, Array, float]
+
+
+def mitre_frames(
+    sides: tuple[CreaseFrames, CreaseFrames], s_range: tuple[float, float]
+) -> list[MitreFrame]:
+    """The four mitre blocks' places (:data:`MitreFrame`; the +y side's
+    crease halves 0 and 1, then the -y side's) for faces at ``s_range``."""
+    s0, s1 = s_range
+    out = []
+    for side in sides:
+        depth = mitre_depth(side, s_range)
+        planes = mitre_planes(side, s1 - s0)
+        lengths = side.edge_radius(np.array([0.0, side.total]))
+        for end in (0, 1):
+            u, e, n = side.crease_frame(end)
+            m, c = planes[end]
+            out.append((side, end, u, -e if end == 0 else e, n, float(lengths[end]), depth, m, c))
+    return out
+
+
 def mitre_blocks(
-    sides: tuple[CreaseFrames, CreaseFrames],
+    frames: list[MitreFrame],
     rho: float,
     s_range: tuple[float, float],
     tol: float,
     walls: Walls,
 ) -> tuple[Array, list[Piece]]:
-    """The mitre blocks past both crease halves of both sides (faces at
+    """The mitre blocks at ``frames`` (:func:`mitre_frames`; faces at
     ``s_range``, hole radius ``rho``): the vertices of their polytopes outside
     the hole's disk ``(m, 3)`` (within ``tol``, length), and each block's
     hole wall as a piece over the distance d past the crease, a member of
     ``walls``. The four polytopes' vertices are solved together."""
     s0, s1 = s_range
     blocks = []
-    for side in sides:
-        depth = mitre_depth(side, s_range)
-        planes = mitre_planes(side, s1 - s0)
-        for end in (0, 1):
-            u, e, n = side.crease_frame(end)
-            away = -e if end == 0 else e
-            length = float(side.edge_radius(np.array([0.0 if end == 0 else side.total]))[0])
-            m, c = planes[end]
-            basis = np.stack([u, away, n], axis=1)  # (x, d, s) -> offset from the apex
-            x_in = math.sqrt(max(rho * rho - depth * depth, 0.0))
-            # the polytope {a . (x, d, s) <= b}
-            a = np.empty((8, 3))
-            a[:6] = _BOX
-            a[6] = -basis[1]  # y >= 0
-            a[7] = -(m @ basis)  # (p - A) . m >= c
-            b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
-            blocks.append((side, end, depth, basis, a, b))
+    for side, end, u, away, n, length, depth, m, c in frames:
+        basis = np.stack([u, away, n], axis=1)  # (x, d, s) -> offset from the apex
+        x_in = math.sqrt(max(rho * rho - depth * depth, 0.0))
+        # the polytope {a . (x, d, s) <= b}
+        a = np.empty((8, 3))
+        a[:6] = _BOX
+        a[6] = -basis[1]  # y >= 0
+        a[7] = -(m @ basis)  # (p - A) . m >= c
+        b = np.array([-x_in, length, 0.0, depth, -s0, s1, 0.0, -c])
+        blocks.append((side, end, depth, basis, a, b))
     a = np.array([blk[4] for blk in blocks])  # (4, 8, 3)
     b = np.array([blk[5] for blk in blocks])  # (4, 8)
     # each triple of planes meets where Cramer's rule puts it (rows i, j, k)

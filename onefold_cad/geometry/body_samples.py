@@ -99,19 +99,41 @@ class Sampled:
         out: list[Array] = [np.zeros((0, 1, 3))] * len(self.pieces)
         boxes: list[Array | None] = [None] * len(self.pieces)
         for g, group in enumerate(self._groups[1]):
-            grids = [self.pieces[k].grid for k in group]
-            owner = np.repeat(np.array(group, dtype=np.int64), [len(x) for x in grids])
-            t = np.concatenate(grids)
+            owner, t, corners = self._group_rows[g]
             family = self.pieces[group[0]].family
+            box = None
             if isinstance(family, Sectors):
                 corners, box = family.sections(self._members[owner], t, box=True)
             else:
-                corners, box = self._corners(g, owner, t), None
-            cuts = np.cumsum([len(x) for x in grids])[:-1]
+                corners = self._corners(g, owner, t)
+            self._group_rows[g] = (owner, t, corners)
+            cuts = np.cumsum([len(self.pieces[k].grid) for k in group])[:-1]
             parts = np.split(box, cuts) if box is not None else [None] * len(group)
             for k, part, b in zip(group, np.split(corners, cuts), parts, strict=True):
                 out[k], boxes[k] = part, b
         return out, boxes
+
+    @cached_property
+    def _group_rows(self) -> list[tuple[NDArray[np.int64], Array, Array]]:
+        """Per group: the piece of each of its rows, their parameters and
+        (once :attr:`sections` has them) their corners ``(n, V, 3)``."""
+        out = []
+        for group in self._groups[1]:
+            grids = [self.pieces[k].grid for k in group]
+            owner = np.repeat(np.array(group, dtype=np.int64), [len(x) for x in grids])
+            out.append((owner, np.concatenate(grids), np.zeros((0, 1, 3))))
+        return out
+
+    @cached_property
+    def _grouped(self) -> bool:
+        """Whether the groups hold the pieces in order, each of two rows or
+        more: what is per piece can then be done per group (the same values)."""
+        order = [k for group in self._groups[1] for k in group]
+        return (
+            bool(order)
+            and order == list(range(len(self.pieces)))
+            and all(len(p.grid) >= 2 for p in self.pieces)
+        )
 
     def lowest_corners(self, pieces: NDArray[np.int64], t: Array, g: Array) -> tuple[Array, Array]:
         """At each (piece, parameter, direction ``(k, 3)``): the lowest corner's
@@ -138,6 +160,23 @@ class Sampled:
         the thickness: no point of the piece lies further than that from its
         nearest sample (the thickness covers the offsets of a thick sheet)."""
         out = np.zeros(len(self.pieces))
+        if self._grouped:
+            self.sections  # noqa: B018 (the groups' corners)
+            for group, (owner, _, corners) in zip(self._groups[1], self._group_rows, strict=True):
+                d = np.diff(corners, axis=0)
+                # np.linalg.norm's sum of squares, its three terms in its order
+                steps = d[..., 0] * d[..., 0]
+                steps += d[..., 1] * d[..., 1]
+                steps += d[..., 2] * d[..., 2]
+                np.sqrt(steps, out=steps)
+                steps[owner[1:] != owner[:-1]] = np.nan  # between two pieces: none
+                # per piece (its rows' steps, then the NaN to the next piece's)
+                starts = np.searchsorted(owner, group)
+                most = np.fmax.reduce(np.fmax.reduceat(steps, starts, axis=0), axis=1)
+                most = np.where(np.isnan(most), 0.0, most)
+                step = np.array([self.pieces[k].step for k in group])
+                out[group] = np.maximum(step, most)
+            return out + self.thickness
         for i, (piece, corners) in enumerate(zip(self.pieces, self.sections, strict=True)):
             steps = np.linalg.norm(np.diff(corners, axis=0), axis=-1)
             steps = steps[~np.isnan(steps)]
@@ -152,6 +191,14 @@ class Sampled:
         pts = [self.fixed]
         owner = [np.full(len(self.fixed), -1, dtype=np.int64)]
         param = [np.zeros(len(self.fixed))]
+        if self._grouped:
+            self.sections  # noqa: B018 (the groups' corners)
+            for rows, t, p in self._group_rows:
+                ok = ~np.isnan(p[..., 0])
+                pts.append(p[ok])
+                owner.append(np.broadcast_to(rows[:, None], ok.shape)[ok])
+                param.append(np.broadcast_to(t[:, None], ok.shape)[ok])
+            return np.concatenate(pts), np.concatenate(owner), np.concatenate(param)
         for i, (piece, p) in enumerate(zip(self.pieces, self.sections, strict=True)):
             ok = ~np.isnan(p[..., 0])
             pts.append(p[ok])
@@ -166,12 +213,22 @@ class Sampled:
         piece = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
         first = np.zeros(len(piece), dtype=bool)
         first[np.cumsum([0, *sizes[:-1]])[np.array(sizes) > 0]] = True
-        gone = [np.isnan(c[..., 0]) for c in self.sections]
-        count = np.concatenate([(~g).sum(axis=1) for g in gone]) if gone else np.zeros(0)
-        comes = np.zeros(len(piece), dtype=bool)
-        for k, g in enumerate(gone):  # a corner came or went since the row before
-            at = int(np.cumsum([0, *sizes])[k])
-            comes[at + 1 : at + len(g)] = np.any(g[1:] != g[:-1], axis=1)
+        if self._grouped:  # a group's rows at once, the pieces' first rows after
+            gone = [np.isnan(c[..., 0]) for _, _, c in self._group_rows]
+            count = np.concatenate([(~g).sum(axis=1) for g in gone])
+            comes = np.zeros(len(piece), dtype=bool)
+            at = 0
+            for g in gone:  # a corner came or went since the row before
+                comes[at + 1 : at + len(g)] = np.any(g[1:] != g[:-1], axis=1)
+                at += len(g)
+            comes &= ~first
+        else:
+            gone = [np.isnan(c[..., 0]) for c in self.sections]
+            count = np.concatenate([(~g).sum(axis=1) for g in gone]) if gone else np.zeros(0)
+            comes = np.zeros(len(piece), dtype=bool)
+            for k, g in enumerate(gone):  # a corner came or went since the row before
+                at = int(np.cumsum([0, *sizes])[k])
+                comes[at + 1 : at + len(g)] = np.any(g[1:] != g[:-1], axis=1)
         start = np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.int64)
         t = np.concatenate([p.grid for p in self.pieces]) if self.pieces else np.zeros(0)
         last = np.append(first[1:], True)

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.geometry.arc import arc_range, end_relative
-from onefold_cad.geometry.cone_nodes import hermite_s, theta_from_nodes
+from onefold_cad.geometry.cone_nodes import hermite_s, theta_from_both, theta_from_nodes
 from onefold_cad.geometry.cone_rule import (
     GL_NODES,
     GL_WEIGHTS,
@@ -349,13 +349,12 @@ class ExactCone(DirectionSurface):
         plus = phi - p0 <= 0.5 * g.span
         if plus.all():  # one half (a zoom's bracket mostly is): no masks
             return theta_from_nodes(self.node_table(0), g, True, h, np.maximum(phi - p0, 0.0))
-        out = np.empty(len(phi))
-        for k, sel in ((0, plus), (1, ~plus)):
-            if sel.any():
-                s = np.maximum(phi[sel] - p0 if k == 0 else p1 - phi[sel], 0.0)
-                th = theta_from_nodes(self.node_table(k), g, k == 0, h, s)
-                out[sel] = th if k == 0 else self.total_angle - th
-        return out
+        if not plus.any():
+            th = theta_from_nodes(self.node_table(1), g, False, h, np.maximum(p1 - phi, 0.0))
+            return self.total_angle - th
+        s = np.maximum(np.where(plus, phi - p0, p1 - phi), 0.0)
+        th = theta_from_both((self.node_table(0), self.node_table(1)), g, h, s, plus)
+        return np.where(plus, th, self.total_angle - th)
 
     def phi_near(self, theta: Array) -> Array:
         """Arc parameters at developed angles ``theta`` ``(k,)`` to about 1e-10 rad:

@@ -25,13 +25,14 @@ Numpy only; s and theta in radians.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import end_relative
 from onefold_cad.geometry.cone_rule import speed_at
 from onefold_cad.geometry.frame_curve import ArcGeometry
 from onefold_cad.geometry.numeric import Array, gauss_legendre
 
-__all__ = ["NEAR_NODES", "hermite_s", "theta_from_nodes"]
+__all__ = ["NEAR_NODES", "hermite_s", "theta_from_both", "theta_from_nodes"]
 
 #: Gauss-Legendre points of the integral from the nearest node.
 NEAR_NODES = 4
@@ -46,7 +47,8 @@ def theta_from_nodes(table: Table, g: ArcGeometry, plus: bool, height: float, s:
     docstring)."""
     th_tab, s_tab, _ = table
     j = s_tab.searchsorted(s)
-    np.clip(j, 1, len(s_tab) - 1, out=j)
+    np.maximum(j, 1, out=j)  # np.clip's work without its Python wrapper
+    np.minimum(j, len(s_tab) - 1, out=j)
     left = s_tab.take(j - 1)
     right = s_tab.take(j)
     j -= s - left <= right - s  # the nearer of the two
@@ -63,6 +65,38 @@ def theta_from_nodes(table: Table, g: ArcGeometry, plus: bool, height: float, s:
     return th_tab.take(j) + half * (speed @ w)
 
 
+def theta_from_both(
+    tables: tuple[Table, Table], g: ArcGeometry, height: float, s: Array, plus: NDArray[np.bool_]
+) -> Array:
+    """:func:`theta_from_nodes` of points on either half in one pass: theta
+    from each one's own end (``plus``: the +x half's, table 0) at distances
+    ``s`` ``(k,)`` from it, the same arithmetic per point."""
+    (th0, s0, _), (th1, s1, _) = tables
+    n0 = len(s0)
+    th_tab, s_tab = np.concatenate((th0, th1)), np.concatenate((s0, s1))
+    j = np.empty(len(s), dtype=np.int64)
+    minus = ~plus
+    j[plus] = s0.searchsorted(s[plus])
+    j[minus] = s1.searchsorted(s[minus])
+    lo = np.where(plus, 1, n0 + 1)
+    np.maximum(j + np.where(plus, 0, n0), lo, out=j)
+    np.minimum(j, lo + np.where(plus, n0 - 2, len(s1) - 2), out=j)
+    left = s_tab.take(j - 1)
+    right = s_tab.take(j)
+    j -= s - left <= right - s  # the nearer of the two
+    a = s_tab.take(j)
+    half = 0.5 * (s - a)
+    x, w = gauss_legendre(NEAR_NODES)
+    flat = ((a + half)[:, None] + half[:, None] * x).ravel()
+    each = np.repeat(plus, NEAR_NODES)
+    px, pd = end_relative(g, flat, each)
+    ang = flat - g.alpha
+    cphi = np.cos(ang)
+    np.negative(cphi, out=cphi, where=~each)
+    speed = speed_at(g, px, pd, cphi, np.sin(ang), height).reshape(len(s), NEAR_NODES)
+    return th_tab.take(j) + half * (speed @ w)
+
+
 def hermite_s(table: Table, theta: Array) -> tuple[Array, Array]:
     """s at developed angles ``theta`` ``(k,)`` (from the half's end) by cubic
     Hermite interpolation of the table, kept between its neighbouring
@@ -71,7 +105,8 @@ def hermite_s(table: Table, theta: Array) -> tuple[Array, Array]:
     th_tab, s_tab, sp_tab = table
     j = th_tab.searchsorted(theta, side="right")
     j -= 1
-    np.clip(j, 0, len(th_tab) - 2, out=j)
+    np.maximum(j, 0, out=j)
+    np.minimum(j, len(th_tab) - 2, out=j)
     t0, t1 = th_tab.take(j), th_tab.take(j + 1)
     s0, s1 = s_tab.take(j), s_tab.take(j + 1)
     dt, ds = t1 - t0, s1 - s0
@@ -84,5 +119,6 @@ def hermite_s(table: Table, theta: Array) -> tuple[Array, Array]:
     h01 = x2 * (3.0 - 2.0 * x)
     s = s0 + h01 * ds + (x2 * x - 2.0 * x2 + x) * m0 + (x2 * x - x2) * m1
     s = np.where(np.isfinite(s), s, s0 + x * ds)
-    np.clip(s, s0, s1, out=s)
+    np.maximum(s, s0, out=s)
+    np.minimum(s, s1, out=s)
     return s, bend

@@ -223,7 +223,7 @@ def touching(
 def _distinct(pts: list[Array], tol: float) -> Array:
     out: list[Array] = []
     for p in pts:
-        if all(float(np.linalg.norm(p - q)) > tol for q in out):
+        if all(math.sqrt(float((p - q) @ (p - q))) > tol for q in out):
             out.append(p)
     return np.array(out).reshape(-1, 3)
 
@@ -247,7 +247,7 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
         n = _plane_through(pts, com, g, tol)
         if n is None:
             break
-        moved = float(np.linalg.norm(n - g))
+        moved = math.sqrt(float((n - g) @ (n - g)))
         g = n
         if moved <= 1e-15:
             break

@@ -66,6 +66,10 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         return np.zeros(0, dtype=np.int64)
     if tol <= 0.0:
         return _strict_corners(p)
+    if len(p) <= _SMALL:
+        small = _small(p, tol)
+        if small is not None:
+            return small
     hull = _chained(p, tol)
     if len(p) <= 64:  # a few points (contacts): all of them against the hull
         if _covers(p[hull], p, tol):
@@ -76,6 +80,34 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         if _covers(p[hull], p[exact], tol):
             return hull
     return _beyond(p, exact, tol) if len(exact) >= 3 else hull
+
+
+#: Up to this many points (a body's contacts, as toppling meets them) with a
+#: tolerance, the chain and its check in plain floats (:func:`_small`).
+_SMALL = 16
+
+
+def _small(p: Array, tol: float) -> NDArray[np.int64] | None:
+    """:func:`convex_hull_2d` of a few points ``p`` with a tolerance, in plain
+    floats, when the chain's hull of three or more corners holds every point
+    (the same arithmetic as :func:`_chained` and :func:`_covers`); None
+    otherwise (the numpy path decides)."""
+    xs, ys = p[:, 0].tolist(), p[:, 1].tolist()
+    order = sorted(range(len(xs)), key=lambda i: (xs[i], ys[i]))  # np.lexsort's
+    hull = _chain(xs, ys, order, tol)[:-1] + _chain(xs, ys, order[::-1], tol)[:-1]
+    if len(hull) < 3:
+        return None
+    hx, hy = [xs[i] for i in hull], [ys[i] for i in hull]
+    m = len(hull)
+    dx = [hx[(i + 1) % m] - hx[i] for i in range(m)]
+    dy = [hy[(i + 1) % m] - hy[i] for i in range(m)]
+    length = np.maximum(np.hypot(dx, dy), 1e-300).tolist()
+    floor = -2.0 * tol
+    for cx, cy in zip(xs, ys, strict=True):
+        inside = min((dx[i] * (cy - hy[i]) - dy[i] * (cx - hx[i])) / length[i] for i in range(m))
+        if not inside >= floor:
+            return None
+    return np.asarray(hull, dtype=np.int64)
 
 
 def _strict_corners(p: Array) -> NDArray[np.int64]:
@@ -208,7 +240,9 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     ang = np.arctan2(y - cy, x - cx)
     seed = seed[np.argsort(ang.take(seed))]
     ang -= ang[seed[0]]
-    ang %= 2.0 * math.pi
+    # ang %= 2 pi for ang in [-2 pi, 2 pi], exactly as fmod's (and cheaper)
+    np.add(ang, 2.0 * math.pi, out=ang, where=ang < 0.0)
+    np.subtract(ang, 2.0 * math.pi, out=ang, where=ang >= 2.0 * math.pi)
     ang[seed[0]] = 0.0
     sx, sy = x.take(seed), y.take(seed)
     ex, ey = np.roll(sx, -1) - sx, np.roll(sy, -1) - sy
@@ -222,22 +256,28 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     a_end, b_end = seed.take(k.take(idx)), np.roll(seed, -1).take(k.take(idx))
     d = d.take(idx)
     corners = [seed]
+    px, py = x.take(idx), y.take(idx)
     while len(idx):
         # per run (edge): its farthest point (the first of a tie) is a corner
-        starts = np.flatnonzero(np.concatenate([[True], a_end[1:] != a_end[:-1]]))
-        lengths = np.diff(np.append(starts, len(idx)))
-        far = np.flatnonzero(d == np.repeat(np.maximum.reduceat(d, starts), lengths))
+        new = np.empty(len(idx), dtype=bool)
+        new[0] = True
+        np.not_equal(a_end[1:], a_end[:-1], out=new[1:])
+        starts = np.flatnonzero(new)
+        run = np.cumsum(new)
+        run -= 1
+        far = np.flatnonzero(d == np.maximum.reduceat(d, starts).take(run))
         at = far.take(far.searchsorted(starts))
         c = idx.take(at)
         corners.append(c)
-        before = np.arange(len(idx)) < np.repeat(at, lengths)
-        cc = np.repeat(c, lengths)
+        before = np.arange(len(idx)) < at.take(run)
+        cc = c.take(run)
         a_end = np.where(before, a_end, cc)
         b_end = np.where(before, cc, b_end)
         ax, ay = x.take(a_end), y.take(a_end)
-        d = (y.take(b_end) - ay) * (x.take(idx) - ax) - (x.take(b_end) - ax) * (y.take(idx) - ay)
-        out = d > 0.0
-        idx, a_end, b_end, d = idx[out], a_end[out], b_end[out], d[out]
+        d = (y.take(b_end) - ay) * (px - ax) - (x.take(b_end) - ax) * (py - ay)
+        out = np.flatnonzero(d > 0.0)
+        idx, a_end, b_end, d = idx.take(out), a_end.take(out), b_end.take(out), d.take(out)
+        px, py = px.take(out), py.take(out)
     hull = np.concatenate(corners)
     hull = hull[np.argsort(ang.take(hull))]
     while len(hull) >= 3:  # a seed can lie on an edge of the hull: no corner

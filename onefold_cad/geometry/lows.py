@@ -35,7 +35,7 @@ from onefold_cad.geometry.body_samples import Rows
 from onefold_cad.geometry.ground import CONTACT_TOLERANCE, Samples
 from onefold_cad.geometry.numeric import Array
 
-__all__ = ["exact_lows"]
+__all__ = ["bound_directions", "exact_bounds", "exact_lows"]
 
 Low = tuple[int, float, Array]
 
@@ -45,7 +45,7 @@ def _window(rows: Rows, row: Array, h: Array, d: Array) -> tuple[Array, Array]:
     candidate (``row``, direction ``d``; ``(c,)``): ``(c, 5)`` each, NaN past
     the ends of the candidate's piece."""
     off = np.arange(-2, 3)
-    rr = np.clip(row[:, None] + off, 0, len(rows.t) - 1)
+    rr = np.minimum(np.maximum(row[:, None] + off, 0), len(rows.t) - 1)
     ok = (rows.piece[rr] == rows.piece[row][:, None]) & (row[:, None] + off == rr)
     return np.where(ok, h[rr, d[:, None]], np.nan), np.where(ok, rows.t[rr], np.nan)
 
@@ -57,9 +57,9 @@ def _dip(hw: Array, tw: Array) -> Array:
     with np.errstate(invalid="ignore", divide="ignore"):
         slope = np.diff(hw, axis=1) / np.diff(tw, axis=1)  # (c, 4)
         curv = np.abs(np.diff(slope, axis=1)) / (tw[:, 2:] - tw[:, :-2])  # at -1, 0, +1
-    near = np.nanmax(np.where(np.isnan(curv), -1.0, curv), axis=1)  # absent: no bound
+    near = np.where(np.isnan(curv), -1.0, curv).max(axis=1)  # absent: no bound
     near = np.where(np.all(np.isnan(curv), axis=1), 0.0, near)
-    gap = np.nanmax(np.abs(np.diff(tw[:, 1:4], axis=1)), axis=1)
+    gap = np.fmax.reduce(np.abs(np.diff(tw[:, 1:4], axis=1)), axis=1)  # NaN: none
     gap = np.where(np.isnan(gap), 0.0, gap)
     bad = np.any(np.isinf(hw[:, 1:4]) & ~np.isnan(hw[:, 1:4]), axis=1) | np.isinf(near)
     return np.where(bad, np.inf, 2.0 * near * gap**2)
@@ -69,13 +69,14 @@ def _bounded_minima(
     body: Body, hs: Array, dirs: Array
 ) -> tuple[NDArray[np.int64], NDArray[np.int64], Array]:
     """Every piece's sampled local minima along each of ``dirs`` ``(D, 3)``
-    (``hs`` ``(N, D)``: the body's samples' heights): their rows
+    (``hs`` ``(D, N)``: the body's samples' heights): their rows
     (:attr:`Body.rows`) and directions, and the lower bounds of their
     brackets (see the module docstring); ``(c,)`` each."""
     rows = body.rows
-    h = np.full((len(rows.t), len(dirs)), np.inf)  # the lowest corner's height
+    h = np.full((len(dirs), len(rows.t)), np.inf)  # the lowest corner's height
     full = rows.count > 0
-    h[full] = np.minimum.reduceat(hs, rows.start[full], axis=0)
+    h[:, full] = np.minimum.reduceat(hs, rows.start[full], axis=1)
+    h = h.T  # (M, D)
     # local minima (a plateau counts once, as lowest_points has it)
     left = np.ones_like(h, dtype=bool)
     right = np.ones_like(h, dtype=bool)
@@ -99,7 +100,7 @@ def _bounded_minima(
             ]
         )
         off = np.arange(-2, 3)
-        rr = np.clip(row[m][:, None] + off, 0, len(rows.t) - 1)
+        rr = np.minimum(np.maximum(row[m][:, None] + off, 0), len(rows.t) - 1)
         ok = (rows.piece[rr] == rows.piece[row[m]][:, None]) & (row[m][:, None] + off == rr)
         bh = np.einsum("cwvj,cj->cwv", boxes[rr], dirs[d[m]]).min(axis=2)
         bh = np.where(ok, bh, np.nan)
@@ -125,20 +126,20 @@ def exact_lows(
     dirs = np.atleast_2d(np.asarray(dirs, dtype=float))
     nd = len(dirs)
     ceiling = np.full(nd, -np.inf) if above is None else np.asarray(above, dtype=float)
-    hs = samples.points @ dirs.T  # (N, D)
+    hs = np.ascontiguousarray((samples.points @ dirs.T).T)  # (D, N): rows reduce fast
     margin = CONTACT_TOLERANCE * body.size
-    known = hs.min(axis=0)  # the lowest sample: the lowest point lies no higher
+    known = hs.min(axis=1)  # the lowest sample: the lowest point lies no higher
     zoom_below = np.maximum(ceiling, known) + margin
     fixed = np.flatnonzero(samples.owner < 0)
     out: list[list[Low]] = [
-        [(-1, 0.0, samples.points[i]) for i in fixed[hs[fixed, d] <= zoom_below[d]]]
+        [(-1, 0.0, samples.points[i]) for i in fixed[hs[d, fixed] <= zoom_below[d]]]
         for d in range(nd)
     ]
     asks: list[tuple[int, float, float, Array]] = []
     whose: list[int] = []
     if body.pieces:
         nbody = len(body.samples[0])  # the body's own samples (the first rows)
-        row, d, low = _bounded_minima(body, hs[len(body.fixed) : nbody], dirs)
+        row, d, low = _bounded_minima(body, hs[:, len(body.fixed) : nbody], dirs)
         zoom = low <= zoom_below[d]
         rows = body.rows
         for r, dd in zip(row[zoom].tolist(), d[zoom].tolist(), strict=True):
@@ -152,4 +153,35 @@ def exact_lows(
         out[dd].append((k, t, p))
     for dd in range(nd):
         out[dd].sort(key=lambda item, g=dirs[dd]: float(item[2] @ g))
+    return out
+
+
+def bound_directions(rot: Array) -> Array:
+    """The directions ``(5, 3)`` of :func:`exact_bounds`' searches (fold frame)
+    for a resting frame's rotation ``rot`` ``(3, 3)``: its lowest and highest
+    x and y, and its highest z."""
+    return np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
+
+
+def exact_bounds(
+    body: Body,
+    samples: Samples,
+    rot: Array,
+    translation: Array,
+    lowest: Array,
+    lows: list[list[Low]] | None = None,
+) -> Array:
+    """The placed body's exact lowest and highest x, y, z ``(2, 3)`` (resting
+    frame ``p' = rot p + translation``): the lowest z is that of ``lowest``
+    (its lowest point along the ground's normal, the resting frame's z
+    axis), the five other searches (:func:`bound_directions`) run together
+    (``lows``: their :func:`exact_lows`, found beforehand)."""
+    if lows is None:
+        lows = exact_lows(body, samples, bound_directions(rot))
+    out = np.zeros((2, 3))
+    for axis in range(3):
+        d = rot[axis]  # the resting frame's axis in the fold frame
+        low = lowest if axis == 2 else lows[2 * axis][0][2]
+        out[0, axis] = float(low @ d) + translation[axis]
+        out[1, axis] = float(lows[2 * axis + 1 if axis < 2 else 4][0][2] @ d) + translation[axis]
     return out

@@ -41,7 +41,7 @@ from onefold_cad.geometry.ground import (
     touching,
 )
 from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
-from onefold_cad.geometry.lows import exact_lows
+from onefold_cad.geometry.lows import bound_directions, exact_bounds, exact_lows
 from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.numeric import Array, cross3, polygon_area
 from onefold_cad.geometry.topple import com_depth, com_outside, roll
@@ -281,25 +281,30 @@ def rest_form(
     if outside > tol:
         com = _surface_centre(folded, material)
     rolled: list[Array] = []
+    ahead, ahead_g = [], None
     rocks = settled = False
+    last: Array | None = None  # the contacts the loop's last look found
     for _ in range(8):
         g, on = roll(samples.points, com, g, tol)
         depth = com_depth(samples.points, com, g)
         if depth > tol and outside <= tol:  # the topple found it outside
             outside, com = depth, _surface_centre(folded, material)
             g, on = roll(samples.points, com, np.array([0.0, 0.0, 1.0]), tol)
-        if any(float(np.linalg.norm(g - r)) <= 1e-12 for r in rolled):
+        if any(math.sqrt(float((g - r) @ (g - r))) <= 1e-12 for r in rolled):
             # the samples' rest comes back while the exact plane leaves it (a
             # body lying almost flat, whose lowest points jump along nearly
             # straight edges at the slightest tilt): make that rest exact
             g, lows, samples = _cut(form, samples, com, g, band, tol)
-            rocks, settled = False, True
+            rocks, settled, ahead_g = False, True, None
             break
         rolled.append(g)
         found = features(form, samples, on)
         for _ in range(4):
             g, plane, rocks = settle(form, found, com, g)
-            lows = exact_lows(form, samples, g, np.array([plane]))[0]
+            # and the bounds' five directions (the rest mostly ends here): one search
+            dirs = np.vstack([g, bound_directions(rotation_to_up(g))])
+            lows, *ahead = exact_lows(form, samples, dirs, np.array([plane] + [-np.inf] * 5))
+            ahead_g = g
             level = float(lows[0][2] @ g)
             # the exact plane cuts the body: on its way there (rocking along
             # two curved edges, say) the body met another point first, the
@@ -316,20 +321,22 @@ def rest_form(
         samples = samples.plus([x for x in lows if float(x[2] @ g) <= level + band])
         on_ground = touching(samples, lows, g, level, contact_tol)
         if level >= plane - contact_tol and (rocks or holds(on_ground, com, g, tol)):
-            settled = True
+            settled, last = True, on_ground
             break
     rot = rotation_to_up(g)
     level = float(lows[0][2] @ g)
     # stand the lowest point on z = 0, the centre of mass over the origin
     com_r = rot @ com
     shift = np.array([-com_r[0], -com_r[1], -level])
-    contacts = touching(samples, lows, g, level, contact_tol) @ rot.T + shift
+    if last is None:
+        last = touching(samples, lows, g, level, contact_tol)
+    contacts = last @ rot.T + shift
     polygon = contacts[convex_hull_2d(contacts[:, :2], contact_tol), :2]
     # a rocking form balances its centre of mass over the line through two
     # tangencies, whose places along their curves are known to about 1e-8 of
     # the size (ground.rock settles for 1e-6 of it)
     margin, edge = tipping_margin(polygon, com_r + shift, 1e-6 * size if rocks else contact_tol)
-    bounds = _bounds(form, samples, rot, shift, lows[0][2])
+    bounds = exact_bounds(form, samples, rot, shift, lows[0][2], ahead if ahead_g is g else None)
     shadow = samples.points @ rot.T
     footprint = shadow[convex_hull_2d(shadow[:, :2]), :2] + shift[:2]
     tilt = math.degrees(math.acos(float(np.clip(g[2], -1.0, 1.0))))
@@ -419,19 +426,3 @@ def tipping_margin(polygon: Array, com: Array, tol: float) -> tuple[float, tuple
     if -tol <= inside < 0.0:  # on the edge within tol: balanced on it
         inside = 0.0
     return math.degrees(math.atan2(inside, z)), (i, (i + 1) % m)
-
-
-def _bounds(form: Body, samples: Samples, rot: Array, translation: Array, lowest: Array) -> Array:
-    """The placed body's exact lowest and highest x, y, z ``(2, 3)``: the
-    lowest z is that of ``lowest`` (its lowest point along the ground's
-    normal, the resting frame's z axis), the five other searches run
-    together."""
-    dirs = np.array([rot[0], -rot[0], rot[1], -rot[1], -rot[2]])
-    lows = exact_lows(form, samples, dirs)
-    out = np.zeros((2, 3))
-    for axis in range(3):
-        d = rot[axis]  # the resting frame's axis in the fold frame
-        low = lowest if axis == 2 else lows[2 * axis][0][2]
-        out[0, axis] = float(low @ d) + translation[axis]
-        out[1, axis] = float(lows[2 * axis + 1 if axis < 2 else 4][0][2] @ d) + translation[axis]
-    return out

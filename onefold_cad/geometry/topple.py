@@ -26,7 +26,7 @@ def basis(g: Array) -> tuple[Array, Array]:
     """Two unit vectors completing ``g`` to a right-handed orthonormal frame."""
     a = np.array([1.0, 0.0, 0.0]) if abs(g[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     e1 = a - (a @ g) * g
-    e1 /= np.linalg.norm(e1)
+    e1 /= math.sqrt(float(e1 @ e1))  # np.linalg.norm's arithmetic, without its wrapper
     return e1, cross3(g, e1)
 
 
@@ -42,7 +42,7 @@ def _nearest_on_polygon(corners: Array) -> tuple[int, int, float]:
         j = (i + 1) % m
         a, b = corners[i], corners[j]
         d = b - a
-        t = float(np.clip(-(a @ d) / max(float(d @ d), 1e-300), 0.0, 1.0))
+        t = min(max(-float(a @ d) / max(float(d @ d), 1e-300), 0.0), 1.0)
         dist = float(np.hypot(*(a + t * d)))
         if dist < best[2]:
             best = (i, i, dist) if t <= 0.0 else (j, j, dist) if t >= 1.0 else (i, j, dist)
@@ -98,9 +98,9 @@ def com_outside(points: Array, com: Array) -> float:
     _, _, vt = np.linalg.svd(points[:: max(1, len(points) // 2048)] - mean, full_matrices=False)
     off = com - mean
     ways = np.vstack([vt, off / max(float(np.linalg.norm(off)), 1e-300)]).T  # (3, 4)
-    h, c = points @ ways, com @ ways
+    h, c = np.ascontiguousarray((points @ ways).T), com @ ways  # (4, N): rows reduce fast
     # com_depth along each way and against it, from one product
-    return max(0.0, float(np.max(h.min(axis=0) - c)), float(np.max(c - h.max(axis=0))))
+    return max(0.0, float(np.max(h.min(axis=1) - c)), float(np.max(c - h.max(axis=1))))
 
 
 def _topple(
@@ -144,15 +144,15 @@ def _topple(
         w -= (w @ g) * g
         if i != j:  # tip about an edge: the horizontal offset across it
             e = points[on[hull[j]]] - p0
-            e /= np.linalg.norm(e)
+            e /= math.sqrt(float(e @ e))
             w -= (w @ e) * e
-        wn = float(np.linalg.norm(w))
+        wn = math.sqrt(float(w @ w))
         if wn <= tol:  # balanced exactly above a contact or an edge
             if push == 0.0:
                 return g, on, "balanced"
             axis = points[on[hull[j]]] - p0 if i != j else e1
             w = push * cross3(g, axis)
-            push, wn = 0.0, float(np.linalg.norm(w))
+            push, wn = 0.0, math.sqrt(float(w @ w))
         w /= wn
         rel = points - p0
         a = rel @ g
@@ -166,5 +166,5 @@ def _topple(
             return g, on, "rests"
         phi = max(float(np.min(np.arctan2(a[toward], b[toward]))), 0.0)
         g = math.cos(phi) * g - math.sin(phi) * w
-        g /= np.linalg.norm(g)
+        g /= math.sqrt(float(g @ g))
     return g, on, "rolling"
