@@ -259,30 +259,24 @@ def _simulate_parser() -> FlagParser:
         f"name (default: {DEFAULT_TEMPLATE})"
     )  # fmt: skip
     g = p.add_argument_group("simulation")
-    g.add_argument(
-        "--supports", type=parse_choice(words(Supports)), default=Supports.ANCHORED.value,
-        metavar="anchored|frictionless", help="where the sheet touches the ground it is "
-        "anchored (does not slide; default) or slides freely",
-    )  # fmt: skip
-    g.add_argument(
-        "--reference", type=parse_choice(words(Reference)), default=Reference.FLAT.value,
-        metavar="flat|designed", help="the stress-free form: the flat sheet (forming, "
-        "springback, standing; default) or the designed form (a structural check)",
-    )  # fmt: skip
-    g.add_argument(
-        "--crease", type=parse_choice(words(Crease)), default=Crease.HELD.value,
-        metavar="held|elastic", help="the crease keeps its set angle (default), or bends "
-        "with its bend zone's own stiffness",
-    )  # fmt: skip
-    g.add_argument(
-        "--mesh", type=parse_choice(words(MeshLevel)), default=MeshLevel.NORMAL.value,
-        metavar="coarse|normal|fine", help="mesh fineness (default normal; coarse: a quick "
-        "preview without the convergence check)",
-    )  # fmt: skip
+    for flag, choice, default, text in (
+        ("--supports", Supports, Supports.ANCHORED, "where the sheet touches the ground it is "
+         "anchored (does not slide; default) or slides freely"),
+        ("--reference", Reference, Reference.FLAT, "the stress-free form: the flat sheet "
+         "(forming, springback, standing; default) or the designed form (a structural check)"),
+        ("--crease", Crease, Crease.HELD, "the crease keeps its set angle (default), or bends "
+         "with its bend zone's own stiffness"),
+        ("--mesh", MeshLevel, MeshLevel.NORMAL, "mesh fineness (default normal; coarse: a quick "
+         "preview without the convergence check)"),
+    ):  # fmt: skip
+        g.add_argument(
+            flag, type=parse_choice(words(choice)), default=default.value,
+            metavar="|".join(words(choice)), help=text,
+        )  # fmt: skip
     check = g.add_mutually_exclusive_group()
     check.add_argument(
         "--check", dest="check", action="store_true", default=None,
-        help="solve again on a mesh twice as fine (default, but for coarse)",
+        help="solve again on a mesh with about twice the nodes (default, but for coarse)",
     )  # fmt: skip
     check.add_argument("--no-check", dest="check", action="store_false",
                        help="skip the convergence check")  # fmt: skip

@@ -112,6 +112,32 @@ class Standing:
     reloaded_area_share: float
     positions: Array | None = field(default=None, repr=False)
 
+    @classmethod
+    def stalled(
+        cls, reason: str, load_factor: float, iterations: int, moved: float | None = None
+    ) -> Standing:
+        """No equilibrium under the full weight: it does not stand, and only what
+        is known of the last equilibrium (the share of the weight carried,
+        how far it had moved) is kept."""
+        return cls(
+            stands=False,
+            reason=reason,
+            load_factor=load_factor,
+            max_deviation=None,
+            rms_deviation=None,
+            max_displacement=moved,
+            height=None,
+            span=None,
+            reactions_total_N=None,
+            contacts=np.zeros((0, 3)),
+            tipping_margin_deg=None,
+            max_stress_MPa=None,
+            utilisation=None,
+            max_stress_at=None,
+            iterations=iterations,
+            reloaded_area_share=0.0,
+        )
+
     def to_data(self) -> dict[str, Any]:
         """The JSON data (the positions left out)."""
         return {

@@ -16,6 +16,7 @@ Progress goes to ``progress(stage, iteration, residual_N)``.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable
@@ -131,24 +132,7 @@ def _standing(
             x0 = unpack(model.mesh, placed.q)[0]
             spread = float(np.max(np.linalg.norm(last.positions - x0, axis=1)) / s)
             reason += f"; at that load it had moved by up to {spread:.4g} {unit}"
-        stalled = Standing(
-            stands=False,
-            reason=reason,
-            load_factor=err.reached,
-            max_deviation=None,
-            rms_deviation=None,
-            max_displacement=spread,
-            height=None,
-            span=None,
-            reactions_total_N=None,
-            contacts=np.zeros((0, 3)),
-            tipping_margin_deg=None,
-            max_stress_MPa=None,
-            utilisation=None,
-            max_stress_at=None,
-            iterations=err.iterations,
-            reloaded_area_share=0.0,
-        )
+        stalled = Standing.stalled(reason, err.reached, err.iterations, spread)
         return stalled, None, None
     eq = stage.equilibrium
     x = eq.positions
@@ -193,6 +177,18 @@ def _standing(
     )
 
 
+def _one_blas_thread(fn: Callable[..., Simulation]) -> Callable[..., Simulation]:
+    """``fn`` with BLAS limited to one thread while it runs."""
+
+    @functools.wraps(fn)
+    def wrapped(*args: object, **kwargs: object) -> Simulation:
+        with threadpool_limits(limits=1, user_api="blas"):
+            return fn(*args, **kwargs)
+
+    return wrapped
+
+
+@_one_blas_thread
 def run(
     design: Design,
     folded: FoldedSheet,
@@ -212,35 +208,6 @@ def run(
     algebra is thousands of tiny products, where OpenBLAS's threads only spin
     (the same wall time at about two thirds of the CPU time, measured).
     """
-    with threadpool_limits(limits=1, user_api="blas"):
-        return _stages(
-            design,
-            folded,
-            supports=supports,
-            reference=reference,
-            crease=crease,
-            level=level,
-            h_max=h_max,
-            yield_stress_MPa=yield_stress_MPa,
-            refine=refine,
-            progress=progress,
-        )
-
-
-def _stages(
-    design: Design,
-    folded: FoldedSheet,
-    *,
-    supports: str = "anchored",
-    reference: str = "flat",
-    crease: str = "held",
-    level: str = "normal",
-    h_max: float | None = None,
-    yield_stress_MPa: float | None = None,
-    refine: float = 1.0,
-    progress: Progress | None = None,
-) -> Simulation:
-    """:func:`run`'s work."""
     supports = Supports.parse(supports).value
     reference = Reference.parse(reference).value
     times: dict[str, float] = {}

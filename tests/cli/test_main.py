@@ -49,6 +49,19 @@ def no_traceback(proc: subprocess.CompletedProcess[str]) -> None:
     assert "Traceback" not in proc.stderr and "Traceback" not in proc.stdout
 
 
+def refused(proc: subprocess.CompletedProcess[str], param: str, words: str, folder: Path) -> None:
+    """Bad input: exit 2, one error line naming ``param`` with ``words``, no
+    traceback, nothing on stdout, nothing written in ``folder``."""
+    assert proc.returncode == 2, (proc.stdout, proc.stderr)
+    no_traceback(proc)
+    lines = [ln for ln in proc.stderr.splitlines() if not ln.startswith("onefold: warning: ")]
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith("onefold: error: ")
+    assert param in lines[0] and words in lines[0], lines[0]
+    assert proc.stdout == ""
+    assert list(folder.iterdir()) == []
+
+
 @pytest.fixture
 def cli(capfd):
     """``main()`` in this process (imports already paid): (exit status, stdout, stderr)."""
@@ -611,15 +624,7 @@ CASES = [("build", *b) for b in BAD + BUILD_ONLY] + [("solve", *b) for b in BAD[
 def test_bad_input_exits_2_with_one_line_and_no_file(tmp_path, command, args, param, words):
     out = tmp_path / "out"
     extra = ["-o", str(out), "-q"] if command == "build" else []
-    proc = run(command, *args, *extra, cwd=tmp_path)
-    assert proc.returncode == 2, (proc.stdout, proc.stderr)
-    no_traceback(proc)
-    lines = [ln for ln in proc.stderr.splitlines() if not ln.startswith("onefold: warning: ")]
-    assert len(lines) == 1, proc.stderr
-    assert lines[0].startswith("onefold: error: ")
-    assert param in lines[0] and words in lines[0], lines[0]
-    assert proc.stdout == ""
-    assert list(tmp_path.iterdir()) == []
+    refused(run(command, *args, *extra, cwd=tmp_path), param, words, tmp_path)
 
 
 def test_solve_warns_where_build_refuses_a_relief_hole():

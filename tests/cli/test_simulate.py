@@ -13,7 +13,7 @@ import trimesh
 
 from onefold_cad.cli.main import main
 from onefold_cad.mechanics import equilibrium
-from tests.cli.test_main import no_traceback, run
+from tests.cli.test_main import refused, run
 
 NAME = "patkau-one-fold"
 
@@ -80,14 +80,7 @@ def test_bad_input_exits_2_with_one_line_and_no_file(tmp_path, args, param, word
     # the case's flags come last: its own --mesh wins over the coarse default
     out = str(tmp_path / "out")
     proc = run("simulate", args[0], "--mesh", "coarse", "-o", out, *args[1:], cwd=tmp_path)
-    assert proc.returncode == 2, (proc.stdout, proc.stderr)
-    no_traceback(proc)
-    lines = [ln for ln in proc.stderr.splitlines() if not ln.startswith("onefold: warning: ")]
-    assert len(lines) == 1, proc.stderr
-    assert lines[0].startswith("onefold: error: ")
-    assert param in lines[0] and words in lines[0], lines[0]
-    assert proc.stdout == ""
-    assert list(tmp_path.iterdir()) == []
+    refused(proc, param, words, tmp_path)
 
 
 def test_a_newton_that_cannot_converge_is_an_error_with_its_residual(tmp_path, monkeypatch, capfd):

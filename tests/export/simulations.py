@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import numpy as np
-
 from onefold_cad.mechanics.results import Simulation, Standing
 
 
@@ -17,24 +15,7 @@ def stalled_copy(sim: Simulation) -> Simulation:
         "no equilibrium under its full weight on anchored supports: the load path ends at "
         "0.31 of the weight (Newton's residual there 12.3 N)"
     )
-    standing = Standing(
-        stands=False,
-        reason=reason,
-        load_factor=0.31,
-        max_deviation=None,
-        rms_deviation=None,
-        max_displacement=None,
-        height=None,
-        span=None,
-        reactions_total_N=None,
-        contacts=np.zeros((0, 3)),
-        tipping_margin_deg=None,
-        max_stress_MPa=None,
-        utilisation=None,
-        max_stress_at=None,
-        iterations=40,
-        reloaded_area_share=0.0,
-    )
+    standing = Standing.stalled(reason, 0.31, 40)
     return replace(
         sim, standing=standing, standing_positions=None, deviation=None, face_stress_MPa=None
     )
