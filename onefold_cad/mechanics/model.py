@@ -35,6 +35,7 @@ from onefold_cad.mechanics.shell import Shell, director_angles, hinge_stiffness
 __all__ = [
     "CREASES",
     "HELD_STIFFNESS",
+    "MESH_GRADING",
     "MESH_LEVELS",
     "SheetModel",
     "FINER",
@@ -48,6 +49,12 @@ MESH_LEVELS = {MeshLevel.COARSE: 1 / 8, MeshLevel.NORMAL: 1 / 20, MeshLevel.FINE
 #: Edge length at the relief hole's rim relative to its radius, and how fast it grows
 #: with the distance from the apex.
 _RIM, _GROWTH = 0.6, 0.25
+#: How much coarser each level grades from the hole (its rim size and growth
+#: times this): the coarse preview grades 1.5x faster (856 nodes for
+#: patkau-one-fold instead of 1 729, half the time, its standing and released
+#: deviations within 0.5 % of the normal mesh's where the 1 729-node mesh was
+#: within 0.9 %).
+MESH_GRADING = {MeshLevel.COARSE: 1.5, MeshLevel.NORMAL: 1.0, MeshLevel.FINE: 1.0}
 #: The crease models: ``held`` keeps each crease half at its set angle (a hinge
 #: :data:`HELD_STIFFNESS` times stiffer than a bend zone one thickness long), as a
 #: shell FE model's welded fold line does; ``elastic`` gives it the bend zone's own
@@ -217,13 +224,14 @@ def sheet_model(
     rest = rest_once(folded)
     size = design.sheet.size * scale
     h = MESH_LEVELS[level] * size if h_max is None else float(h_max)
+    grading = MESH_GRADING[level] if h_max is None else 1.0
     creases = [
         ((math.copysign(hole, c.end_flat[0]), 0.0), tuple(c.end_flat * scale))
         for c in folded.crease
     ]
     mesh = mesh_sheet(
         design.sheet.vertices * scale,
-        size=(_RIM * hole / refine, _GROWTH / refine, h / refine),
+        size=(grading * _RIM * hole / refine, grading * _GROWTH / refine, h / refine),
         hole_radius=hole,
         creases=creases,
         boundary_points=_contact_points(folded, rest) * scale,
