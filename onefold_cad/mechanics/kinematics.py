@@ -21,6 +21,7 @@ __all__ = [
     "director_slopes",
     "face_heights",
     "face_metric",
+    "log_area_hessian",
     "skew",
     "transported_director",
     "unit_derivatives",
@@ -101,6 +102,23 @@ def face_metric(x: F) -> tuple[F, F]:
     return a, da
 
 
+def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
+    """``(m, 9, 9)`` the Hessian of ``F = ln |N|`` (N the face's area vector, ``nn
+    = |N|^2``) in the vertex coordinates, from the edges ``(m, 3, 3)`` (edge i
+    opposite vertex i) and ``F``'s gradient ``df`` ``(m, 9)``:
+    ``(dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T``, in blocks (j, l)
+    ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
+    m = len(edge)
+    gram = edge @ edge.transpose(0, 2, 1)
+    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
+    wn = skew(normal)
+    for j in range(3):
+        blocks[:, j, (j + 2) % 3] += wn
+        blocks[:, j, (j + 1) % 3] -= wn
+    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
+    return d2f - 2 * df[:, :, None] * df[:, None, :]
+
+
 def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
     """Heights ``h_i = 2 A / l_i`` of the vertices over the opposite edges.
 
@@ -131,16 +149,7 @@ def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
     dh = h[:, :, None] * dlog
     if order == 1:
         return h, dh, None
-    # Hessian of F: (dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T.
-    # Blocks (j, l): (E_j . E_l) I - E_l E_j^T  +  [N]x (delta_{l, j+2} - delta_{l, j+1}).
-    gram = edge @ edge.transpose(0, 2, 1)
-    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
-    wn = skew(normal)
-    for j in range(3):
-        blocks[:, j, (j + 2) % 3] += wn
-        blocks[:, j, (j + 1) % 3] -= wn
-    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
-    d2f -= 2 * df[:, :, None] * df[:, None, :]
+    d2f = log_area_hessian(edge, normal, nn, df)
     d2h = np.broadcast_to(d2f[:, None], (m, 3, 9, 9)).copy()
     d2h += dlog[:, :, :, None] * dlog[:, :, None, :]
     unit = edge / np.sqrt(ll)[:, :, None]
@@ -360,14 +369,7 @@ def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
     du = g[:, :, None] * da + num[:, :, None] * dg
     if order == 1:
         return u, du, None
-    gram = edge @ edge.transpose(0, 2, 1)
-    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
-    wn = skew(normal)
-    for j in range(3):
-        blocks[:, j, (j + 2) % 3] += wn
-        blocks[:, j, (j + 1) % 3] -= wn
-    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
-    d2f -= 2 * df[:, :, None] * df[:, None, :]
+    d2f = log_area_hessian(edge, normal, nn, df)
     d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
     # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
     #   + dA dG^T + dG dA^T - (A / B^2)(dM dB^T + dB dM^T) + (2 A M / B^3) dB dB^T.
