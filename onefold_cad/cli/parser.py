@@ -248,8 +248,9 @@ def _simulate_parser() -> FlagParser:
             "shell model of the sheet calibrated to its Young's modulus, Poisson's ratio, "
             "yield stress, thickness and density (docs/mechanics.md). With --reference "
             "designed the designed form is taken as stress-free and checked under its weight "
-            "on its resting contacts, as an FE program does. The mesh is solved again twice as "
-            "fine to say how converged the answer is (not for --mesh coarse, a preview)."
+            "on its resting contacts, as an FE program does. It is solved again on a mesh with "
+            "about twice the nodes to say how converged the answer is (not for --mesh coarse, "
+            "a preview)."
         ),
         formatter_class=_raw_formatter,
         allow_abbrev=False,
