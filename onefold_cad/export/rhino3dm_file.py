@@ -20,6 +20,10 @@ One Rhino 8 file, model units from the design (mm, in, ft), holding:
 - the design's parameters (as in its template: ``frame.alpha``, ...), the
   crease halves' angles and the faces' fit as document user strings.
 
+openNURBS stamps the file with the time it was written and fresh ids for
+its layers and objects, so two writes differ in those bytes; the file name
+it records is the file's own (not the temporary one it is written under).
+
 The form stands as it rests (:func:`onefold_cad.fabrication.rules.resting_placement`,
 as the STEP's and the GLB's) or in the fold frame (``placement='frame'``).
 """
@@ -27,6 +31,7 @@ as the STEP's and the GLB's) or in the fold frame (``placement='frame'``).
 from __future__ import annotations
 
 import os
+import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -322,7 +327,12 @@ def write_3dm(
             when rhino3dm cannot write the file.
     """
     model = build_3dm(design, folded, **options)
-    with atomic_output(path) as tmp:
-        if not model.file.Write(str(tmp), VERSION):
-            raise ExportError(f"rhino3dm could not write {Path(path)}")
+    out = Path(path)
+    # openNURBS records the name it writes to in the file: write under the
+    # file's own name (in a private folder), then move it into place
+    with atomic_output(out) as tmp, tempfile.TemporaryDirectory(dir=out.parent) as folder:
+        named = Path(folder) / out.name
+        if not model.file.Write(str(named), VERSION):
+            raise ExportError(f"rhino3dm could not write {out}")
+        os.replace(named, tmp)
     return model

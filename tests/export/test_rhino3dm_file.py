@@ -58,6 +58,17 @@ def holed(tmp_path_factory):
     return design, folded, _read(path)
 
 
+@pytest.fixture(scope="module")
+def paper(tmp_path_factory):
+    """The paper model (a fan of 12 planar triangles a side) in feet, in the fold frame."""
+    frame = FrameCurve(35, 40, divisions=12)
+    design = Design("fan", frame, Sheet.rectangle(8, 5, 0.4), model="paper", units="ft")
+    folded = build_design(design)
+    path = tmp_path_factory.mktemp("3dm") / "fan.3dm"
+    write_3dm(design, folded, path, placement="frame")
+    return design, folded, _read(path)
+
+
 def _grid(surface, nu: int = 13, nv: int = 5) -> np.ndarray:
     u, v = surface.Domain(0), surface.Domain(1)
     return np.array(
@@ -154,8 +165,9 @@ def test_relief_hole_is_a_circle_of_its_diameter(holed):
     )
 
 
-@pytest.mark.parametrize("case", ["shell", "holed"])
+@pytest.mark.parametrize("case", ["shell", "holed", "paper"])
 def test_every_face_lies_on_the_exact_cone(case, request):
+    """(The paper model's surface is its fan: the rays of map_points all the same.)"""
     design, folded, doc = request.getfixturevalue(case)
     faces = _faces(doc)
     sides = [len(a) - 1 for a in folded.ruling_angles]
@@ -171,7 +183,7 @@ def test_every_face_lies_on_the_exact_cone(case, request):
     assert worst <= ON_CONE * size
 
 
-@pytest.mark.parametrize("case", ["shell", "holed"])
+@pytest.mark.parametrize("case", ["shell", "holed", "paper"])
 def test_faces_areas_add_up_to_the_sheets(case, request):
     """Integrated from the file's control nets (Gauss-Legendre on each knot
     span): the folded sheet keeps the flat area, less the relief hole."""
