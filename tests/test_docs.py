@@ -130,7 +130,7 @@ def test_pdoc_builds_the_api_reference(reference, tmp_path):
 
 FILES = {  # what `onefold build` writes, by --formats name
     "step": ".step", "dxf": ".dxf", "cut": "-cut.dxf", "bends": "-bends.csv", "fold": ".fold",
-    "glb": ".glb", "json": ".json", "png": "-3d.png", "svg": "-flat.svg",
+    "glb": ".glb", "3dm": ".3dm", "json": ".json", "png": "-3d.png", "svg": "-flat.svg",
 }  # fmt: skip
 
 

@@ -18,9 +18,9 @@ def graph():
 
 
 def test_the_graph_sees_imports_in_functions_and_under_type_checking(graph):
-    # writers imports the flat pattern only inside a function, and the
-    # design only under TYPE_CHECKING: both are edges
-    edges = graph["onefold_cad.export.writers"]
+    # the build context imports the flat pattern only inside a function,
+    # and the design only under TYPE_CHECKING: both are edges
+    edges = graph["onefold_cad.export.build_context"]
     assert "onefold_cad.fabrication.flat_pattern" in edges
     assert "onefold_cad.design" in edges
 

@@ -114,7 +114,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     )  # fmt: skip
     out.add_argument(
         "--placement", type=parse_choice(PLACEMENTS), default=PLACEMENTS[0],
-        metavar="rest|frame", help="where the STEP, GLB and 3D preview put the form: 'rest' "
+        metavar="rest|frame", help="where the STEP, GLB, 3DM and 3D preview put the form: 'rest' "
         "(default: standing on the ground z = 0 as the report's resting numbers say) or "
         "'frame' (the fold frame: H at the origin, the fold line on x, the apex above H)",
     )  # fmt: skip

@@ -1,8 +1,11 @@
-"""The page's downloads: the current design as DXF, STEP, JSON report or TOML.
+"""The page's downloads: the current design as DXF, STEP, Rhino 3DM, JSON
+report or TOML.
 
 Each file is made by the package's own writer (the same calls as ``onefold
 build``) into a private temporary folder and returned as bytes; no path
-comes from the page. Only the STEP runs the CAD kernel, one at a time.
+comes from the page. Only the STEP runs the CAD kernel, one at a time. The
+3DM needs rhino3dm (the ``rhino`` extra); without it the download is refused
+with a line saying so.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from onefold_cad.design import Design, build_design
+from onefold_cad.errors import ExportError
 
 __all__ = ["KINDS", "Download", "make_download"]
 
@@ -20,6 +24,7 @@ __all__ = ["KINDS", "Download", "make_download"]
 KINDS: dict[str, tuple[str, str]] = {
     "dxf": (".dxf", "application/dxf"),
     "step": (".step", "application/step"),
+    "3dm": (".3dm", "model/vnd.3dm"),
     "json": (".json", "application/json"),
     "toml": (".toml", "application/toml"),
 }
@@ -37,7 +42,7 @@ class Download:
 
 
 def make_download(kind: str, design: Design) -> Download:
-    """The file of ``kind`` ('dxf', 'step', 'json' or 'toml') for ``design``.
+    """The file of ``kind`` ('dxf', 'step', '3dm', 'json' or 'toml') for ``design``.
 
     Raises:
         KeyError: an unknown kind.
@@ -62,6 +67,14 @@ def make_download(kind: str, design: Design) -> Download:
             from onefold_cad.export.dxf import export_design_dxf
 
             export_design_dxf(design, path, folded)
+        elif kind == "3dm":
+            from onefold_cad.export.writers import WRITERS
+
+            if not WRITERS["3dm"].available:
+                raise ExportError("the .3dm needs rhino3dm, which is not installed")
+            from onefold_cad.export.rhino3dm_file import write_3dm
+
+            write_3dm(design, folded, path)
         else:
             from onefold_cad.export.step import export_design_step
 

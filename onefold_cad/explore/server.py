@@ -11,7 +11,7 @@ It listens on 127.0.0.1 and answers GET requests only:
   mesh, standing under its weight
   (:func:`onefold_cad.explore.simulation.simulation_state`; seconds: each
   request has its own thread, so the page's other requests go on meanwhile);
-- ``/download/{dxf,step,json,toml}?...``: the design's file.
+- ``/download/{dxf,step,3dm,json,toml}?...``: the design's file.
 
 Requests whose ``Host`` is not this server's own address (DNS rebinding),
 that come from another site (``Sec-Fetch-Site`` / ``Origin``), that carry a

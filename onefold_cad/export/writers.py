@@ -9,31 +9,27 @@ ezdxf, matplotlib) only when it runs.
 The JSON report is written last (it lists the other files and their
 timings). Writers marked ``needs_flat_pattern`` refuse, before anything is
 written, a design whose flat pattern cannot be made. What the writers share
-is computed once: the flat pattern and the resting placement through the
-package's one cache of a fold's results (:func:`onefold_cad.design.derived`),
-and the CAD products of this build, the STEP's part (shared with the GLB,
-``builds_part``) and the flat pattern's ezdxf drawing, held by the
-:class:`BuildContext` while the design's files are written (they are freed
-with it).
+is computed once, held by the build's
+:class:`~onefold_cad.export.build_context.BuildContext`. A writer whose
+library is an optional extra (``requires``, rhino3dm for the .3dm) is left
+out of the default (all) when the library is not installed, and refused by
+name.
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
-from functools import cached_property
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from importlib.util import find_spec
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from onefold_cad.choices import Compensation, Placement
 from onefold_cad.errors import InvalidParameterError, OneFoldError
+from onefold_cad.export.build_context import BuildContext
 
 if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer runs
     from onefold_cad.design import Design
-    from onefold_cad.fabrication.flat_pattern import FlatPattern
-    from onefold_cad.geometry.folding import FoldedSheet
-    from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = [
     "WRITERS",
@@ -44,77 +40,6 @@ __all__ = [
     "register",
     "write_design",
 ]
-
-
-@dataclass
-class BuildContext:
-    """One design being built: its fold, options and what writers share.
-
-    Attributes:
-        design: the design.
-        folded: ``build_design(design)``.
-        body: the STEP body ('solid', 'shell') or None for the default.
-        compensation: 'sharp' (bend compensation) or 'none'.
-        sources: where each input came from (for the report).
-        warnings: warnings found before writing (for the report).
-        files: every file of the design, in writing order (the report lists them).
-        timings: seconds per stage, filled in as the writers finish.
-        placement: where the STEP, the GLB and the 3D preview put the form:
-            'rest' (standing on the ground) or 'frame' (the fold frame).
-    """
-
-    design: Design
-    folded: FoldedSheet
-    body: str | None = None
-    compensation: str = Compensation.SHARP.value
-    sources: Mapping[str, str] = field(default_factory=dict)
-    warnings: Sequence[str] = ()
-    files: list[Path] = field(default_factory=list)
-    timings: dict[str, float] = field(default_factory=dict)
-    placement: str = Placement.REST.value
-
-    @property
-    def pattern(self) -> FlatPattern:
-        """The flat pattern (raises when it cannot be made;
-        :func:`~onefold_cad.fabrication.flat_pattern.flat_pattern_once`)."""
-        from onefold_cad.fabrication.flat_pattern import flat_pattern_once
-
-        return flat_pattern_once(self.design, self.folded, self.compensation)
-
-    @property
-    def resting(self) -> RestingPlacement:
-        """How the STEP's body stands (:func:`onefold_cad.fabrication.rules.resting_placement`)."""
-        from onefold_cad.fabrication.rules import resting_placement
-
-        return resting_placement(self.design, self.folded, self.body)
-
-    @cached_property
-    def part(self) -> Any:
-        """The STEP's part (build123d shape, :func:`onefold_cad.export.part.build_part`
-        with this body, placement and compensation), built once for this
-        build: the STEP and the GLB writers write this one part."""
-        from onefold_cad.export.part import build_part
-
-        return build_part(
-            self.design,
-            self.folded,
-            body=self.body,
-            placement=self.placement,
-            compensation=self.compensation,
-        )
-
-    @property
-    def built_part(self) -> Any | None:
-        """:attr:`part` if a writer has built it already, else None (never builds)."""
-        return self.__dict__.get("part")
-
-    @cached_property
-    def drawing(self) -> Any:
-        """The flat pattern as an ezdxf document (for the flat preview), drawn once
-        for this build."""
-        from onefold_cad.export.dxf import draw_flat_pattern
-
-        return draw_flat_pattern(self.pattern)
 
 
 @dataclass(frozen=True)
@@ -136,6 +61,9 @@ class Writer:
             refuses for fabrication (a relief hole that does not fit, a solid
             past the bend model's limits).
         what: what the file is for, one line (``onefold build --help``).
+        requires: the module the writer needs from an optional extra ('' for
+            none): without it the default (all) leaves the writer out and
+            naming it is refused.
     """
 
     name: str
@@ -146,6 +74,12 @@ class Writer:
     needs_flat_pattern: bool = False
     builds_part: bool = False
     what: str = ""
+    requires: str = ""
+
+    @property
+    def available(self) -> bool:
+        """Its required module is installed (found, not imported)."""
+        return not self.requires or find_spec(self.requires) is not None
 
 
 #: name -> writer, in writing order (the report, 'json', is always written last).
@@ -196,6 +130,27 @@ def _glb(ctx: BuildContext, path: Path) -> Any:
     return glb.write_glb(ctx.design, ctx.folded, path, part=ctx.part)
 
 
+def _rhino(ctx: BuildContext, path: Path) -> Any:
+    from onefold_cad.export import rhino3dm_file
+
+    model = rhino3dm_file.write_3dm(
+        ctx.design,
+        ctx.folded,
+        path,
+        pattern=ctx.pattern,
+        placement=ctx.placement,
+        body=ctx.body,
+        compensation=ctx.compensation,
+    )
+    ctx.sections["rhino"] = {
+        "placement": ctx.placement,
+        "faces": model.faces,
+        "fit_deviation": float(model.fit_deviation),
+        "fit_tolerance": float(model.fit_tolerance),
+    }
+    return model
+
+
 def _png(ctx: BuildContext, path: Path) -> Any:
     from onefold_cad.export import preview
 
@@ -235,6 +190,7 @@ def _json(ctx: BuildContext, path: Path) -> Any:
         compensation=ctx.compensation,
         body=ctx.body,
         step=_part_numbers(ctx),
+        rhino=ctx.sections.get("rhino"),
     )
     return write_report(path, report)
 
@@ -318,6 +274,18 @@ register(
 )
 register(
     Writer(
+        "3dm",
+        ".3dm",
+        "Rhino 3DM",
+        _rhino,
+        cuts_sheet=True,
+        needs_flat_pattern=True,
+        what="the exact folded faces and the flat pattern in layers, for Rhino 8",
+        requires="rhino3dm",
+    )
+)
+register(
+    Writer(
         "png",
         "-3d.png",
         "3D preview",
@@ -358,15 +326,16 @@ def files_help() -> str:
 
 def parse_formats(text: str | None) -> tuple[str, ...]:
     """The writers named by ``--formats`` ('step,dxf,...'; None or 'all' for
-    every one), in writing order with the report last.
+    every one whose required package is installed), in writing order with
+    the report last.
 
     Raises:
         InvalidParameterError: an unknown or repeated name (the message lists
-            the allowed ones).
+            the allowed ones), or one whose required package is missing.
     """
     allowed = ", ".join(WRITERS)
     if text is None or text.strip().lower() == "all":
-        names = list(WRITERS)
+        names = [n for n, w in WRITERS.items() if w.available]
     else:
         names = [n.strip().lower() for n in text.split(",") if n.strip()]
         if not names:
@@ -378,6 +347,12 @@ def parse_formats(text: str | None) -> tuple[str, ...]:
                 )
             if names.count(n) > 1:
                 raise InvalidParameterError("--formats", f"{n!r} is named twice")
+            if not WRITERS[n].available:
+                raise InvalidParameterError(
+                    "--formats",
+                    f"{n!r} needs the package {WRITERS[n].requires}, which is not "
+                    f"installed (pip install {WRITERS[n].requires})",
+                )
     order = [n for n in WRITERS if n in names and n != "json"]
     return (*order, "json") if "json" in names else tuple(order)
 

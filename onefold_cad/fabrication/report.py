@@ -223,6 +223,7 @@ def design_report(
     compensation: Compensation | str = Compensation.SHARP,
     body: str | None = None,
     step: Mapping[str, Any] | None = None,
+    rhino: Mapping[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Everything a fabricator or a test needs to know about one fold.
 
@@ -249,6 +250,9 @@ def design_report(
             ``placement`` and the part's ``fit_deviation`` and
             ``fit_tolerance`` (length); the report itself never runs the CAD
             kernel.
+        rhino: what the .3dm writer wrote, when it did (``build``):
+            ``placement``, ``faces`` and the faces' ``fit_deviation`` and
+            ``fit_tolerance`` (length).
 
     Returns:
         A JSON-serialisable dict: ``inputs`` (the design as template data),
@@ -334,6 +338,7 @@ def design_report(
             "area_rel_error": float(m.area_rel_error),
         },
         "step": None if step is None else dict(step),
+        "rhino": None if rhino is None else dict(rhino),
         "warnings": list(dict.fromkeys(notes)),  # in order, each once
         "timings_s": stage_times,
         "files": [Path(f).name for f in files],

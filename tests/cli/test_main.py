@@ -26,7 +26,8 @@ REPO = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent / "onefold"
 ONEFOLD = str(BIN) if BIN.exists() else shutil.which("onefold")
 SUFFIXES = (
-    ".step", ".dxf", "-cut.dxf", "-bends.csv", ".fold", ".glb", ".json", "-3d.png", "-flat.svg"
+    ".step", ".dxf", "-cut.dxf", "-bends.csv", ".fold", ".glb", ".3dm", ".json", "-3d.png",
+    "-flat.svg",
 )  # fmt: skip
 HEAVY = ("build123d", "OCP", "matplotlib", "ezdxf", "scipy.spatial", "typer", "rich", "pydantic",
          "pyarrow", "dask", "distributed")  # fmt: skip
@@ -123,7 +124,7 @@ def test_help_has_a_clean_usage_line(cmd, usage):
 def test_build_help_names_every_file_it_writes_and_its_format():
     text = run("build", "--help").stdout
     files = text[text.index("files (--formats") :].splitlines()[1:]
-    formats = ("step", "dxf", "cut", "bends", "fold", "glb", "json", "png", "svg")
+    formats = ("step", "dxf", "cut", "bends", "fold", "glb", "3dm", "json", "png", "svg")
     assert len(files) == len(SUFFIXES) == len(formats)  # one line each
     for suffix in SUFFIXES:  # the files a build writes (see the build tests)
         (line,) = [ln for ln in files if f" NAME{suffix} " in ln]

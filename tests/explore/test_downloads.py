@@ -37,6 +37,20 @@ def test_the_dxf_has_the_cut_outline(square):
     assert size[0] < 200.0  # compensated: narrower than the designed square
 
 
+def test_the_3dm_has_the_faces_and_the_flat_outline(square, tmp_path):
+    import rhino3dm
+
+    file = make_download("3dm", square)
+    assert file.filename == "paper-square.3dm" and file.mime == "model/vnd.3dm"
+    path = tmp_path / file.filename
+    path.write_bytes(file.body)
+    doc = rhino3dm.File3dm.Read(str(path))
+    layer = {lay.Index: lay.FullPath for lay in doc.Layers}
+    on = [layer[o.Attributes.LayerIndex] for o in doc.Objects]
+    assert on.count("Folded::Sheet") == 4 and "Flat::CUT" in on
+    assert doc.Strings["frame.alpha"] == "40.0"
+
+
 def test_the_toml_is_a_template_of_the_current_values(square):
     file = make_download("toml", square)
     data = tomllib.loads(file.body.decode("utf-8"))

@@ -29,7 +29,7 @@ def context(**material) -> BuildContext:
 
 
 def test_default_is_every_writer_with_the_report_last():
-    every = ("step", "dxf", "cut", "bends", "fold", "glb", "png", "svg", "json")
+    every = ("step", "dxf", "cut", "bends", "fold", "glb", "3dm", "png", "svg", "json")
     assert parse_formats(None) == parse_formats("all") == every
     assert parse_formats("json, DXF") == ("dxf", "json")
     assert parse_formats("svg,step") == ("step", "svg")
@@ -42,7 +42,7 @@ def test_default_is_every_writer_with_the_report_last():
         (
             "step,pdf",
             "unknown format 'pdf' "
-            "(allowed: step, dxf, cut, bends, fold, glb, png, svg, json, or all)",
+            "(allowed: step, dxf, cut, bends, fold, glb, 3dm, png, svg, json, or all)",
         ),
         ("dxf,dxf", "'dxf' is named twice"),
         (" , ", "names no format"),
@@ -54,9 +54,20 @@ def test_bad_formats_name_the_flag_and_the_allowed_ones(text, words):
     assert exc.value.parameter == "--formats" and words in str(exc.value)
 
 
+def test_a_writer_whose_package_is_missing_is_left_out_of_all_and_refused_by_name(monkeypatch):
+    """The .3dm needs rhino3dm (an optional extra): without it the default
+    writes the rest, and naming it says what to install."""
+    real = writers.find_spec
+    monkeypatch.setattr(writers, "find_spec", lambda n: None if n == "rhino3dm" else real(n))
+    assert "3dm" not in parse_formats(None) and "glb" in parse_formats("all")
+    with pytest.raises(InvalidParameterError, match="'3dm' needs the package rhino3dm") as exc:
+        parse_formats("step,3dm")
+    assert exc.value.parameter == "--formats"
+
+
 def test_a_relief_hole_that_does_not_fit_is_refused_by_the_cut_part_s_writers_only():
     ctx = context(relief_hole=500.0)  # the sheet's inradius about H is well below 250
-    for fmt in ("step", "dxf", "cut", "fold", "svg"):  # FOLD cuts the hole too
+    for fmt in ("step", "dxf", "cut", "fold", "3dm", "svg"):  # FOLD and 3DM cut the hole too
         with pytest.raises(FabricationError) as exc:
             check_before_writing(ctx, (fmt,))
         assert exc.value.parameter == "relief_hole"
@@ -171,10 +182,45 @@ def test_the_step_and_the_glb_are_one_part_built_once_and_the_report_gives_its_f
     assert 0.0 < rep["step"]["fit_deviation"] <= rep["step"]["fit_tolerance"]
 
 
+@pytest.mark.parametrize("placement", ["rest", "frame"])
+def test_the_3dm_holds_the_builds_placement_and_flat_pattern(tmp_path, placement):
+    """``--formats 3dm`` writes NAME.3dm with the build's placement (the apex
+    point where the fold or the resting placement puts it) and the build's
+    flat pattern (its outline's corners, moved on the ground)."""
+    import numpy as np
+    import rhino3dm
+
+    from onefold_cad.fabrication.rules import resting_placement
+
+    ctx = context(thickness=1.0)
+    ctx.placement = placement
+    files = write_design(ctx, tmp_path / "1", parse_formats("3dm,json"))
+    assert [f.name for f in files] == ["w.3dm", "w.json"]
+    doc = rhino3dm.File3dm.Read(str(files[0]))
+    path = {lay.Index: lay.FullPath for lay in doc.Layers}
+    (apex,) = [o for o in doc.Objects if path[o.Attributes.LayerIndex] == "Folded::Apex"]
+    want = ctx.folded.apex
+    if placement == "rest":
+        want = resting_placement(ctx.design, ctx.folded).apply(want[None, :])[0]
+    p = apex.Geometry.Location
+    assert np.allclose([p.X, p.Y, p.Z], want, rtol=0, atol=1e-9 * ctx.design.sheet.size)
+    (outline,) = [o.Geometry for o in doc.Objects if o.Attributes.Name == "outline"]
+    pts = np.array([[outline.Point(i).X, outline.Point(i).Y] for i in range(outline.PointCount)])
+    blank = ctx.pattern.outline
+    shift = pts[0] - blank[0]
+    assert np.allclose(pts[:-1] - shift, blank, rtol=0, atol=1e-9 * ctx.design.sheet.size)
+    rep = json.loads(files[1].read_text())
+    assert "3dm" in rep["timings_s"]
+    assert rep["rhino"]["placement"] == placement and rep["rhino"]["faces"] == 4
+    assert 0.0 < rep["rhino"]["fit_deviation"] <= rep["rhino"]["fit_tolerance"]
+    assert rep["rhino"]["fit_tolerance"] == pytest.approx(1e-7 * ctx.design.sheet.size)
+
+
 def test_the_report_runs_no_cad_kernel_when_no_part_was_built(tmp_path):
     ctx = context()
     write_design(ctx, tmp_path / "1", ("json",))
-    assert json.loads((tmp_path / "1" / "w.json").read_text())["step"] is None
+    rep = json.loads((tmp_path / "1" / "w.json").read_text())
+    assert rep["step"] is None and rep["rhino"] is None
     assert ctx.built_part is None
 
 
