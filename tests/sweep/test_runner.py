@@ -66,25 +66,17 @@ def test_a_rerun_skips_the_designs_done_and_does_the_new_ones(small_run, tmp_pat
     assert not is_finished(rows[plan.keys[0]], make_plan(*SMALL, images=True), tmp_path)
 
 
+def _sweep_48(folder: Path, jobs: int) -> list[str]:
+    """The command of a 48-design sweep into ``folder`` on ``jobs`` processes."""
+    return [ONEFOLD, "sweep", SMALL[0], "--vary", "alpha=20:60:6", "--vary", "beta=20:60:8",
+            "-o", str(folder), "-j", str(jobs), "--no-images"]  # fmt: skip
+
+
 def _kill_half_way(folder: Path, jobs: int, mark: str) -> int:
     """Start a sweep of 48 designs, SIGKILL it once 3 rows are journaled;
     the rows journaled by then."""
     env = {**os.environ, "ONEFOLD_TEST_MARK": mark}
-    cmd = [
-        ONEFOLD,
-        "sweep",
-        SMALL[0],
-        "--vary",
-        "alpha=20:60:6",
-        "--vary",
-        "beta=20:60:8",
-        "-o",
-        str(folder),
-        "-j",
-        str(jobs),
-        "--no-images",
-        "-q",
-    ]
+    cmd = [*_sweep_48(folder, jobs), "-q"]
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     journal = folder / JOURNAL
     deadline = time.monotonic() + 120
@@ -124,20 +116,7 @@ def test_a_killed_sweep_keeps_its_rows_and_a_rerun_ends_with_every_row_once(tmp_
             time.sleep(0.1)
         assert _marked(mark) == []
     proc = subprocess.run(
-        [
-            ONEFOLD,
-            "sweep",
-            SMALL[0],
-            "--vary",
-            "alpha=20:60:6",
-            "--vary",
-            "beta=20:60:8",
-            "-o",
-            str(tmp_path),
-            "-j",
-            str(jobs),
-            "--no-images",
-        ],
+        _sweep_48(tmp_path, jobs),
         capture_output=True,
         text=True,
         timeout=300,
