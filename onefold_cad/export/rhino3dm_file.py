@@ -2,11 +2,11 @@
 
 One Rhino 8 file, model units from the design (mm, in, ft), holding:
 
-- ``Folded::Sheet``: the folded form as NURBS faces on the exact cone, one
-  Brep per face (per side, one face per sector between the sheet's corners;
-  rhino3dm joins no Breps), each with a render mesh and grouped per side
-  (groups ``upper side`` / ``lower side``): :mod:`.rhino_faces`, fitted to
-  the STEP's tolerance (:data:`TOLERANCE` x the sheet's size);
+- ``Folded::Sheet``: the folded form as one Brep per side (``upper side``,
+  ``lower side``), each a single NURBS face on the exact cone whose natural
+  boundary is the part's edge, C0 at the sheet's corners, with a render mesh
+  (:mod:`.rhino_sides`, fitted to the STEP's tolerance: :data:`TOLERANCE` x
+  the sheet's size);
 - ``Folded::Crease UP`` / ``Folded::Crease DOWN``: each crease half as a line
   from the apex to the sheet's edge, on the layer of its bend;
   ``Folded::Apex``: the apex point; ``Folded::Ground contacts``: where the
@@ -17,12 +17,18 @@ One Rhino 8 file, model units from the design (mm, in, ft), holding:
   lines (``Flat::BEND_UP`` / ``Flat::BEND_DOWN``), bend zones, rulings, the
   apex and the notes (as text dots), on the ground plane z = 0 beside the
   form (+x of it, a tenth of the sheet's size apart);
-- the design's parameters (as in its template: ``frame.alpha``, ...), the
-  crease halves' angles and the faces' fit as document user strings.
+- user strings (:mod:`.rhino_strings`): the design's parameters (as in its
+  template: ``frame.alpha``, ...) and the report's key numbers
+  (``report.fold_angles_deg.plus_x``, ``report.resting.height``, ...) on the
+  document and on each side's Brep (its attributes and its geometry), with
+  the crease halves' angles and the faces' fit on the document.
 
-openNURBS stamps the file with the time it was written and fresh ids for
-its layers and objects, so two writes differ in those bytes; the file name
-it records is the file's own (not the temporary one it is written under).
+Two writes of the same design give the same bytes: the layers' and objects'
+ids are derived from the design (:func:`onefold_cad.export.dxf.design_seed`
+with the placement and body), the file is written from memory (openNURBS
+records no file name) and with its revision set before writing, so that
+openNURBS stamps no time (the file's created / last edited times are unset;
+rhino3dm 8's ``File3dm.Created`` cannot convert an unset time and raises).
 
 The form stands as it rests (:func:`onefold_cad.fabrication.rules.resting_placement`,
 as the STEP's and the GLB's) or in the fold frame (``placement='frame'``).
@@ -30,9 +36,9 @@ as the STEP's and the GLB's) or in the fold frame (``placement='frame'``).
 
 from __future__ import annotations
 
+import base64
 import os
-import tempfile
-from collections.abc import Mapping
+import uuid
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -47,12 +53,10 @@ from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.colour_scale import STEEL_GREY
 from onefold_cad.export.dxf import LAYERS as DXF_LAYERS
+from onefold_cad.export.dxf import design_seed
 from onefold_cad.export.dxf_notes import flat_pattern_notes
-from onefold_cad.export.rhino_faces import Place, face_brep, face_nets
-from onefold_cad.export.step_checks import BOUNDARY_TOLERANCE
+from onefold_cad.export.rhino_sides import TOLERANCE, FoldSides, fold_sides, placement_of
 from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern_once
-from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
-from onefold_cad.fabrication.rules import resting_placement
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 
@@ -62,13 +66,11 @@ __all__ = [
     "TOLERANCE",
     "RhinoModel",
     "build_3dm",
+    "file_bytes",
     "layer_colour",
     "write_3dm",
 ]
 
-#: The faces' largest distance from the exact cone, relative to the sheet's size
-#: (the STEP's boundary tolerance).
-TOLERANCE = BOUNDARY_TOLERANCE
 #: Rhino 8's archive version.
 VERSION = 8
 _UNITS = {
@@ -76,6 +78,8 @@ _UNITS = {
     Units.IN: rhino3dm.UnitSystem.Inches,
     Units.FT: rhino3dm.UnitSystem.Feet,
 }
+#: The namespace of the file's ids (uuid5 of the design's seed and the component).
+_ID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_DNS, "3dm.onefold_cad")
 
 
 def layer_colour(aci: int) -> tuple[int, int, int]:
@@ -106,7 +110,7 @@ class RhinoModel:
 
     Attributes:
         file: the rhino3dm document.
-        faces: the number of NURBS faces of the folded form.
+        faces: the number of NURBS faces of the folded form (one per side).
         fit_deviation: the faces' largest measured distance from the exact
             cone (length).
         fit_tolerance: the distance allowed (length).
@@ -121,76 +125,74 @@ class RhinoModel:
     flat_offset: Array
 
 
+class _Ids:
+    """Ids derived from a seed: the n-th id asked for a kind is always the same."""
+
+    def __init__(self, seed: str) -> None:
+        self.seed = seed
+        self.count: dict[str, int] = {}
+
+    def __call__(self, kind: str) -> str:
+        n = self.count.get(kind, 0)
+        self.count[kind] = n + 1
+        return str(uuid.uuid5(_ID_NAMESPACE, f"{kind}:{n}:{self.seed}"))
+
+
 def _p3(p: Array) -> Any:
     x, y, *z = (float(c) for c in p)
     return rhino3dm.Point3d(x, y, z[0] if z else 0.0)
 
 
-def _layers(doc: Any) -> dict[str, int]:
+def _layers(doc: Any, ids: _Ids) -> dict[str, int]:
     """Add the parents and their layers; return 'Folded::Sheet' -> index, ..."""
     index = {}
     for parent, layers in (("Folded", FOLDED_LAYERS), ("Flat", FLAT_LAYERS)):
         top = rhino3dm.Layer()
         top.Name = parent
         top.Color = (0, 0, 0, 255)
+        top.Id = ids("layer")
         parent_id = doc.Layers[doc.Layers.Add(top)].Id
         for name, (r, g, b) in layers.items():
             layer = rhino3dm.Layer()
             layer.Name = name
             layer.Color = (r, g, b, 255)
             layer.ParentLayerId = parent_id
+            layer.Id = ids("layer")
             index[f"{parent}::{name}"] = doc.Layers.Add(layer)
     return index
 
 
-def _attributes(layer: int, label: str = "", **strings: object) -> Any:
-    a = rhino3dm.ObjectAttributes()
-    a.LayerIndex = layer
-    if label:
-        a.Name = label
-    for key, value in strings.items():
-        a.SetUserString(key, str(value))
-    return a
+class _Adder:
+    """Attributes for the objects of one document: layer, name, user strings
+    and an id from the document's seed."""
+
+    def __init__(self, layers: dict[str, int], ids: _Ids) -> None:
+        self.layers, self.ids = layers, ids
+
+    def __call__(self, layer: str, label: str = "", **strings: object) -> Any:
+        a = rhino3dm.ObjectAttributes()
+        a.LayerIndex = self.layers[layer]
+        a.Id = self.ids("object")
+        if label:
+            a.Name = label
+        for key, value in strings.items():
+            a.SetUserString(key, str(value))
+        return a
 
 
-def _flatten(data: Mapping[str, Any], prefix: str = "") -> dict[str, str]:
-    out: dict[str, str] = {}
-    for key, value in data.items():
-        if isinstance(value, Mapping):
-            out.update(_flatten(value, f"{prefix}{key}."))
-        else:
-            out[f"{prefix}{key}"] = str(value)
-    return out
-
-
-def _folded(
-    doc: Any, layers: dict[str, int], folded: FoldedSheet, hole: float, place: Place, tol: float
-) -> tuple[int, float, Array]:
-    """The faces, creases and apex; returns (faces, deviation, bounds (2, 3))."""
-    nets = face_nets(folded, hole, tol)
-    groups = []
-    for side in ("upper side", "lower side"):
-        group = rhino3dm.Group()
-        group.Name = side
-        doc.Groups.Add(group)
-        groups.append(doc.Groups.FindName(side).Index)
+def _folded(doc: Any, attrs: _Adder, folded: FoldedSheet, sides: FoldSides, place: Any) -> Array:
+    """The side Breps, creases and apex; returns the form's bounds (2, 3)."""
     corners = []
-    for net in nets:
-        side = ("upper", "lower")[net.side]
-        a = _attributes(
-            layers["Folded::Sheet"],
-            f"{side} face {net.sector}",
-            side=side,
-            sector=net.sector,
-            fit_deviation=f"{net.deviation:.6g}",
-        )
-        a.AddToGroup(groups[net.side])
-        doc.Objects.AddBrep(face_brep(folded, net, hole, place), a)
+    for (name, brep), net in zip(sides.breps, sides.nets, strict=True):
+        a = attrs("Folded::Sheet", f"{name} side")
+        for key, value in brep.GetUserStrings():
+            a.SetUserString(key, value)
+        doc.Objects.AddBrep(brep, a)
         corners.append(place(np.concatenate([net.inner, net.outer])))
     apex = place(folded.apex[None, :])[0]
     for half in folded.crease:
-        a = _attributes(
-            layers[f"Folded::Crease {half.bend}"],
+        a = attrs(
+            f"Folded::Crease {half.bend}",
             f"crease {half.name}",
             name=half.name,
             bend=half.bend,
@@ -198,26 +200,26 @@ def _folded(
             length=f"{half.length:.9g}",
         )
         doc.Objects.AddLine(_p3(apex), _p3(place(half.end_3d[None, :])[0]), a)
-    doc.Objects.AddPoint(_p3(apex), _attributes(layers["Folded::Apex"], "apex"))
+    doc.Objects.AddPoint(_p3(apex), attrs("Folded::Apex", "apex"))
     pts = np.concatenate(corners)
-    deviation = max(net.deviation for net in nets)
-    return len(nets), deviation, np.stack([pts.min(axis=0), pts.max(axis=0)])
+    return np.stack([pts.min(axis=0), pts.max(axis=0)])
 
 
-def _flat(doc: Any, layers: dict[str, int], pattern: FlatPattern, offset: Array) -> None:
+def _flat(doc: Any, attrs: _Adder, pattern: FlatPattern, offset: Array) -> None:
     """The flat pattern on the ground plane, moved by ``offset`` ``(2,)``."""
 
     def line(layer: str, a: Array, b: Array, label: str = "", **strings: object) -> None:
-        attrs = _attributes(layers[f"Flat::{layer}"], label, **strings)
-        doc.Objects.AddLine(_p3(a + offset), _p3(b + offset), attrs)
+        doc.Objects.AddLine(
+            _p3(a + offset), _p3(b + offset), attrs(f"Flat::{layer}", label, **strings)
+        )
 
     outline = [_p3(p + offset) for p in pattern.cut_outline]
     curve = rhino3dm.PolylineCurve([*outline, outline[0]])
-    doc.Objects.AddCurve(curve, _attributes(layers["Flat::CUT"], "outline"))
+    doc.Objects.AddCurve(curve, attrs("Flat::CUT", "outline"))
     apex = pattern.apex + offset
     if pattern.cut_hole_diameter > 0.0:
         circle = rhino3dm.Circle(_p3(apex), pattern.cut_hole_diameter / 2.0)
-        doc.Objects.AddCircle(circle, _attributes(layers["Flat::CUT"], "relief hole"))
+        doc.Objects.AddCircle(circle, attrs("Flat::CUT", "relief hole"))
     for half in pattern.halves:
         line(
             half.layer,
@@ -234,12 +236,12 @@ def _flat(doc: Any, layers: dict[str, int], pattern: FlatPattern, offset: Array)
         line(f.layer, f.start, f.end, f.name, name=f.name, bend=f.bend, angle_deg=f.angle_deg)
     for a, b in pattern.rulings:
         line("RULINGS", a, b)
-    doc.Objects.AddPoint(_p3(apex), _attributes(layers["Flat::APEX"], "H"))
+    doc.Objects.AddPoint(_p3(apex), attrs("Flat::APEX", "H"))
     h = pattern.scale / 60.0
     x0, y0 = pattern.outline.min(axis=0) + offset
     for i, text in enumerate(flat_pattern_notes(pattern)):
         at = np.array([x0, y0 - (2 + 1.6 * i) * h])
-        doc.Objects.AddTextDot(text, _p3(at), _attributes(layers["Flat::NOTES"]))
+        doc.Objects.AddTextDot(text, _p3(at), attrs("Flat::NOTES"))
 
 
 def build_3dm(
@@ -269,48 +271,51 @@ def build_3dm(
             pattern cannot be made.
         ExportError: a face cannot reach the tolerance.
     """
-    problem = relief_hole_problem(design, folded)
-    if problem is not None:
-        raise problem
+    sides = fold_sides(
+        design, folded, placement=placement, body=body, pattern=pattern, compensation=compensation
+    )
     if pattern is None:
         pattern = flat_pattern_once(design, folded, compensation)
-    rest = resting_placement(design, folded, body) if placement == "rest" else None
-
-    def place(p: Array) -> Array:
-        return np.asarray(p, dtype=float) if rest is None else rest.apply(p)
-
+    place, rest = placement_of(design, folded, placement, body)
+    comp = Compensation.parse(compensation).value
+    ids = _Ids(f"{design_seed(design, comp, '3dm')}:{placement}:{body}")
     doc = rhino3dm.File3dm()
+    doc.Revision = 1  # a revision already: openNURBS then stamps no write time
     doc.Settings.ModelUnitSystem = _UNITS[design.units]
     size = folded.sheet.size
-    tol = TOLERANCE * size
-    doc.Settings.ModelAbsoluteTolerance = tol
-    layers = _layers(doc)
-    hole = relief_hole_diameter(design, folded) / 2.0
-    faces, deviation, bounds = _folded(doc, layers, folded, hole, place, tol)
+    doc.Settings.ModelAbsoluteTolerance = sides.tolerance
+    attrs = _Adder(_layers(doc, ids), ids)
+    bounds = _folded(doc, attrs, folded, sides, place)
     if rest is not None:
         for i, p in enumerate(rest.contacts):
-            doc.Objects.AddPoint(_p3(p), _attributes(layers["Folded::Ground contacts"], f"c{i}"))
+            doc.Objects.AddPoint(_p3(p), attrs("Folded::Ground contacts", f"c{i}"))
     lo = pattern.outline.min(axis=0)
     offset = np.array([bounds[1, 0] + 0.1 * size - lo[0], bounds[0, 1] - lo[1]])
-    _flat(doc, layers, pattern, offset)
-    from onefold_cad.templates import design_to_data
-
-    strings = _flatten(design_to_data(design))
+    _flat(doc, attrs, pattern, offset)
+    strings = dict(sides.strings)
     for half in folded.crease:
         strings[f"crease.{half.name}.fold_angle_deg"] = f"{half.fold_angle_deg:.6f}"
         strings[f"crease.{half.name}.bend"] = half.bend
-    strings.update(
-        {
-            "rhino.placement": placement,
-            "rhino.faces": str(faces),
-            "rhino.fit_deviation": f"{deviation:.6g}",
-            "rhino.fit_tolerance": f"{tol:.6g}",
-            "flat.compensation": pattern.compensation,
-        }
-    )
+    strings["rhino.faces"] = str(len(sides.breps))
+    strings["flat.compensation"] = pattern.compensation
     for key, value in strings.items():
         doc.Strings[key] = value
-    return RhinoModel(doc, faces, deviation, tol, offset)
+    return RhinoModel(doc, len(sides.breps), sides.deviation, sides.tolerance, offset)
+
+
+def file_bytes(model: RhinoModel) -> bytes:
+    """The bytes of the model's Rhino 8 file, written in memory (no file
+    name recorded, no time stamped: the same model gives the same bytes).
+
+    Raises:
+        ExportError: rhino3dm cannot write it.
+    """
+    options = rhino3dm.File3dmWriteOptions()
+    options.Version = VERSION
+    data = base64.b64decode(model.file.Encode(options))
+    if not data:
+        raise ExportError("rhino3dm could not write the .3dm")
+    return data
 
 
 def write_3dm(
@@ -327,12 +332,7 @@ def write_3dm(
             when rhino3dm cannot write the file.
     """
     model = build_3dm(design, folded, **options)
-    out = Path(path)
-    # openNURBS records the name it writes to in the file: write under the
-    # file's own name (in a private folder), then move it into place
-    with atomic_output(out) as tmp, tempfile.TemporaryDirectory(dir=out.parent) as folder:
-        named = Path(folder) / out.name
-        if not model.file.Write(str(named), VERSION):
-            raise ExportError(f"rhino3dm could not write {out}")
-        os.replace(named, tmp)
+    data = file_bytes(model)
+    with atomic_output(Path(path)) as tmp:
+        Path(tmp).write_bytes(data)
     return model

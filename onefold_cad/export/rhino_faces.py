@@ -1,6 +1,8 @@
 """The folded form's faces for the .3dm (a rhino3dm adapter): one NURBS face
-per sector of a side between consecutive vertex rulings, whose natural
-boundary is the part's edge (rhino3dm cannot trim a curved face).
+per side, whose natural boundary is the part's edge (rhino3dm can neither
+trim a curved face nor join faces into one Brep), fitted sector by sector
+(between consecutive vertex rulings) and joined at the sheet's corners by
+knots of full multiplicity, so the face keeps the boundary's kinks exactly.
 
 A face is the ruled surface ``S(s, v) = (1 - v) I(s) + v O(s)`` between two
 cubic B-splines with one knot vector: ``I`` runs along the relief hole's edge
@@ -18,12 +20,18 @@ nodes and an interval split while it exceeds the tolerance (the STEP's,
 ``s`` runs against the flat polar angle and ``v`` outwards, so the face
 normal ``dS/ds x dS/dv`` is the sheet's top side (as the STEP's shell).
 
+A side's face (:func:`side_nets`) strings its sectors' curves together in
+that order: its parameter ``u`` is the flat angle swept from the side's
+first crease half (the -x one on the +y side, the +x one on the -y side, in
+radians), and at each sheet corner the cubic's knot is triple (C0 there, the
+control point the corner's fold). Each span is a sector's own, so the face
+is as close to the cone as its sectors.
+
 Lengths are in the design unit; angles in radians.
 """
 
 from __future__ import annotations
 
-import ctypes
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -41,11 +49,11 @@ __all__ = [
     "FIRST_NODES",
     "MAX_NODES",
     "FaceNet",
-    "attach_render_mesh",
-    "face_brep",
+    "SideNet",
     "face_nets",
     "nurbs_surface",
     "render_mesh",
+    "side_nets",
 ]
 
 #: Interpolation nodes a sector starts with (evenly spread in angle).
@@ -87,6 +95,33 @@ class FaceNet:
     inner: Array
     outer: Array
     nodes: Array
+    deviation: float
+
+
+@dataclass(frozen=True)
+class SideNet:
+    """The control net of one side's face, in the fold frame: its sectors'
+    nets strung together (see the module docstring).
+
+    Attributes:
+        side: 0 for the +y side, 1 for the -y side.
+        sectors: the side's sector nets, in the order ``u`` runs through them.
+        knots: ``(n + 2,)`` the cubic's knots as openNURBS holds them, in
+            radians of flat angle from the side's first crease half; triple
+            at each corner between sectors.
+        inner: ``(n, 3)`` control points along the relief hole (or the apex).
+        outer: ``(n, 3)`` control points along the sheet's edge.
+        corners: ``(k,)`` the parameters ``u`` where the sectors meet (the
+            sheet's corners and the paper model's divisions).
+        deviation: the sectors' largest distance from the exact cone (length).
+    """
+
+    side: int
+    sectors: tuple[FaceNet, ...]
+    knots: Array
+    inner: Array
+    outer: Array
+    corners: Array
     deviation: float
 
 
@@ -171,8 +206,48 @@ def face_nets(folded: FoldedSheet, hole_radius: float, tol: float) -> list[FaceN
     return nets
 
 
-def nurbs_surface(net: FaceNet, place: Place) -> rhino3dm.NurbsSurface:
-    """The face as a rhino3dm NURBS surface (cubic in u, linear in v), placed."""
+def side_nets(nets: list[FaceNet]) -> list[SideNet]:
+    """Each side's face from its sectors' nets (:func:`face_nets`): the
+    sectors in the order ``s`` runs (against the flat polar angle: the +y
+    side's from theta = pi down, the -y side's from theta = 0 up), each
+    sector's knots moved onto its flat angles, one control point shared at
+    each corner (the first sector's end, which is its fold to rounding)."""
+    out = []
+    for side in (0, 1):
+        sectors = sorted((n for n in nets if n.side == side), key=lambda n: n.sector)
+        if side == 0:
+            sectors.reverse()
+        top = max(float(n.theta[1]) for n in sectors)
+        knots, inner, outer, corners = [], [], [], []
+        for i, net in enumerate(sectors):
+            ta, tb = (float(t) for t in net.theta)
+            start = top - tb if side == 0 else ta - float(sectors[0].theta[0])
+            k = start + (tb - ta) * net.knots
+            if i == 0:
+                knots.append(k)
+                inner.append(net.inner)
+                outer.append(net.outer)
+            else:
+                corners.append(float(knots[-1][-1]))
+                knots.append(k[3:])  # the corner's knot three times, then the sector's own
+                inner.append(net.inner[1:])
+                outer.append(net.outer[1:])
+        out.append(
+            SideNet(
+                side,
+                tuple(sectors),
+                np.concatenate(knots),
+                np.concatenate(inner),
+                np.concatenate(outer),
+                np.asarray(corners, dtype=float),
+                max(n.deviation for n in sectors),
+            )
+        )
+    return out
+
+
+def nurbs_surface(net: FaceNet | SideNet, place: Place) -> rhino3dm.NurbsSurface:
+    """A face as a rhino3dm NURBS surface (cubic in u, linear in v), placed."""
     inner, outer = place(net.inner), place(net.outer)
     n = len(inner)
     surface = rhino3dm.NurbsSurface.Create(3, False, 4, 2, n, 2)
@@ -188,9 +263,11 @@ def nurbs_surface(net: FaceNet, place: Place) -> rhino3dm.NurbsSurface:
     return surface
 
 
-def render_mesh(folded: FoldedSheet, net: FaceNet, hole_radius: float, place: Place) -> Any:
-    """A mesh of the face with every vertex on the exact cone (the fold's
-    points), its triangles facing the top side, placed."""
+def _sector_mesh(
+    folded: FoldedSheet, net: FaceNet, hole_radius: float
+) -> tuple[Array, list[tuple[int, ...]]]:
+    """One sector's mesh in the fold frame: vertices ``(k, 3)`` on the exact
+    cone and faces (triangles and quads, indices into them) facing the top."""
     ta, tb = net.theta
     cols = max(2, math.ceil((tb - ta) / MESH_ANGLE) + 1)
     psi = _angles(net.theta, net.side, np.linspace(0.0, 1.0, cols))
@@ -200,44 +277,36 @@ def render_mesh(folded: FoldedSheet, net: FaceNet, hole_radius: float, place: Pl
     r = hole_radius + v[None, :] * (rho[:, None] - hole_radius)  # (cols, rows + 1)
     first = 0 if hole_radius > 0.0 else 1  # no hole: one apex vertex for the row at v = 0
     flat = (r[:, first:, None] * d[:, None, :]).reshape(-1, 2)
-    pts = place(folded.map_points(flat))
-    mesh = rhino3dm.Mesh()
+    pts = folded.map_points(flat)
     if first:
-        x, y, z = (float(c) for c in place(folded.apex[None, :])[0])
-        mesh.Vertices.Add(x, y, z)
-    for x, y, z in pts.tolist():
-        mesh.Vertices.Add(x, y, z)
+        pts = np.concatenate([folded.apex[None, :], pts])
     rows = MESH_ROWS + 1 - first
 
     def at(i: int, j: int) -> int:
         return first + i * rows + j
 
+    faces: list[tuple[int, ...]] = []
     for i in range(cols - 1):
         if first:
-            mesh.Faces.AddFace(0, at(i + 1, 0), at(i, 0))
+            faces.append((0, at(i + 1, 0), at(i, 0)))
         for j in range(rows - 1):
-            mesh.Faces.AddFace(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1))
+            faces.append((at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)))
+    return pts, faces
+
+
+def render_mesh(folded: FoldedSheet, side: SideNet, hole_radius: float, place: Place) -> Any:
+    """A mesh of a side's face with every vertex on the exact cone (the
+    fold's points), its faces facing the top side, placed: its sectors'
+    meshes side by side (each corner's vertices twice, so the shading keeps
+    the kink)."""
+    mesh = rhino3dm.Mesh()
+    base = 0
+    for net in side.sectors:
+        pts, faces = _sector_mesh(folded, net, hole_radius)
+        for x, y, z in place(pts).tolist():
+            mesh.Vertices.Add(x, y, z)
+        for f in faces:
+            mesh.Faces.AddFace(*(base + k for k in f))
+        base += len(pts)
     mesh.Normals.ComputeNormals()
     return mesh
-
-
-def attach_render_mesh(brep: rhino3dm.Brep, mesh: rhino3dm.Mesh) -> None:
-    """Give ``brep``'s one face ``mesh`` as its render mesh.
-
-    ``BrepFace.SetMesh`` hands the mesh to the face, which deletes it with
-    the Brep, while the Python object still owns it too (rhino3dm 8: the
-    process crashes on exit, a double free). The Python object is kept
-    alive for good (a few bytes per face) so that only the face frees it.
-    """
-    ctypes.pythonapi.Py_IncRef(ctypes.py_object(mesh))
-    if not brep.Faces[0].SetMesh(mesh, rhino3dm.MeshType.Render):
-        raise ExportError("rhino3dm refused a face's render mesh")
-
-
-def face_brep(folded: FoldedSheet, net: FaceNet, hole_radius: float, place: Place) -> Any:
-    """The face as a one-face Brep with its render mesh, placed."""
-    brep = rhino3dm.Brep.CreateFromSurface(nurbs_surface(net, place))
-    if brep is None or not brep.IsValid:
-        raise ExportError("rhino3dm could not make a Brep of a face")
-    attach_render_mesh(brep, render_mesh(folded, net, hole_radius, place))
-    return brep

@@ -526,13 +526,13 @@ def test_a_flags_only_build_is_not_named_after_the_default_template(tmp_path):
 
 
 def test_two_builds_are_byte_identical_but_for_the_timings(tmp_path):
-    """STEP, PNG, SVG and JSON (without timings) repeat byte for byte (the DXF's
-    header dates are the DXF writer's business)."""
+    """STEP, 3DM, PNG, SVG and JSON (without timings) repeat byte for byte, each
+    build its own process (the DXF's header dates are the DXF writer's business)."""
     for d in ("a", "b"):
-        args = ["paper-square", "--formats", "step,png,svg,json", "-q"]
+        args = ["paper-square", "--formats", "step,3dm,png,svg,json", "-q"]
         assert run("build", *args, "-o", str(tmp_path / d)).returncode == 0
     names = sorted(p.name for p in (tmp_path / "a").iterdir())
-    assert names == sorted(p.name for p in (tmp_path / "b").iterdir()) and len(names) == 4
+    assert names == sorted(p.name for p in (tmp_path / "b").iterdir()) and len(names) == 5
     for name in names:
         a, b = (tmp_path / d / name for d in "ab")
         if name.endswith(".json"):

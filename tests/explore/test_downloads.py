@@ -47,7 +47,7 @@ def test_the_3dm_has_the_faces_and_the_flat_outline(square, tmp_path):
     doc = rhino3dm.File3dm.Read(str(path))
     layer = {lay.Index: lay.FullPath for lay in doc.Layers}
     on = [layer[o.Attributes.LayerIndex] for o in doc.Objects]
-    assert on.count("Folded::Sheet") == 4 and "Flat::CUT" in on
+    assert on.count("Folded::Sheet") == 2 and "Flat::CUT" in on
     assert doc.Strings["frame.alpha"] == "40.0"
 
 

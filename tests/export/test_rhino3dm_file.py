@@ -1,10 +1,14 @@
 """NAME.3dm read back with rhino3dm: Rhino 8, the design's units, the DXF's
 layers and colours under Flat:: and Folded::, the flat outline the blank's,
-every folded face on the exact cone (measured against rays of the fold,
-independently of the writer's own fit), the faces' areas the sheet's."""
+one valid Brep per side whose face lies on the exact cone (measured against
+rays of the fold, independently of the writer's own fit) and keeps the
+sheet's corners, the faces' areas the sheet's, the report's numbers as user
+strings, and the same bytes from two writes."""
 
 from __future__ import annotations
 
+import datetime
+import json
 import math
 
 import numpy as np
@@ -15,9 +19,10 @@ from scipy.interpolate import BSpline
 
 from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
 from onefold_cad.export.dxf import LAYERS as DXF_LAYERS
-from onefold_cad.export.rhino3dm_file import write_3dm
+from onefold_cad.export.rhino3dm_file import build_3dm, write_3dm
 from onefold_cad.fabrication.flat_pattern import flat_pattern_once
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+from onefold_cad.fabrication.report import design_report
 from onefold_cad.fabrication.rules import resting_placement
 
 FLOAT32 = float(np.finfo(np.float32).eps)
@@ -69,19 +74,37 @@ def paper(tmp_path_factory):
     return design, folded, _read(path)
 
 
+def _knots(surface) -> np.ndarray:
+    n = surface.ToNurbsSurface()
+    return np.array([n.KnotsU[i] for i in range(len(n.KnotsU))])
+
+
+def _corners(surface) -> np.ndarray:
+    """The parameters u where the face's cubic has a triple knot (C0)."""
+    values, counts = np.unique(_knots(surface), return_counts=True)
+    return values[1:-1][counts[1:-1] >= 3]
+
+
 def _grid(surface, nu: int = 13, nv: int = 5) -> np.ndarray:
+    """Points on a ``nu`` x ``nv`` grid of each span between the face's corners."""
     u, v = surface.Domain(0), surface.Domain(1)
+    ends = np.concatenate([[u.T0], _corners(surface), [u.T1]])
     return np.array(
         [
             [(p := surface.PointAt(a, b)).X, p.Y, p.Z]
-            for a in np.linspace(u.T0, u.T1, nu)
+            for lo, hi in zip(ends[:-1], ends[1:], strict=True)
+            for a in np.linspace(lo, hi, nu)
             for b in np.linspace(v.T0, v.T1, nv)
         ]
     )
 
 
+def _breps(doc) -> list:
+    return [o.Geometry for o in _on(doc, "Folded::Sheet")]
+
+
 def _faces(doc) -> list:
-    return [o.Geometry.Surfaces[0] for o in _on(doc, "Folded::Sheet")]
+    return [b.Surfaces[0] for b in _breps(doc)]
 
 
 def _cone_distances(folded, p: np.ndarray) -> np.ndarray:
@@ -166,12 +189,43 @@ def test_relief_hole_is_a_circle_of_its_diameter(holed):
 
 
 @pytest.mark.parametrize("case", ["shell", "holed", "paper"])
+def test_one_valid_brep_per_side_keeping_the_sheets_corners(case, request):
+    """Each side one Brep of one face, valid for openNURBS; its outer edge
+    passes through the fold of every corner ray of its side (the sheet's
+    vertices, the paper model's divisions) at a triple knot, where the face
+    may kink."""
+    design, folded, doc = request.getfixturevalue(case)
+    objects = _on(doc, "Folded::Sheet")
+    assert sorted(o.Attributes.Name for o in objects) == ["lower side", "upper side"]
+    rest = resting_placement(design, folded) if case == "holed" else None
+    size = design.sheet.size
+    for o in objects:
+        brep = o.Geometry
+        assert isinstance(brep, rhino3dm.Brep) and len(brep.Faces) == 1
+        assert brep.IsValid and brep.IsValidWithLog[0]
+        side = ("upper side", "lower side").index(o.Attributes.Name)
+        theta = np.unique(folded.ruling_angles[side])
+        inner = theta[1:-1]  # the corners between the two crease halves
+        surface = brep.Surfaces[0]
+        corners = _corners(surface)
+        assert len(corners) == len(inner)
+        v1 = surface.Domain(1).T1
+        got = np.array([[(p := surface.PointAt(u, v1)).X, p.Y, p.Z] for u in corners])
+        psi = inner if side == 0 else -inner
+        flat = folded.sheet.ray_lengths(psi)[:, None] * np.stack([np.cos(psi), np.sin(psi)], 1)
+        want = folded.map_points(flat)
+        if rest is not None:
+            want = rest.apply(want)
+        order = np.argsort(-psi)  # u runs against the flat polar angle
+        assert np.abs(got - want[order]).max() <= ON_CONE * size
+
+
+@pytest.mark.parametrize("case", ["shell", "holed", "paper"])
 def test_every_face_lies_on_the_exact_cone(case, request):
     """(The paper model's surface is its fan: the rays of map_points all the same.)"""
     design, folded, doc = request.getfixturevalue(case)
     faces = _faces(doc)
-    sides = [len(a) - 1 for a in folded.ruling_angles]
-    assert len(faces) == sum(sides)  # one per sector between the sheet's corners
+    assert len(faces) == 2
     rest = resting_placement(design, folded) if case == "holed" else None
     size = design.sheet.size
     worst = 0.0
@@ -278,3 +332,81 @@ def test_design_parameters_are_document_user_strings(holed):
         assert float(s[f"crease.{half.name}.fold_angle_deg"]) == pytest.approx(
             half.fold_angle_deg, abs=1e-6
         )
+
+
+def _report_value(report: dict, key: str):
+    value = report
+    for part in key.split("."):
+        value = None if value is None else value.get(part)
+    return value
+
+
+def test_the_reports_key_numbers_are_user_strings_of_the_sides_and_the_document(holed):
+    """Read back on each side's object (Rhino's Attribute User Text), on its
+    Brep geometry and on the document, against the report ``build`` writes
+    and against the fold itself."""
+    design, folded, doc = holed
+    report = design_report(design, folded)
+    owners = [doc.Strings]
+    for o in _on(doc, "Folded::Sheet"):
+        owners += [dict(o.Attributes.GetUserStrings()), dict(o.Geometry.GetUserStrings())]
+    for strings in owners:
+        for key in ("fold_angles_deg.plus_x", "resting.height", "resting.span", "flat_area"):
+            assert json.loads(strings[f"report.{key}"]) == _report_value(report, key), key
+        tip = json.loads(strings["report.resting.tipping_margin_deg"])
+        assert tip == report["resting"]["tipping_margin_deg"]
+        assert strings["report.bend.plus_x"] == folded.crease[0].bend
+        assert json.loads(strings["report.mass.value"]) is None  # no density: no mass
+        for half in folded.crease:
+            got = json.loads(strings[f"report.fold_angles_deg.{half.name}"])
+            assert got == pytest.approx(half.fold_angle_deg, rel=1e-12)
+        assert float(strings["frame.alpha"]) == design.frame.alpha
+        assert float(strings["material.thickness"]) == design.material.thickness
+    for o in _on(doc, "Folded::Sheet"):
+        assert o.Attributes.GetUserString("side") == o.Attributes.Name.split()[0]
+        assert float(o.Attributes.GetUserString("fit_deviation")) <= 1e-7 * design.sheet.size
+
+
+def test_mass_is_a_user_string_when_the_material_has_a_density():
+    design = Design(
+        "steel",
+        FrameCurve(40, 35),
+        Sheet.rectangle(300, 200, 0.4),
+        material=Material(thickness=1.5, density=7930.0),
+    )
+    folded = build_design(design)
+    mass = design_report(design, folded)["mass"]
+    doc = build_3dm(design, folded, placement="frame").file
+    assert json.loads(doc.Strings["report.mass.value"]) == mass["value"] > 0.0
+    assert doc.Strings["report.mass.unit"] == mass["unit"]
+
+
+def test_two_writes_give_the_same_bytes_and_stamp_no_time(tmp_path):
+    """Each write solves the design afresh: the ids come from the design, not
+    from a random source; openNURBS stamps no time (a file written the plain
+    way, the model's revision count 0, carries today's date). A different
+    design gets other ids."""
+    sheet = Sheet.polygon([[100, 0], [70, 90], [-40, 110], [-120, 0], [-60, -80], [80, -70]])
+    paths = []
+    for i in range(2):
+        design = Design(
+            "twice", FrameCurve(45, 35, h_c=5.0), sheet, material=Material(thickness=2.0)
+        )
+        paths.append(tmp_path / str(i) / "twice.3dm")
+        paths[-1].parent.mkdir()
+        write_3dm(design, build_design(design), paths[-1])
+    assert paths[0].read_bytes() == paths[1].read_bytes()
+    doc = _read(paths[0])
+    ids = [o.Attributes.Id for o in doc.Objects] + [lay.Id for lay in doc.Layers]
+    assert len(set(ids)) == len(ids)
+    with pytest.raises((TypeError, ValueError)):  # rhino3dm cannot convert an unset time
+        _ = doc.Created
+    other = Design("other", FrameCurve(45, 36, h_c=5.0), sheet, material=Material(thickness=2.0))
+    write_3dm(other, build_design(other), tmp_path / "other.3dm")
+    other_ids = {o.Attributes.Id for o in _read(tmp_path / "other.3dm").Objects}
+    assert other_ids.isdisjoint(ids)
+    doc.Revision = 0  # as a fresh model: openNURBS stamps the write's time
+    doc.Write(str(tmp_path / "plain.3dm"), 8)
+    created = _read(tmp_path / "plain.3dm").Created
+    today = datetime.datetime.now(datetime.UTC).replace(tzinfo=None)
+    assert abs(created - today) < datetime.timedelta(days=1)

@@ -1,5 +1,7 @@
 """The .3dm's face nets: cubic curves along the hole and the sheet's edge that
-stay on the exact cone to the tolerance asked for, more nodes for less."""
+stay on the exact cone to the tolerance asked for, more nodes for less; a
+side's net the sectors' strung together, the same curves at the same angles,
+with triple knots at the corners."""
 
 from __future__ import annotations
 
@@ -9,7 +11,7 @@ from scipy.interpolate import BSpline
 
 from onefold_cad import Design, ExportError, FrameCurve, Sheet, build_design
 from onefold_cad.export import rhino_faces
-from onefold_cad.export.rhino_faces import face_nets
+from onefold_cad.export.rhino_faces import face_nets, side_nets
 
 
 @pytest.fixture(scope="module")
@@ -62,3 +64,32 @@ def test_a_tolerance_out_of_reach_is_refused(folded, monkeypatch):
     monkeypatch.setattr(rhino_faces, "MAX_NODES", 12)
     with pytest.raises(ExportError, match="from the exact cone"):
         face_nets(folded, 0.0, 1e-10 * folded.sheet.size)
+
+
+@pytest.mark.parametrize("hole", [0.0, 6.0])
+def test_a_sides_net_is_its_sectors_curves_end_to_end(folded, hole):
+    """At each parameter u (the flat angle swept from the side's first crease
+    half) the side's curves are the sector's there, evaluated at its own
+    parameter; triple knots exactly at the corners between the sectors."""
+    nets = face_nets(folded, hole, 1e-7 * folded.sheet.size)
+    sides = side_nets(nets)
+    assert [s.side for s in sides] == [0, 1]
+    for side in sides:
+        mine = [n for n in nets if n.side == side.side]
+        assert sorted(n.sector for n in side.sectors) == sorted(n.sector for n in mine)
+        t = np.concatenate([side.knots[:1], side.knots, side.knots[-1:]])
+        inner, outer = BSpline(t, side.inner, 3), BSpline(t, side.outer, 3)
+        values, counts = np.unique(side.knots, return_counts=True)
+        assert np.allclose(side.corners, values[1:-1][counts[1:-1] == 3], rtol=0, atol=1e-12)
+        assert counts[1:-1].max() == 3 and len(side.corners) == len(side.sectors) - 1
+        theta = np.unique(folded.ruling_angles[side.side])
+        assert side.knots[-1] == pytest.approx(theta[-1] - theta[0], abs=1e-12)
+        for net in side.sectors:
+            ta, tb = net.theta
+            start = (theta[-1] - tb) if side.side == 0 else ta - theta[0]
+            s = np.linspace(0.0, 1.0, 101)
+            u = start + (tb - ta) * s
+            own_in, own_out = _curves(net)
+            tol = 1e-12 * folded.sheet.size
+            assert np.abs(outer(u) - own_out(s)).max() <= tol
+            assert np.abs(inner(u) - own_in(s)).max() <= tol
