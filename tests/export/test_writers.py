@@ -214,6 +214,15 @@ def test_the_3dm_holds_the_builds_placement_and_flat_pattern(tmp_path, placement
     assert rep["rhino"]["placement"] == placement and rep["rhino"]["faces"] == 2  # one per side
     assert 0.0 < rep["rhino"]["fit_deviation"] <= rep["rhino"]["fit_tolerance"]
     assert rep["rhino"]["fit_tolerance"] == pytest.approx(1e-7 * ctx.design.sheet.size)
+    # the file's key numbers are the numbers of the report the build writes
+    from onefold_cad.export.rhino_strings import KEY_NUMBERS
+
+    for key in KEY_NUMBERS:
+        want = rep
+        for part in key.split("."):
+            want = None if want is None else want.get(part)
+        text = doc.Strings[f"report.{key}"]
+        assert (text if isinstance(want, str) else json.loads(text)) == want, key
 
 
 def test_the_report_runs_no_cad_kernel_when_no_part_was_built(tmp_path):
