@@ -2,8 +2,9 @@
 side's single NURBS face (:func:`~onefold_cad.export.rhino_faces.side_nets`,
 on the exact cone to :data:`TOLERANCE` x the sheet's size) with its render
 mesh and its user strings, checked valid by openNURBS. The .3dm writer
-(:mod:`.rhino3dm_file`) and anything handing Breps on (a Hops server) call
-:func:`side_breps` / :func:`fold_sides`.
+(:mod:`.rhino3dm_file`) calls :func:`fold_sides`; anything handing Breps on
+(a Hops server) calls :func:`side_breps` (``Brep.Encode()`` gives the JSON
+Grasshopper decodes, the render mesh and user strings included).
 
 rhino3dm 8 binds no way to add faces, loops or trims to a Brep nor to join
 Breps, so a side cannot be several faces in one Brep: it is one face whose
@@ -25,7 +26,7 @@ import rhino3dm
 
 from onefold_cad.choices import Compensation
 from onefold_cad.design import Design
-from onefold_cad.errors import ExportError
+from onefold_cad.errors import ExportError, InvalidParameterError
 from onefold_cad.export.rhino_faces import (
     Place,
     SideNet,
@@ -36,6 +37,7 @@ from onefold_cad.export.rhino_faces import (
 )
 from onefold_cad.export.rhino_strings import design_strings, report_strings
 from onefold_cad.export.step_checks import BOUNDARY_TOLERANCE
+from onefold_cad.fabrication.flat_pattern import FlatPattern
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.fabrication.rules import resting_placement
 from onefold_cad.geometry.folding import FoldedSheet
@@ -128,10 +130,11 @@ def placement_of(
     placement it applies (None in the fold frame).
 
     Raises:
-        ExportError: a placement not in :data:`PLACEMENTS`.
+        InvalidParameterError: a placement not in :data:`PLACEMENTS`.
     """
     if placement not in PLACEMENTS:
-        raise ExportError(f"placement must be one of {', '.join(PLACEMENTS)}, not {placement!r}")
+        allowed = ", ".join(PLACEMENTS)
+        raise InvalidParameterError("placement", f"must be one of {allowed}, not {placement!r}")
     rest = resting_placement(design, folded, body) if placement == "rest" else None
 
     def place(p: Array) -> Array:
@@ -146,7 +149,7 @@ def fold_sides(
     *,
     placement: str = "rest",
     body: str | None = None,
-    pattern: Any = None,
+    pattern: FlatPattern | None = None,
     compensation: Compensation | str = Compensation.SHARP,
 ) -> FoldSides:
     """The side Breps of ``design`` (see :func:`side_breps`) with their nets,
@@ -157,7 +160,8 @@ def fold_sides(
 
     Raises:
         FabricationError: the relief hole does not fit the sheet.
-        ExportError: a face cannot reach the tolerance; a bad placement.
+        ExportError: a face cannot reach the tolerance.
+        InvalidParameterError: a placement not in :data:`PLACEMENTS`.
     """
     problem = relief_hole_problem(design, folded)
     if problem is not None:
@@ -211,6 +215,7 @@ def side_breps(
 
     Raises:
         FabricationError: the relief hole does not fit the sheet.
-        ExportError: a face cannot reach the tolerance; a bad placement.
+        ExportError: a face cannot reach the tolerance.
+        InvalidParameterError: a placement not in :data:`PLACEMENTS`.
     """
     return list(fold_sides(design, folded, placement=placement, body=body).breps)

@@ -10,9 +10,9 @@ import rhino3dm
 
 from onefold_cad import (
     Design,
-    ExportError,
     FabricationError,
     FrameCurve,
+    InvalidParameterError,
     Material,
     Sheet,
     build_design,
@@ -74,7 +74,7 @@ def test_resting_breps_are_the_frames_moved_by_the_resting_placement(case):
 
 def test_a_bad_placement_and_a_hole_too_big_are_refused(case):
     design, folded = case
-    with pytest.raises(ExportError, match="placement must be one of rest, frame"):
+    with pytest.raises(InvalidParameterError, match="placement: must be one of rest, frame"):
         side_breps(design, folded, placement="upside-down")
     big = design.with_changes(material=design.material.with_changes(relief_hole=150.0))
     with pytest.raises(FabricationError):
