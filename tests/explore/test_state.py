@@ -83,6 +83,32 @@ def test_the_numbers_are_the_reports(templates):
     assert n["width"] == r["resting"]["footprint"]["width"]
     assert n["depth"] == r["resting"]["footprint"]["depth"]
     assert n["flat_size"] == r["flat_size"]
+    assert n["footprint_area"] == r["resting"]["footprint"]["area"]
+    assert n["tilt_deg"] == r["resting"]["tilt_deg"]
+    assert n["stable"] == r["resting"]["stable"]
+    assert n["relief_hole"] == r["relief_hole_diameter"]
+    assert n["angle_condition_error_deg"] == r["angle_condition_error_deg"]
+
+
+@pytest.mark.parametrize(
+    "params",
+    [{"beta": "80"}, {"bend_radius": "400"}, {"beta": "80", "bend_radius": "400"}],
+    ids=["tipping", "bend-limits", "both"],
+)
+def test_the_warnings_are_the_reports(templates, params):
+    """The page's warnings are the report's, in its order, but for one that repeats
+    the flat pattern's refusal already shown as the error (a nearly tipping form;
+    bends past the model's limits: refused, the report measures the uncompensated
+    blank)."""
+    data, key = templates
+    design = design_from_params(params, data, key)
+    state = design_state(design)
+    r = design_report(design, build_design(design))
+    errors = [m["text"] for m in state["messages"] if m["level"] == "error"]
+    expected = [w for w in r["warnings"] if not any(w.startswith(e) for e in errors)]
+    assert r["warnings"] and len(errors) == ("bend_radius" in params)
+    assert [m["text"] for m in state["messages"] if m["level"] == "warning"] == expected
+    assert state["numbers"]["flat_size"] == r["flat_size"]
 
 
 def test_moving_alpha_moves_the_fold_angles(templates):
