@@ -40,8 +40,12 @@ __all__ = ["MESH_ANGULAR", "MESH_RADIAL", "design_state", "problem_state", "mess
 
 _RESTING = ("height", "span", "width", "depth", "footprint_area", "tilt_deg", "stable")
 
-#: Mesh density of the 3D view (:meth:`FoldedSheet.mesh` arguments).
-MESH_ANGULAR = 120
+#: Mesh density of the 3D view (:meth:`FoldedSheet.mesh` arguments): 60 angular steps
+#: draw the default template's form as 120 do (the canvas differs in under 0.2 % of
+#: its pixels, on the outline's anti-aliased lines) with half the triangles, which
+#: software WebGL draws in a third less time; the 16 radial steps keep the shading
+#: near the apex (the rays are straight: they change nothing else).
+MESH_ANGULAR = 60
 MESH_RADIAL = 16
 
 
