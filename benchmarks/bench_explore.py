@@ -34,15 +34,20 @@ from __future__ import annotations
 
 import argparse
 import http.client
+import io
+import math
+import os
 import subprocess
 import sys
+import tarfile
+import tempfile
 import time
 from pathlib import Path
 from urllib.parse import urlencode
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from docs_block import machine_line, write_block  # noqa: E402
+from docs_block import ROOT, machine_line, write_block  # noqa: E402
 from interleave import stats_of  # noqa: E402
 
 CHROMIUM_ARGS = [
@@ -98,13 +103,29 @@ MOVE = """async ([id, value]) => {
 }"""
 
 
-def start_server(template: str) -> tuple[subprocess.Popen[str], int]:
-    """``onefold explore TEMPLATE --no-browser --port 0`` and the port it printed."""
-    exe = Path(sys.executable).with_name("onefold")
+def start_server(
+    template: str, package_dir: Path | None = None
+) -> tuple[subprocess.Popen[str], int]:
+    """``onefold explore TEMPLATE --no-browser --port 0`` and the port it printed
+    (the package of ``package_dir`` first on the path when given: a baseline)."""
+    env = dict(os.environ)
+    if package_dir is not None:
+        env["PYTHONPATH"] = os.pathsep.join([str(package_dir), env.get("PYTHONPATH", "")])
     proc = subprocess.Popen(
-        [str(exe), "explore", template, "--no-browser", "--port", "0"],
+        [
+            sys.executable,
+            "-c",
+            "from onefold_cad.cli.main import main; raise SystemExit(main())",
+            "explore",
+            template,
+            "--no-browser",
+            "--port",
+            "0",
+        ],
         stderr=subprocess.PIPE,
         text=True,
+        env=env,
+        cwd=package_dir or ROOT,  # python -c puts its folder first on the path
     )
     assert proc.stderr is not None
     line = proc.stderr.readline()
@@ -113,6 +134,18 @@ def start_server(template: str) -> tuple[subprocess.Popen[str], int]:
         raise SystemExit(f"onefold explore did not start: {line}")
     port = int(line.split("http://127.0.0.1:")[1].split("/")[0])
     return proc, port
+
+
+def baseline_package(commit: str, into: Path) -> Path:
+    """``onefold_cad/`` and ``templates/`` of ``commit`` (``git archive``) under ``into``."""
+    tar = subprocess.run(
+        ["git", "-C", str(ROOT), "archive", commit, "onefold_cad", "templates"],
+        capture_output=True,
+        check=True,
+    ).stdout
+    with tarfile.open(fileobj=io.BytesIO(tar)) as t:
+        t.extractall(into, filter="data")
+    return into
 
 
 def fetch_state(port: int, query: str) -> float:
@@ -145,56 +178,78 @@ def values(page, slider: str, n: int) -> list[str]:
 
 
 def _parts(r: dict[str, float]) -> dict[str, float]:
-    """One move's breakdown (ms) from :data:`MOVE`'s answer ``r``."""
+    """One move's breakdown (ms) from :data:`MOVE`'s answer ``r`` (NaN where a
+    baseline's page leaves no mark)."""
     out = {}
     for name, span in PARTS.items():
         if span is None:
-            out[name] = r["server"]
+            out[name] = r.get("server") if r.get("server") is not None else math.nan
         else:
-            out[name] = r[span[1]] - r[span[0]]
-    out["HTTP rest"] -= r["server"]
+            out[name] = r.get(span[1], math.nan) - r.get(span[0], math.nan)
+    out["HTTP rest"] -= out["server"]
     return out
 
 
-def bench_template(browser, template: str, moves: int) -> tuple[list[str], list[str]]:
-    """The table's rows and the breakdown's rows of ``template``, slider by slider."""
-    proc, port = start_server(template)
+def bench_template(
+    browser, template: str, moves: int, versions: list[tuple[str, Path | None]]
+) -> tuple[list[str], list[str]]:
+    """The table's rows and the breakdown's rows of ``template``, slider by slider,
+    for each version (label, package folder or None for this tree): one server
+    and one page each, their moves interleaved (the order rotated every round)."""
+    procs, pages = [], []
     rows, parts_rows = [], []
     try:
-        page = browser.new_page(viewport={"width": 1400, "height": 860}, bypass_csp=True)
-        page.goto(f"http://127.0.0.1:{port}/")
-        page.locator("body[data-updates='1']").wait_for(state="attached", timeout=60_000)
+        for _, package in versions:
+            proc, port = start_server(template, package)
+            procs.append((proc, port))
+            page = browser.new_page(viewport={"width": 1400, "height": 860}, bypass_csp=True)
+            page.goto(f"http://127.0.0.1:{port}/")
+            page.locator("body[data-updates='1']").wait_for(state="attached", timeout=60_000)
+            pages.append(page)
+        port = procs[0][1]
         for slider in ("alpha", "beta", "hc"):
-            vals = values(page, slider, moves + 3)
-            base = {k: page.locator(f"#{k}-num").input_value() for k in ("alpha", "beta", "hc")}
-            for v in vals[:3]:  # warm up
-                page.evaluate(MOVE, [slider, v])
-            answers, http_ms = [], []
+            vals = values(pages[0], slider, moves + 3)
+            base = {k: pages[0].locator(f"#{k}-num").input_value() for k in ("alpha", "beta", "hc")}
+            for page in pages:
+                for v in vals[:3]:  # warm up
+                    page.evaluate(MOVE, [slider, v])
+            answers: list[list[dict[str, float]]] = [[] for _ in pages]
+            http_ms: list[float] = []
+            steps = [*range(len(pages)), "http"]
             for i, v in enumerate(vals[3:]):
                 query = urlencode({**base, slider: v})
-                steps = ("page", "http") if i % 2 == 0 else ("http", "page")
-                for step in steps:
-                    if step == "page":
-                        r = page.evaluate(MOVE, [slider, v])
-                        if not r["ok"]:
-                            raise SystemExit(f"{template}: {slider}={v} gave an error state")
-                        answers.append(r)
-                    else:
+                for step in steps[i % len(steps) :] + steps[: i % len(steps)]:
+                    if step == "http":
                         http_ms.append(fetch_state(port, query))
-            shown = [r["shown"] for r in answers]
-            s, f, h = stats_of(shown), stats_of([r["raf"] for r in answers]), stats_of(http_ms)
-            verdict = "PASS" if s.median <= CRITERION_MS else "FAIL"
-            rows.append(
-                f"| {template} | {slider} | {s.fmt(unit=' ms')} | {max(shown):.0f} ms | "
-                f"{f.fmt(unit=' ms')} | {h.fmt(unit=' ms')} | {verdict} |"
-            )
-            split = [_parts(r) for r in answers]
-            cells = [f"{stats_of([p[k] for p in split]).median:.1f}" for k in PARTS]
-            parts_rows.append(f"| {template} | {slider} | " + " | ".join(cells) + " |")
-        page.close()
+                        continue
+                    r = pages[step].evaluate(MOVE, [slider, v])
+                    if not r["ok"]:
+                        raise SystemExit(f"{template}: {slider}={v} gave an error state")
+                    answers[step].append(r)
+            h = stats_of(http_ms)
+            for (label, _), got in zip(versions, answers, strict=True):
+                shown = [r["shown"] for r in got]
+                s, f = stats_of(shown), stats_of([r["raf"] for r in got])
+                verdict = "PASS" if s.median <= CRITERION_MS else "FAIL"
+                http = h.fmt(unit=" ms") if got is answers[0] else "–"
+                rows.append(
+                    f"| {template} | {label} | {slider} | {s.fmt(unit=' ms')} | "
+                    f"{max(shown):.0f} ms | {f.fmt(unit=' ms')} | {http} | {verdict} |"
+                )
+                split = [_parts(r) for r in got]
+                cells = []
+                for k in PARTS:
+                    m = stats_of([p[k] for p in split]).median
+                    cells.append("–" if math.isnan(m) else f"{m:.1f}")
+                parts_rows.append(
+                    f"| {template} | {label} | {slider} | " + " | ".join(cells) + " |"
+                )
+        for page in pages:
+            page.close()
     finally:
-        proc.terminate()
-        proc.wait(timeout=30)
+        for proc, _ in procs:
+            proc.terminate()
+            proc.wait(timeout=30)
     return rows, parts_rows
 
 
@@ -204,15 +259,24 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--moves", type=int, default=40, help="timed moves per slider")
     ap.add_argument("--only", nargs="*", default=None, help="template names")
+    ap.add_argument(
+        "--baseline",
+        metavar="COMMIT",
+        help="also time the explorer of COMMIT (its package from git), interleaved",
+    )
     ap.add_argument("--write-docs", action="store_true", help="update docs/benchmarks.md")
     args = ap.parse_args(argv)
+    home = tempfile.TemporaryDirectory(prefix="bench_explore_")
+    versions: list[tuple[str, Path | None]] = [("this tree", None)]
+    if args.baseline:
+        versions.append((args.baseline, baseline_package(args.baseline, Path(home.name))))
     header = [
         f"Slider to shown update in Chromium (software WebGL), {args.moves} moves per slider; "
         f"criterion: shown median <= {CRITERION_MS:.0f} ms.",
         "",
-        "| template | slider | shown: median [q1, q3] | worst | rAF: median [q1, q3] | "
+        "| template | version | slider | shown: median [q1, q3] | worst | rAF: median [q1, q3] | "
         f"HTTP state alone: median [q1, q3] | shown <= {CRITERION_MS:.0f} ms |",
-        "|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|",
     ]
     print("\n".join(header), flush=True)
     rows, parts = [], []
@@ -220,23 +284,25 @@ def main(argv: list[str] | None = None) -> int:
         browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
         try:
             for template in args.only or TEMPLATES:
-                r, p = bench_template(browser, template, args.moves)
+                r, p = bench_template(browser, template, args.moves, versions)
                 rows += r
                 parts += p
                 print("\n".join(r), flush=True)
         finally:
             browser.close()
+            home.cleanup()
     table2 = [
         "",
         "Where a shown update's time goes (medians of each part, ms):",
         "",
-        "| template | slider | " + " | ".join(PARTS) + " |",
-        "|---|---|" + "---|" * len(PARTS),
+        "| template | version | slider | " + " | ".join(PARTS) + " |",
+        "|---|---|---|" + "---|" * len(PARTS),
         *parts,
     ]
     print("\n".join(table2), flush=True)
     if args.write_docs:
         only = f" --only {' '.join(args.only)}" if args.only else ""
+        only += f" --baseline {args.baseline}" if args.baseline else ""
         body = "\n".join([*header, *rows, *table2, "", machine_line()])
         cmd = f"python benchmarks/bench_explore.py --moves {args.moves}{only} --write-docs"
         write_block("bench_explore", body, cmd)
