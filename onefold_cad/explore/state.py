@@ -20,6 +20,7 @@ others, exactly as the command prints it.
 from __future__ import annotations
 
 import base64
+import hashlib
 import time
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
@@ -36,7 +37,7 @@ from onefold_cad.fabrication.rules import resting_placement
 if TYPE_CHECKING:
     from onefold_cad.fabrication.flat_pattern import FlatPattern
 
-__all__ = ["MESH_ANGULAR", "MESH_RADIAL", "design_state", "problem_state", "message"]
+__all__ = ["MESH_ANGULAR", "MESH_RADIAL", "design_state", "mesh_key", "problem_state", "message"]
 
 _RESTING = ("height", "span", "width", "depth", "footprint_area", "tilt_deg", "stable")
 
@@ -114,7 +115,14 @@ def _numbers(
     return numbers
 
 
-def design_state(design: Design) -> dict[str, Any]:
+def mesh_key(pts: np.ndarray, faces: np.ndarray) -> str:
+    """A short name of a mesh's triangles: its vertex and triangle counts and a
+    hash of the indices (the page keeps the triangles while it stays the same)."""
+    digest = hashlib.blake2b(np.ascontiguousarray(faces).tobytes(), digest_size=8).hexdigest()
+    return f"{len(pts)}-{len(faces)}-{digest}"
+
+
+def design_state(design: Design, known_mesh: str | None = None) -> dict[str, Any]:
     """Solve, fold, place, mesh and measure ``design`` for the page.
 
     Returns:
@@ -124,8 +132,9 @@ def design_state(design: Design) -> dict[str, Any]:
         and when solved ``numbers``, ``form`` (the resting mesh as base64
         float32 positions and uint16 or uint32 (``index_type``) triangle
         indices, the apex, the crease halves, the bounding box; z up, design
-        units), ``flat_svg`` (or None when the flat pattern cannot be made)
-        and ``server_ms``.
+        units; ``mesh_key``: :func:`mesh_key`, and the indices None when it is
+        ``known_mesh``, the page's), ``flat_svg`` (or None when the flat pattern
+        cannot be made) and ``server_ms``.
     """
     from onefold_cad.fabrication.flat_pattern import flat_pattern
     from onefold_cad.fabrication.report import report_warnings
@@ -158,6 +167,7 @@ def design_state(design: Design) -> dict[str, Any]:
     ]
 
     small = len(pts) < 2**16
+    key = mesh_key(pts, faces)
     # the flat pattern's refusal, as `onefold build` words it (the relief hole first)
     pattern = None
     refusal: OneFoldError | None = relief_hole_problem(design)
@@ -185,7 +195,8 @@ def design_state(design: Design) -> dict[str, Any]:
         numbers={"units": design.units.value, **numbers},
         form={
             "positions": _b64(pts, "<f4"),
-            "indices": _b64(faces, "<u2" if small else "<u4"),
+            "indices": None if key == known_mesh else _b64(faces, "<u2" if small else "<u4"),
+            "mesh_key": key,
             "index_type": "uint16" if small else "uint32",
             "vertex_count": int(len(pts)),
             "triangle_count": int(len(faces)),

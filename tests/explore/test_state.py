@@ -174,3 +174,19 @@ def test_a_refused_flat_pattern_is_one_message_the_builds(
     # nor in other words: no other message about the same parameter or the hole
     others = [t.split(":", 1)[0] for t in texts if t != err]
     assert not {err.split(":", 1)[0], "relief_hole"} & set(others), texts
+
+
+def test_the_triangles_the_page_has_are_not_sent_again(templates):
+    """A move that keeps the mesh's triangles sends its positions only; another
+    key (a page with other triangles) gets them again."""
+    data, key = templates
+    first = design_state(design_from_params({"alpha": "30"}, data, key))["form"]
+    moved = design_from_params({"alpha": "31"}, data, key)
+    again = design_state(moved, known_mesh=first["mesh_key"])["form"]
+    assert again["mesh_key"] == first["mesh_key"] and again["indices"] is None
+    assert again["positions"] != first["positions"]
+    full = design_state(moved, known_mesh="0-0-0")["form"]
+    _, idx = _decode(full)
+    np.testing.assert_array_equal(idx, build_design(moved).mesh(MESH_ANGULAR, MESH_RADIAL)[1])
+    star = design_state(design_from_params({"template": "star-polygon"}, data, key))["form"]
+    assert star["mesh_key"] != first["mesh_key"]

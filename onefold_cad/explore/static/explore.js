@@ -125,7 +125,7 @@ let framed = false;
 // triangles (and the lines, derived from them) are replaced only when they change.
 let geometry = null; // the form's surface (both sides' meshes share it)
 let lines = null; // the sheet's edge and the crease: LineSegments on the same positions
-let lastIndices = null; // the base64 triangles of `geometry`
+let meshKey = null; // the server's mesh_key of `geometry`'s triangles
 const surfaces = [new THREE.Mesh(undefined, topMaterial), new THREE.Mesh(undefined, underMaterial)];
 const edges = new THREE.LineSegments(undefined, edgeMaterial);
 form.add(...surfaces, edges);
@@ -165,8 +165,8 @@ function boundaryEdges(index, vertexCount) {
 
 function setSurface(f) {
   const positions = decode(f.positions, Float32Array);
-  const same = geometry && lastIndices === f.indices
-    && geometry.getAttribute('position').count === f.vertex_count;
+  // the server leaves the triangles out when they are those the page has
+  const same = geometry && f.mesh_key === meshKey;
   if (same) {
     const attr = geometry.getAttribute('position');
     attr.array.set(positions);
@@ -184,7 +184,7 @@ function setSurface(f) {
     lines.setIndex(new THREE.BufferAttribute(boundaryEdges(index, f.vertex_count), 1));
     for (const m of surfaces) m.geometry = geometry;
     edges.geometry = lines;
-    lastIndices = f.indices;
+    meshKey = f.mesh_key;
   }
   geometry.computeVertexNormals(); // shading only
   geometry.computeBoundingSphere();
@@ -338,7 +338,7 @@ async function run() {
   try {
     for (const m of MARKS) performance.clearMarks(m);
     performance.mark('explore:request');
-    const res = await fetch(`/api/state?${q}`);
+    const res = await fetch(`/api/state?${q}${meshKey ? `&mesh=${meshKey}` : ''}`);
     performance.mark('explore:answer');
     const state = await res.json();
     performance.mark('explore:parsed');
