@@ -266,6 +266,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     ap.add_argument("--write-docs", action="store_true", help="update docs/benchmarks.md")
     args = ap.parse_args(argv)
+    load0 = os.getloadavg()[0]  # the machine's other work: these times scale with it
     home = tempfile.TemporaryDirectory(prefix="bench_explore_")
     versions: list[tuple[str, Path | None]] = [("this tree", None)]
     if args.baseline:
@@ -303,7 +304,10 @@ def main(argv: list[str] | None = None) -> int:
     if args.write_docs:
         only = f" --only {' '.join(args.only)}" if args.only else ""
         only += f" --baseline {args.baseline}" if args.baseline else ""
-        body = "\n".join([*header, *rows, *table2, "", machine_line()])
+        load = (
+            f"Load average (1 min) {load0:.1f} at the start, {os.getloadavg()[0]:.1f} at the end."
+        )
+        body = "\n".join([*header, *rows, *table2, "", machine_line() + " " + load])
         cmd = f"python benchmarks/bench_explore.py --moves {args.moves}{only} --write-docs"
         write_block("bench_explore", body, cmd)
     return 0
