@@ -17,7 +17,7 @@ BLOCKS = {
     "fabrication.md": ["bend-example"],
     "templates.md": ["templates"],
     "cli.md": ["cli"],
-    "benchmarks.md": ["bench_solver", "bench_pipeline", "bench_sweep"],
+    "benchmarks.md": ["bench_solver", "bench_pipeline", "bench_sweep", "bench_explore"],
     "sweep.md": ["sweep-study"],
 }
 

@@ -62,7 +62,10 @@ PAGE_FLAGS: dict[str, str] = {
     "thickness": "--thickness",
     "bend_radius": "--bend-radius",
 }
-_NAMES = frozenset(PAGE_FLAGS) | {"template"}
+#: The query names besides the controls: the template, and (``/api/state`` only) the
+#: :func:`~onefold_cad.explore.state.design_state` ``mesh_key`` of the triangles the
+#: page already has (the others ignore it).
+_NAMES = frozenset(PAGE_FLAGS) | {"template", "mesh"}
 _MAX_FIELDS = len(_NAMES) + 4
 
 

@@ -6,7 +6,9 @@ It listens on 127.0.0.1 and answers GET requests only:
   table: no path from a request ever reaches the file system);
 - ``/api/templates``: the templates the page can switch between;
 - ``/api/state?alpha=..&beta=..``: the design of those values solved,
-  folded, placed, meshed and measured (:func:`onefold_cad.explore.state.design_state`);
+  folded, placed, meshed and measured (:func:`onefold_cad.explore.state.design_state`;
+  ``&mesh=KEY``: the page has the triangles of that ``mesh_key``, not sent again
+  when they are the same);
 - ``/api/simulate?...`` (the same query): the design as steel on the coarse
   mesh, standing under its weight
   (:func:`onefold_cad.explore.simulation.simulation_state`; seconds: each
@@ -249,7 +251,8 @@ class ExploreHandler(BaseHTTPRequestHandler):
 
     def _state(self, query: str) -> None:
         try:
-            state = design_state(self._design(query))
+            known = parse_query(query).get("mesh")
+            state = design_state(self._design(query), known_mesh=known)
         except ParameterProblem as exc:
             state = problem_state(exc)
         except QueryError:

@@ -52,6 +52,7 @@ __all__ = [
     "design_warnings",
     "report_flat_pattern",
     "report_json",
+    "report_warnings",
     "resting_numbers",
 ]
 
@@ -211,6 +212,29 @@ def design_warnings(
     ]
 
 
+def report_warnings(
+    design: Design,
+    folded: FoldedSheet,
+    pattern: FlatPattern | None = None,
+    *,
+    warnings: Iterable[str] = (),
+    compensation: Compensation | str = Compensation.SHARP,
+    body: str | None = None,
+) -> tuple[list[str], FlatPattern | None, float | None]:
+    """The report's ``warnings`` (``warnings`` given, then
+    :func:`design_warnings`, the flat pattern's refusal and the solid's relief
+    hole problem: in order, each once), the flat pattern it measures
+    (``pattern`` if given, else :func:`report_flat_pattern`) and
+    ``solid_min_relief_hole`` (length, None when not defined): what
+    :func:`design_report` says about them, without its measurements of the
+    surface (the explorer's page shows these on every move)."""
+    comp = Compensation.parse(compensation)
+    notes = [*warnings, *design_warnings(design, folded, comp, body)]
+    fp = report_flat_pattern(design, folded, notes, comp) if pattern is None else pattern
+    solid_hole = _solid_min_hole(design, folded, notes)
+    return list(dict.fromkeys(notes)), fp, solid_hole
+
+
 def design_report(
     design: Design,
     folded: FoldedSheet,
@@ -281,14 +305,13 @@ def design_report(
     """
     sol, sheet = folded.solution, folded.sheet
     m = derived(folded, "developability", lambda: developability(folded))
-    comp = Compensation.parse(compensation)
-    notes = [*warnings, *design_warnings(design, folded, comp, body)]
-    fp = report_flat_pattern(design, folded, notes, comp) if pattern is None else pattern
+    notes, fp, solid_hole = report_warnings(
+        design, folded, pattern, warnings=warnings, compensation=compensation, body=body
+    )
     own = sheet.to_sheet.apply(sheet.vertices)
     flat_size = own.max(axis=0) - own.min(axis=0)
     gammas = sol.gammas_deg
     crease = _crease(design, folded)
-    solid_hole = _solid_min_hole(design, folded, notes)
     stage_times = {"direction_surface": float(sol.time_direction_surface)}
     stage_times["final_surface"] = float(folded.time_final_surface)
     stage_times.update({k: float(v) for k, v in (timings or {}).items()})
@@ -339,7 +362,7 @@ def design_report(
         },
         "step": None if step is None else dict(step),
         "rhino": None if rhino is None else dict(rhino),
-        "warnings": list(dict.fromkeys(notes)),  # in order, each once
+        "warnings": notes,
         "timings_s": stage_times,
         "files": [Path(f).name for f in files],
     }

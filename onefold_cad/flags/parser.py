@@ -73,6 +73,9 @@ def design_flag_parser() -> FlagParser:
     """A parser of the design flags alone (as ``onefold solve`` reads them)."""
     p = FlagParser(prog="onefold", allow_abbrev=False)
     add_design_flags(p)
+    # formatted once: parse_intermixed_args formats the usage on every call unless
+    # it is set (the explorer parses the page's values on every move of a slider)
+    p.usage = p.format_usage().removeprefix("usage: ").rstrip("\n")
     return p
 
 

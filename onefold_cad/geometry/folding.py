@@ -197,11 +197,13 @@ class FoldedSheet:
             psi = theta if side == 0 else -theta
             rho = self.sheet.ray_lengths(psi)
             s = np.arange(1, radial + 1) / radial
-            pts = (s[None, :, None] * rho[:, None, None]) * np.stack(
-                [np.cos(psi), np.sin(psi)], axis=-1
-            )[:, None, :]
+            # each ray is straight on the cone: map its end once, scale along it
+            ends = rho[:, None] * np.stack([np.cos(psi), np.sin(psi)], axis=-1)
+            u = self.map_points(ends) - self.apex
+            u /= np.where(rho > 0.0, rho, 1.0)[:, None]
             nt = len(theta)
-            verts.append(self.map_points(pts.reshape(-1, 2)))
+            ray = (s[None, :, None] * rho[:, None, None]) * u[:, None, :]
+            verts.append((self.apex + ray).reshape(-1, 3))
             idx = base + np.arange(nt * radial).reshape(nt, radial)
             a, b = idx[:-1, :-1], idx[1:, :-1]
             c, d = idx[1:, 1:], idx[:-1, 1:]

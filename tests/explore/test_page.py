@@ -51,6 +51,23 @@ def test_moving_alpha_changes_the_fold_angles_and_the_picture(tab, server):
     assert tab.errors == []
 
 
+def test_a_small_move_redraws_the_form_on_the_triangles_it_has(tab, server):
+    """alpha 30 -> 31 keeps the mesh's triangles (the same mesh_key): the page asks
+    with its key, gets the positions only and draws the new form from them."""
+    _, _, body = get(server, "/api/state?" + urlencode({"alpha": "31"}))
+    key = json.loads(body)["form"]["mesh_key"]
+    before = tab.canvas()
+    with tab.page.expect_response(lambda r: "/api/state?" in r.url) as answer:
+        tab.change("#alpha-num", "31")
+    assert f"mesh={key}" in answer.value.url
+    assert answer.value.json()["form"]["indices"] is None
+    after = tab.canvas()
+    changed = np.any(np.abs(after - before) > 8, axis=-1).mean()
+    assert changed > 0.002  # the form moved (it stays where it is, a little larger)
+    assert tab.page.locator("#alpha-num").input_value() == "31"
+    assert tab.errors == []
+
+
 def test_a_bad_value_shows_the_clis_message_and_the_page_recovers(tab, capfd):
     capfd.readouterr()
     assert main(["solve", "--alpha", "95"]) == 2

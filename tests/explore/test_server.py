@@ -42,6 +42,15 @@ def test_a_state_is_json_with_the_numbers(server):
     assert set(state["numbers"]["fold_angles"]) == {"plus_x", "minus_x"}
 
 
+def test_a_state_leaves_out_the_triangles_the_page_names(server):
+    _, _, body = get(server, "/api/state?alpha=30")
+    form = json.loads(body)["form"]
+    _, _, body = get(server, f"/api/state?alpha=31&mesh={form['mesh_key']}")
+    again = json.loads(body)["form"]
+    assert form["indices"] and again["indices"] is None
+    assert again["mesh_key"] == form["mesh_key"] and again["positions"] != form["positions"]
+
+
 def test_a_bad_value_is_a_message_not_a_failure(server):
     status, _, body = get(server, "/api/state?alpha=95")
     state = json.loads(body)

@@ -83,6 +83,32 @@ def test_the_numbers_are_the_reports(templates):
     assert n["width"] == r["resting"]["footprint"]["width"]
     assert n["depth"] == r["resting"]["footprint"]["depth"]
     assert n["flat_size"] == r["flat_size"]
+    assert n["footprint_area"] == r["resting"]["footprint"]["area"]
+    assert n["tilt_deg"] == r["resting"]["tilt_deg"]
+    assert n["stable"] == r["resting"]["stable"]
+    assert n["relief_hole"] == r["relief_hole_diameter"]
+    assert n["angle_condition_error_deg"] == r["angle_condition_error_deg"]
+
+
+@pytest.mark.parametrize(
+    "params",
+    [{"beta": "80"}, {"bend_radius": "400"}, {"beta": "80", "bend_radius": "400"}],
+    ids=["tipping", "bend-limits", "both"],
+)
+def test_the_warnings_are_the_reports(templates, params):
+    """The page's warnings are the report's, in its order, but for one that repeats
+    the flat pattern's refusal already shown as the error (a nearly tipping form;
+    bends past the model's limits: refused, the report measures the uncompensated
+    blank)."""
+    data, key = templates
+    design = design_from_params(params, data, key)
+    state = design_state(design)
+    r = design_report(design, build_design(design))
+    errors = [m["text"] for m in state["messages"] if m["level"] == "error"]
+    expected = [w for w in r["warnings"] if not any(w.startswith(e) for e in errors)]
+    assert r["warnings"] and len(errors) == ("bend_radius" in params)
+    assert [m["text"] for m in state["messages"] if m["level"] == "warning"] == expected
+    assert state["numbers"]["flat_size"] == r["flat_size"]
 
 
 def test_moving_alpha_moves_the_fold_angles(templates):
@@ -148,3 +174,19 @@ def test_a_refused_flat_pattern_is_one_message_the_builds(
     # nor in other words: no other message about the same parameter or the hole
     others = [t.split(":", 1)[0] for t in texts if t != err]
     assert not {err.split(":", 1)[0], "relief_hole"} & set(others), texts
+
+
+def test_the_triangles_the_page_has_are_not_sent_again(templates):
+    """A move that keeps the mesh's triangles sends its positions only; another
+    key (a page with other triangles) gets them again."""
+    data, key = templates
+    first = design_state(design_from_params({"alpha": "30"}, data, key))["form"]
+    moved = design_from_params({"alpha": "31"}, data, key)
+    again = design_state(moved, known_mesh=first["mesh_key"])["form"]
+    assert again["mesh_key"] == first["mesh_key"] and again["indices"] is None
+    assert again["positions"] != first["positions"]
+    full = design_state(moved, known_mesh="0-0-0")["form"]
+    _, idx = _decode(full)
+    np.testing.assert_array_equal(idx, build_design(moved).mesh(MESH_ANGULAR, MESH_RADIAL)[1])
+    star = design_state(design_from_params({"template": "star-polygon"}, data, key))["form"]
+    assert star["mesh_key"] != first["mesh_key"]

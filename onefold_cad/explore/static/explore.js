@@ -110,69 +110,122 @@ const edgeMaterial = new THREE.LineBasicMaterial({ color: 0x374151 });
 const BEND_COLOURS = { UP: 0xd62828, DOWN: 0x1d4ed8 };
 const form = new THREE.Group();
 const decorations = new THREE.Group();
-const groundMaterial = new THREE.MeshStandardMaterial({ color: 0xd5dbe2, roughness: 1 });
+// the ground: a flat matte plane (Lambert: the colour a rough standard material
+// gives it, to one level in 255, at a third of the cost of drawing it in software GL)
+const groundMaterial = new THREE.MeshLambertMaterial({ color: 0xd5dbe2 });
 const ground = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), groundMaterial);
-scene.add(ground, form, decorations);
-let grid = null;
+// the ground's grid: 12 x 12 cells of a unit square, scaled to the form's ground
+const grid = new THREE.GridHelper(1, 12, 0x9aa5b1, 0xbac3cc);
+grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; the ground is x-y
+scene.add(ground, grid, form, decorations);
 let framed = false;
 
+// The form's meshes and lines are made once and updated in place on every state:
+// the positions are copied into the same buffer while the mesh keeps its size, the
+// triangles (and the lines, derived from them) are replaced only when they change.
+let geometry = null; // the form's surface (both sides' meshes share it)
+let lines = null; // the sheet's edge and the crease: LineSegments on the same positions
+let meshKey = null; // the server's mesh_key of `geometry`'s triangles
+const surfaces = [new THREE.Mesh(undefined, topMaterial), new THREE.Mesh(undefined, underMaterial)];
+const edges = new THREE.LineSegments(undefined, edgeMaterial);
+form.add(...surfaces, edges);
+// crease halves (rods: a unit cylinder along y, scaled) and the apex (a unit sphere)
+const rodGeometry = new THREE.CylinderGeometry(1, 1, 1, 10);
+const rods = [];
+const apexBall = new THREE.Mesh(new THREE.SphereGeometry(1, 20, 12),
+  new THREE.MeshBasicMaterial({ color: 0xf59e0b }));
+decorations.add(apexBall);
+
 function decode(b64, Type) {
-  const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+  const text = atob(b64);
+  const bytes = new Uint8Array(text.length);
+  for (let i = 0; i < text.length; i += 1) bytes[i] = text.charCodeAt(i);
   return new Type(bytes.buffer);
 }
 
-function disposeGroup(group) {
-  for (const child of [...group.children]) {
-    group.remove(child);
-    child.geometry?.dispose();
-    if (child.material && ![topMaterial, underMaterial, edgeMaterial].includes(child.material)) child.material.dispose();
+// The edges of the mesh that only one triangle has (index pairs): the sheet's
+// outline, and the crease, where the two sides' meshes meet (they share no
+// vertex there but the apex).
+function boundaryEdges(index, vertexCount) {
+  const seen = new Map();
+  for (let t = 0; t < index.length; t += 3) {
+    for (let k = 0; k < 3; k += 1) {
+      const a = index[t + k];
+      const b = index[t + (k + 1) % 3];
+      const key = a < b ? a * vertexCount + b : b * vertexCount + a;
+      seen.set(key, (seen.get(key) || 0) + 1);
+    }
   }
+  const out = [];
+  for (const [key, n] of seen) {
+    if (n === 1) out.push(Math.floor(key / vertexCount), key % vertexCount);
+  }
+  return vertexCount < 65536 ? new Uint16Array(out) : new Uint32Array(out);
 }
 
-function rod(a, b, radius, colour) {
+function setSurface(f) {
+  const positions = decode(f.positions, Float32Array);
+  // the server leaves the triangles out when they are those the page has
+  const same = geometry && f.mesh_key === meshKey;
+  if (same) {
+    const attr = geometry.getAttribute('position');
+    attr.array.set(positions);
+    attr.needsUpdate = true;
+  } else {
+    geometry?.dispose();
+    lines?.dispose();
+    geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    const IndexType = f.index_type === 'uint16' ? Uint16Array : Uint32Array;
+    const index = decode(f.indices, IndexType);
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    lines = new THREE.BufferGeometry();
+    lines.setAttribute('position', geometry.getAttribute('position'));
+    lines.setIndex(new THREE.BufferAttribute(boundaryEdges(index, f.vertex_count), 1));
+    for (const m of surfaces) m.geometry = geometry;
+    edges.geometry = lines;
+    meshKey = f.mesh_key;
+  }
+  geometry.computeVertexNormals(); // shading only
+  geometry.computeBoundingSphere();
+  lines.boundingSphere = geometry.boundingSphere;
+}
+
+function placeRod(mesh, a, b, radius) {
   const pa = new THREE.Vector3(...a);
-  const pb = new THREE.Vector3(...b);
-  const dir = pb.clone().sub(pa);
-  const mesh = new THREE.Mesh(
-    new THREE.CylinderGeometry(radius, radius, dir.length(), 10),
-    new THREE.MeshBasicMaterial({ color: colour }),
-  );
-  mesh.position.copy(pa).add(pb).multiplyScalar(0.5);
+  const dir = new THREE.Vector3(...b).sub(pa);
+  mesh.scale.set(radius, dir.length(), radius);
+  mesh.position.copy(pa).addScaledVector(dir, 0.5);
   mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), dir.normalize());
-  return mesh;
 }
 
 function drawForm(f, fit) {
-  disposeGroup(form);
-  disposeGroup(decorations);
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(decode(f.positions, Float32Array), 3));
-  const IndexType = f.index_type === 'uint16' ? Uint16Array : Uint32Array;
-  geometry.setIndex(new THREE.BufferAttribute(decode(f.indices, IndexType), 1));
-  geometry.computeVertexNormals(); // shading only
-  form.add(new THREE.Mesh(geometry, topMaterial), new THREE.Mesh(geometry, underMaterial));
-  // the sheet's edge (and the crease, where the two sides' meshes meet), drawn as lines
-  form.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 40), edgeMaterial));
-
+  setSurface(f);
   const lo = new THREE.Vector3(...f.bbox.min);
   const hi = new THREE.Vector3(...f.bbox.max);
   const size = Math.max(hi.x - lo.x, hi.y - lo.y, hi.z - lo.z) || 1;
-  for (const c of f.crease) decorations.add(rod(c.points[0], c.points[1], size * 0.004, BEND_COLOURS[c.bend]));
-  const apex = new THREE.Mesh(new THREE.SphereGeometry(size * 0.012, 20, 12),
-    new THREE.MeshBasicMaterial({ color: 0xf59e0b }));
-  apex.position.set(...f.apex);
-  decorations.add(apex);
+  while (rods.length < f.crease.length) {
+    const rod = new THREE.Mesh(rodGeometry, new THREE.MeshBasicMaterial());
+    rods.push(rod);
+    decorations.add(rod);
+  }
+  rods.forEach((rod, i) => {
+    const c = f.crease[i];
+    rod.visible = c !== undefined;
+    if (!c) return;
+    rod.material.color.setHex(BEND_COLOURS[c.bend]);
+    placeRod(rod, c.points[0], c.points[1], size * 0.004);
+  });
+  apexBall.scale.setScalar(size * 0.012);
+  apexBall.position.set(...f.apex);
 
   const cx = (lo.x + hi.x) / 2;
   const cy = (lo.y + hi.y) / 2;
   const extent = 1.8 * Math.max(hi.x - lo.x, hi.y - lo.y);
   ground.scale.set(extent, extent, 1);
   ground.position.set(cx, cy, -1e-3 * size);
-  if (grid) { scene.remove(grid); grid.geometry.dispose(); grid.material.dispose(); }
-  grid = new THREE.GridHelper(extent, 12, 0x9aa5b1, 0xbac3cc);
-  grid.rotation.x = Math.PI / 2; // GridHelper lies in x-z; the ground is x-y
+  grid.scale.set(extent, 1, extent);
   grid.position.set(cx, cy, -5e-4 * size);
-  scene.add(grid);
 
   if (fit || !framed) {
     const centre = lo.clone().add(hi).multiplyScalar(0.5);
@@ -261,6 +314,11 @@ function setDownloads(q, enabled) {
 }
 
 // -- the update loop: one request at a time, the latest values win -------------
+// Each update leaves performance marks (benchmarks/bench_explore.py reads them):
+// explore:request (asked), explore:answer (the server's answer arrives),
+// explore:parsed (JSON read), explore:form (numbers, messages and the 3D form
+// set), explore:drawn (the flat pattern set, the 3D view rendered).
+const MARKS = ['explore:request', 'explore:answer', 'explore:parsed', 'explore:form', 'explore:drawn'];
 let inflight = false;
 let pending = null; // {templateOnly, fit}
 
@@ -278,14 +336,18 @@ async function run() {
   const q = query(job.templateOnly);
   $('status').textContent = 'solving…';
   try {
-    const res = await fetch(`/api/state?${q}`);
+    for (const m of MARKS) performance.clearMarks(m);
+    performance.mark('explore:request');
+    const res = await fetch(`/api/state?${q}${meshKey ? `&mesh=${meshKey}` : ''}`);
+    performance.mark('explore:answer');
     const state = await res.json();
+    performance.mark('explore:parsed');
     apply(state, job, res.ok ? q : null);
     const ms = performance.now() - started;
     $('status').textContent = state.ok
       ? `updated in ${Math.round(ms)} ms (server ${Math.round(state.server_ms)} ms)`
       : 'the design has an error: see the messages';
-    finish(started, state.ok);
+    finish(started, state.ok, state.server_ms);
   } catch (err) {
     showMessages([{ level: 'error', text: `no answer from the server (${err})`, controls: [] }]);
     $('status').textContent = 'server not reachable';
@@ -310,18 +372,20 @@ function apply(state, job, q) {
   }
   showNumbers(state.numbers);
   drawForm(state.form, job.fit);
+  performance.mark('explore:form');
   $('flat').innerHTML = state.flat_svg
     || '<p class="no-flat">No flat pattern for these values: see the messages.</p>';
   setDownloads(query(), true);
   render();
+  performance.mark('explore:drawn');
 }
 
-function finish(started, ok) {
+function finish(started, ok, serverMs = null) {
   requestAnimationFrame(() => {
     updates += 1;
     document.body.dataset.updates = String(updates);
     window.dispatchEvent(new CustomEvent('explore:updated', {
-      detail: { started, done: performance.now(), ok },
+      detail: { started, done: performance.now(), ok, server_ms: serverMs },
     }));
   });
 }
