@@ -92,10 +92,12 @@ def main(argv: Sequence[str] | None = None) -> int:
             if not args or args[0] not in COMMANDS:
                 if args and not args[0].startswith("-"):
                     raise UsageError(f"unknown command {args[0]!r} (choose from build, "
-                                     "solve, templates, explore, fit, sweep)")  # fmt: skip
+                                     "solve, templates, explore, fit, sweep, simulate, "
+                                     "hops)")  # fmt: skip
                 parsers[""].parse_args(args or ["--help"])  # --help, --version or an error
                 raise UsageError(
-                    "a command is needed: build, solve, templates, explore, fit or sweep"
+                    "a command is needed: build, solve, templates, explore, fit, sweep, simulate "
+                    "or hops"
                 )
             ns = parsers[args[0]].parse_intermixed_args(args[1:])
             return COMMANDS[args[0]](ns)
