@@ -37,11 +37,13 @@ from onefold_cad.templates import DEFAULT_TEMPLATE
 
 __all__ = [
     "FIT_INPUTS",
+    "HOPS_TYPES",
     "KINDS",
     "SOLVE_INPUTS",
     "HopsInput",
     "StaleInputsError",
     "flag_args",
+    "hops_request",
     "parse_solve_args",
     "read_values",
 ]
@@ -219,6 +221,46 @@ def read_values(inputs: Sequence[HopsInput], values: Iterable[Mapping[str, Any]]
             )
         out[inp.name] = _value(inp, items[0])
     return out
+
+
+#: The type names Hops gives a value of each kind (RhinoCommon's, .NET's).
+HOPS_TYPES = {
+    "number": "System.Double",
+    "integer": "System.Int32",
+    "text": "System.String",
+    "curve": "Rhino.Geometry.PolylineCurve",
+}
+
+
+def hops_request(
+    pointer: str,
+    inputs: Sequence[HopsInput],
+    values: Mapping[str, Any],
+    model_units: str = "Millimeters",
+) -> dict[str, Any]:
+    """The JSON body Hops posts to ``/solve`` for ``values`` (Resthopper's
+    ``Schema``: ``pointer`` names the component, e.g. ``onefold/solve``): one
+    entry per input, in order, its tree ``{"{0}": [{"type", "data"}]}`` with
+    the value as JSON text, or ``{}`` for an input without a value (None).
+    A curve is given as its CommonObject JSON (rhino3dm's ``Encode()``).
+    The inverse of :func:`read_values`; a Python client can post it too."""
+    entries = []
+    for inp in inputs:
+        v = values.get(inp.name)
+        tree = {} if v is None else {"{0}": [{"type": HOPS_TYPES[inp.kind], "data": json.dumps(v)}]}
+        entries.append({"ParamName": inp.name, "InnerTree": tree})
+    return {
+        "absolutetolerance": 0.001,
+        "angletolerance": 1.0,
+        "modelunits": model_units,
+        "dataversion": 7,
+        "algo": None,
+        "pointer": pointer,
+        "cachesolve": False,
+        "values": entries,
+        "warnings": [],
+        "errors": [],
+    }
 
 
 def _text(value: Any) -> str:
