@@ -72,7 +72,8 @@ def test_flat_curves_are_the_flat_pattern_s(holed):
     assert flat.outline.IsClosed and np.all(pts[:, 2] == 0.0)
     assert np.array_equal(pts[:-1, :2], pattern.cut_outline)
     circle = flat.relief_hole.TryGetCircle()
-    assert circle is not None and circle.Radius == pytest.approx(pattern.cut_hole_diameter / 2.0, rel=1e-12)
+    assert circle is not None
+    assert circle.Radius == pytest.approx(pattern.cut_hole_diameter / 2.0, rel=1e-12)
     assert [circle.Center.X, circle.Center.Y] == pytest.approx(pattern.apex.tolist(), abs=1e-12)
     assert len(flat.bend_lines) == 2 and flat.bends == [h.bend for h in pattern.halves]
     for line, half in zip(flat.bend_lines, pattern.halves, strict=True):
