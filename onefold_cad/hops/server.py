@@ -26,10 +26,6 @@ from dataclasses import dataclass
 from http.server import ThreadingHTTPServer
 from typing import Any
 
-import ghhops_server as hs
-from ghhops_server.component import HopsComponent
-from ghhops_server.middlewares import HopsDefault, hopsdefault
-
 from onefold_cad.errors import OneFoldError
 from onefold_cad.flags.parser import UsageError
 from onefold_cad.hops.components import (
@@ -40,6 +36,8 @@ from onefold_cad.hops.components import (
     fit_answer,
     solve_answer,
 )
+from onefold_cad.hops.ghhops import HopsComponent, HopsDefault, hopsdefault
+from onefold_cad.hops.ghhops import ghhops_server as hs
 from onefold_cad.hops.inputs import (
     FIT_INPUTS,
     SOLVE_INPUTS,

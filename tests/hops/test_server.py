@@ -244,7 +244,7 @@ def test_the_component_s_own_path_solves_too(url, cli):
 
 
 # -- fit -----------------------------------------------------------------------------
-def test_fit_answers_what_onefold_fit_json_says(fit):
+def test_fit_answers_what_onefold_fit_json_says(fit, solve):
     status, answer = fit(template="paper-square", height=144.4, span=148.0)
     assert status == 200, answer
     reference = _json_of("fit", "paper-square", "--height", "144.4", "--span", "148", "--json")
@@ -258,6 +258,13 @@ def test_fit_answers_what_onefold_fit_json_says(fit):
     (text,) = data(out["report"])
     assert json.loads(text) == reference
     assert abs(got["height"] - 144.4) <= 0.005 * 144.4  # the fit's own tolerance
+    assert abs(got["span"] - 148.0) <= 0.005 * 148.0
+    # the found frame, solved: the resting form the fit measured
+    frame_in = {"alpha": frame["alpha"], "beta": frame["beta"], "hc": frame["h_c"]}
+    status, solved = solve(template="paper-square", **frame_in)
+    assert status == 200, solved
+    assert data(outputs(solved)["height"])[0] == pytest.approx(got["height"], rel=1e-9)
+    assert data(outputs(solved)["span"])[0] == pytest.approx(got["span"], rel=1e-9)
 
 
 def test_fit_out_of_range_height_is_the_command_s_error(fit, cli):
