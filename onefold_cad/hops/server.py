@@ -168,6 +168,8 @@ class OneFoldHops(HopsDefault):
             request = json.loads(payload)
             values = read_values(spec.inputs, request.get("values", []))
             answer = spec.answer(values, request)
+            outputs = [p.from_result(v) for p, v in zip(comp.outputs, answer.values, strict=True)]
+            text = json.dumps({"values": outputs, "warnings": list(answer.warnings), "errors": []})
         except StaleInputsError as exc:  # 'Bad inputs' first: Hops rebuilds the component
             return False, json.dumps({"values": [], "errors": ["Bad inputs", str(exc)]})
         except (OneFoldError, UsageError) as exc:
@@ -177,9 +179,7 @@ class OneFoldHops(HopsDefault):
             return False, error_answer(
                 f"internal error ({type(exc).__name__}: {exc}); the server's log has the traceback"
             )
-        outputs = [p.from_result(v) for p, v in zip(comp.outputs, answer.values, strict=True)]
-        data = {"values": outputs, "warnings": list(answer.warnings), "errors": []}
-        return True, json.dumps(data)
+        return True, text
 
 
 def make_server(host: str = "127.0.0.1", port: int = 5000) -> ThreadingHTTPServer:

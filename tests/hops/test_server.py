@@ -14,7 +14,9 @@ import pytest
 import rhino3dm
 
 from onefold_cad.cli.main import main
+from onefold_cad.hops.components import Answer, HopsOutput
 from onefold_cad.hops.inputs import FIT_INPUTS, SOLVE_INPUTS, hops_request
+from onefold_cad.hops.server import Component, OneFoldHops
 from tests.hops.client import cli_error, data, get, outputs, post, shoelace, surface_area
 
 #: The paper-square template (200 x 200 mm, 0.1 mm paper) at alpha 40, beta 35.
@@ -278,3 +280,28 @@ def test_fit_without_its_height_says_so(url):
     body = hops_request("onefold/fit", FIT_INPUTS, {"span": 148.0})
     status, answer = post(f"{url}/solve", body)
     assert status == 500 and answer["errors"][0].startswith("height: missing")
+
+
+# -- a failure that is no input's fault ----------------------------------------------
+def _failing(values, request):
+    raise RuntimeError("a bug\nover two lines")
+
+
+def _unencodable(values, request):
+    return Answer((object(),))
+
+
+@pytest.mark.parametrize(
+    ("answer", "words"),
+    [(_failing, "RuntimeError: a bug over two lines"), (_unencodable, "TypeError")],
+)
+def test_an_unexpected_failure_is_one_line_and_its_traceback_goes_to_stderr(capfd, answer, words):
+    broken = Component(
+        "/broken", "broken", "B", "fails", (), (HopsOutput("x", "number", "x"),), answer
+    )
+    app = OneFoldHops([broken])
+    ok, text = app.solve("/solve", json.dumps({"pointer": "broken", "values": []}))
+    assert not ok
+    (error,) = json.loads(text)["errors"]
+    assert error.startswith("internal error (") and words in error and "\n" not in error
+    assert "Traceback" in capfd.readouterr().err
