@@ -12,6 +12,7 @@ files are up to date.
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import re
@@ -252,10 +253,32 @@ def make_fabrication_figure() -> Path:
     return _flat_renderer()(build_design(design), design, IMAGES / "fabrication_layers.png")
 
 
+# -- Hops ------------------------------------------------------------------------------
+@functools.cache
+def _hops_blocks() -> dict[str, str]:
+    """The blocks of docs/rhino.md, made by docs/make_hops_example.py (a
+    solve posted to a Hops server started for it), once per run."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "make_hops_example", DOCS / "make_hops_example.py"
+    )
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.hops_blocks()
+
+
+def _hops_block(name: str) -> Callable[[], str]:
+    return lambda: _hops_blocks()[name]
+
+
 GENERATED: dict[str, tuple[str, Callable[[], str]]] = {
     "bend-example": ("fabrication.md", bend_example_block),
     "templates": ("templates.md", templates_block),
     "cli": ("cli.md", cli_block),
+    "hops-components": ("rhino.md", _hops_block("hops-components")),
+    "hops-example": ("rhino.md", _hops_block("hops-example")),
 }
 
 

@@ -90,6 +90,28 @@ class FitResult:
         got = {"height": self.height, "span": self.span, "depth": self.depth}
         return {k: abs(got[k] - v) / v for k, v in self.targets.items() if k in got}
 
+    def to_data(self) -> dict[str, object]:
+        """The result as ``onefold fit --json`` prints it: the design's name and
+        unit, the found ``frame`` (alpha, beta in deg, h_c), the ``body``, what
+        its resting form ``achieved`` (height, span, depth, tipping margin),
+        the ``targets``, the ``relative_errors`` and the ``evaluations``."""
+        f = self.design.frame
+        return {
+            "name": self.design.name,
+            "units": self.design.units.value,
+            "frame": {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c},
+            "body": self.body,
+            "achieved": {
+                "height": self.height,
+                "span": self.span,
+                "depth": self.depth,
+                "tipping_margin_deg": self.tipping_margin_deg,
+            },
+            "targets": self.targets,
+            "relative_errors": self.errors,
+            "evaluations": self.evaluations,
+        }
+
 
 class OutOfReachError(InvalidParameterError):
     """No frame gives the target with this sheet and material.

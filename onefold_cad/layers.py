@@ -39,6 +39,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("export", ("onefold_cad.export",)),
     ("flags", ("onefold_cad.flags",)),
     ("commands", ("onefold_cad.explore", "onefold_cad.fit", "onefold_cad.sweep")),
+    ("hops", ("onefold_cad.hops",)),
     ("cli", ("onefold_cad.cli",)),
     ("main", ("onefold_cad.__main__",)),
 )

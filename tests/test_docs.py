@@ -19,6 +19,7 @@ BLOCKS = {
     "cli.md": ["cli"],
     "benchmarks.md": ["bench_solver", "bench_pipeline", "bench_sweep", "bench_explore"],
     "sweep.md": ["sweep-study"],
+    "rhino.md": ["hops-components", "hops-example"],
 }
 
 
@@ -81,7 +82,9 @@ def test_generated_blocks_are_filled(reference, page, name):
     assert body.strip(), f"{page}: block {name!r} is empty; run the generator"
 
 
-@pytest.mark.parametrize("name", ["bend-example", "templates", "cli"])
+@pytest.mark.parametrize(
+    "name", ["bend-example", "templates", "cli", "hops-components", "hops-example"]
+)
 def test_generated_blocks_are_current(reference, name):
     page, make = reference.GENERATED[name]
     current = reference.read_block((DOCS / page).read_text(), name)

@@ -1,5 +1,5 @@
 """The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
-``explore``, ``fit``, ``sweep`` and ``simulate``
+``explore``, ``fit``, ``hops``, ``sweep`` and ``simulate``
 (:mod:`onefold_cad.cli.simulate`), each ``cmd_NAME(namespace) -> exit status``, and
 the table :data:`COMMANDS` of all of them."""
 
@@ -75,21 +75,7 @@ def cmd_fit(ns: argparse.Namespace) -> int:
         if status:
             return status
     u = design.units.value
-    data = {
-        "name": design.name,
-        "units": u,
-        "frame": {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c},
-        "body": result.body,
-        "achieved": {
-            "height": result.height,
-            "span": result.span,
-            "depth": result.depth,
-            "tipping_margin_deg": result.tipping_margin_deg,
-        },
-        "targets": result.targets,
-        "relative_errors": result.errors,
-        "evaluations": result.evaluations,
-    }
+    data = result.to_data()
     if ns.json:
         print(json.dumps(data, indent=2, allow_nan=False))
         return 0
@@ -99,6 +85,14 @@ def cmd_fit(ns: argparse.Namespace) -> int:
         aim = f" (target {want:.6g}, {100 * abs(got - want) / want:.2g} %)" if want else ""
         print(f"  {key:<15} {got:.6g} {u}{aim}")
     print(f"  tipping margin  {result.tipping_margin_deg:.3g} deg ({result.body})")
+    return 0
+
+
+def cmd_hops(ns: argparse.Namespace) -> int:
+    """Serve the Grasshopper Hops components until Ctrl-C (``onefold_cad.hops``)."""
+    from onefold_cad.hops.serve import serve
+
+    serve(ns.host, ns.port)
     return 0
 
 
@@ -148,6 +142,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "templates": cmd_templates,
     "explore": cmd_explore,
     "fit": cmd_fit,
+    "hops": cmd_hops,
     "sweep": cmd_sweep,
     "simulate": cmd_simulate,
 }

@@ -91,12 +91,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         with _signal_handlers():
             if not args or args[0] not in COMMANDS:
                 if args and not args[0].startswith("-"):
-                    raise UsageError(f"unknown command {args[0]!r} (choose from build, "
-                                     "solve, templates, explore, fit, sweep)")  # fmt: skip
+                    raise UsageError(
+                        f"unknown command {args[0]!r} (choose from {', '.join(COMMANDS)})"
+                    )
                 parsers[""].parse_args(args or ["--help"])  # --help, --version or an error
-                raise UsageError(
-                    "a command is needed: build, solve, templates, explore, fit or sweep"
-                )
+                *first, last = COMMANDS
+                raise UsageError(f"a command is needed: {', '.join(first)} or {last}")
             ns = parsers[args[0]].parse_intermixed_args(args[1:])
             return COMMANDS[args[0]](ns)
     except SystemExit as exc:  # --help, --version

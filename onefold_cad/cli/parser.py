@@ -23,10 +23,25 @@ from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
 from onefold_cad.version import __version__
 
-__all__ = ["build_parser", "help_text"]
+__all__ = ["HOPS_PORT", "build_parser", "help_text", "parse_port"]
 
 
 PROG = "onefold"
+#: The Hops server's default port (Hops' own examples use it).
+HOPS_PORT = 5000
+
+
+def parse_port(text: str) -> int:
+    """A TCP port in [0, 65535] (0: any free port)."""
+    try:
+        port = int(text)
+    except ValueError:
+        port = -1
+    if not 0 <= port <= 65535:
+        raise argparse.ArgumentTypeError(
+            f"must be a whole number in [0, 65535] (0: any free port), got {text.strip()!r}"
+        )
+    return port
 
 
 def _formatter(prog: str) -> argparse.HelpFormatter:
@@ -70,7 +85,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  explore    explore a design in the browser (sliders, 3D form, flat pattern)\n"
         "  fit        find the frame whose resting form has a target height and span\n"
         "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n"
-        "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n\n"
+        "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n"
+        "  hops       a Grasshopper Hops server: onefold/solve and onefold/fit in Grasshopper\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
@@ -218,6 +234,25 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     )
     fit.add_argument("-q", "--quiet", action="store_true",
                      help="no progress lines on stderr when building (-o)")  # fmt: skip
+    hops = FlagParser(
+        prog=f"{PROG} hops",
+        usage=f"{PROG} hops [--port N] [--host ADDRESS]",
+        description="Serve the Grasshopper Hops components onefold/solve (a design: the folded "
+        "form's Breps, creases, apex, flat pattern, fold angles, height, span, tipping margin, "
+        "warnings) and onefold/fit (alpha, beta, h_c for a target height and span) until "
+        "Ctrl-C. In Grasshopper, a Hops component's Path is http://127.0.0.1:5000/onefold/solve "
+        "(docs/rhino.md). Needs onefold_cad[rhino] (ghhops-server, rhino3dm).",
+        formatter_class=_formatter,
+        allow_abbrev=False,
+    )
+    hops.add_argument(
+        "--port", type=parse_port, default=HOPS_PORT, metavar="N",
+        help=f"port, in [0, 65535] (0: any free port; default {HOPS_PORT})",
+    )  # fmt: skip
+    hops.add_argument(
+        "--host", default="127.0.0.1", metavar="ADDRESS",
+        help="address to listen on (default 127.0.0.1: this machine only)",
+    )  # fmt: skip
     return {
         "": top,
         "build": build,
@@ -225,6 +260,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "templates": templates,
         "explore": explore,
         "fit": fit,
+        "hops": hops,
         "sweep": _sweep_parser(),
         "simulate": _simulate_parser(),
     }

@@ -1,0 +1,60 @@
+"""``onefold hops``'s entry: check the optional packages, listen, serve until
+Ctrl-C. ghhops-server is imported only once they are found, so a missing
+package is one line saying what to install.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+
+from onefold_cad.flags.parser import UsageError
+
+__all__ = ["INSTALL_HOPS", "REQUIRED", "check_installed", "serve"]
+
+#: What to install for ``onefold hops``.
+INSTALL_HOPS = "pip install 'onefold_cad[rhino]' (ghhops-server, werkzeug, rhino3dm)"
+#: The modules the server imports from the ``rhino`` extra (ghhops-server
+#: 1.5.5 imports werkzeug without declaring it).
+REQUIRED = ("ghhops_server", "werkzeug", "rhino3dm")
+
+
+def check_installed() -> None:
+    """Raise :class:`UsageError` (one line: what to install) when a module of
+    :data:`REQUIRED` is not installed (found, not imported)."""
+    missing = [m for m in REQUIRED if importlib.util.find_spec(m) is None]
+    if missing:
+        raise UsageError(
+            f"hops: the Grasshopper Hops server needs {', '.join(missing)}, which is not "
+            f"installed: {INSTALL_HOPS}"
+        )
+
+
+def serve(host: str = "127.0.0.1", port: int = 5000) -> None:
+    """Serve the Hops components on ``host:port`` (0: any free port) until
+    Ctrl-C; the address goes to stderr first.
+
+    Raises:
+        UsageError: a missing package, or an address it cannot listen on.
+    """
+    check_installed()
+    from onefold_cad.hops.server import COMPONENTS, make_server
+
+    try:
+        server = make_server(host, port)
+    except OSError as exc:
+        why = exc.strerror or str(exc)
+        raise UsageError(f"--host/--port: cannot listen on {host}:{port} ({why})") from None
+    url = f"http://{host}:{server.server_address[1]}"
+    paths = ", ".join(url + c.uri for c in COMPONENTS)
+    print(
+        f"onefold hops: serving {paths}  (the Hops component's Path; Ctrl+C stops)",
+        file=sys.stderr,
+        flush=True,
+    )
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        print("onefold hops: stopped", file=sys.stderr)
+    finally:
+        server.server_close()
