@@ -106,10 +106,16 @@ def bench(name: str, body: str, rounds: int, old: Any | None) -> dict[str, Any]:
         "rest": _fresh(*_case(onefold_cad, name, body), body, count),
         "solve + fold + rest": whole,
     }
+    why = ""
     if old is not None:
-        cases["rest, main"] = _fresh(*_case(old, name, body), body, count)
+        try:
+            cases["rest, main"] = _fresh(*_case(old, name, body), body, count)
+        except Exception as exc:  # a template the baseline cannot read (a newer key)
+            why = " ".join(f"{type(exc).__name__}: {exc}".split())
+            old = None
     res = interleave(cases, rounds=rounds, batch_time=0.0)
     out: dict[str, Any] = {"stats": res, "vs_fold": paired_ratio(res, "rest", "solve + fold")}
+    out["why"] = why
     if old is not None:
         out["speedup"] = paired_ratio(res, "rest, main", "rest")
     return out
@@ -130,12 +136,16 @@ def main(argv: list[str] | None = None) -> int:
     ]
     print("\n".join(lines), flush=True)
     verdict = ""
+    unread: list[str] = []  # templates the baseline cannot build
     for name in args.only or [t.name for t in list_templates()]:
         for body in _bodies(load_template(name)):
             r = bench(name, body, args.rounds, old)
             s = r["stats"]
-            old_cell = s["rest, main"].fmt(1e3) if old is not None else "-"
-            gain = r["speedup"].fmt(unit="x") if old is not None else "-"
+            ran = "rest, main" in s
+            old_cell = s["rest, main"].fmt(1e3) if ran else "-"
+            gain = r["speedup"].fmt(unit="x") if ran else "-"
+            if r["why"]:
+                unread.append(f"{name}: {r['why']}")
             line = (
                 f"| {name} | {body} | {s['solve + fold'].fmt(1e3)} | {s['rest'].fmt(1e3)} | "
                 f"{r['vs_fold'].fmt(unit='x')} | {old_cell} | {gain} | "
@@ -152,6 +162,9 @@ def main(argv: list[str] | None = None) -> int:
     if verdict:
         print(verdict)
         lines += ["", verdict]
+    if unread:
+        print("(no baseline for " + "; ".join(unread) + ")")
+        lines += ["", "No baseline for " + "; ".join(unread) + "."]
     if old is None:
         print(f"(no baseline: {why})")
         lines += ["", f"No baseline column: {why}."]
