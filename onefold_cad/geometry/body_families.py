@@ -123,8 +123,11 @@ class Sectors:
         z = clipped_rectangle(inner, r_out, s0, s1, u[:, 1], n[:, 1], self.tol)
         u[:, 1] *= flip
         n[:, 1] *= flip
-        out = z[..., :1] * u[:, None, :]
-        out += z[..., 1:] * n[:, None, :]
+        out = np.empty((*z.shape[:2], 3))  # r u + s n, a coordinate at a time (faster)
+        zr, zs = z[..., 0], z[..., 1]
+        for j in range(3):
+            np.multiply(zr, u[:, j : j + 1], out=out[..., j])
+            out[..., j] += zs * n[:, j : j + 1]
         if box:
             rect = np.empty((len(r_out), 4, 3))
             for j, (r, s) in enumerate(((inner, s0), (r_out, s0), (r_out, s1), (inner, s1))):

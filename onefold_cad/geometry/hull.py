@@ -62,8 +62,8 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     ``tol`` from their neighbours' line are taken instead (:func:`_beyond`).
     """
     p = np.asarray(points, dtype=float).reshape(-1, 2)
-    if len(p) == 0:
-        return np.zeros(0, dtype=np.int64)
+    if len(p) <= 2:  # no point, one, or two (what the chain makes of them)
+        return _pair(p)
     if tol <= 0.0:
         return _strict_corners(p)
     if len(p) <= _SMALL:
@@ -80,6 +80,18 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         if _covers(p[hull], p[exact], tol):
             return hull
     return _beyond(p, exact, tol) if len(exact) >= 3 else hull
+
+
+def _pair(p: Array) -> NDArray[np.int64]:
+    """:func:`convex_hull_2d` of at most two points ``p`` (as the chain has it,
+    any tolerance): none, the one, one of two equal points (the first), or
+    both, the lower x (then y) first."""
+    if len(p) < 2:
+        return np.arange(len(p), dtype=np.int64)
+    (ax, ay), (bx, by) = p.tolist()
+    if ax == bx and ay == by:
+        return np.zeros(1, dtype=np.int64)
+    return np.array([0, 1] if (ax, ay) < (bx, by) else [1, 0], dtype=np.int64)
 
 
 #: Up to this many points (a body's contacts, as toppling meets them) with a

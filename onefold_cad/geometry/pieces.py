@@ -202,6 +202,6 @@ def clipped_rectangle(
             r[:, 6 + j] = rj
             ok[:, 6 + j] = (cs != 0.0) & (sj >= s0) & (sj <= s1)
     z = np.full((k, 8, 2), np.nan)
-    z[ok, 0] = r[ok]
-    z[ok, 1] = s[ok]
+    np.copyto(z[..., 0], r, where=ok)  # z[ok] = (r, s)[ok], without the masks' copies
+    np.copyto(z[..., 1], s, where=ok)
     return z
