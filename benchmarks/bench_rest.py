@@ -13,8 +13,10 @@ per batch, the order rotated every round):
   table, are part of the placement's cost), with the relief hole the STEP is
   built with;
 * ``rest, main``: the same with the package as commit ``--baseline`` had it
-  (9567d0a, the placement before issue 24), extracted from git beside this
-  one (``git_baseline.py``); left out when git or that commit is missing;
+  (94a5a33, main before the third pass of issue 24; 9567d0a, the placement
+  before issue 24, can no longer read the templates that name a Young's
+  modulus), extracted from git beside this one (``git_baseline.py``); left
+  out when git or that commit is missing or cannot read the template;
 * ``solve + fold + rest``: the three together, what a sweep pays per design.
 
 Each cell is the median with its 25th and 75th percentiles; ratios are the
@@ -46,7 +48,7 @@ from onefold_cad.geometry.placement import rest_form  # noqa: E402
 from onefold_cad.geometry.solver import solve  # noqa: E402
 from onefold_cad.templates import find_template, list_templates, load_template  # noqa: E402
 
-BASELINE = "9567d0a"
+BASELINE = "94a5a33"
 TARGET_MS = 10.0
 DEFAULT = ("patkau-one-fold", "solid")
 
