@@ -13,8 +13,10 @@ per batch, the order rotated every round):
   table, are part of the placement's cost), with the relief hole the STEP is
   built with;
 * ``rest, main``: the same with the package as commit ``--baseline`` had it
-  (9567d0a, the placement before issue 24), extracted from git beside this
-  one (``git_baseline.py``); left out when git or that commit is missing;
+  (94a5a33, main before the third pass of issue 24; 9567d0a, the placement
+  before issue 24, can no longer read the templates that name a Young's
+  modulus), extracted from git beside this one (``git_baseline.py``); left
+  out when git or that commit is missing or cannot read the template;
 * ``solve + fold + rest``: the three together, what a sweep pays per design.
 
 Each cell is the median with its 25th and 75th percentiles; ratios are the
@@ -46,7 +48,7 @@ from onefold_cad.geometry.placement import rest_form  # noqa: E402
 from onefold_cad.geometry.solver import solve  # noqa: E402
 from onefold_cad.templates import find_template, list_templates, load_template  # noqa: E402
 
-BASELINE = "9567d0a"
+BASELINE = "94a5a33"
 TARGET_MS = 10.0
 DEFAULT = ("patkau-one-fold", "solid")
 
@@ -106,10 +108,16 @@ def bench(name: str, body: str, rounds: int, old: Any | None) -> dict[str, Any]:
         "rest": _fresh(*_case(onefold_cad, name, body), body, count),
         "solve + fold + rest": whole,
     }
+    why = ""
     if old is not None:
-        cases["rest, main"] = _fresh(*_case(old, name, body), body, count)
+        try:
+            cases["rest, main"] = _fresh(*_case(old, name, body), body, count)
+        except Exception as exc:  # a template the baseline cannot read (a newer key)
+            why = " ".join(f"{type(exc).__name__}: {exc}".split())
+            old = None
     res = interleave(cases, rounds=rounds, batch_time=0.0)
     out: dict[str, Any] = {"stats": res, "vs_fold": paired_ratio(res, "rest", "solve + fold")}
+    out["why"] = why
     if old is not None:
         out["speedup"] = paired_ratio(res, "rest, main", "rest")
     return out
@@ -130,12 +138,16 @@ def main(argv: list[str] | None = None) -> int:
     ]
     print("\n".join(lines), flush=True)
     verdict = ""
+    unread: list[str] = []  # templates the baseline cannot build
     for name in args.only or [t.name for t in list_templates()]:
         for body in _bodies(load_template(name)):
             r = bench(name, body, args.rounds, old)
             s = r["stats"]
-            old_cell = s["rest, main"].fmt(1e3) if old is not None else "-"
-            gain = r["speedup"].fmt(unit="x") if old is not None else "-"
+            ran = "rest, main" in s
+            old_cell = s["rest, main"].fmt(1e3) if ran else "-"
+            gain = r["speedup"].fmt(unit="x") if ran else "-"
+            if r["why"]:
+                unread.append(f"{name}: {r['why']}")
             line = (
                 f"| {name} | {body} | {s['solve + fold'].fmt(1e3)} | {s['rest'].fmt(1e3)} | "
                 f"{r['vs_fold'].fmt(unit='x')} | {old_cell} | {gain} | "
@@ -152,6 +164,9 @@ def main(argv: list[str] | None = None) -> int:
     if verdict:
         print(verdict)
         lines += ["", verdict]
+    if unread:
+        print("(no baseline for " + "; ".join(unread) + ")")
+        lines += ["", "No baseline for " + "; ".join(unread) + "."]
     if old is None:
         print(f"(no baseline: {why})")
         lines += ["", f"No baseline column: {why}."]

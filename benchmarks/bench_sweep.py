@@ -7,6 +7,10 @@ B C D A, ...; wall time, a fresh output folder each run):
 
 * ``loop``: the baseline, a plain loop in this process over the same flags:
   ``template_job``, ``build_design``, ``resting_placement``; nothing written.
+* ``loop, COMMIT``: the same loop with the package as commit ``--baseline``
+  had it (94a5a33, main before the third pass of issue 24), extracted from
+  git beside this one (``git_baseline.py``); left out without git or that
+  commit (``--baseline ''``: none).
 * ``sweep -j 1``: :func:`onefold_cad.sweep.runner.run_sweep` in this process
   (the loop plus the sweep's own work: rows, journal, parquet, csv, picture).
 * ``sweep -j N``: the same on the local process pool (pool start included).
@@ -21,12 +25,13 @@ printed PASS or FAIL, never asserted.
 Run from the repository root::
 
     .venv/bin/python benchmarks/bench_sweep.py [--designs 200] [--rounds 3] [--jobs 2]
-        [--template patkau-one-fold] [--no-cluster] [--write-docs]
+        [--template patkau-one-fold] [--no-cluster] [--baseline 94a5a33] [--write-docs]
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import math
 import shutil
 import sys
@@ -34,9 +39,11 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import git_baseline  # noqa: E402
 from docs_block import machine_line, write_block  # noqa: E402
 from interleave import stats_of  # noqa: E402
 
@@ -48,6 +55,8 @@ from onefold_cad.sweep.runner import run_sweep  # noqa: E402
 
 #: The issue's target (designs/s on 2 cores, the pool).
 TARGET = 100.0
+#: The commit the loop is also timed with (main before the third pass of issue 24).
+BASELINE = "94a5a33"
 
 
 def _plan(template: str, designs: int) -> SweepPlan:
@@ -63,6 +72,26 @@ def _loop(plan: SweepPlan) -> None:
             resting_placement(design, build_design(design))
         except Exception:  # a failing design costs its time, as in the sweep
             pass
+
+
+def _old_loop(pkg: Any, plan: SweepPlan) -> Callable[[], None]:
+    """:func:`_loop` with the package ``pkg`` (an earlier commit's)."""
+
+    def mod(sub: str) -> Any:
+        return importlib.import_module(f"{pkg.__name__}.{sub}")
+
+    job, build = mod("flags.jobs").template_job, mod("design").build_design
+    rest = mod("fabrication.rules").resting_placement
+
+    def run() -> None:
+        for i in range(len(plan.points)):
+            try:
+                design = job(plan.raw, plan.template, plan.flags_of(i)).design
+                rest(design, build(design))
+            except Exception:
+                pass
+
+    return run
 
 
 def _sweep(plan: SweepPlan, jobs: int, scheduler: str | None) -> Callable[[], None]:
@@ -83,6 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--template", default="patkau-one-fold")
     ap.add_argument("--no-cluster", action="store_true", help="skip the Dask LocalCluster")
+    ap.add_argument("--baseline", default=BASELINE, help="also time the loop at this commit")
     ap.add_argument("--write-docs", action="store_true")
     args = ap.parse_args(argv)
     plan = _plan(args.template, args.designs)
@@ -95,6 +125,10 @@ def main(argv: list[str] | None = None) -> int:
     }
     if not args.no_cluster:
         cases[f"sweep --scheduler local -j {j}"] = _sweep(plan, j, "local")
+    old, why = git_baseline.load(args.baseline) if args.baseline else (None, "not asked for")
+    if old is not None:
+        cases[f"loop, {args.baseline}"] = _old_loop(old, plan)
+        _old_loop(old, make_plan(args.template, ["alpha=30,40"], images=False))()  # warm too
     _loop(make_plan(args.template, ["alpha=30,40"], images=False))  # imports, warm caches
     names = list(cases)
     times: dict[str, list[float]] = {k: [] for k in names}
@@ -122,6 +156,8 @@ def main(argv: list[str] | None = None) -> int:
         if k == f"sweep -j {j}":
             target = f"{'PASS' if rate.median >= TARGET else 'FAIL'} (>= {TARGET:g}/s)"
         lines.append(f"| {k} | {wall.fmt()} | {rate.fmt()} | {ratio.fmt(unit='x')} | {target} |")
+    if old is None:
+        lines += ["", f"No baseline loop: {why}."]
     body = "\n".join(lines)
     print(body)
     if args.write_docs:

@@ -86,9 +86,15 @@ def template_job(
     flags: dict[str, Any],
     name: str | None = None,
     implicit: bool = False,
+    memo: dict[str, Any] | None = None,
 ) -> Job:
     """The design of a template's data ``raw`` (read from ``path``) with the
     design flags applied, as ``onefold solve`` makes it.
+
+    ``memo``: an empty dict shared by calls with the same ``raw`` and
+    ``path`` (a sweep's designs): what depends on the template and the
+    ``--units`` alone (the template's data in those units and its design's
+    data, defaults filled in) is made once per unit, not once per design.
 
     A template's values are converted into ``--units`` first (when given), so
     flag values are read in that unit. The design is named ``name`` if given;
@@ -100,15 +106,12 @@ def template_job(
         InvalidParameterError: a flag value the design refuses (named by its
             flag) or a template value (named with the template's path).
     """
-    from onefold_cad.templates import design_from_data, design_to_data, template_units
+    from onefold_cad.templates import design_from_data, template_units
 
     units = template_units(raw, path)
     template = str(raw.get("name", Path(path).stem))
-    data = raw
     try:
-        if flags.get("units") and flags["units"] != units.lower():
-            base = design_from_data(raw)
-            data = {**raw, **design_to_data(base.in_units(flags["units"]))}
+        data, before = _template_data(raw, units, flags.get("units"), memo)
         given = {k: v for k, v in flags.items() if v is not None}
         if name is not None:
             stem = name
@@ -119,7 +122,7 @@ def template_job(
         changed, names = Overrides(**flags, name=stem).apply(data)
         if name is None:
             names.pop("name")
-        which = changed_flags(design_to_data(design_from_data(data)), changed, names)
+        which = changed_flags(before, changed, names)
         changed = mark_changes(changed, given, which, template, implicit)
         design = design_from_data(changed, key_names=names)
     except InvalidParameterError as exc:
@@ -127,3 +130,23 @@ def template_job(
             raise
         raise type(exc)(f"{path}: {exc.parameter}", str(exc)[len(exc.parameter) + 2 :]) from None
     return Job(design, template, _sources(raw, names, template, implicit))
+
+
+def _template_data(
+    raw: dict[str, Any], units: str, to: str | None, memo: dict[str, Any] | None
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """A template's data ``raw`` (in ``units``) in the units ``to`` (None: its
+    own), and that data's design as data with the defaults filled in
+    (``design_to_data``): from ``memo`` when it has them (read-only)."""
+    from onefold_cad.templates import design_from_data, design_to_data
+
+    key = to or ""
+    if memo is not None and key in memo:
+        return memo[key]  # type: ignore[no-any-return]
+    data = raw
+    if to and to != units.lower():
+        data = {**raw, **design_to_data(design_from_data(raw).in_units(to))}
+    out = (data, design_to_data(design_from_data(data)))
+    if memo is not None:
+        memo[key] = out
+    return out

@@ -56,9 +56,10 @@ from onefold_cad.geometry.body_pieces import (
 )
 from onefold_cad.geometry.body_samples import Sampled
 from onefold_cad.geometry.cone import ExactCone
+from onefold_cad.geometry.edge_samples import edge_samples
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
-from onefold_cad.geometry.numeric import Array, sorted_unique
+from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.pieces import Piece, zoom_min
 from onefold_cad.geometry.thick_map import CreaseFrames, SideMap
 
@@ -72,15 +73,6 @@ MIRROR = np.array([1.0, -1.0, 1.0])
 _SAMPLES = 1200
 #: Largest step in the flat angle between samples of an edge (radians).
 _MAX_ANGLE_STEP = math.pi / 180
-
-
-def _spread(s: Array) -> Array:
-    """Fractions along an edge ``(m,)``, sorted, with 0 and 1 and no two closer
-    than 1e-9: a sample within rounding of another (a ray's crossing on an
-    even step) would leave the bracket about it no room on that side."""
-    inner = sorted_unique(s[(s > 1e-9) & (s < 1.0 - 1e-9)])
-    inner = inner[np.concatenate([[True], np.diff(inner) > 1e-9])] if len(inner) else inner
-    return np.concatenate([[0.0], inner, [1.0]])
 
 
 class Body(Sampled):
@@ -149,26 +141,12 @@ class Body(Sampled):
             fixed.append(np.zeros(3))
         solid = self.kind == "solid"
         sectors = Sectors(cone, arc, sheet, self.hole, self.s_range if solid else None, self._tol)
-        v = sheet.vertices
-        perimeter = sheet.perimeter
-        # sample each edge evenly on the flat sheet and evenly in its flat
-        # angle (an edge passing close to H sweeps a wide angle in a short
-        # length); the pieces run in phi
-        flat_params, thetas, steps = [], [], []
-        for k in range(len(v)):
-            a, b = v[k], v[(k + 1) % len(v)]
-            length = float(np.hypot(*(b - a)))
-            n = max(16, math.ceil(_SAMPLES * length / perimeter))
-            ta, tb = (abs(math.atan2(p[1], p[0])) for p in (a, b))
-            ang = np.linspace(ta, tb, max(2, math.ceil(abs(tb - ta) / _MAX_ANGLE_STEP) + 1))
-            psi = np.where(a[1] + b[1] < 0.0, -ang, ang)
-            ray = sheet.ray_lengths(psi)[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
-            along = np.minimum(np.maximum((ray - a) @ (b - a) / length**2, 0.0), 1.0)
-            s_all = _spread(np.concatenate([np.linspace(0.0, 1.0, n), along]))
-            q = a + s_all[:, None] * (b - a)
-            flat_params.append((a, b))
-            thetas.append(np.abs(np.arctan2(q[:, 1], q[:, 0])))  # the side's own flat angle
-            steps.append(float(np.max(np.diff(s_all))) * length)
+        # each edge sampled evenly on the flat sheet and evenly in its flat
+        # angle (once per sheet, :mod:`.edge_samples`); the pieces run in phi
+        edges = edge_samples(sheet, _SAMPLES, _MAX_ANGLE_STEP)
+        flat_params = [(e.a, e.b) for e in edges]
+        thetas = [e.theta.copy() for e in edges]
+        steps = [e.step for e in edges]
         # the samples' arc parameters from the cone's table (to ~1e-10 rad:
         # where a sample lies need not be exact), the edge ends' exact: the
         # vertex rays' (the sheet's corners are extremes as they are)

@@ -112,20 +112,27 @@ class Sectors:
         u, _, n = self.arc.frames(phi)
         rho = self.hole
         rect = None
+        # the -y side mirrored in the frames (a sign: the same products)
+        flip = np.where(lower, -1.0, 1.0)
         if self.s_range is None:
+            u[:, 1] *= flip
             out = r_out[:, None] * u
-            out = np.stack([rho * u, out], axis=1) if rho > 0.0 else out[:, None, :]
-        else:
-            s0, s1 = self.s_range
-            inner = np.full_like(r_out, rho)
-            z = clipped_rectangle(inner, r_out, s0, s1, u[:, 1], n[:, 1], self.tol)
-            out = z[..., :1] * u[:, None, :] + z[..., 1:] * n[:, None, :]
-            if box:
-                rs = np.stack([inner, r_out, r_out, inner], axis=1)[..., None]
-                ss = np.array([s0, s0, s1, s1])[None, :, None]
-                rect = rs * u[:, None, :] + ss * n[:, None, :]
-                rect[lower, :, 1] *= -1.0
-        out[lower, :, 1] *= -1.0
+            return (np.stack([rho * u, out], axis=1) if rho > 0.0 else out[:, None, :]), None
+        s0, s1 = self.s_range
+        inner = np.full_like(r_out, rho)
+        z = clipped_rectangle(inner, r_out, s0, s1, u[:, 1], n[:, 1], self.tol)
+        u[:, 1] *= flip
+        n[:, 1] *= flip
+        out = np.empty((*z.shape[:2], 3))  # r u + s n, a coordinate at a time (faster)
+        zr, zs = z[..., 0], z[..., 1]
+        for j in range(3):
+            np.multiply(zr, u[:, j : j + 1], out=out[..., j])
+            out[..., j] += zs * n[:, j : j + 1]
+        if box:
+            rect = np.empty((len(r_out), 4, 3))
+            for j, (r, s) in enumerate(((inner, s0), (r_out, s0), (r_out, s1), (inner, s1))):
+                np.multiply(r[:, None], u, out=rect[:, j])
+                rect[:, j] += s * n
         return out, rect
 
 

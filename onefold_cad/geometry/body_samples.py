@@ -143,11 +143,11 @@ class Sampled:
         p = np.empty((len(t), 3))
         gid = self._groups[0][pieces]
         for group in sorted_unique(gid):
-            sel = np.flatnonzero(gid == group)
+            sel = (gid == group).nonzero()[0]
             pts = self._corners(int(group), pieces[sel], t[sel])
             h = np.einsum("kvj,kj->kv", pts, g[sel])
             h[np.isnan(h)] = np.inf
-            i = np.argmin(h, axis=1)
+            i = h.argmin(axis=1)
             rows = np.arange(len(sel))
             v[sel] = h[rows, i]
             p[sel] = pts[rows, i]

@@ -94,7 +94,7 @@ def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Featu
         piece = body.pieces[int(k)]
         ts = sorted_unique(param[owner == k])
         idx = np.searchsorted(piece.grid, ts)
-        for grp in np.split(ts, np.flatnonzero(np.diff(idx) > 2) + 1):
+        for grp in np.split(ts, (np.diff(idx) > 2).nonzero()[0] + 1):
             lo, hi = piece.bracket(float(grp[0]), float(grp[-1]))
             out.append(_Feature(int(k), lo, hi, np.zeros(3)))
     return out
@@ -348,7 +348,7 @@ def _candidates(
     h = samples.points @ g
     floor = float(h.min())
     fixed = samples.owner < 0
-    found = [(-1, 0.0, samples.points[i]) for i in np.flatnonzero(fixed & (h <= floor + band))]
+    found = [(-1, 0.0, samples.points[i]) for i in (fixed & (h <= floor + band)).nonzero()[0]]
     reach = np.minimum(band, 2.0 * body.spacings + 1e-10 * body.size)
     near = np.zeros(len(h), dtype=bool)
     if len(reach):  # the paper shell without a hole has fixed points only

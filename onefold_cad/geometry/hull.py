@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.numeric import Array, sorted_unique
+from onefold_cad.geometry.numeric import Array, roll_rows, sorted_unique
 
 __all__ = ["convex_hull_2d", "edge_distances"]
 
@@ -62,8 +62,8 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
     ``tol`` from their neighbours' line are taken instead (:func:`_beyond`).
     """
     p = np.asarray(points, dtype=float).reshape(-1, 2)
-    if len(p) == 0:
-        return np.zeros(0, dtype=np.int64)
+    if len(p) <= 2:  # no point, one, or two (what the chain makes of them)
+        return _pair(p)
     if tol <= 0.0:
         return _strict_corners(p)
     if len(p) <= _SMALL:
@@ -80,6 +80,18 @@ def convex_hull_2d(points: ArrayLike, tol: float = 0.0) -> NDArray[np.int64]:
         if _covers(p[hull], p[exact], tol):
             return hull
     return _beyond(p, exact, tol) if len(exact) >= 3 else hull
+
+
+def _pair(p: Array) -> NDArray[np.int64]:
+    """:func:`convex_hull_2d` of at most two points ``p`` (as the chain has it,
+    any tolerance): none, the one, one of two equal points (the first), or
+    both, the lower x (then y) first."""
+    if len(p) < 2:
+        return np.arange(len(p), dtype=np.int64)
+    (ax, ay), (bx, by) = p.tolist()
+    if ax == bx and ay == by:
+        return np.zeros(1, dtype=np.int64)
+    return np.array([0, 1] if (ax, ay) < (bx, by) else [1, 0], dtype=np.int64)
 
 
 #: Up to this many points (a body's contacts, as toppling meets them) with a
@@ -141,7 +153,7 @@ def _covers(poly: Array, corners: Array, tol: float) -> bool:
     """Whether every one of ``corners`` ``(k, 2)`` lies within twice ``tol`` of
     the polygon (or segment, or point) ``poly`` ``(m, 2)``, counter-clockwise."""
     if len(poly) >= 3:
-        d = np.roll(poly, -1, axis=0) - poly  # (m, 2) edges
+        d = roll_rows(poly, -1) - poly  # (m, 2) edges
         length = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
         rel = corners[:, None, :] - poly[None, :, :]  # (k, m, 2)
         inside = (d[:, 0] * rel[..., 1] - d[:, 1] * rel[..., 0]) / length
@@ -166,14 +178,14 @@ def _beyond(p: Array, hull: NDArray[np.int64], tol: float) -> NDArray[np.int64]:
     idx = hull.copy()
     while len(idx) >= 3:
         q = p[idx]
-        a, c = np.roll(q, 1, axis=0), np.roll(q, -1, axis=0)
+        a, c = roll_rows(q, 1), roll_rows(q, -1)
         ab, ac = q - a, c - a
         cross = ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0]
         fail = cross <= tol * np.hypot(ac[:, 0], ac[:, 1])
         if not fail.any():
             return idx
         pos = np.arange(len(idx))
-        start = np.maximum.accumulate(np.where(fail & ~np.roll(fail, 1), pos, 0))
+        start = np.maximum.accumulate(np.where(fail & ~roll_rows(fail, 1), pos, 0))
         drop = fail & ((pos - start) % 2 == 0)
         if drop[0] and drop[-1]:  # a run across the end: not both
             drop[-1] = False
@@ -245,7 +257,7 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     np.subtract(ang, 2.0 * math.pi, out=ang, where=ang >= 2.0 * math.pi)
     ang[seed[0]] = 0.0
     sx, sy = x.take(seed), y.take(seed)
-    ex, ey = np.roll(sx, -1) - sx, np.roll(sy, -1) - sy
+    ex, ey = roll_rows(sx, -1) - sx, roll_rows(sy, -1) - sy
     if len(seed) < 3 or np.any(ex * (cy - sy) - ey * (cx - sx) <= 0.0):
         return None  # the centre is not strictly inside the seeds' polygon
     k = ang.take(seed).searchsorted(ang, side="right") - 1
@@ -253,7 +265,7 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     d = ey.take(k) * (x - sx.take(k)) - ex.take(k) * (y - sy.take(k))
     idx = np.flatnonzero(d > 0.0)
     idx = idx[np.argsort(ang.take(idx))]
-    a_end, b_end = seed.take(k.take(idx)), np.roll(seed, -1).take(k.take(idx))
+    a_end, b_end = seed.take(k.take(idx)), roll_rows(seed, -1).take(k.take(idx))
     d = d.take(idx)
     corners = [seed]
     px, py = x.take(idx), y.take(idx)
@@ -281,18 +293,18 @@ def _quickhull(p: Array) -> NDArray[np.int64] | None:
     hull = np.concatenate(corners)
     hull = hull[np.argsort(ang.take(hull))]
     while len(hull) >= 3:  # a seed can lie on an edge of the hull: no corner
-        ax, ay = x.take(np.roll(hull, 1)), y.take(np.roll(hull, 1))
-        qx, qy = x.take(np.roll(hull, -1)), y.take(np.roll(hull, -1))
+        ax, ay = x.take(roll_rows(hull, 1)), y.take(roll_rows(hull, 1))
+        qx, qy = x.take(roll_rows(hull, -1)), y.take(roll_rows(hull, -1))
         turn = (x.take(hull) - ax) * (qy - ay) - (y.take(hull) - ay) * (qx - ax) > 0.0
         if turn.all():
             break
         # one of neighbours that both fail at a time (two points a rounding
         # error apart: one of them stays, as in the chain)
-        hull = hull[turn | np.roll(~turn, 1)]
+        hull = hull[turn | roll_rows(~turn, 1)]
     # counter-clockwise from the lowest x, then lowest y, as the chain
     hx, hy = x.take(hull), y.take(hull)
     low = np.flatnonzero(hx == hx.min())
-    return np.roll(hull, -int(low[np.argmin(hy.take(low))])).astype(np.int64)
+    return roll_rows(hull, -int(low[hy.take(low).argmin()])).astype(np.int64)
 
 
 def _outside_octagon(p: Array) -> NDArray[np.int64]:
@@ -306,7 +318,7 @@ def _outside_octagon(p: Array) -> NDArray[np.int64]:
     if len(sub) < 3:
         return np.arange(len(p))
     poly = p[ext][sub]
-    d = np.roll(poly, -1, axis=0) - poly
+    d = roll_rows(poly, -1) - poly
     cross = d[None, :, 0] * (p[:, None, 1] - poly[None, :, 1]) - d[None, :, 1] * (
         p[:, None, 0] - poly[None, :, 0]
     )
@@ -319,7 +331,7 @@ def edge_distances(point: ArrayLike, polygon: ArrayLike) -> Array:
     i to corner i + 1): positive on the polygon's inner side (length)."""
     p = np.asarray(polygon, dtype=float).reshape(-1, 2)
     x = np.asarray(point, dtype=float)
-    d = np.roll(p, -1, axis=0) - p
+    d = roll_rows(p, -1) - p
     length = np.hypot(d[:, 0], d[:, 1])
     cross = d[:, 0] * (x[1] - p[:, 1]) - d[:, 1] * (x[0] - p[:, 0])
     with np.errstate(invalid="ignore", divide="ignore"):

@@ -92,7 +92,7 @@ def _bounded_minima(
     # before the cut holds it, and its corners move smoothly
     moved = rows.comes[row] | np.append(rows.comes[1:], False)[row]
     if moved.any():
-        m = np.flatnonzero(moved)
+        m = moved.nonzero()[0]
         boxes = np.concatenate(
             [
                 np.full((len(c), 4, 3), np.nan) if b is None else b
@@ -130,7 +130,7 @@ def exact_lows(
     margin = CONTACT_TOLERANCE * body.size
     known = hs.min(axis=1)  # the lowest sample: the lowest point lies no higher
     zoom_below = np.maximum(ceiling, known) + margin
-    fixed = np.flatnonzero(samples.owner < 0)
+    fixed = (samples.owner < 0).nonzero()[0]
     out: list[list[Low]] = [
         [(-1, 0.0, samples.points[i]) for i in fixed[hs[d, fixed] <= zoom_below[d]]]
         for d in range(nd)

@@ -23,6 +23,7 @@ __all__ = [
     "gauss_legendre",
     "panel_rule",
     "polygon_area",
+    "roll_rows",
     "sorted_unique",
 ]
 
@@ -35,11 +36,22 @@ def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     its axis-juggling overhead, which dominates for the small arrays here)."""
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    shape = a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape)
+    out = np.empty(shape)
     out[..., 0] = a1 * b2 - a2 * b1
     out[..., 1] = a2 * b0 - a0 * b2
     out[..., 2] = a0 * b1 - a1 * b0
     return out
+
+
+def roll_rows(a: np.ndarray, shift: int) -> np.ndarray:
+    """``np.roll(a, shift, axis=0)`` (the same array) without its wrapper's
+    overhead, which dominates for the few rows of a polygon."""
+    n = len(a)
+    if n == 0:
+        return a.copy()
+    k = -shift % n
+    return np.concatenate((a[k:], a[:k]))
 
 
 def sorted_unique(values: ArrayLike) -> np.ndarray:
@@ -72,7 +84,7 @@ def cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def edge_vectors(polygon: Array) -> Array:
     """``(n, d)`` the edges of a closed polygon ``(n, d)``: vertex i + 1 minus
     vertex i, the last edge back to vertex 0 (length)."""
-    return np.roll(polygon, -1, axis=0) - polygon
+    return roll_rows(polygon, -1) - polygon
 
 
 def edge_lengths(polygon: Array) -> Array:
@@ -95,7 +107,7 @@ def polygon_area(polygon: ArrayLike) -> float:
     p = np.asarray(polygon, dtype=float).reshape(-1, 2)
     if len(p) < 3:
         return 0.0
-    q = np.roll(p, -1, axis=0)
+    q = roll_rows(p, -1)
     return 0.5 * float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
 
 

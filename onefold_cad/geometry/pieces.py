@@ -109,7 +109,7 @@ def zoom_min(f: Callable[[Array], Array], lo: float, hi: float) -> tuple[float, 
     for rounds in range(20):
         t = np.linspace(lo, hi, ZOOM_GRID)
         v = f(t)
-        i = int(np.argmin(v))
+        i = int(v.argmin())
         if v[i] < best_v:
             best_t, best_v = float(t[i]), float(v[i])
         if not math.isfinite(best_v):
@@ -158,11 +158,11 @@ def end_minimum(
         return None
     pts = corners[idx]
     gone = np.isnan(pts[..., 0])
-    if np.any(gone != gone[0]):  # a corner comes or goes: features finer than the samples
+    if (gone != gone[0]).any():  # a corner comes or goes: features finer than the samples
         return None
     h = pts @ g
     h = np.where(np.isnan(h), np.inf, h).min(axis=1)
-    if not np.all(np.isfinite(h)):
+    if not np.isfinite(h).all():
         return None
     t = grid[idx]
     if t[1] == t[0] or t[2] == t[1]:
@@ -202,6 +202,6 @@ def clipped_rectangle(
             r[:, 6 + j] = rj
             ok[:, 6 + j] = (cs != 0.0) & (sj >= s0) & (sj <= s1)
     z = np.full((k, 8, 2), np.nan)
-    z[ok, 0] = r[ok]
-    z[ok, 1] = s[ok]
+    np.copyto(z[..., 0], r, where=ok)  # z[ok] = (r, s)[ok], without the masks' copies
+    np.copyto(z[..., 1], s, where=ok)
     return z

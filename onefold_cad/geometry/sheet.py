@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -264,8 +264,10 @@ class Sheet:
         return cls.polygon(pts, kind="quadrilateral", inputs=inputs)
 
     @classmethod
+    @lru_cache(maxsize=64)  # a sweep's designs share one (immutable: read-only arrays)
     def rectangle(cls, width: float, height: float, apex_fraction: float = 0.5) -> Sheet:
-        """A ``width`` x ``height`` rectangle folded along its diagonal.
+        """A ``width`` x ``height`` rectangle folded along its diagonal (the
+        same sheet again for the same arguments, with what it has derived).
 
         The sheet's own frame has a corner at the origin and its sides on the
         axes; the fold runs along the diagonal from (0, 0) to (width, height)

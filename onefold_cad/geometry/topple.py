@@ -83,7 +83,7 @@ def com_depth(points: Array, com: Array, g: Array) -> float:
     """How far (length) the centre of mass ``com`` lies below the lowest of
     ``points`` ``(N, 3)`` along the upward normal ``g``: positive only when it
     lies outside their convex hull, where no rest on them can hold it."""
-    return float(np.min(points @ g) - com @ g)
+    return float((points @ g).min() - com @ g)
 
 
 def com_outside(points: Array, com: Array) -> float:
@@ -121,7 +121,7 @@ def _topple(
     for _ in range(steps):
         h = points @ g
         floor = float(h.min())
-        on = np.flatnonzero(h <= floor + tol)
+        on = (h <= floor + tol).nonzero()[0]
         height = float(com @ g) - floor
         if height < -tol:
             return g, on, "outside"
@@ -162,9 +162,13 @@ def _topple(
         # a few tolerances wide, a needle's), and would tip the body back
         toward = b > tol
         toward[on] = False
-        if not np.any(toward):
+        if not toward.any():
             return g, on, "rests"
-        phi = max(float(np.min(np.arctan2(a[toward], b[toward]))), 0.0)
+        # the first point the tilt meets: the least angle atan2(a, b), b > 0,
+        # which grows with a / b (one arctangent, at the least ratio)
+        at, bt = a[toward], b[toward]
+        i = int((at / bt).argmin())
+        phi = max(math.atan2(float(at[i]), float(bt[i])), 0.0)
         g = math.cos(phi) * g - math.sin(phi) * w
         g /= math.sqrt(float(g @ g))
     return g, on, "rolling"

@@ -67,8 +67,8 @@ def zoom_many(
     pend = np.zeros(m, dtype=bool)
     tp, predicted, limit = np.zeros(m), np.zeros(m), np.zeros(m)
     for rounds in range(21):
-        grid = np.flatnonzero(zooming)
-        check = np.flatnonzero(pend)
+        grid = zooming.nonzero()[0]
+        check = pend.nonzero()[0]
         if not len(grid) and not len(check):
             break
         t = lo[grid, None] + _STEPS * ((hi[grid] - lo[grid]) / _LAST)[:, None]
@@ -91,7 +91,7 @@ def zoom_many(
         if not len(grid):
             continue
         rows = np.arange(len(grid))
-        i = np.argmin(v, axis=1)
+        i = v.argmin(axis=1)
         vi = v[rows, i]
         better = vi < best_v[grid]
         best_t[grid] = np.where(better, t[rows, i], best_t[grid])

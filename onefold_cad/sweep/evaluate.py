@@ -57,14 +57,16 @@ def evaluate_design(
     measures: Sequence[str],
     implicit: bool = False,
     images: bool = False,
+    memo: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """One design's row: ``name``, ``status``, ``error``, ``seconds``, the
     measures' columns (None where the design failed) and, with ``images``,
-    ``png`` (the thumbnail's bytes)."""
+    ``png`` (the thumbnail's bytes). ``memo``: shared by the designs of one
+    template (:func:`~onefold_cad.flags.jobs.template_job`)."""
     t0 = time.perf_counter()
     row: dict[str, Any] = {"name": None, "status": "ok", "error": ""}
     try:
-        design = template_job(raw, template, flags, None, implicit).design
+        design = template_job(raw, template, flags, None, implicit, memo).design
         row["name"] = design.name
         folded = build_design(design)
         rest = resting_placement(design, folded)
@@ -84,13 +86,14 @@ def evaluate_design(
 
 
 def evaluate_batch(batch: Batch) -> list[dict[str, Any]]:
-    """The rows of a batch's designs, in its order, each with its ``key``."""
+    """The rows of a batch's designs, in its order, each with its ``key``
+    (what depends on the template alone made once for the batch)."""
+    memo: dict[str, Any] = {}
+    b = batch
     return [
         {
             "key": key,
-            **evaluate_design(
-                batch.template, batch.raw, flags, batch.measures, batch.implicit, batch.images
-            ),
+            **evaluate_design(b.template, b.raw, flags, b.measures, b.implicit, b.images, memo),
         }
-        for key, flags in batch.designs
+        for key, flags in b.designs
     ]

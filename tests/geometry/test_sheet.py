@@ -213,3 +213,12 @@ def test_rectangle_bounds() -> None:
     for f in (np.nextafter(MIN_FEATURE, DOWN), np.nextafter(1.0 - MIN_FEATURE, UP), 0.0, 1.0):
         with pytest.raises(InvalidParameterError, match=r"^apex_fraction: must be in \[1e-09"):
             Sheet.rectangle(3.0, 2.0, f)
+
+
+def test_a_rectangle_is_made_once_for_the_same_arguments() -> None:
+    a = Sheet.rectangle(3.0, 7.0, 0.25)
+    assert Sheet.rectangle(3.0, 7.0, 0.25) is a
+    other = Sheet.rectangle(3.0, 7.0, 0.5)
+    assert other is not a
+    assert not np.array_equal(other.vertices, a.vertices)
+    assert not a.vertices.flags.writeable  # shared, so never written
