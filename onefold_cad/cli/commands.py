@@ -1,7 +1,7 @@
 """The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
-``explore``, ``fit``, ``sweep``, ``simulate``
-(:mod:`onefold_cad.cli.simulate`) and ``site`` (:mod:`onefold_cad.cli.site`), each ``cmd_NAME(namespace) -> exit status``, and
-the table :data:`COMMANDS` of all of them."""
+``explore``, ``fit``, ``sweep``, ``simulate`` (:mod:`onefold_cad.cli.simulate`)
+and ``site`` (:mod:`onefold_cad.cli.site`), each ``cmd_NAME(namespace) -> exit
+status``, and the table :data:`COMMANDS` of all of them."""
 
 from __future__ import annotations
 

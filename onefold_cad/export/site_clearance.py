@@ -1,17 +1,17 @@
 """The clearance check of a site on the sheets' exact B-reps: the smallest
-distance between every two placed parts, and the volume two overlapping
-solids share (OCCT's boolean common). What counts as touching is
-:mod:`onefold_cad.site.clearance`'s.
+distance between every two placed parts, and the area their footprints share.
+What counts as touching is :mod:`onefold_cad.site.clearance`'s.
 
-The distance: the two parts' meshes (:func:`onefold_cad.export.site_mesh.mesh_shape`,
-:data:`MESH_DEFLECTION` of the sheet's size; every node on its B-rep) give
+The distance: the two parts' coarse meshes (:func:`onefold_cad.export.site_mesh.mesh_shape`,
+:data:`SEED_DEFLECTION`; every node on its B-rep) give
 the nearest pair of nodes; from it, alternate exact projections (a point of
 one part onto the other's B-rep, OCCT's BRepExtrema_DistShapeShape between a
 vertex and the part, and back) descend to the B-reps' closest points, to
 rounding. That is a local minimum of the exact distance between the B-reps,
-never more than the nodes' distance; a pair closer than :data:`CLOSE` of the
-sheet's size is measured again with BRepExtrema on the whole parts (exact,
-global, tens of seconds), and then checked for shared volume. The whole-part
+never more than the nodes' distance (0 when a point of one lies inside the
+other solid); a pair closer than :data:`CLOSE` of the sheet's size but apart
+is measured again with BRepExtrema on the whole parts (exact, global, tens of
+seconds). The whole-part
 computation everywhere gives the same numbers (tests/export/) twenty times
 slower. The B-reps lie within their ``fit_tolerance`` of the designed
 surfaces (the accuracy reported). Lengths in the site's unit.
@@ -23,7 +23,6 @@ from collections.abc import Sequence
 from itertools import combinations
 from typing import Any
 
-import build123d as bd
 import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
@@ -34,12 +33,13 @@ from onefold_cad.errors import ExportError
 from onefold_cad.export.site_context import SiteSheet
 from onefold_cad.export.site_mesh import mesh_shape
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.site.clearance import Clearance, PairDistance, clearance
+from onefold_cad.site.clearance import Clearance, PairDistance, clearance, convex_overlap
 
-__all__ = ["CLOSE", "MESH_DEFLECTION", "exact_distance", "measure_clearance"]
+__all__ = ["CLOSE", "SEED_ANGLE", "SEED_DEFLECTION", "exact_distance", "measure_clearance"]
 
-#: The seeding meshes' deflection, relative to the sheet's size.
-MESH_DEFLECTION = 1e-2
+#: The seeding meshes: deflection relative to the sheet's size, angle (rad).
+SEED_DEFLECTION = 1e-2
+SEED_ANGLE = 0.3
 #: Pairs closer than this (relative to the larger sheet's size) are measured on
 #: the whole parts and checked for shared volume.
 CLOSE = 0.01
@@ -83,34 +83,22 @@ def _descend(a: Any, b: Any, pa: Array, scale: float) -> tuple[float, Array, Arr
     return d, pa, pb
 
 
-def _common_volume(a: Any, b: Any) -> float:
-    """The volume two solids share (0 for shells or when they only touch)."""
-    if not (a.solids() and b.solids()):
-        return 0.0
-    try:
-        common = bd.Shape.cast(a.wrapped).intersect(bd.Shape.cast(b.wrapped))
-    except Exception:  # OCC's Standard_Failure family: the boolean failed
-        return 0.0
-    return float(common.volume) if common is not None else 0.0
-
-
 def _pair(a: SiteSheet, b: SiteSheet, nodes: dict[str, Array]) -> PairDistance:
     scale = max(float(a.design.sheet.size), float(b.design.sheet.size))
     gaps, nearest = cKDTree(nodes[b.name]).query(nodes[a.name])
     k = int(np.argmin(gaps))
     d, pa, pb = _descend(a.placed, b.placed, nodes[a.name][k], scale)
-    overlap = 0.0
-    if d <= CLOSE * scale:
+    if 0.0 < d <= CLOSE * scale:  # close: the global minimum on the whole parts
         d, pa, pb = exact_distance(a.placed, b.placed)
-        overlap = _common_volume(a.placed, b.placed)
-    return PairDistance(a.name, b.name, d, pa, pb, overlap, scale)
+    feet = [s.site.apply(np.asarray(s.resting.footprint, dtype=float)) for s in (a, b)]
+    return PairDistance(a.name, b.name, d, pa, pb, convex_overlap(*feet), scale)
 
 
 def measure_clearance(sheets: Sequence[SiteSheet]) -> Clearance:
     """Every pair's smallest distance (site file's order), and the accuracy:
     the sum of the two largest fit tolerances of the sheets' B-reps."""
     nodes = {
-        s.name: mesh_shape(s.placed, MESH_DEFLECTION * float(s.design.sheet.size), 0.1)[0]
+        s.name: mesh_shape(s.placed, SEED_DEFLECTION * float(s.design.sheet.size), SEED_ANGLE)[0]
         for s in sheets
     }
     tolerances = sorted(float(getattr(s.part, "fit_tolerance", 0.0)) for s in sheets)

@@ -24,7 +24,12 @@ if TYPE_CHECKING:
     from onefold_cad.site.clearance import Clearance
     from onefold_cad.site.placement import SitePlacement
 
-__all__ = ["SiteContext", "SiteSheet", "place_on_site"]
+__all__ = ["MESH_ANGLE", "MESH_DEFLECTION", "SiteContext", "SiteSheet", "place_on_site"]
+
+#: The sheets' meshes: the largest distance of a triangle from the part,
+#: relative to the sheet's size, and the largest turn from its surface (rad).
+MESH_DEFLECTION = 1e-3
+MESH_ANGLE = 0.1
 
 
 def place_on_site(part: bd.Shape, site: SitePlacement, label: str) -> bd.Shape:
@@ -73,6 +78,16 @@ class SiteSheet:
     def placed(self) -> Any:
         """The part where it stands on the site (build123d shape)."""
         return place_on_site(self.part, self.site, self.name)
+
+    @cached_property
+    def mesh(self) -> tuple[Any, Any]:
+        """The part's triangle mesh in its resting frame, ``(vertices (k, 3),
+        triangles (m, 3))``, within :data:`MESH_DEFLECTION` of the sheet's size
+        and :data:`MESH_ANGLE` rad of it (:func:`onefold_cad.export.site_mesh.mesh_shape`),
+        made once (the IFC's face sets)."""
+        from onefold_cad.export.site_mesh import mesh_shape
+
+        return mesh_shape(self.part, MESH_DEFLECTION * float(self.design.sheet.size), MESH_ANGLE)
 
 
 @dataclass(eq=False)

@@ -44,6 +44,12 @@ ORDER_COLUMNS = (
 )
 
 
+def _number(value: Any) -> Any:
+    """Floats with 10 significant digits (the reports' values, without the
+    binary rounding's tail: 7315.2, not 7315.199999999999)."""
+    return f"{value:.10g}" if isinstance(value, float) else value
+
+
 def _or_blank(value: Any) -> Any:
     return "" if value is None else value
 
@@ -84,7 +90,7 @@ def order_rows(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> list[list[An
             ]
         )
     units = {r[-1] for r in rows}
-    mass_units = {r[9] for r in rows}
+    mass_units = {r[10] for r in rows}
 
     def total(values: list[Any]) -> Any:
         return "" if any(v is None for v in values) else sum(values)
@@ -104,7 +110,7 @@ def order_csv(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> str:
     out = io.StringIO()
     w = csv.writer(out, lineterminator="\n")
     w.writerow(ORDER_COLUMNS)
-    w.writerows(order_rows(reports))
+    w.writerows([[_number(v) for v in row] for row in order_rows(reports)])
     return out.getvalue()
 
 

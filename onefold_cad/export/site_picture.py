@@ -81,7 +81,7 @@ def render_site_picture(
     )
     surface.set_zorder(3)
     ax.add_collection3d(surface)
-    fit_axes(ax, np.concatenate(everything), ground=True, elev=elev, azim=azim, zoom=0.95)
+    fit_axes(ax, np.concatenate(everything), ground=True, elev=elev, azim=azim, zoom=1.3)
     label_axes(ax, ctx.units)
     fig.suptitle(f"site {ctx.name}: {len(ctx.sheets)} sheets as they stand", fontsize=12, y=0.985)
     handles.append(Line2D([], [], color=_GROUND, lw=0.8, label="outline on the ground"))

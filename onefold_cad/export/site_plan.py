@@ -32,7 +32,7 @@ from onefold_cad.site.clearance import nearest_neighbours
 __all__ = ["PLAN_LAYERS", "draw_site_plan", "write_site_plan"]
 
 #: layer -> AutoCAD colour index.
-PLAN_LAYERS = {"FOOTPRINT": 7, "CONTACT": 3, "NAMES": 2, "CLEARANCE": 1}
+PLAN_LAYERS = {"FOOTPRINT": 7, "CONTACT": 3, "NAMES": 5, "CLEARANCE": 1}
 
 
 def draw_site_plan(ctx: SiteContext) -> object:
@@ -42,7 +42,7 @@ def draw_site_plan(ctx: SiteContext) -> object:
     for name, colour in PLAN_LAYERS.items():
         doc.layers.add(name, color=colour)
     msp = doc.modelspace()
-    h = ctx.size / 60.0  # text height
+    h = ctx.size / 25.0  # text height
     for s in ctx.sheets:
         foot = s.site.apply(np.asarray(s.resting.footprint, dtype=float))
         msp.add_lwpolyline(foot.tolist(), close=True, dxfattribs={"layer": "FOOTPRINT"})

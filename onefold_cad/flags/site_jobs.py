@@ -22,9 +22,9 @@ __all__ = ["SITE_FLAG_NAMES", "sheet_flags", "sheet_job", "site_jobs"]
 SITE_FLAG_NAMES = tuple(f.flag[2:] for f in DESIGN_FLAGS if f.dest not in ("units",))
 
 
-def sheet_flags(site: SiteSpec, sheet: SheetSpec) -> dict[str, Any]:
+def sheet_flags(site: SiteSpec, sheet: SheetSpec, units: str | None = None) -> dict[str, Any]:
     """The design flags' values of one sheet (dest -> value, None for a flag
-    not given), ``units`` the site's.
+    not given), ``units`` the site's unless the design's (``units``) is the same.
 
     Raises:
         InvalidParameterError: an unknown flag or a value its flag refuses,
@@ -47,7 +47,8 @@ def sheet_flags(site: SiteSpec, sheet: SheetSpec) -> dict[str, Any]:
             message = str(exc).split(": ", 1)[-1]
             raise InvalidParameterError(f"{where}.{key}", message) from None
     values = parse_design_flags(args)
-    values["units"] = site.units
+    if str(units).lower() != site.units:
+        values["units"] = site.units
     return values
 
 
@@ -59,10 +60,10 @@ def sheet_job(site: SiteSpec, sheet: SheetSpec) -> Job:
         InvalidParameterError: a flag or a design value the design refuses,
             named by the file, the entry and the key.
     """
-    flags = sheet_flags(site, sheet)
     data = dict(sheet.data)
     if isinstance(sheet.source, str):  # an inline design states its units, or takes the site's
         data.setdefault("units", site.units)
+    flags = sheet_flags(site, sheet, data.get("units"))
     try:
         return template_job(data, sheet.source, flags, name=sheet.name)
     except InvalidParameterError as exc:
