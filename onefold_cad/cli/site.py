@@ -163,7 +163,7 @@ def _report_clearance(ctx: SiteContext, ns: argparse.Namespace, seconds: float) 
     if c is None or c.smallest is None:
         return
     for p in c.pairs:
-        _say(ns.quiet, ctx.name, f"clearance {p.a} - {p.b}: {p.distance:.1f} {u}")
+        _say(ns.quiet, ctx.name, f"clearance {p.a} - {p.b}: {p.distance:.3f} {u}")
     s = c.smallest
     _say(
         ns.quiet,

@@ -18,7 +18,7 @@ from typing import Any
 
 from onefold_cad.export.site_context import SiteContext
 
-__all__ = ["SITE_WRITERS", "SiteWriter", "site_file_names", "site_files_help"]
+__all__ = ["SITE_WRITERS", "SiteWriter", "site_file_names", "site_files_help", "site_report"]
 
 
 @dataclass(frozen=True)
@@ -82,6 +82,64 @@ def _order(ctx: SiteContext, path: Path) -> Any:
     return write_order_csv([(s.name, s.report) for s in ctx.sheets], path)
 
 
+def _json(ctx: SiteContext, path: Path) -> Any:
+    import json
+
+    from onefold_cad.export.atomic import atomic_output
+
+    text = json.dumps(site_report(ctx), indent=2, allow_nan=False) + "\n"
+    with atomic_output(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return path
+
+
+def site_report(ctx: SiteContext) -> dict[str, Any]:
+    """The site's report (SITE.json): its sheets where they stand (the site
+    file's placement, height, footprint size, mass from each report), every
+    pair's clearance (length, in the site's unit) and what the writers said
+    of their files (the IFC's geometry and deviation)."""
+    c = ctx.clearance
+    pairs = [] if c is None else c.pairs
+    smallest = None if c is None else c.smallest
+    return {
+        "name": ctx.name,
+        "description": ctx.description,
+        "units": ctx.units,
+        "sheets": [
+            {
+                "name": s.name,
+                "x": s.site.x,
+                "y": s.site.y,
+                "rotation_deg": s.site.rotation_deg,
+                "height": s.report["resting"]["height"],
+                "mass": s.report["mass"],
+                "files": [f"{s.name}/{f}" for f in s.report["files"]],
+            }
+            for s in ctx.sheets
+        ],
+        "clearance": {
+            "pairs": [
+                {
+                    "a": p.a,
+                    "b": p.b,
+                    "distance": p.distance,
+                    "point_a": [float(v) for v in p.point_a],
+                    "point_b": [float(v) for v in p.point_b],
+                    "touching": p.touching,
+                    "footprint_overlap": p.footprint_overlap,
+                }
+                for p in pairs
+            ],
+            "smallest": None
+            if smallest is None
+            else {"a": smallest.a, "b": smallest.b, "distance": smallest.distance},
+            "accuracy": None if c is None else c.accuracy,
+        },
+        **ctx.sections,
+        "files": [p.name for p in ctx.files],
+    }
+
+
 def _png(ctx: SiteContext, path: Path) -> Any:
     from onefold_cad.export.site_picture import render_site_picture
 
@@ -104,6 +162,8 @@ SITE_WRITERS: dict[str, SiteWriter] = {
         SiteWriter("order", "-order.csv", "order", _order,
                    "the bill of materials: stock, gauge, blank, mass, cut length, bends"),
         SiteWriter("png", ".png", "site picture", _png, "a picture of every sheet as it stands"),
+        SiteWriter("json", ".json", "site report", _json,
+                   "the site's report: placements, clearances, the IFC's deviation"),
     )
 }  # fmt: skip
 
