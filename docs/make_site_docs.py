@@ -71,6 +71,24 @@ def site_block(outdir: Path, stem: str = "patkau-three") -> str:
     return "\n".join(out) + "\n"
 
 
+def site_images(outdir: Path, stem: str = "patkau-three") -> list[Path]:
+    """docs/images/site-patkau-three.png (the site's picture, as written) and
+    docs/images/site-patkau-three-plan.png (the plan DXF drawn by ezdxf's
+    matplotlib back-end)."""
+    import shutil
+
+    import ezdxf
+    from ezdxf.addons.drawing import matplotlib as dxf_matplotlib
+
+    images = DOCS / "images"
+    picture = images / "site-patkau-three.png"
+    shutil.copyfile(outdir / f"{stem}.png", picture)
+    plan = images / "site-patkau-three-plan.png"
+    doc = ezdxf.readfile(outdir / f"{stem}-plan.dxf")
+    dxf_matplotlib.qsave(doc.modelspace(), str(plan), bg="#FFFFFF", size_inches=(10, 5), dpi=100)
+    return [picture, plan]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("outdir", nargs="?", type=Path, help="where to build (default: a temp folder)")
@@ -83,6 +101,8 @@ def main(argv: list[str] | None = None) -> int:
         if not args.read and onefold(["site", SITE, "-o", str(outdir), "-j", "2", "-q"]) != 0:
             return 1
         write_block(DOCS / "site.md", "site-patkau", site_block(outdir))
+        for p in site_images(outdir):
+            print(p)
     print(f"{DOCS / 'site.md'}: block 'site-patkau' updated")
     return 0
 

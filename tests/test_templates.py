@@ -25,9 +25,7 @@ from onefold_cad.templates import (
 
 REPO_TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
 # site-*.toml are site files (onefold site), not design templates
-SHIPPED = sorted(
-    p.stem for p in REPO_TEMPLATES.glob("*.toml") if not p.stem.startswith("site-")
-)
+SHIPPED = sorted(p.stem for p in REPO_TEMPLATES.glob("*.toml") if not p.stem.startswith("site-"))
 
 # The paper's Table 1: (H_c, alpha, beta, divisions, Y+, Y-, X+, X-).
 TABLE1 = {

@@ -58,7 +58,7 @@ def render_site_picture(
 
     view = view_direction(elev, azim)
     fig = agg_figure(size_px)
-    ax = fig.add_axes((0.0, 0.06, 0.82, 0.9), projection="3d", computed_zorder=False)
+    ax = fig.add_axes((0.03, 0.06, 0.8, 0.88), projection="3d", computed_zorder=False)
     tris, colours, everything, handles = [], [], [], []
     for i, s in enumerate(ctx.sheets):
         verts, faces = resting_mesh(s.folded, angular=90, radial=6, placement=s.resting)
@@ -81,7 +81,7 @@ def render_site_picture(
     )
     surface.set_zorder(3)
     ax.add_collection3d(surface)
-    fit_axes(ax, np.concatenate(everything), ground=True, elev=elev, azim=azim, zoom=1.3)
+    fit_axes(ax, np.concatenate(everything), ground=True, elev=elev, azim=azim, zoom=1.12)
     label_axes(ax, ctx.units)
     fig.suptitle(f"site {ctx.name}: {len(ctx.sheets)} sheets as they stand", fontsize=12, y=0.985)
     handles.append(Line2D([], [], color=_GROUND, lw=0.8, label="outline on the ground"))
