@@ -40,6 +40,12 @@ def built(tmp_path_factory, worker_id) -> Path:
     return out
 
 
+@pytest.fixture(scope="module")
+def assembly(built) -> dict:
+    """The site's STEP read back with build123d: label -> part."""
+    return {c.label: c for c in bd.import_step(built / f"{STEM}.step").children}
+
+
 def site_motion(entry: dict) -> tuple[np.ndarray, np.ndarray]:
     """The site file's turn about z and move, read from the file itself."""
     t = math.radians(entry.get("rotation", 0.0))
@@ -56,9 +62,8 @@ def test_the_site_writes_every_file_and_each_sheet_s_build(built):
     assert not [p for p in built.iterdir() if p.name.startswith(".")]  # no staging left
 
 
-def test_the_step_assembly_holds_each_sheet_named_and_placed_as_the_site_says(built):
-    assembly = bd.import_step(built / f"{STEM}.step")
-    parts = {c.label: c for c in assembly.children}
+def test_the_step_assembly_holds_each_sheet_named_and_placed_as_the_site_says(built, assembly):
+    parts = assembly
     assert sorted(parts) == sorted(NAMES)
     for entry in SITE["sheet"]:
         part = parts[entry["name"]]
@@ -75,7 +80,7 @@ def test_the_step_assembly_holds_each_sheet_named_and_placed_as_the_site_says(bu
         assert np.abs(v - w).max() <= 1e-6 * size
 
 
-def test_the_ifc_validates_and_its_plates_are_the_sheets_as_they_stand(built):
+def test_the_ifc_validates_and_its_plates_are_the_sheets_as_they_stand(built, assembly):
     import ifcopenshell
     import ifcopenshell.geom
     import ifcopenshell.util.unit
@@ -92,7 +97,6 @@ def test_the_ifc_validates_and_its_plates_are_the_sheets_as_they_stand(built):
     assert project.Name == site.Name == STEM
     plates = {p.Name: p for p in f.by_type("IfcPlate")}
     assert sorted(plates) == sorted(NAMES)
-    assembly = {c.label: c for c in bd.import_step(built / f"{STEM}.step").children}
     metres = ifcopenshell.util.unit.calculate_unit_scale(f)  # one length unit of the file in m
     assert metres == pytest.approx(1e-3)  # the site's mm
     settings = ifcopenshell.geom.settings()
@@ -146,7 +150,7 @@ def test_the_order_s_rows_are_the_reports_and_its_masses_add_up(built):
     assert total["mass_unit"] == "kg"
 
 
-def test_the_plan_draws_footprints_contacts_names_and_neighbour_distances(built):
+def test_the_plan_draws_footprints_contacts_names_and_neighbour_distances(built, assembly):
     import ezdxf
 
     doc = ezdxf.readfile(built / f"{STEM}-plan.dxf")
@@ -158,7 +162,6 @@ def test_the_plan_draws_footprints_contacts_names_and_neighbour_distances(built)
     lines = msp.query("LINE[layer=='CLEARANCE']")
     labels = [t.dxf.text for t in msp.query("TEXT[layer=='CLEARANCE']")]
     assert len(lines) == len(labels) >= len(NAMES) - 1
-    assembly = {c.label: c for c in bd.import_step(built / f"{STEM}.step").children}
     for line, label in zip(lines, labels, strict=True):
         pair, _, dist = label.partition(": ")
         a, b = pair.split(" - ")
