@@ -299,3 +299,18 @@ def test_the_numbers_in_docs_site_md_are_the_built_site_s(built):
     page = (docs / "site.md").read_text(encoding="utf-8")
     block = mod.read_block(page, "site-patkau")
     assert block == mod.site_block(built), "docs/site.md is stale: run docs/make_site_docs.py"
+
+
+def test_site_help_has_its_usage_and_names_every_site_file(capsys):
+    assert main(["site", "--help"]) == 0
+    text = capsys.readouterr().out
+    assert text.splitlines()[0] == "usage: onefold site SITE [-o DIR] [options]"
+    files = text[text.index("site files (--formats") :].splitlines()[1:]
+    assert len(files) == len(SUFFIXES)
+    for suffix in SUFFIXES:
+        (line,) = [ln for ln in files if f" SITE{suffix} " in ln]
+        assert len(line.split(f"SITE{suffix}", 1)[1].strip()) > 20
+    for flag in ("--formats", "--sheet-formats", "--jobs", "--allow-touching", "--outdir"):
+        assert flag in text
+    assert main(["--help"]) == 0
+    assert "  site  " in capsys.readouterr().out
