@@ -36,6 +36,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("templates", ("onefold_cad.templates",)),
     ("fabrication", ("onefold_cad.fabrication",)),
     ("mechanics", ("onefold_cad.mechanics",)),
+    ("site", ("onefold_cad.site",)),
     ("export", ("onefold_cad.export",)),
     ("flags", ("onefold_cad.flags",)),
     ("commands", ("onefold_cad.explore", "onefold_cad.fit", "onefold_cad.sweep")),

@@ -58,6 +58,8 @@ __all__ = [
     "TemplateInfo",
     "design_from_data",
     "design_to_data",
+    "SITE_PREFIX",
+    "find_site_file",
     "find_template",
     "list_templates",
     "load_template",
@@ -126,12 +128,33 @@ def template_dirs() -> list[Path]:
     return seen
 
 
-def _shipped() -> dict[str, Path]:
+#: Shipped files named ``site-*.toml`` are site files (``onefold site``), not designs.
+SITE_PREFIX = "site-"
+
+
+def _shipped(sites: bool = False) -> dict[str, Path]:
     found: dict[str, Path] = {}
     for d in template_dirs():
         for p in sorted(d.glob("*.toml")):
-            found.setdefault(p.stem, p)
+            if p.stem.startswith(SITE_PREFIX) == sites:
+                found.setdefault(p.stem, p)
     return found
+
+
+def find_site_file(ref: str | Path) -> Path:
+    """The file of a site given as a path or as a shipped site's name
+    (``site-patkau-three``: ``templates/site-patkau-three.toml``)."""
+    p = Path(ref)
+    if p.is_file():
+        return p
+    shipped = _shipped(sites=True)
+    key = p.name.removesuffix(".toml")
+    if str(ref) == key and key in shipped:
+        return shipped[key]
+    names = ", ".join(sorted(shipped)) or "none found"
+    raise InvalidParameterError(
+        "SITE", f"no such file or shipped site: {str(ref)!r} (shipped sites: {names})"
+    )
 
 
 def list_templates() -> list[TemplateInfo]:

@@ -13,6 +13,7 @@ import gc
 import signal
 import sys
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -28,14 +29,24 @@ from onefold_cad.flags.jobs import Job, load_jobs
 
 if TYPE_CHECKING:
     from onefold_cad.design import Design
+    from onefold_cad.export.build_context import BuildContext
 from onefold_cad.cli.output import Progress, os_message, warn
 from onefold_cad.flags.parser import design_flag_values
 
-__all__ = ["STATE", "cmd_build", "interrupted_text"]
+__all__ = [
+    "STATE",
+    "BuildTask",
+    "check_jobs",
+    "cmd_build",
+    "interrupted_text",
+    "run_tasks",
+    "task_context",
+    "write_task",
+]
 
 
 @dataclass
-class _Task:
+class BuildTask:
     """What a build worker needs for one design (picklable)."""
 
     index: int
@@ -74,15 +85,14 @@ def _freeze_imports(frozen: set[str]) -> None:
     frozen.update(new)
 
 
-def _write_task(task: _Task) -> list[Path]:
-    """Solve and write one design into its staging folder (in this process)."""
+def task_context(task: BuildTask) -> BuildContext:
+    """The build context of one task's design (solved here, or taken from the
+    fold cache when the parent solved it before the fork)."""
     from onefold_cad.design import build_design
-    from onefold_cad.export.writers import BuildContext, write_design
+    from onefold_cad.export.writers import BuildContext
 
     d = task.job.design
-    progress = Progress(task.quiet)
-    t0 = time.perf_counter()
-    ctx = BuildContext(
+    return BuildContext(
         d,
         build_design(d),
         task.body,
@@ -91,6 +101,17 @@ def _write_task(task: _Task) -> list[Path]:
         task.warnings,
         placement=task.placement,
     )
+
+
+def write_task(task: BuildTask, ctx: BuildContext | None = None) -> list[Path]:
+    """Solve and write one design into its staging folder (in this process),
+    with ``ctx`` if given (:func:`task_context`)."""
+    from onefold_cad.export.writers import write_design
+
+    d = task.job.design
+    progress = Progress(task.quiet)
+    t0 = time.perf_counter()
+    ctx = task_context(task) if ctx is None else ctx
 
     frozen: set[str] = set()
 
@@ -110,66 +131,65 @@ def _worker_init() -> None:
     signal.signal(signal.SIGHUP, signal.SIG_DFL)
 
 
-def _worker(task: _Task) -> tuple[str, Any]:
-    """Pool entry point: ('ok', files) or ('error', (kind, message))."""
+def _files(task: BuildTask) -> list[str]:
+    return [str(p) for p in write_task(task)]
+
+
+def _worker(fn: Callable[[Any], Any], task: Any) -> tuple[str, Any]:
+    """Pool entry point: ('ok', fn(task)) or ('error', (kind, message))."""
     try:
-        return "ok", [str(p) for p in _write_task(task)]
+        return "ok", fn(task)
     except OneFoldError as exc:  # their pickled form cannot be rebuilt: send the text
         return "error", ("onefold", str(exc))
     except OSError as exc:
         return "error", ("os", os_message(exc))
 
 
-def _write_all(tasks: list[_Task], jobs: int) -> list[Path]:
+def run_tasks(tasks: Sequence[Any], jobs: int, fn: Callable[[Any], Any]) -> list[Any]:
+    """``fn(task)`` for every task, in order: in this process (``jobs`` 1), else
+    ``jobs`` at a time in worker processes (forked on Linux; ``fn`` a module's
+    function and its results picklable). The first error ends the pool and
+    is raised here (OneFoldError, its message)."""
     if jobs <= 1 or len(tasks) <= 1:
-        return [p for t in tasks for p in _write_task(t)]
+        return [fn(t) for t in tasks]
     import multiprocessing
 
     method = "fork" if sys.platform.startswith("linux") else "spawn"
     ctx = multiprocessing.get_context(method)
     pool = ctx.Pool(min(jobs, len(tasks)), initializer=_worker_init)
     try:
-        results = [pool.apply_async(_worker, (t,)) for t in tasks]
-        files: list[Path] = []
+        results = [pool.apply_async(_worker, (fn, t)) for t in tasks]
+        out: list[Any] = []
         for r in results:
             status, value = r.get()
             if status == "error":
                 pool.terminate()
                 raise OneFoldError(value[1])
-            files += [Path(p) for p in value]
+            out.append(value)
         pool.close()
-        return files
+        return out
     finally:
         pool.terminate()
         pool.join()
 
 
-def cmd_build(ns: argparse.Namespace) -> int:
-    """Write the files of every design of the call, all or nothing."""
+def check_jobs(
+    jobs: Sequence[Job], formats: Sequence[str], ns: argparse.Namespace
+) -> list[tuple[str, ...]]:
+    """Solve every design and run every writer's checks of ``formats`` before
+    any file is written (``ns``: ``body``, ``compensation``, ``placement``,
+    ``quiet``); print the material, the bend table and the warnings; return
+    each design's warnings.
+
+    Raises:
+        OneFoldError: what a design or a writer refuses (named by the design
+            when there are several).
+    """
     from onefold_cad.design import build_design
-    from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
-    from onefold_cad.export.writers import (
-        BuildContext,
-        check_before_writing,
-        file_names,
-        parse_formats,
-    )
+    from onefold_cad.export.writers import BuildContext, check_before_writing
     from onefold_cad.fabrication.report import design_warnings
 
-    refs = list(ns.templates)
-    if ns.name is not None and len(refs) > 1:
-        raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
-    if ns.jobs < 1:
-        raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
-    formats = parse_formats(ns.formats)
     body = None if ns.body == "auto" else ns.body
-    jobs = load_jobs(refs, design_flag_values(ns), ns.name)
-    stems = [j.design.name for j in jobs]
-    dup = sorted({s for s in stems if stems.count(s) > 1})
-    if dup:
-        raise InvalidParameterError(
-            "templates", f"two designs share the name {dup[0]!r}; their files would collide"
-        )
     n = len(jobs)
     progress = Progress(ns.quiet)
     found: list[tuple[str, ...]] = []
@@ -201,6 +221,30 @@ def cmd_build(ns: argparse.Namespace) -> int:
         for w in notes:
             warn(f"{d.name}: {w}")
         found.append(notes)
+    return found
+
+
+def cmd_build(ns: argparse.Namespace) -> int:
+    """Write the files of every design of the call, all or nothing."""
+    from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
+    from onefold_cad.export.writers import file_names, parse_formats
+
+    refs = list(ns.templates)
+    if ns.name is not None and len(refs) > 1:
+        raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
+    if ns.jobs < 1:
+        raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
+    formats = parse_formats(ns.formats)
+    body = None if ns.body == "auto" else ns.body
+    jobs = load_jobs(refs, design_flag_values(ns), ns.name)
+    stems = [j.design.name for j in jobs]
+    dup = sorted({s for s in stems if stems.count(s) > 1})
+    if dup:
+        raise InvalidParameterError(
+            "templates", f"two designs share the name {dup[0]!r}; their files would collide"
+        )
+    found = check_jobs(jobs, formats, ns)
+    n = len(jobs)
     outdir = Path(ns.outdir)
     created = not outdir.exists()
     try:
@@ -216,11 +260,11 @@ def cmd_build(ns: argparse.Namespace) -> int:
         with Staging(outdir) as staging:
             STATE["staging"] = staging
             tasks = [
-                _Task(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
+                BuildTask(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
                       ns.quiet, found[i - 1], ns.placement, bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
-            files = _write_all(tasks, ns.jobs)
+            files = [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]
             pause_point("staged")
             for p in staging.commit(files):
                 print(p, flush=True)

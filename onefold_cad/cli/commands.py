@@ -1,7 +1,8 @@
 """The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
-``explore``, ``fit``, ``hops``, ``sweep`` and ``simulate``
-(:mod:`onefold_cad.cli.simulate`), each ``cmd_NAME(namespace) -> exit status``, and
-the table :data:`COMMANDS` of all of them."""
+``explore``, ``fit``, ``hops``, ``sweep``, ``simulate``
+(:mod:`onefold_cad.cli.simulate`) and ``site`` (:mod:`onefold_cad.cli.site`),
+each ``cmd_NAME(namespace) -> exit status``, and the table :data:`COMMANDS` of
+all of them."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from onefold_cad.cli.build import STATE, cmd_build
 from onefold_cad.cli.output import warn
 from onefold_cad.cli.parser import build_parser
 from onefold_cad.cli.simulate import cmd_simulate
+from onefold_cad.cli.site import cmd_site
 from onefold_cad.cli.summary import summary
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
@@ -145,4 +147,5 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "hops": cmd_hops,
     "sweep": cmd_sweep,
     "simulate": cmd_simulate,
+    "site": cmd_site,
 }

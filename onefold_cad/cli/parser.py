@@ -10,6 +10,7 @@ import argparse
 import textwrap
 from pathlib import Path
 
+from onefold_cad.cli.site_parser import site_parser
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
     BODIES,
@@ -86,7 +87,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  fit        find the frame whose resting form has a target height and span\n"
         "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n"
         "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n"
-        "  hops       a Grasshopper Hops server: onefold/solve and onefold/fit in Grasshopper\n\n"
+        "  hops       a Grasshopper Hops server: onefold/solve and onefold/fit in Grasshopper\n"
+        "  site       a site of several sheets: their files, STEP/IFC/GLB, plan, order\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
@@ -263,6 +265,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "hops": hops,
         "sweep": _sweep_parser(),
         "simulate": _simulate_parser(),
+        "site": site_parser(PROG),
     }
 
 

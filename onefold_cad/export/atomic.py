@@ -216,9 +216,12 @@ class Staging:
         self,
         files: Sequence[Path],
         on_move: Callable[[Path], None] | None = None,
+        targets: Sequence[str] | None = None,
     ) -> list[Path]:
         """Move ``files`` (inside :attr:`path`) into ``outdir`` under their
-        own names, all or nothing; return the paths written.
+        own names (or under ``targets``, paths relative to ``outdir`` whose
+        folders are made as needed: ``onefold site``'s DIR/NAME/...), all or
+        nothing; return the paths written.
 
         Raises:
             ExportError: a target is blocked (nothing moved), or a rename
@@ -226,17 +229,22 @@ class Staging:
                 ``outdir`` finishes the commit once the obstacle is gone);
                 the message names the path.
         """
-        moves = [(Path(f), self.outdir / Path(f).name) for f in files]
+        names = [Path(f).name for f in files] if targets is None else list(targets)
+        moves = [(Path(f), self.outdir / name) for f, name in zip(files, names, strict=True)]
         for src, _ in moves:
             if self.path not in src.parents:
                 raise ValueError(f"{src} is not inside the staging folder {self.path}")
         mode = _file_mode()
         with _folder_lock(self.outdir), _signals_held():
-            check_targets(self.outdir, [dst.name for _, dst in moves])
+            check_targets(self.outdir, names)
             try:
-                for src, _ in moves:
+                for src, dst in moves:
                     os.chmod(src, mode)
-                _write_journal(self.path, [(s.relative_to(self.path), d.name) for s, d in moves])
+                    dst.parent.mkdir(parents=True, exist_ok=True)
+                _write_journal(
+                    self.path,
+                    [(s.relative_to(self.path), n) for (s, _), n in zip(moves, names, strict=True)],
+                )
             except OSError as exc:
                 raise ExportError(f"cannot write {exc.filename or self.path}: {exc}") from exc
             self._keep = True  # from here on the journal decides
@@ -282,6 +290,7 @@ def _roll_forward(stage: Path, outdir: Path) -> list[Path]:
         staged = stage / src
         if staged.exists():
             try:
+                (outdir / dst).parent.mkdir(parents=True, exist_ok=True)
                 os.replace(staged, outdir / dst)
             except OSError as exc:
                 raise ExportError(

@@ -43,7 +43,7 @@ from onefold_cad.export.colour_scale import STEEL_GREY
 from onefold_cad.export.part import build_part
 from onefold_cad.geometry.folding import FoldedSheet
 
-__all__ = ["ANGULAR_DEFLECTION", "LINEAR_DEFLECTION", "COLOUR", "write_glb"]
+__all__ = ["ANGULAR_DEFLECTION", "LINEAR_DEFLECTION", "COLOUR", "write_glb", "write_site_glb"]
 
 #: Largest distance between the mesh and the surface, relative to ``sheet.size``.
 LINEAR_DEFLECTION = 1e-4
@@ -101,6 +101,41 @@ def write_glb(
                 placed,
                 tmp,
                 unit=_UNIT[design.units],
+                binary=True,
+                linear_deflection=LINEAR_DEFLECTION * size,
+                angular_deflection=ANGULAR_DEFLECTION,
+            )
+        except Exception as err:  # RuntimeError, or OCC's Standard_Failure family
+            raise ExportError(f"writing glTF failed ({err.__class__.__name__}: {err})") from None
+        if not ok:
+            raise ExportError("writing glTF failed")
+    return out
+
+
+def write_site_glb(
+    parts: list[bd.Shape], units: Units, path: str | os.PathLike[str], size: float, name: str
+) -> Path:
+    """Write a site's placed parts as one binary glTF scene (metres, y-up),
+    one node per part named with its label, tessellated as :func:`write_glb`
+    does with ``size`` the largest sheet's size (site unit).
+
+    Returns:
+        The path written.
+    """
+    out = Path(path)
+    children = []
+    for part in parts:
+        placed = bd.Shape.cast(part.wrapped)
+        placed.label = part.label
+        placed.color = bd.Color(*COLOUR)
+        children.append(placed)
+    scene = bd.Compound(children=children, label=name)
+    with atomic_output(out) as tmp:
+        try:
+            ok = bd.export_gltf(
+                scene,
+                tmp,
+                unit=_UNIT[units],
                 binary=True,
                 linear_deflection=LINEAR_DEFLECTION * size,
                 angular_deflection=ANGULAR_DEFLECTION,

@@ -25,7 +25,7 @@ from onefold_cad.export.step_checks import scale_hint
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.sheet import sheet_inradius
 
-__all__ = ["STEP_TIMESTAMP", "export_design_step", "read_step"]
+__all__ = ["STEP_TIMESTAMP", "export_design_step", "export_site_step", "read_step"]
 
 #: The header timestamp of every STEP file written here (reproducible bytes).
 STEP_TIMESTAMP = "2000-01-01T00:00:00"
@@ -118,3 +118,41 @@ def _step_unit(units: Units) -> Iterator[None]:
         yield
     finally:
         Interface_Static.SetCVal_s("write.step.unit", before)
+
+
+def export_site_step(
+    parts: list[bd.Shape], units: Units, path: str | os.PathLike[str], name: str
+) -> Path:
+    """Write a site's placed parts (each labelled with its sheet's name) as
+    one STEP assembly named ``name``, atomically, in the site's unit, with
+    :data:`STEP_TIMESTAMP`; read back before it is moved into place and
+    refused (ExportError) unless it holds as many valid shapes as parts.
+
+    Returns:
+        The path written.
+    """
+    target = Path(path)
+    assembly = bd.Compound(children=[_labelled_copy(p) for p in parts], label=name)
+    with atomic_output(target) as tmp, _step_unit(units):
+        try:
+            ok = bd.export_step(assembly, tmp, unit=_UNIT[units], timestamp=STEP_TIMESTAMP)
+        except Exception as err:  # RuntimeError, or OCC's Standard_Failure family
+            raise ExportError(f"writing STEP failed ({err.__class__.__name__}: {err})") from None
+        if not ok:
+            raise ExportError("writing STEP failed")
+        try:
+            back = bd.import_step(tmp)
+            ok = back.is_valid and len(back.solids() or back.shells()) >= len(parts)
+        except Exception:  # OCC's Standard_Failure family
+            ok = False
+        if not ok:
+            raise ExportError("the written site STEP file does not read back as valid shapes")
+    return target
+
+
+def _labelled_copy(part: bd.Shape) -> bd.Shape:
+    """``part`` as a new shape object (so the assembly does not re-parent the
+    caller's), with its label."""
+    out = bd.Shape.cast(part.wrapped)
+    out.label = part.label
+    return out

@@ -19,7 +19,7 @@ name.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from importlib.util import find_spec
 from pathlib import Path
@@ -34,6 +34,7 @@ if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer run
 __all__ = [
     "WRITERS",
     "BuildContext",
+    "context_report",
     "Writer",
     "files_help",
     "parse_formats",
@@ -173,13 +174,21 @@ def _svg(ctx: BuildContext, path: Path) -> Any:
 
 def _json(ctx: BuildContext, path: Path) -> Any:
     from onefold_cad.export.report_file import write_report
+
+    return write_report(path, context_report(ctx))
+
+
+def context_report(ctx: BuildContext) -> dict[str, Any]:
+    """The design's report as its NAME.json holds it
+    (:func:`~onefold_cad.fabrication.report.design_report` with what this
+    build wrote and measured)."""
     from onefold_cad.fabrication.report import design_report
 
     try:
         pattern = ctx.pattern
     except OneFoldError:  # the report says why (a warning); it does not refuse
         pattern = None
-    report = design_report(
+    return design_report(
         ctx.design,
         ctx.folded,
         files=ctx.files,
@@ -192,7 +201,6 @@ def _json(ctx: BuildContext, path: Path) -> Any:
         step=_part_numbers(ctx),
         rhino=ctx.sections.get("rhino"),
     )
-    return write_report(path, report)
 
 
 def _part_numbers(ctx: BuildContext) -> dict[str, Any] | None:
@@ -324,36 +332,41 @@ def files_help() -> str:
     )
 
 
-def parse_formats(text: str | None) -> tuple[str, ...]:
+def parse_formats(
+    text: str | None, registry: Mapping[str, Any] | None = None, flag: str = "--formats"
+) -> tuple[str, ...]:
     """The writers named by ``--formats`` ('step,dxf,...'; None or 'all' for
     every one whose required package is installed), in writing order with
-    the report last.
+    the report last. ``registry``: the writers to pick from (default
+    :data:`WRITERS`; ``onefold site`` passes its own), each with ``available``
+    and ``requires``; ``flag`` names the option in errors.
 
     Raises:
         InvalidParameterError: an unknown or repeated name (the message lists
             the allowed ones), or one whose required package is missing.
     """
-    allowed = ", ".join(WRITERS)
+    writers: Mapping[str, Any] = WRITERS if registry is None else registry
+    allowed = ", ".join(writers)
     if text is None or text.strip().lower() == "all":
-        names = [n for n, w in WRITERS.items() if w.available]
+        names = [n for n, w in writers.items() if w.available]
     else:
         names = [n.strip().lower() for n in text.split(",") if n.strip()]
         if not names:
-            raise InvalidParameterError("--formats", f"names no format (allowed: {allowed})")
+            raise InvalidParameterError(flag, f"names no format (allowed: {allowed})")
         for n in names:
-            if n not in WRITERS:
+            if n not in writers:
                 raise InvalidParameterError(
-                    "--formats", f"unknown format {n!r} (allowed: {allowed}, or all)"
+                    flag, f"unknown format {n!r} (allowed: {allowed}, or all)"
                 )
             if names.count(n) > 1:
-                raise InvalidParameterError("--formats", f"{n!r} is named twice")
-            if not WRITERS[n].available:
+                raise InvalidParameterError(flag, f"{n!r} is named twice")
+            if not writers[n].available:
                 raise InvalidParameterError(
-                    "--formats",
-                    f"{n!r} needs the package {WRITERS[n].requires}, which is not "
-                    f"installed (pip install {WRITERS[n].requires})",
+                    flag,
+                    f"{n!r} needs the package {writers[n].requires}, which is not "
+                    f"installed (pip install {writers[n].requires})",
                 )
-    order = [n for n in WRITERS if n in names and n != "json"]
+    order = [n for n in writers if n in names and n != "json"]
     return (*order, "json") if "json" in names else tuple(order)
 
 

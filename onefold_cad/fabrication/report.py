@@ -42,12 +42,14 @@ from onefold_cad.fabrication.rules import (
 from onefold_cad.geometry.bend_model import crease_bends
 from onefold_cad.geometry.developability import developability
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.numeric import edge_lengths_2d
 from onefold_cad.geometry.placement import stability_warnings
 from onefold_cad.templates import design_to_data
 
 __all__ = [
     "REPORT_VERSION",
     "check_finite",
+    "cut_length",
     "design_report",
     "design_warnings",
     "report_flat_pattern",
@@ -143,6 +145,12 @@ def report_flat_pattern(
         return None
 
 
+def cut_length(fp: FlatPattern) -> float:
+    """The laser's path (length): the cutting outline's perimeter and the relief
+    hole's cutting circle (none when the hole is 0)."""
+    return float(edge_lengths_2d(fp.cut_outline).sum() + math.pi * fp.cut_hole_diameter)
+
+
 def _pattern_keys(design: Design, fp: FlatPattern | None) -> dict[str, Any]:
     if fp is None:
         return {"flat_size": None, "flat_area": None, "flat_pattern": None, "mass": None}
@@ -160,6 +168,7 @@ def _pattern_keys(design: Design, fp: FlatPattern | None) -> dict[str, Any]:
             "compensation": fp.compensation,
             "bend_problems": [q.message for q in fp.problems],
             "kerf": float(fp.kerf),
+            "cut_length": cut_length(fp),
         },
         "mass": None
         if mass is None
@@ -295,7 +304,7 @@ def design_report(
         hole a STEP solid of this thickness needs; null for the paper model
         or zero thickness), ``flat_size`` and ``flat_area`` (the cut part:
         thickness-compensated outline, net of the relief hole),
-        ``flat_pattern`` (its compensation shift and residual), ``sheet``
+        ``flat_pattern`` (its compensation shift and residual, the ``cut_length``), ``sheet``
         (the designed sheet: size in its own frame, area, perimeter,
         vertices), ``surface_area`` (measured on the folded surface),
         ``mass`` (``{value, unit, density}`` or null), ``resting`` (the form

@@ -301,3 +301,21 @@ def test_write_report_leaves_nothing_on_failure(tmp_path, paper):
     with pytest.raises(ExportError):
         write_report(tmp_path / "missing-dir" / "r.json", paper[2])
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(("hole", "kerf"), [(0.0, 0.0), (6.0, 0.0), (6.0, 0.5)])
+def test_the_cut_length_is_the_blank_s_perimeter_and_the_hole_s_circle(hole, kerf):
+    from onefold_cad.templates import load_template
+
+    base = load_template("paper-square")  # 200 x 200 mm, folded along its diagonal
+    design = base.with_changes(material=base.material.with_changes(relief_hole=hole, kerf=kerf))
+    rep = design_report(design, build_design(design), compensation="none")
+    # uncompensated: the designed square, offset outwards by kerf/2 (its corners rounded
+    # or mitred: between the two), and the hole's cutting circle of diameter hole - kerf
+    side = 200.0 + kerf
+    circle = math.pi * (hole - kerf) if hole else 0.0
+    got = rep["flat_pattern"]["cut_length"]
+    lo, hi = 4 * 200.0 + math.pi * kerf, 4 * side
+    assert lo - 1e-9 <= got - circle <= hi + 1e-9
+    if kerf == 0.0:
+        assert got == pytest.approx(800.0 + circle, rel=1e-12)

@@ -1,0 +1,186 @@
+"""``onefold site SITE -o DIR``: every sheet of a site file built as ``onefold
+build`` builds it (its files in DIR/NAME/), its part stood where the site
+places it, the clearance between the sheets checked, then the site's files
+(:data:`onefold_cad.export.site_writers.SITE_WRITERS`) written; everything
+staged and committed at once (:mod:`onefold_cad.export.atomic`), nothing
+written when a sheet or the clearance check fails. ``-j N`` builds N sheets
+at a time in worker processes (:func:`onefold_cad.cli.build.run_tasks`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from onefold_cad.cli.build import STATE, BuildTask, check_jobs, run_tasks, task_context, write_task
+from onefold_cad.cli.output import one_line, warn
+from onefold_cad.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from onefold_cad.export.site_context import SiteContext
+    from onefold_cad.geometry.placement import RestingPlacement
+
+__all__ = ["SheetBuilt", "cmd_site"]
+
+
+@dataclass(frozen=True)
+class SheetBuilt:
+    """What a worker sends back for one sheet (picklable).
+
+    Attributes:
+        files: the sheet's files, in its staging folder.
+        part: its part standing in its resting frame (build123d shape).
+        resting: how it stands.
+        report: its report (as its NAME.json holds it).
+    """
+
+    files: tuple[str, ...]
+    part: Any
+    resting: RestingPlacement
+    report: dict[str, Any]
+
+
+def _build_sheet(task: BuildTask) -> SheetBuilt:
+    """Write one sheet's files (as ``build``) and keep its part and report."""
+    from onefold_cad.export.writers import context_report
+
+    ctx = task_context(task)
+    files = write_task(task, ctx)
+    return SheetBuilt(tuple(str(p) for p in files), ctx.part, ctx.resting, context_report(ctx))
+
+
+def _say(quiet: bool, name: str, text: str) -> None:
+    if not quiet:
+        os.write(2, f"[site] {name}: {one_line(text)}\n".encode())
+
+
+def _sheet_formats(text: str | None) -> tuple[str, ...]:
+    from onefold_cad.export.writers import parse_formats
+
+    if text is not None and text.strip().lower() == "none":
+        return ()
+    return parse_formats(text, flag="--sheet-formats")
+
+
+def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteContext:
+    from onefold_cad.design import build_design
+    from onefold_cad.export.site_context import SiteContext, SiteSheet
+    from onefold_cad.site.placement import SitePlacement
+
+    sheets = [
+        SiteSheet(
+            s.name,
+            job.design,
+            build_design(job.design),
+            b.part,
+            b.resting,
+            b.report,
+            SitePlacement(s.x, s.y, s.rotation_deg),
+        )
+        for s, job, b in zip(spec.sheets, jobs, built, strict=True)
+    ]
+    return SiteContext(spec.name, spec.description, spec.units, sheets)
+
+
+def cmd_site(ns: argparse.Namespace) -> int:
+    """Build a site: its sheets' files and the site's, all or nothing."""
+    from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
+    from onefold_cad.export.site_clearance import measure_clearance
+    from onefold_cad.export.site_writers import SITE_WRITERS, site_file_names
+    from onefold_cad.export.writers import file_names, parse_formats
+    from onefold_cad.flags.site_jobs import site_jobs
+    from onefold_cad.site.spec import read_site
+
+    if ns.jobs < 1:
+        raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
+    formats = parse_formats(ns.formats, SITE_WRITERS)
+    sheet_formats = _sheet_formats(ns.sheet_formats)
+    spec = read_site(ns.site)
+    jobs = site_jobs(spec)
+    # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
+    found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
+    outdir = Path(ns.outdir)
+    created = not outdir.exists()
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InvalidParameterError(
+            "--outdir", f"cannot create {str(outdir)!r}: {exc.strerror or exc}"
+        ) from None
+    n = len(jobs)
+    targets = [
+        f"{j.design.name}/{f}" for j in jobs for f in file_names(j.design.name, sheet_formats)
+    ]
+    site_names = site_file_names(spec.name, formats)
+    try:
+        for p in recover(outdir):
+            warn(f"finished an interrupted earlier build: {p}")
+        check_targets(outdir, [*targets, *site_names])
+        with Staging(outdir) as staging:
+            STATE["staging"] = staging
+            tasks = [
+                BuildTask(i, n, job, sheet_formats, None, ns.compensation,
+                          str(staging.path / job.design.name), ns.quiet, found[i - 1], "rest",
+                          bool(STATE.get("process")))
+                for i, job in enumerate(jobs, 1)
+            ]  # fmt: skip
+            built: list[SheetBuilt] = run_tasks(tasks, ns.jobs, _build_sheet)
+            ctx = _site_context(spec, jobs, built)
+            t0 = time.perf_counter()
+            ctx.clearance = measure_clearance(ctx.sheets)
+            _report_clearance(ctx, ns, time.perf_counter() - t0)
+            ctx.clearance.check(spec.units, ns.allow_touching)
+            ctx.files = [staging.path / name for name in site_names]
+            for name, path in zip(formats, ctx.files, strict=True):
+                t0 = time.perf_counter()
+                SITE_WRITERS[name].write(ctx, path)
+                _say(
+                    ns.quiet,
+                    spec.name,
+                    f"{SITE_WRITERS[name].stage} {time.perf_counter() - t0:.2f} s",
+                )
+            if "ifc" in ctx.sections:
+                _say(ns.quiet, spec.name, _ifc_text(ctx.sections["ifc"], spec.units))
+            files = [Path(f) for b in built for f in b.files] + ctx.files
+            pause_point("staged")
+            for p in staging.commit(files, targets=[*targets, *site_names]):
+                print(p, flush=True)
+    finally:
+        with contextlib.suppress(OSError):
+            if created and outdir.is_dir() and not any(outdir.iterdir()):
+                outdir.rmdir()
+    return 0
+
+
+def _report_clearance(ctx: SiteContext, ns: argparse.Namespace, seconds: float) -> None:
+    c = ctx.clearance
+    u = ctx.units
+    if c is None or c.smallest is None:
+        return
+    for p in c.pairs:
+        _say(ns.quiet, ctx.name, f"clearance {p.a} - {p.b}: {p.distance:.3f} {u}")
+    s = c.smallest
+    _say(
+        ns.quiet,
+        ctx.name,
+        f"smallest clearance {s.distance:.1f} {u} ({s.a} - {s.b}; exact B-reps, within "
+        f"{c.accuracy:.2g} {u} of the designed sheets) in {seconds:.2f} s",
+    )
+    if ns.allow_touching:
+        for p in c.touching:
+            warn(f"{p.a} and {p.b} touch or overlap (allowed by --allow-touching)")
+
+
+def _ifc_text(section: dict[str, Any], units: str) -> str:
+    if section["geometry"] == "advanced_brep":
+        return "IFC plates: advanced B-rep from the exact solids"
+    return (
+        f"IFC plates: triangulated face sets (ifcopenshell cannot serialise the solids: "
+        f"{section['why']}), within {section['deviation']:.3g} {units} of them; area error "
+        f"at most {100 * section['max_area_error']:.3f} %"
+    )
