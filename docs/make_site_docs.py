@@ -18,7 +18,7 @@ from pathlib import Path
 DOCS = Path(__file__).resolve().parent
 sys.path.insert(0, str(DOCS))
 
-from make_reference import write_block  # noqa: E402
+from make_reference import read_block, write_block  # noqa: E402, F401  (read_block: the test reads the block)
 
 SITE = "site-patkau-three"
 

@@ -147,15 +147,23 @@ def _worker(fn: Callable[[Any], Any], task: Any) -> tuple[str, Any]:
 
 def run_tasks(tasks: Sequence[Any], jobs: int, fn: Callable[[Any], Any]) -> list[Any]:
     """``fn(task)`` for every task, in order: in this process (``jobs`` 1), else
-    ``jobs`` at a time in worker processes (forked on Linux; ``fn`` a module's
-    function and its results picklable). The first error ends the pool and
-    is raised here (OneFoldError, its message)."""
+    ``jobs`` at a time in worker processes (``fn`` a module's function, the
+    tasks and results picklable). The first error ends the pool and is raised
+    here (OneFoldError, its message).
+
+    The workers come from a forkserver (spawned where there is none), never
+    forked from this process: a process that has meshed with OCCT (a test
+    run, a site's second build) holds its thread pool's locks, and a child
+    forked then waits on them for ever."""
     if jobs <= 1 or len(tasks) <= 1:
         return [fn(t) for t in tasks]
     import multiprocessing
 
-    method = "fork" if sys.platform.startswith("linux") else "spawn"
-    ctx = multiprocessing.get_context(method)
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        ctx = multiprocessing.get_context("forkserver")
+        ctx.set_forkserver_preload(["onefold_cad.export.writers", fn.__module__])
+    else:
+        ctx = multiprocessing.get_context("spawn")
     pool = ctx.Pool(min(jobs, len(tasks)), initializer=_worker_init)
     try:
         results = [pool.apply_async(_worker, (fn, t)) for t in tasks]
