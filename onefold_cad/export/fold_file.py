@@ -67,9 +67,9 @@ from onefold_cad.choices import Model
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import FabricationError, InvalidParameterError, NoSolutionError
 from onefold_cad.export.atomic import atomic_output
+from onefold_cad.export.fold_mesh import FACET, division_rays, fold_mesh, mesh_quality
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.geometry.fan import PaperFan
-from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.sheet import sheet_inradius
@@ -107,40 +107,8 @@ def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
         ) from None
 
 
-def _disc(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
-    """Edges, faces and the (assignment, kind) of each group of ``n`` edges after
-    the rulings, of the fan without a hole: vertex 0 is H, vertex 1 + i the
-    i-th ruling's end; edge i the ruling, edge n + i the outline after it."""
-    ring = [1 + i for i in range(n)]
-    edges = [[0, v] for v in ring] + [[ring[i], ring[(i + 1) % n]] for i in range(n)]
-    faces = [[0, ring[i], ring[(i + 1) % n]] for i in range(n)]
-    return edges, faces, [("B", "outline")]
-
-
-def _annulus(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
-    """Edges, faces and edge groups (see :func:`_disc`) of the fan with the
-    relief hole cut: vertex i is the hole's vertex on ruling i, vertex n + i
-    the ruling's end on the outline. Edge i is the ruling (hole to outline),
-    n + i the outline after it, 2n + i the hole's edge after it, 3n + i the
-    diagonal that splits the quad between rulings i and i + 1 (flat: both of
-    its triangles lie in the fan's triangle between the two rulings). Faces
-    counter-clockwise in the crease pattern."""
-    nxt = [(i + 1) % n for i in range(n)]
-    edges = (
-        [[i, n + i] for i in range(n)]
-        + [[n + i, n + nxt[i]] for i in range(n)]
-        + [[i, nxt[i]] for i in range(n)]
-        + [[i, n + nxt[i]] for i in range(n)]
-    )
-    faces = [f for i in range(n) for f in ([i, n + i, n + nxt[i]], [i, n + nxt[i], nxt[i]])]
-    return edges, faces, [("B", "outline"), ("B", "hole"), ("F", "diagonal")]
-
-
-def _with_hole(design: Design, fan: FoldedSheet, hole: float) -> tuple[Array, Array]:
-    """The vertices of the fan with the relief hole cut, flat (fold frame) and
-    folded: the hole's vertices where the rulings cross the hole's circle
-    (radius ``hole / 2`` about H; at that distance from the apex along each
-    folded ruling), then the ruling ends on the outline.
+def _hole_radius(design: Design, fan: FoldedSheet, hole: float) -> float:
+    """The relief hole's radius (``hole / 2``), once it is known to fit.
 
     Raises:
         FabricationError: ('relief_hole' or 'thickness') the hole does not
@@ -156,16 +124,12 @@ def _with_hole(design: Design, fan: FoldedSheet, hole: float) -> tuple[Array, Ar
             f"diameter {hole:g} {u} must be < {2.0 * inner:.6g} {u} (twice the distance from "
             "H to the nearest sheet edge)",
         )
-    ends2, ends3 = fan.boundary_flat, fan.boundary_3d
-    length = np.linalg.norm(ends2, axis=1)
-    dir2 = ends2 / length[:, None]
-    rel3 = ends3 - fan.apex
-    dir3 = rel3 / np.linalg.norm(rel3, axis=1, keepdims=True)
-    unit_chords = np.linalg.norm(np.roll(dir2, -1, axis=0) - dir2, axis=1)
-    _check_resolution(design, hole, float(unit_chords.min()), length - radius)
-    flat = np.vstack([radius * dir2, ends2])
-    pts3 = np.vstack([fan.apex + radius * dir3, ends3])
-    return flat, pts3
+    theta, index = division_rays(fan)[:2]
+    gamma = np.diff(np.append(theta, theta[0] + 2.0 * math.pi))
+    unit_chord = float(np.min(2.0 * np.sin(gamma / 2.0)))
+    length = np.linalg.norm(fan.boundary_flat[index], axis=1)
+    _check_resolution(design, hole, unit_chord, length - radius)
+    return radius
 
 
 def _check_resolution(design: Design, hole: float, unit_chord: float, rest: Array) -> None:
@@ -221,28 +185,27 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         InvalidParameterError: ('divisions') see :func:`fold_fan`.
     """
     fan = fold_fan(design, folded)
-    theta, minus_x = ring_angles(fan)
-    n = len(theta)
     hole = relief_hole_diameter(design, folded)
-    if hole > 0.0:
-        flat, pts3 = _with_hole(design, fan, hole)
-        edges, faces, extra = _annulus(n)
-    else:
-        flat = np.vstack([np.zeros((1, 2)), fan.boundary_flat])
-        pts3 = np.vstack([fan.apex[None, :], fan.boundary_3d])
-        edges, faces, extra = _disc(n)
-
-    angle = signed_fold_angles(fan.apex, fan.boundary_3d)
-    division = on_division_rays(theta, fan)
-    assignment = np.where(angle > 0.0, "V", np.where(angle < 0.0, "M", "F")).astype(object)
-    kind = np.full(n, "ruling", dtype=object)
-    flat_ray = ~division
-    assignment[flat_ray], angle[flat_ray], kind[flat_ray] = "F", 0.0, "flat_ruling"
-    for i, half in ((0, fan.crease[0]), (minus_x, fan.crease[1])):
+    radius = _hole_radius(design, fan, hole) if hole > 0.0 else 0.0
+    mesh = fold_mesh(fan, radius)
+    ray_assignment = np.where(
+        mesh.ray_angle_deg > 0.0, "V", np.where(mesh.ray_angle_deg < 0.0, "M", "F")
+    ).astype(object)
+    ray_angle = mesh.ray_angle_deg.copy()
+    ray_kind = np.full(len(ray_angle), "ruling", dtype=object)
+    for i, half in ((0, fan.crease[0]), (mesh.minus_x, fan.crease[1])):
         valley = half.bend == "UP"  # both sides turn towards +z: a valley seen from +z
-        assignment[i] = "V" if valley else "M"
-        angle[i] = half.fold_angle_deg if valley else -half.fold_angle_deg
-        kind[i] = f"crease_{half.name}"
+        ray_assignment[i] = "V" if valley else "M"
+        ray_angle[i] = half.fold_angle_deg if valley else -half.fold_angle_deg
+        ray_kind[i] = f"crease_{half.name}"
+    on_ray = mesh.edge_ray >= 0
+    assignment = np.where(mesh.edge_kind == FACET, "F", "B").astype(object)
+    angle = np.zeros(len(mesh.edges))
+    kind = mesh.edge_kind.copy()
+    assignment[on_ray] = ray_assignment[mesh.edge_ray[on_ray]]
+    angle[on_ray] = ray_angle[mesh.edge_ray[on_ray]]
+    kind[on_ray] = ray_kind[mesh.edge_ray[on_ray]]
+    quality = mesh_quality(mesh, design.sheet.size)
 
     units = design.units.value
     frame = design.frame
@@ -271,6 +234,8 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         ],
         "onefold:relief_hole_diameter": hole,
         "onefold:relief_hole_cut": hole > 0.0,
+        "onefold:sheet_size": design.sheet.size,
+        "onefold:mesh": quality,
         "onefold:resting_tilt_deg": rest_once(fan).tilt_deg,
     }
     if fan is not folded:
@@ -288,7 +253,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "frame_attributes": ["3D", "manifold", "orientable", "convexFaces"],
         "frame_parent": 0,
         "frame_inherit": True,
-        "vertices_coords": rest_once(fan).apply(pts3).tolist(),
+        "vertices_coords": rest_once(fan).apply(mesh.folded).tolist(),
     }
     doc: dict[str, Any] = {
         "file_spec": FOLD_SPEC,
@@ -308,12 +273,12 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
             "convexFaces",
         ],
         "frame_unit": units,
-        "vertices_coords": design.sheet.to_sheet.apply(flat).tolist(),
-        "edges_vertices": edges,
-        "edges_assignment": list(assignment) + [a for a, _ in extra for _ in range(n)],
-        "edges_foldAngle": [float(a) for a in angle] + [0.0] * (len(edges) - n),
-        "edges_onefold:kind": list(kind) + [k for _, k in extra for _ in range(n)],
-        "faces_vertices": faces,
+        "vertices_coords": design.sheet.to_sheet.apply(mesh.flat).tolist(),
+        "edges_vertices": mesh.edges.tolist(),
+        "edges_assignment": [str(a) for a in assignment],
+        "edges_foldAngle": [float(a) for a in angle],
+        "edges_onefold:kind": [str(k) for k in kind],
+        "faces_vertices": mesh.faces.tolist(),
         **extras,
         "file_frames": [folded_frame],
     }
