@@ -21,7 +21,8 @@ a chunk, or ``--max-steps``. Then it reads the app's vertex positions
 its strain (the "average vertex strain" it shows, ``#globalError``), and
 reports per design:
 
-* ``nan``: whether any position is not finite;
+* ``nan``: whether any position is not finite (or beyond 1000 sheet sizes:
+  the solver blew up);
 * ``dist``: the largest distance of a vertex from our ``foldedForm`` after
   the best rotation and translation (Kabsch, proper rotations only), and
   ``rms`` the root mean square, both as fractions of the sheet's size
@@ -76,6 +77,8 @@ CHROMIUM_ARGS = [
 ]
 DOCS = ROOT / "docs" / "formats.md"
 BEGIN, END = "<!-- origami-simulator:begin -->", "<!-- origami-simulator:end -->"
+#: Positions this many sheet sizes from the origin count as NaN (the solver blew up).
+BLOWN_UP = 1e3
 #: An angle under this (deg) counts as unfolded, not as folded the wrong way.
 UNFOLDED_DEG = 0.01
 
@@ -169,8 +172,9 @@ _SETUP = """p => {
     globals.creaseStiffness = p.crease; globals.panelStiffness = p.panel;
     globals.percentDamping = p.damping;
     globals.materialHasChanged = true; globals.creaseMaterialHasChanged = true;
-    globals.setCreasePercent(1.0); globals.shouldChangeCreasePercent = true;
+    globals.setCreasePercent(p.percent); globals.shouldChangeCreasePercent = true;
 }"""
+_PERCENT = """p => { globals.setCreasePercent(p); globals.shouldChangeCreasePercent = true; }"""
 _STEP = """n => { globals.model.step(n);
     return Array.from(globals.model.getPositionsArray()); }"""
 _READ = """() => ({scale: globals.scale, strain: document.querySelector('#globalError').textContent,
@@ -190,14 +194,17 @@ def check(page, base: str, path: Path, args: argparse.Namespace) -> Result:
     page.set_input_files("#fileSelector", str(path))
     page.wait_for_function(_LOADED, arg=len(ours), timeout=120_000)
     page.evaluate(_SETUP, {"axial": args.axial, "face": args.face, "crease": args.crease,
-                           "panel": args.panel, "damping": args.damping})  # fmt: skip
+                           "panel": args.panel, "damping": args.damping,
+                           "percent": 1.0 if args.ramp <= 0 else 0.0})  # fmt: skip
     scale = page.evaluate(_READ)["scale"]
     prev = np.array(page.evaluate(_STEP, 1), dtype=float).reshape(-1, 3) / scale
     steps, settled = 1, False
     while steps < args.max_steps:
+        if steps < args.ramp:  # fold percent rising from 0 to 1 over the first RAMP steps
+            page.evaluate(_PERCENT, min(1.0, (steps + args.chunk) / args.ramp))
         pos = np.array(page.evaluate(_STEP, args.chunk), dtype=float).reshape(-1, 3) / scale
         steps += args.chunk
-        if not np.all(np.isfinite(pos)):
+        if not np.all(np.isfinite(pos)) or np.abs(pos).max() > BLOWN_UP * size:
             prev = pos
             break
         # the change of shape (the app's model may also drift and turn as a whole)
@@ -206,14 +213,14 @@ def check(page, base: str, path: Path, args: argparse.Namespace) -> Result:
         if args.verbose:
             gap = float(np.max(np.linalg.norm(kabsch(pos, ours) - ours, axis=1))) / size
             print(f"  {path.stem} steps {steps}: moved {moved:.2e}, distance {gap:.4f}", flush=True)
-        if moved <= args.settle:
+        if moved <= args.settle and steps >= args.ramp:
             settled = True
             break
     info = page.evaluate(_READ)
     if args.screenshots:
         args.screenshots.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(args.screenshots / f"{path.stem}.png"))
-    nan = not np.all(np.isfinite(prev))
+    nan = not np.all(np.isfinite(prev)) or np.abs(prev).max() > BLOWN_UP * size
     if nan:
         dist = rms = err = math.nan
         wrong = int(fold.sum())
@@ -248,6 +255,22 @@ def table(results: list[Result], command: str) -> str:
     return "\n".join(rows)
 
 
+def _command(argv: list[str]) -> str:
+    """The command line that made the table, the checkout's path as CHECKOUT
+    and without --screenshots."""
+    words, skip = [], False
+    for i, word in enumerate(argv):
+        if skip:
+            skip = False
+        elif word == "--screenshots":
+            skip = True
+        elif not word.startswith("--screenshots=") and i == 0:
+            words.append("CHECKOUT")
+        elif not word.startswith("--screenshots="):
+            words.append(word)
+    return " ".join([".venv/bin/python scripts/origami_simulator_check.py", *words])
+
+
 def write_docs(text: str) -> None:
     doc = DOCS.read_text(encoding="utf-8")
     a, b = doc.index(BEGIN) + len(BEGIN), doc.index(END)
@@ -260,8 +283,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("designs", nargs="*", help="template names or .fold files (default: all)")
     ap.add_argument("--max-steps", type=int, default=200_000)
     ap.add_argument("--chunk", type=int, default=2000, help="solver steps between checks")
-    ap.add_argument("--settle", type=float, default=1e-5,
-                    help="settled when no vertex moves more than this x size in a chunk")
+    ap.add_argument(
+        "--settle",
+        type=float,
+        default=1e-5,
+        help="settled when no vertex moves more than this x size in a chunk",
+    )
     ap.add_argument("--target", type=float, default=0.03, help="largest distance allowed")
     ap.add_argument("--axial", type=float, default=20.0, help="axial stiffness (app: 20)")
     ap.add_argument("--face", type=float, default=0.2, help="face stiffness (app: 0.2)")
@@ -269,6 +296,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--panel", type=float, default=0.7, help="panel stiffness (app: 0.7)")
     ap.add_argument("--damping", type=float, default=0.45, help="damping ratio (app: 0.45)")
     ap.add_argument("--screenshots", type=Path, help="save the app's view of each design here")
+    ap.add_argument(
+        "--ramp",
+        type=int,
+        default=0,
+        help="raise the fold from 0 to 100 %% over this many steps (0: at once)",
+    )
     ap.add_argument("--verbose", action="store_true", help="print each chunk's numbers")
     ap.add_argument("--write-docs", action="store_true", help="put the table in docs/formats.md")
     args = ap.parse_args(argv)  # fmt: skip
@@ -301,13 +334,7 @@ def main(argv: list[str] | None = None) -> int:
         browser.close()
     srv.shutdown()
     if args.write_docs:
-        extra = " ".join(args.designs)
-        command = (
-            ".venv/bin/python scripts/origami_simulator_check.py CHECKOUT "
-            + (extra + " " if extra else "")
-            + "--write-docs"
-        )
-        write_docs(table(results, command))
+        write_docs(table(results, _command(argv if argv is not None else sys.argv[1:])))
     return 0 if all(r.ok(args.target) for r in results) else 1
 
 

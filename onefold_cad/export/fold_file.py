@@ -4,33 +4,31 @@ Simulator, Rabbit Ear, the FOLD viewer).
 Spec: edemaine/fold, doc/spec.md (version 1.2). The file holds two frames:
 
 * the key frame, ``frame_classes: ["creasePattern"]``: the flat sheet (2D,
-  in the sheet's own frame, as in the DXF), triangulated along its rulings;
+  in the sheet's own frame, as in the DXF), triangulated along its folds;
 * ``file_frames[0]``, ``["foldedForm"]``, ``frame_parent: 0``,
   ``frame_inherit: true``: the same vertices folded (3D), standing as the
   form rests on the ground (z = 0; :func:`onefold_cad.design.rest_once`).
 
-The mesh is a fan about H: one vertex at H, one at every ruling's end on the
-outline, one triangle between each two neighbouring rulings (counter-clockwise
-in the crease pattern, so every face's normal is the sheet's top, +z, side).
-With a relief hole (:func:`onefold_cad.fabrication.relief_hole.relief_hole_diameter` > 0) the
-hole is cut: H is gone, and each ruling starts where it crosses the hole's
-circle, so the hole's boundary is the polygon of those points (inscribed in
-the circle) and each triangle of the fan becomes a quad, split into two
-triangles by a diagonal that lies in the fan triangle's plane (``F``).
-Edges: ``B`` on the outline and the hole; the two crease halves ``V`` or ``M`` from their
-bend direction (:attr:`CreaseHalf.bend` 'UP' rotates both sides towards the
-top side, +z: a valley seen from +z); the rulings ``V``/``M`` by the sign of
-their own small dihedral angle, or ``F`` where they run inside a planar
-triangle of the fan (the rulings through polygon vertices); both from
-:mod:`onefold_cad.geometry.fan_folds`, as the DXF's ruling folds. ``edges_foldAngle``
-is in degrees, valley positive, mountain negative, 0 for ``F`` and ``B``
-(the spec's convention).
+The mesh (:mod:`onefold_cad.export.fold_mesh`) is the fan's crease pattern
+triangulated for simulators: only the division rays fold; each planar wedge
+between two of them, clipped to the outline and to the relief hole
+(:func:`onefold_cad.fabrication.relief_hole.relief_hole_diameter` > 0: the
+polygon of its crossings with the division rays), is triangulated with a
+quality bound, no face angle under ``fold_mesh.MIN_FACE_ANGLE_DEG`` and no
+edge under ``fold_mesh.MIN_EDGE`` of the sheet's size where the design
+allows it (``onefold:mesh`` records what the file reached). Faces are
+counter-clockwise in the crease pattern, so every face's normal is the
+sheet's top, +z, side. Edges: ``B`` on the outline and the hole; the two
+crease halves ``V`` or ``M`` from their bend direction (:attr:`CreaseHalf.bend`
+'UP' rotates both sides towards the top side, +z: a valley seen from +z);
+the division rays ``V``/``M`` by the sign of their own small dihedral angle
+(:mod:`onefold_cad.geometry.fan_folds`, as the DXF's ruling folds); ``F``
+inside a wedge. ``edges_foldAngle`` is in degrees, valley positive,
+mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
 Which polyhedral surface. The paper model is a fan of planar triangles: it is
-written as it is, every ruling of :attr:`FoldedSheet.rulings_flat` /
-``rulings_3d`` (the division rays and the rays through polygon vertices) an
-edge. The exact model is a smooth cone, which a FOLD file (flat faces) can only
-approximate. The obvious approximation, a polyhedral cone inscribed in the
+written as it is, every division ray a chain of edges. The exact model is a
+smooth cone, which a FOLD file (flat faces) can only approximate. The obvious approximation, a polyhedral cone inscribed in the
 exact one (the exact apex, rulings at chosen angles), is not isometric to the
 flat sheet: its triangles' apex angles are chords of the cone's directions,
 so they add up to less than 180 deg per side and the folded triangles cannot
@@ -43,9 +41,9 @@ O(1 / divisions^2), and the file records the largest distance between the two
 So the folded frame is exact to itself: every edge keeps its flat length and
 every dihedral angle equals its ``edges_foldAngle``, to rounding.
 
-The relief hole is cut as the polygon of its crossings with the rulings, so
-every edge of it is a chord of a flat triangle and the file stays exact to
-itself; ``onefold:relief_hole_diameter`` records the circle's diameter and
+The relief hole is cut as the polygon of its crossings with the division
+rays, so every edge of it is a chord of a planar wedge and the file stays
+exact to itself; ``onefold:relief_hole_diameter`` records the circle's diameter and
 ``onefold:relief_hole_cut`` whether there is one.
 
 Units: ``frame_unit`` is the design's unit ('mm' and 'in' are the spec's own
@@ -124,10 +122,10 @@ def _hole_radius(design: Design, fan: FoldedSheet, hole: float) -> float:
             f"diameter {hole:g} {u} must be < {2.0 * inner:.6g} {u} (twice the distance from "
             "H to the nearest sheet edge)",
         )
-    theta, index = division_rays(fan)[:2]
+    theta = division_rays(fan)[0]
     gamma = np.diff(np.append(theta, theta[0] + 2.0 * math.pi))
     unit_chord = float(np.min(2.0 * np.sin(gamma / 2.0)))
-    length = np.linalg.norm(fan.boundary_flat[index], axis=1)
+    length = np.linalg.norm(fan.boundary_flat, axis=1)  # ray ends and corners
     _check_resolution(design, hole, unit_chord, length - radius)
     return radius
 
@@ -172,13 +170,11 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     Returns:
         The key frame (crease pattern, 2D, the sheet's own frame) with the
         folded form as ``file_frames[0]`` (3D, standing on z = 0); lengths in
-        ``design.units``. With n rulings, counted counter-clockwise from the
-        +x crease end: without a relief hole vertex 0 is H and vertex 1 + i
-        the i-th ruling's end, edge i the ruling, edge n + i the outline after
-        it (a disc: V - E + F = 1); with one, vertex i is the hole's vertex on
-        ruling i and vertex n + i the ruling's end, edges i, n + i, 2n + i,
-        3n + i the ruling, the outline, the hole's edge and the quad's
-        diagonal after it (an annulus: V - E + F = 0).
+        ``design.units``. Without a relief hole vertex 0 is H (a disc:
+        V - E + F = 1); with one, the sheet is an annulus (V - E + F = 0).
+        ``edges_onefold:kind`` names each edge: 'crease_plus_x',
+        'crease_minus_x', 'ruling' (on a division ray), 'facet' (inside a
+        wedge), 'outline', 'hole'.
 
     Raises:
         FabricationError: the relief hole does not fit inside the sheet.
