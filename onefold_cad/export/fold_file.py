@@ -28,8 +28,8 @@ mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
 Which polyhedral surface. The paper model is a fan of planar triangles: it is
 written as it is, every division ray a chain of edges. The exact model is a
-smooth cone, which a FOLD file (flat faces) can only approximate. The obvious approximation, a polyhedral cone inscribed in the
-exact one (the exact apex, rulings at chosen angles), is not isometric to the
+smooth cone, which a FOLD file (flat faces) can only approximate. The
+obvious approximation, a polyhedral cone inscribed in the exact one (the exact apex, rulings at chosen angles), is not isometric to the
 flat sheet: its triangles' apex angles are chords of the cone's directions,
 so they add up to less than 180 deg per side and the folded triangles cannot
 have their flat shapes. The isometric approximation is the paper's fan over
