@@ -28,18 +28,19 @@ mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
 Which polyhedral surface. The paper model is a fan of planar triangles: it is
 written as it is, every division ray a chain of edges. The exact model is a
-smooth cone, which a FOLD file (flat faces) can only approximate. The
-obvious approximation, a polyhedral cone inscribed in the exact one (the exact apex, rulings at chosen angles), is not isometric to the
-flat sheet: its triangles' apex angles are chords of the cone's directions,
-so they add up to less than 180 deg per side and the folded triangles cannot
-have their flat shapes. The isometric approximation is the paper's fan over
-the same frame curve with ``frame.divisions`` triangles per side, solved for
-its own apex (the angle condition then holds exactly for the fan). That is what
-an exact-model design writes; its folded frame differs from the exact cone by
-O(1 / divisions^2), and the file records the largest distance between the two
-(fold frame, matched by flat point) as ``onefold:max_deviation_from_exact``.
-So the folded frame is exact to itself: every edge keeps its flat length and
-every dihedral angle equals its ``edges_foldAngle``, to rounding.
+smooth cone, which a FOLD file (flat faces) can only approximate. The obvious
+approximation, a polyhedral cone inscribed in the exact one (the exact apex,
+rulings at chosen angles), is not isometric to the flat sheet: its triangles'
+apex angles are chords of the cone's directions, so they add up to less than
+180 deg per side and the folded triangles cannot have their flat shapes. The
+isometric approximation is the paper's fan over the same frame curve with
+``frame.divisions`` triangles per side, solved for its own apex (the angle
+condition then holds exactly for the fan). That is what an exact-model design
+writes; its folded frame differs from the exact cone by O(1 / divisions^2),
+and the file records the largest distance between the two (fold frame, matched
+by flat point) as ``onefold:max_deviation_from_exact``. So the folded frame is
+exact to itself: every edge keeps its flat length and every dihedral angle
+equals its ``edges_foldAngle``, to rounding.
 
 The relief hole is cut as the polygon of its crossings with the division
 rays, so every edge of it is a chord of a planar wedge and the file stays
