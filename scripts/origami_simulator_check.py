@@ -31,7 +31,9 @@ reports per design:
   opposite sign to ``edges_foldAngle`` (folded the wrong way; angles under
   0.01 deg count as unfolded, not wrong) and ``err`` the largest difference
   between the app's dihedral and ``edges_foldAngle`` (deg);
-* ``strain``: the app's average vertex strain (%), and the steps run.
+* ``strain``: the app's average vertex strain (%), and the steps run;
+* ``load``: the file's busiest vertex for the app's time step
+  (:func:`vertex_load`; over about 15 the app's solver diverges).
 
 ``--write-docs`` puts the table into docs/formats.md between the markers
 ``<!-- origami-simulator:begin -->`` and ``<!-- origami-simulator:end -->``.
@@ -99,6 +101,7 @@ class Result:
     strain_pct: float
     steps: int
     settled: bool
+    load: float
 
     def ok(self, target: float) -> bool:
         return not self.nan and self.dist <= target and self.wrong == 0
@@ -139,6 +142,20 @@ def kabsch(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     u, _, vt = np.linalg.svd((p - pc).T @ (q - qc))
     d = np.sign(np.linalg.det(u @ vt))
     return (p - pc) @ (u @ np.diag([1.0, 1.0, d]) @ vt) + qc
+
+
+def vertex_load(points: np.ndarray, edges: np.ndarray) -> float:
+    """The largest, over the vertices, of sum over a vertex's edges of
+    sqrt(shortest edge / edge): the app sizes its explicit time step for its
+    stiffest (shortest) edge, a vertex of many edges is stiffer (its damping
+    term's explicit update is stable below about 15 at the app's damping
+    ratio 0.45; see docs/formats.md)."""
+    length = np.linalg.norm(points[edges[:, 1]] - points[edges[:, 0]], axis=1)
+    share = np.sqrt(length.min() / length)
+    total = np.zeros(len(points))
+    np.add.at(total, edges[:, 0], share)
+    np.add.at(total, edges[:, 1], share)
+    return float(total.max())
 
 
 def signed_dihedrals(points: np.ndarray, faces: list[list[int]], edges: np.ndarray) -> np.ndarray:
@@ -217,7 +234,9 @@ def check(page, base: str, path: Path, args: argparse.Namespace) -> Result:
             settled = True
             break
     info = page.evaluate(_READ)
-    if args.screenshots:
+    if args.screenshots:  # centred first: the app's model drifts off the camera as a whole
+        page.evaluate("() => { globals.shouldCenterGeo = true; globals.model.step(1); }")
+        page.wait_for_timeout(500)
         args.screenshots.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(args.screenshots / f"{path.stem}.png"))
     nan = not np.all(np.isfinite(prev)) or np.abs(prev).max() > BLOWN_UP * size
@@ -233,8 +252,11 @@ def check(page, base: str, path: Path, args: argparse.Namespace) -> Result:
         wrong = int(np.sum(flipped & fold))
         err = float(np.max(np.abs(app - target)[fold]))
     strain = float(info["strain"].split()[0]) if info["strain"].strip() else math.nan
+    if nan:
+        strain = math.nan
+    load = vertex_load(np.array(doc["vertices_coords"], dtype=float), edges)
     return Result(path.stem, len(ours), len(doc["faces_vertices"]), nan, dist, rms, wrong,
-                  int(fold.sum()), err, strain, steps, settled)  # fmt: skip
+                  int(fold.sum()), err, strain, steps, settled, load)  # fmt: skip
 
 
 def table(results: list[Result], command: str) -> str:
@@ -243,14 +265,15 @@ def table(results: list[Result], command: str) -> str:
         f"Made by `{command}` (Origami Simulator's dynamic solver, fold 100 %).",
         "",
         "| design | vertices | faces | NaN | max distance | RMS distance | creases the wrong way "
-        "| largest crease error (deg) | app strain (%) | steps | settled |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "| largest crease error (deg) | app strain (%) | steps | settled | vertex load |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in results:
         rows.append(
             f"| {r.name} | {r.vertices} | {r.faces} | {'yes' if r.nan else 'no'} "
             f"| {100 * r.dist:.2f} % | {100 * r.rms:.2f} % | {r.wrong} of {r.creases} "
-            f"| {r.err_deg:.2f} | {r.strain_pct:.4f} | {r.steps} | {'yes' if r.settled else 'no'} |"
+            f"| {r.err_deg:.2f} | {r.strain_pct:.4f} | {r.steps} | {'yes' if r.settled else 'no'} "
+            f"| {r.load:.1f} |"
         )
     return "\n".join(rows)
 
@@ -328,7 +351,8 @@ def main(argv: list[str] | None = None) -> int:
             print(
                 f"{r.name:<18} V={r.vertices:<6} nan={r.nan!s:<5} dist={100 * r.dist:6.2f} % "
                 f"rms={100 * r.rms:6.2f} % wrong={r.wrong}/{r.creases} err={r.err_deg:7.2f} deg "
-                f"strain={r.strain_pct:.4f} % steps={r.steps} settled={r.settled}",
+                f"strain={r.strain_pct:.4f} % steps={r.steps} settled={r.settled} "
+                f"load={r.load:.1f}",
                 flush=True,
             )
         browser.close()
