@@ -44,11 +44,15 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 
 __all__ = [
+    "FACET",
+    "HOLE",
     "MIN_EDGE",
     "MIN_FACE_ANGLE_DEG",
-    "division_rays",
-    "FoldMesh",
+    "OUTLINE",
     "QUALITY_CAP_DEG",
+    "RAY",
+    "FoldMesh",
+    "division_rays",
     "face_angles_deg",
     "fold_mesh",
     "mesh_limits",
