@@ -26,21 +26,26 @@ the division rays ``V``/``M`` by the sign of their own small dihedral angle
 inside a wedge. ``edges_foldAngle`` is in degrees, valley positive,
 mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
-Which polyhedral surface. The paper model is a fan of planar triangles: it is
-written as it is, every division ray a chain of edges. The exact model is a
-smooth cone, which a FOLD file (flat faces) can only approximate. The obvious
-approximation, a polyhedral cone inscribed in the exact one (the exact apex,
-rulings at chosen angles), is not isometric to the flat sheet: its triangles'
-apex angles are chords of the cone's directions, so they add up to less than
-180 deg per side and the folded triangles cannot have their flat shapes. The
-isometric approximation is the paper's fan over the same frame curve with
-``frame.divisions`` triangles per side, solved for its own apex (the angle
-condition then holds exactly for the fan). That is what an exact-model design
-writes; its folded frame differs from the exact cone by O(1 / divisions^2),
-and the file records the largest distance between the two (fold frame, matched
-by flat point) as ``onefold:max_deviation_from_exact``. So the folded frame is
-exact to itself: every edge keeps its flat length and every dihedral angle
-equals its ``edges_foldAngle``, to rounding.
+Which polyhedral surface. A FOLD file has flat faces, and simulators fold
+it with explicit solvers that a vertex of many edges makes unstable (Origami
+Simulator: see docs/formats.md, "vertex load"). So the file folds the
+paper's fan over the design's frame curve with its own division count,
+:func:`fold_divisions`: the design's ``divisions``, at most
+:data:`FOLD_DIVISIONS` per side (without a relief hole all 2 x divisions
+rays meet at H). The fan is solved for its own apex (the angle condition
+then holds exactly for it) and folded by the fan's own code, so each ray's
+fold angle is that fan's. A paper-model design at no more than
+:data:`FOLD_DIVISIONS` divisions is written as it is. Otherwise the file's
+fan approximates the design's surface (the exact cone, or the paper fan of
+more divisions) to O(1 / divisions^2); ``onefold:max_deviation_from_design``
+records the largest distance between the two (fold frame, matched by flat
+point) and ``onefold:mesh`` both division counts. An inscribed polyhedral
+cone (the exact apex, rulings at chosen angles) would not do: its
+triangles' apex angles are chords of the cone's directions, so they add up
+to less than 180 deg per side and the folded triangles cannot have their
+flat shapes. So the folded frame is exact to itself: every edge keeps its
+flat length and every dihedral angle equals its ``edges_foldAngle``, to
+rounding.
 
 The relief hole is cut as the polygon of its crossings with the division
 rays, so every edge of it is a chord of a planar wedge and the file stays
@@ -74,35 +79,56 @@ from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.geometry.solver import solve
 
-__all__ = ["FOLD_SPEC", "RESOLUTION", "fold_data", "fold_fan", "write_fold"]
+__all__ = [
+    "FOLD_DIVISIONS",
+    "FOLD_SPEC",
+    "RESOLUTION",
+    "fold_data",
+    "fold_divisions",
+    "fold_fan",
+    "write_fold",
+]
 
 #: The FOLD spec version written.
 FOLD_SPEC = 1.2
+#: The most divisions per side the FOLD file's fan has: at H (no relief
+#: hole) 2 x this many rays meet, and Origami Simulator's explicit solver is
+#: stable only while a vertex's edges are few (docs/formats.md, "vertex load").
+FOLD_DIVISIONS = 10
 #: The shortest edge a cut relief hole may add, relative to the sheet's size
 #: (:attr:`Sheet.size`): shorter ones would leave faces of no area once the
 #: coordinates are rounded (about 1e-16 of the size).
 RESOLUTION = 1e-12
 
 
-def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
-    """The paper-model fan the FOLD file triangulates: ``folded`` itself for the
-    paper model; for the exact model the paper's fan over the same frame curve
-    and ``divisions``, solved for its own apex and folded (see the module notes).
+def fold_divisions(design: Design) -> int:
+    """The FOLD file's own division count: the design's ``divisions``, at most
+    :data:`FOLD_DIVISIONS` (see the module notes and docs/formats.md)."""
+    return min(design.frame.divisions, FOLD_DIVISIONS)
+
+
+def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) -> FoldedSheet:
+    """The paper-model fan the FOLD file triangulates: the paper fan over the
+    design's frame curve with ``divisions`` triangles per side (None:
+    :func:`fold_divisions`), solved for its own apex and folded; ``folded``
+    itself when that is the design's own fan (the paper model at its own
+    divisions). See the module notes.
 
     Raises:
         InvalidParameterError: ('divisions') the fan of that many divisions has
             no non-trivial apex (always so for 1 division).
     """
-    if isinstance(folded.solution.surface, PaperFan):
+    n = fold_divisions(design) if divisions is None else divisions
+    if isinstance(folded.solution.surface, PaperFan) and n == design.frame.divisions:
         return folded
     try:
-        return fold(solve(design.frame, Model.PAPER), design.sheet)
+        return fold(solve(design.frame.with_changes(divisions=n), Model.PAPER), design.sheet)
     except NoSolutionError:
         raise InvalidParameterError(
             "divisions",
-            f"the FOLD file approximates the exact cone by the paper fan of "
-            f"{design.frame.divisions} triangles per side, which has no non-trivial apex "
-            "for this frame; use more divisions (at least 2)",
+            f"the FOLD file folds the paper fan of {n} triangles per side over this "
+            "frame curve, which has no non-trivial apex for this frame; use more "
+            "divisions (at least 2)",
         ) from None
 
 
@@ -161,12 +187,14 @@ def _check_resolution(design: Design, hole: float, unit_chord: float, rest: Arra
         )
 
 
-def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
+def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None) -> dict[str, Any]:
     """The FOLD 1.2 document of ``design`` as a JSON-ready dict.
 
     Args:
         design: the design (name, units, frame, sheet, material).
         folded: its fold (:func:`onefold_cad.build_design`).
+        divisions: the file's fan's divisions per side (None:
+            :func:`fold_divisions`).
 
     Returns:
         The key frame (crease pattern, 2D, the sheet's own frame) with the
@@ -181,7 +209,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         FabricationError: the relief hole does not fit inside the sheet.
         InvalidParameterError: ('divisions') see :func:`fold_fan`.
     """
-    fan = fold_fan(design, folded)
+    fan = fold_fan(design, folded, divisions)
     hole = relief_hole_diameter(design, folded)
     radius = _hole_radius(design, fan, hole) if hole > 0.0 else 0.0
     mesh = fold_mesh(fan, radius)
@@ -203,6 +231,8 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     angle[on_ray] = ray_angle[mesh.edge_ray[on_ray]]
     kind[on_ray] = ray_kind[mesh.edge_ray[on_ray]]
     quality = mesh_quality(mesh, design.sheet.size)
+    n = len(mesh.ray_theta) // 2
+    quality |= {"divisions": n, "design_divisions": design.frame.divisions}
 
     units = design.units.value
     frame = design.frame
@@ -220,9 +250,9 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "onefold:surface": (
             "the paper model's fan of planar triangles"
             if fan is folded
-            else f"the paper fan of {frame.divisions} divisions per side over the exact "
-            "model's frame curve, solved for its own apex: the isometric polyhedral "
-            "approximation of the exact cone"
+            else f"the paper fan of {n} divisions per side over the design's frame "
+            "curve, solved for its own apex: an isometric polyhedral approximation of "
+            f"the design's {design.model.value} model"
         ),
         "onefold:apex_height": fan.solution.apex_height,
         "onefold:crease": [
@@ -236,13 +266,15 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "onefold:resting_tilt_deg": rest_once(fan).tilt_deg,
     }
     if fan is not folded:
-        exact = folded.map_points(fan.boundary_flat)
+        # at both fans' outline vertices and the mesh's: the larger gaps are at the outline
+        pts = np.vstack([fan.boundary_flat, folded.boundary_flat, mesh.flat])
+        gap = np.linalg.norm(folded.map_points(pts) - fan.map_points(pts), axis=1)
         dev = max(
-            float(np.max(np.linalg.norm(exact - fan.boundary_3d, axis=1))),
+            float(np.max(gap)),
             abs(fan.solution.apex_height - folded.solution.apex_height),
         )
-        extras["onefold:exact_apex_height"] = folded.solution.apex_height
-        extras["onefold:max_deviation_from_exact"] = dev
+        extras["onefold:design_apex_height"] = folded.solution.apex_height
+        extras["onefold:max_deviation_from_design"] = dev
 
     folded_frame = {
         "frame_title": f"{design.name}: folded, standing on the ground (z = 0)",
