@@ -4,48 +4,52 @@ Simulator, Rabbit Ear, the FOLD viewer).
 Spec: edemaine/fold, doc/spec.md (version 1.2). The file holds two frames:
 
 * the key frame, ``frame_classes: ["creasePattern"]``: the flat sheet (2D,
-  in the sheet's own frame, as in the DXF), triangulated along its rulings;
+  in the sheet's own frame, as in the DXF), triangulated along its folds;
 * ``file_frames[0]``, ``["foldedForm"]``, ``frame_parent: 0``,
   ``frame_inherit: true``: the same vertices folded (3D), standing as the
   form rests on the ground (z = 0; :func:`onefold_cad.design.rest_once`).
 
-The mesh is a fan about H: one vertex at H, one at every ruling's end on the
-outline, one triangle between each two neighbouring rulings (counter-clockwise
-in the crease pattern, so every face's normal is the sheet's top, +z, side).
-With a relief hole (:func:`onefold_cad.fabrication.relief_hole.relief_hole_diameter` > 0) the
-hole is cut: H is gone, and each ruling starts where it crosses the hole's
-circle, so the hole's boundary is the polygon of those points (inscribed in
-the circle) and each triangle of the fan becomes a quad, split into two
-triangles by a diagonal that lies in the fan triangle's plane (``F``).
-Edges: ``B`` on the outline and the hole; the two crease halves ``V`` or ``M`` from their
-bend direction (:attr:`CreaseHalf.bend` 'UP' rotates both sides towards the
-top side, +z: a valley seen from +z); the rulings ``V``/``M`` by the sign of
-their own small dihedral angle, or ``F`` where they run inside a planar
-triangle of the fan (the rulings through polygon vertices); both from
-:mod:`onefold_cad.geometry.fan_folds`, as the DXF's ruling folds. ``edges_foldAngle``
-is in degrees, valley positive, mountain negative, 0 for ``F`` and ``B``
-(the spec's convention).
+The mesh (:mod:`onefold_cad.export.fold_mesh`) is the fan's crease pattern
+triangulated for simulators: only the division rays fold; each planar wedge
+between two of them, clipped to the outline and to the relief hole
+(:func:`onefold_cad.fabrication.relief_hole.relief_hole_diameter` > 0: the
+polygon of its crossings with the division rays), is triangulated with a
+quality bound, no face angle under ``fold_mesh.MIN_FACE_ANGLE_DEG`` and no
+edge under ``fold_mesh.MIN_EDGE`` of the sheet's size where the design
+allows it (``onefold:mesh`` records what the file reached). Faces are
+counter-clockwise in the crease pattern, so every face's normal is the
+sheet's top, +z, side. Edges: ``B`` on the outline and the hole; the two
+crease halves ``V`` or ``M`` from their bend direction (:attr:`CreaseHalf.bend`
+'UP' rotates both sides towards the top side, +z: a valley seen from +z);
+the division rays ``V``/``M`` by the sign of their own small dihedral angle
+(:mod:`onefold_cad.geometry.fan_folds`, as the DXF's ruling folds); ``F``
+inside a wedge. ``edges_foldAngle`` is in degrees, valley positive,
+mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
-Which polyhedral surface. The paper model is a fan of planar triangles: it is
-written as it is, every ruling of :attr:`FoldedSheet.rulings_flat` /
-``rulings_3d`` (the division rays and the rays through polygon vertices) an
-edge. The exact model is a smooth cone, which a FOLD file (flat faces) can only
-approximate. The obvious approximation, a polyhedral cone inscribed in the
-exact one (the exact apex, rulings at chosen angles), is not isometric to the
-flat sheet: its triangles' apex angles are chords of the cone's directions,
-so they add up to less than 180 deg per side and the folded triangles cannot
-have their flat shapes. The isometric approximation is the paper's fan over
-the same frame curve with ``frame.divisions`` triangles per side, solved for
-its own apex (the angle condition then holds exactly for the fan). That is what
-an exact-model design writes; its folded frame differs from the exact cone by
-O(1 / divisions^2), and the file records the largest distance between the two
-(fold frame, matched by flat point) as ``onefold:max_deviation_from_exact``.
-So the folded frame is exact to itself: every edge keeps its flat length and
-every dihedral angle equals its ``edges_foldAngle``, to rounding.
+Which polyhedral surface. A FOLD file has flat faces, and simulators fold
+it with explicit solvers that a vertex of many edges makes unstable (Origami
+Simulator: see docs/formats.md, "vertex load"). So the file folds the
+paper's fan over the design's frame curve with its own division count,
+:func:`fold_divisions`: the design's ``divisions``, at most
+:data:`FOLD_DIVISIONS` per side (without a relief hole all 2 x divisions
+rays meet at H). The fan is solved for its own apex (the angle condition
+then holds exactly for it) and folded by the fan's own code, so each ray's
+fold angle is that fan's. A paper-model design at no more than
+:data:`FOLD_DIVISIONS` divisions is written as it is. Otherwise the file's
+fan approximates the design's surface (the exact cone, or the paper fan of
+more divisions) to O(1 / divisions^2); ``onefold:max_deviation_from_design``
+records the largest distance between the two (fold frame, matched by flat
+point) and ``onefold:mesh`` both division counts. An inscribed polyhedral
+cone (the exact apex, rulings at chosen angles) would not do: its
+triangles' apex angles are chords of the cone's directions, so they add up
+to less than 180 deg per side and the folded triangles cannot have their
+flat shapes. So the folded frame is exact to itself: every edge keeps its
+flat length and every dihedral angle equals its ``edges_foldAngle``, to
+rounding.
 
-The relief hole is cut as the polygon of its crossings with the rulings, so
-every edge of it is a chord of a flat triangle and the file stays exact to
-itself; ``onefold:relief_hole_diameter`` records the circle's diameter and
+The relief hole is cut as the polygon of its crossings with the division
+rays, so every edge of it is a chord of a planar wedge and the file stays
+exact to itself; ``onefold:relief_hole_diameter`` records the circle's diameter and
 ``onefold:relief_hole_cut`` whether there is one.
 
 Units: ``frame_unit`` is the design's unit ('mm' and 'in' are the spec's own
@@ -67,80 +71,69 @@ from onefold_cad.choices import Model
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import FabricationError, InvalidParameterError, NoSolutionError
 from onefold_cad.export.atomic import atomic_output
+from onefold_cad.export.fold_mesh import FACET, division_rays, fold_mesh, mesh_quality
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.geometry.fan import PaperFan
-from onefold_cad.geometry.fan_folds import on_division_rays, ring_angles, signed_fold_angles
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.geometry.solver import solve
 
-__all__ = ["FOLD_SPEC", "RESOLUTION", "fold_data", "fold_fan", "write_fold"]
+__all__ = [
+    "FOLD_DIVISIONS",
+    "FOLD_SPEC",
+    "RESOLUTION",
+    "fold_data",
+    "fold_divisions",
+    "fold_fan",
+    "write_fold",
+]
 
 #: The FOLD spec version written.
 FOLD_SPEC = 1.2
+#: The most divisions per side the FOLD file's fan has: at H (no relief
+#: hole) 2 x this many rays meet, and Origami Simulator's explicit solver is
+#: stable only while a vertex's edges are few (docs/formats.md, "vertex load").
+FOLD_DIVISIONS = 10
 #: The shortest edge a cut relief hole may add, relative to the sheet's size
 #: (:attr:`Sheet.size`): shorter ones would leave faces of no area once the
 #: coordinates are rounded (about 1e-16 of the size).
 RESOLUTION = 1e-12
 
 
-def fold_fan(design: Design, folded: FoldedSheet) -> FoldedSheet:
-    """The paper-model fan the FOLD file triangulates: ``folded`` itself for the
-    paper model; for the exact model the paper's fan over the same frame curve
-    and ``divisions``, solved for its own apex and folded (see the module notes).
+def fold_divisions(design: Design) -> int:
+    """The FOLD file's own division count: the design's ``divisions``, at most
+    :data:`FOLD_DIVISIONS` (see the module notes and docs/formats.md)."""
+    return min(design.frame.divisions, FOLD_DIVISIONS)
+
+
+def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) -> FoldedSheet:
+    """The paper-model fan the FOLD file triangulates: the paper fan over the
+    design's frame curve with ``divisions`` triangles per side (None:
+    :func:`fold_divisions`), solved for its own apex and folded; ``folded``
+    itself when that is the design's own fan (the paper model at its own
+    divisions). See the module notes.
 
     Raises:
         InvalidParameterError: ('divisions') the fan of that many divisions has
             no non-trivial apex (always so for 1 division).
     """
-    if isinstance(folded.solution.surface, PaperFan):
+    n = fold_divisions(design) if divisions is None else divisions
+    if isinstance(folded.solution.surface, PaperFan) and n == design.frame.divisions:
         return folded
     try:
-        return fold(solve(design.frame, Model.PAPER), design.sheet)
+        return fold(solve(design.frame.with_changes(divisions=n), Model.PAPER), design.sheet)
     except NoSolutionError:
         raise InvalidParameterError(
             "divisions",
-            f"the FOLD file approximates the exact cone by the paper fan of "
-            f"{design.frame.divisions} triangles per side, which has no non-trivial apex "
-            "for this frame; use more divisions (at least 2)",
+            f"the FOLD file folds the paper fan of {n} triangles per side over this "
+            "frame curve, which has no non-trivial apex for this frame; use more "
+            "divisions (at least 2)",
         ) from None
 
 
-def _disc(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
-    """Edges, faces and the (assignment, kind) of each group of ``n`` edges after
-    the rulings, of the fan without a hole: vertex 0 is H, vertex 1 + i the
-    i-th ruling's end; edge i the ruling, edge n + i the outline after it."""
-    ring = [1 + i for i in range(n)]
-    edges = [[0, v] for v in ring] + [[ring[i], ring[(i + 1) % n]] for i in range(n)]
-    faces = [[0, ring[i], ring[(i + 1) % n]] for i in range(n)]
-    return edges, faces, [("B", "outline")]
-
-
-def _annulus(n: int) -> tuple[list[list[int]], list[list[int]], list[tuple[str, str]]]:
-    """Edges, faces and edge groups (see :func:`_disc`) of the fan with the
-    relief hole cut: vertex i is the hole's vertex on ruling i, vertex n + i
-    the ruling's end on the outline. Edge i is the ruling (hole to outline),
-    n + i the outline after it, 2n + i the hole's edge after it, 3n + i the
-    diagonal that splits the quad between rulings i and i + 1 (flat: both of
-    its triangles lie in the fan's triangle between the two rulings). Faces
-    counter-clockwise in the crease pattern."""
-    nxt = [(i + 1) % n for i in range(n)]
-    edges = (
-        [[i, n + i] for i in range(n)]
-        + [[n + i, n + nxt[i]] for i in range(n)]
-        + [[i, nxt[i]] for i in range(n)]
-        + [[i, n + nxt[i]] for i in range(n)]
-    )
-    faces = [f for i in range(n) for f in ([i, n + i, n + nxt[i]], [i, n + nxt[i], nxt[i]])]
-    return edges, faces, [("B", "outline"), ("B", "hole"), ("F", "diagonal")]
-
-
-def _with_hole(design: Design, fan: FoldedSheet, hole: float) -> tuple[Array, Array]:
-    """The vertices of the fan with the relief hole cut, flat (fold frame) and
-    folded: the hole's vertices where the rulings cross the hole's circle
-    (radius ``hole / 2`` about H; at that distance from the apex along each
-    folded ruling), then the ruling ends on the outline.
+def _hole_radius(design: Design, fan: FoldedSheet, hole: float) -> float:
+    """The relief hole's radius (``hole / 2``), once it is known to fit.
 
     Raises:
         FabricationError: ('relief_hole' or 'thickness') the hole does not
@@ -156,16 +149,12 @@ def _with_hole(design: Design, fan: FoldedSheet, hole: float) -> tuple[Array, Ar
             f"diameter {hole:g} {u} must be < {2.0 * inner:.6g} {u} (twice the distance from "
             "H to the nearest sheet edge)",
         )
-    ends2, ends3 = fan.boundary_flat, fan.boundary_3d
-    length = np.linalg.norm(ends2, axis=1)
-    dir2 = ends2 / length[:, None]
-    rel3 = ends3 - fan.apex
-    dir3 = rel3 / np.linalg.norm(rel3, axis=1, keepdims=True)
-    unit_chords = np.linalg.norm(np.roll(dir2, -1, axis=0) - dir2, axis=1)
-    _check_resolution(design, hole, float(unit_chords.min()), length - radius)
-    flat = np.vstack([radius * dir2, ends2])
-    pts3 = np.vstack([fan.apex + radius * dir3, ends3])
-    return flat, pts3
+    theta = division_rays(fan)[0]
+    gamma = np.diff(np.append(theta, theta[0] + 2.0 * math.pi))
+    unit_chord = float(np.min(2.0 * np.sin(gamma / 2.0)))
+    length = np.linalg.norm(fan.boundary_flat, axis=1)  # ray ends and corners
+    _check_resolution(design, hole, unit_chord, length - radius)
+    return radius
 
 
 def _check_resolution(design: Design, hole: float, unit_chord: float, rest: Array) -> None:
@@ -198,51 +187,52 @@ def _check_resolution(design: Design, hole: float, unit_chord: float, rest: Arra
         )
 
 
-def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
+def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None) -> dict[str, Any]:
     """The FOLD 1.2 document of ``design`` as a JSON-ready dict.
 
     Args:
         design: the design (name, units, frame, sheet, material).
         folded: its fold (:func:`onefold_cad.build_design`).
+        divisions: the file's fan's divisions per side (None:
+            :func:`fold_divisions`).
 
     Returns:
         The key frame (crease pattern, 2D, the sheet's own frame) with the
         folded form as ``file_frames[0]`` (3D, standing on z = 0); lengths in
-        ``design.units``. With n rulings, counted counter-clockwise from the
-        +x crease end: without a relief hole vertex 0 is H and vertex 1 + i
-        the i-th ruling's end, edge i the ruling, edge n + i the outline after
-        it (a disc: V - E + F = 1); with one, vertex i is the hole's vertex on
-        ruling i and vertex n + i the ruling's end, edges i, n + i, 2n + i,
-        3n + i the ruling, the outline, the hole's edge and the quad's
-        diagonal after it (an annulus: V - E + F = 0).
+        ``design.units``. Without a relief hole vertex 0 is H (a disc:
+        V - E + F = 1); with one, the sheet is an annulus (V - E + F = 0).
+        ``edges_onefold:kind`` names each edge: 'crease_plus_x',
+        'crease_minus_x', 'ruling' (on a division ray), 'facet' (inside a
+        wedge), 'outline', 'hole'.
 
     Raises:
         FabricationError: the relief hole does not fit inside the sheet.
         InvalidParameterError: ('divisions') see :func:`fold_fan`.
     """
-    fan = fold_fan(design, folded)
-    theta, minus_x = ring_angles(fan)
-    n = len(theta)
+    fan = fold_fan(design, folded, divisions)
     hole = relief_hole_diameter(design, folded)
-    if hole > 0.0:
-        flat, pts3 = _with_hole(design, fan, hole)
-        edges, faces, extra = _annulus(n)
-    else:
-        flat = np.vstack([np.zeros((1, 2)), fan.boundary_flat])
-        pts3 = np.vstack([fan.apex[None, :], fan.boundary_3d])
-        edges, faces, extra = _disc(n)
-
-    angle = signed_fold_angles(fan.apex, fan.boundary_3d)
-    division = on_division_rays(theta, fan)
-    assignment = np.where(angle > 0.0, "V", np.where(angle < 0.0, "M", "F")).astype(object)
-    kind = np.full(n, "ruling", dtype=object)
-    flat_ray = ~division
-    assignment[flat_ray], angle[flat_ray], kind[flat_ray] = "F", 0.0, "flat_ruling"
-    for i, half in ((0, fan.crease[0]), (minus_x, fan.crease[1])):
+    radius = _hole_radius(design, fan, hole) if hole > 0.0 else 0.0
+    mesh = fold_mesh(fan, radius)
+    ray_assignment = np.where(
+        mesh.ray_angle_deg > 0.0, "V", np.where(mesh.ray_angle_deg < 0.0, "M", "F")
+    ).astype(object)
+    ray_angle = mesh.ray_angle_deg.copy()
+    ray_kind = np.full(len(ray_angle), "ruling", dtype=object)
+    for i, half in ((0, fan.crease[0]), (mesh.minus_x, fan.crease[1])):
         valley = half.bend == "UP"  # both sides turn towards +z: a valley seen from +z
-        assignment[i] = "V" if valley else "M"
-        angle[i] = half.fold_angle_deg if valley else -half.fold_angle_deg
-        kind[i] = f"crease_{half.name}"
+        ray_assignment[i] = "V" if valley else "M"
+        ray_angle[i] = half.fold_angle_deg if valley else -half.fold_angle_deg
+        ray_kind[i] = f"crease_{half.name}"
+    on_ray = mesh.edge_ray >= 0
+    assignment = np.where(mesh.edge_kind == FACET, "F", "B").astype(object)
+    angle = np.zeros(len(mesh.edges))
+    kind = mesh.edge_kind.copy()
+    assignment[on_ray] = ray_assignment[mesh.edge_ray[on_ray]]
+    angle[on_ray] = ray_angle[mesh.edge_ray[on_ray]]
+    kind[on_ray] = ray_kind[mesh.edge_ray[on_ray]]
+    quality = mesh_quality(mesh, design.sheet.size)
+    n = len(mesh.ray_theta) // 2
+    quality |= {"divisions": n, "design_divisions": design.frame.divisions}
 
     units = design.units.value
     frame = design.frame
@@ -260,9 +250,9 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "onefold:surface": (
             "the paper model's fan of planar triangles"
             if fan is folded
-            else f"the paper fan of {frame.divisions} divisions per side over the exact "
-            "model's frame curve, solved for its own apex: the isometric polyhedral "
-            "approximation of the exact cone"
+            else f"the paper fan of {n} divisions per side over the design's frame "
+            "curve, solved for its own apex: an isometric polyhedral approximation of "
+            f"the design's {design.model.value} model"
         ),
         "onefold:apex_height": fan.solution.apex_height,
         "onefold:crease": [
@@ -271,16 +261,20 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         ],
         "onefold:relief_hole_diameter": hole,
         "onefold:relief_hole_cut": hole > 0.0,
+        "onefold:sheet_size": design.sheet.size,
+        "onefold:mesh": quality,
         "onefold:resting_tilt_deg": rest_once(fan).tilt_deg,
     }
     if fan is not folded:
-        exact = folded.map_points(fan.boundary_flat)
+        # at both fans' outline vertices and the mesh's: the larger gaps are at the outline
+        pts = np.vstack([fan.boundary_flat, folded.boundary_flat, mesh.flat])
+        gap = np.linalg.norm(folded.map_points(pts) - fan.map_points(pts), axis=1)
         dev = max(
-            float(np.max(np.linalg.norm(exact - fan.boundary_3d, axis=1))),
+            float(np.max(gap)),
             abs(fan.solution.apex_height - folded.solution.apex_height),
         )
-        extras["onefold:exact_apex_height"] = folded.solution.apex_height
-        extras["onefold:max_deviation_from_exact"] = dev
+        extras["onefold:design_apex_height"] = folded.solution.apex_height
+        extras["onefold:max_deviation_from_design"] = dev
 
     folded_frame = {
         "frame_title": f"{design.name}: folded, standing on the ground (z = 0)",
@@ -288,7 +282,7 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
         "frame_attributes": ["3D", "manifold", "orientable", "convexFaces"],
         "frame_parent": 0,
         "frame_inherit": True,
-        "vertices_coords": rest_once(fan).apply(pts3).tolist(),
+        "vertices_coords": rest_once(fan).apply(mesh.folded).tolist(),
     }
     doc: dict[str, Any] = {
         "file_spec": FOLD_SPEC,
@@ -308,12 +302,12 @@ def fold_data(design: Design, folded: FoldedSheet) -> dict[str, Any]:
             "convexFaces",
         ],
         "frame_unit": units,
-        "vertices_coords": design.sheet.to_sheet.apply(flat).tolist(),
-        "edges_vertices": edges,
-        "edges_assignment": list(assignment) + [a for a, _ in extra for _ in range(n)],
-        "edges_foldAngle": [float(a) for a in angle] + [0.0] * (len(edges) - n),
-        "edges_onefold:kind": list(kind) + [k for _, k in extra for _ in range(n)],
-        "faces_vertices": faces,
+        "vertices_coords": design.sheet.to_sheet.apply(mesh.flat).tolist(),
+        "edges_vertices": mesh.edges.tolist(),
+        "edges_assignment": [str(a) for a in assignment],
+        "edges_foldAngle": [float(a) for a in angle],
+        "edges_onefold:kind": [str(k) for k in kind],
+        "faces_vertices": mesh.faces.tolist(),
         **extras,
         "file_frames": [folded_frame],
     }
