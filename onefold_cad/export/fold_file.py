@@ -86,6 +86,7 @@ __all__ = [
     "fold_data",
     "fold_divisions",
     "fold_fan",
+    "fold_note",
     "write_fold",
 ]
 
@@ -130,6 +131,25 @@ def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) 
             "frame curve, which has no non-trivial apex for this frame; use more "
             "divisions (at least 2)",
         ) from None
+
+
+def fold_note(design: Design, folded: FoldedSheet) -> str | None:
+    """The line a build prints when the FOLD file folds a coarser fan than
+    the design's surface (:func:`fold_fan`), with both crease halves' fold
+    angles in degrees (the file's fan's and the design's); None when the file
+    folds the design's own fan. Shown, never silent: the file is a model for
+    simulators, the DXF and STEP carry the design's angles."""
+    fan = fold_fan(design, folded)
+    if fan is folded:
+        return None
+    n = fold_divisions(design)
+    own = " / ".join(f"{h.fold_angle_deg:.1f}" for h in folded.crease)
+    file = " / ".join(f"{h.fold_angle_deg:.1f}" for h in fan.crease)
+    return (
+        f"the .fold file folds a fan of {n} divisions a side so that simulators stay "
+        f"stable: its crease halves fold {file} deg, the design's {own} deg "
+        "(docs/formats.md, 'Which polyhedron')"
+    )
 
 
 def _hole_radius(design: Design, fan: FoldedSheet, hole: float) -> float:

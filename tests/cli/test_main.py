@@ -902,3 +902,24 @@ def test_only_the_program_freezes_the_garbage_collector(tmp_path, as_process):
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert proc.stdout.split() == ["0", str(as_process), str(as_process)], proc.stderr
     assert sorted(p.name for p in out.iterdir()) == ["paper-square-3d.png", "paper-square.json"]
+
+
+def test_a_coarser_fold_file_is_said_with_both_crease_angles(tmp_path):
+    """The FOLD file's fan is coarser than patkau-one-fold's (90 divisions):
+    the build says so on stderr with the file's crease angles (its
+    onefold:crease) and the design's (the report's), and keeps it out of the
+    report; a build without the FOLD file says nothing of it."""
+    out = tmp_path / "out"
+    proc = run("build", "patkau-one-fold", "--formats", "fold,json", "-o", str(out))
+    assert proc.returncode == 0, proc.stderr
+    fold = json.loads((out / "patkau-one-fold.fold").read_text())
+    report = json.loads((out / "patkau-one-fold.json").read_text())
+    file = " / ".join(f"{c['fold_angle_deg']:.1f}" for c in fold["onefold:crease"])
+    own = " / ".join(f"{report['fold_angles_deg'][k]:.1f}" for k in ("plus_x", "minus_x"))
+    assert file != own
+    (line,) = [s for s in proc.stderr.splitlines() if ".fold file" in s]
+    assert f"fold {file} deg, the design's {own} deg" in line
+    assert f"{fold['onefold:mesh']['divisions']} divisions a side" in line
+    assert not any(".fold file" in w for w in report["warnings"])
+    other = run("build", "patkau-one-fold", "--formats", "json", "-o", str(tmp_path / "b"))
+    assert other.returncode == 0 and ".fold file" not in other.stderr
