@@ -39,6 +39,7 @@ __all__ = [
     "check_jobs",
     "cmd_build",
     "interrupted_text",
+    "make_outdir",
     "run_tasks",
     "task_context",
     "write_task",
@@ -238,6 +239,22 @@ def check_jobs(
     return found
 
 
+def make_outdir(outdir: Path) -> bool:
+    """Create ``outdir`` (and its parents); True when it did not exist before.
+
+    Raises:
+        InvalidParameterError: ('--outdir') it cannot be created.
+    """
+    created = not outdir.exists()
+    try:
+        outdir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InvalidParameterError(
+            "--outdir", f"cannot create {str(outdir)!r}: {exc.strerror or exc}"
+        ) from None
+    return created
+
+
 def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
     from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
@@ -260,13 +277,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     found = check_jobs(jobs, formats, ns)
     n = len(jobs)
     outdir = Path(ns.outdir)
-    created = not outdir.exists()
-    try:
-        outdir.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InvalidParameterError(
-            "--outdir", f"cannot create {str(outdir)!r}: {exc.strerror or exc}"
-        ) from None
+    created = make_outdir(outdir)
     try:
         for p in recover(outdir):
             warn(f"finished an interrupted earlier build: {p}")

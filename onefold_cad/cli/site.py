@@ -17,7 +17,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from onefold_cad.cli.build import STATE, BuildTask, check_jobs, run_tasks, task_context, write_task
+from onefold_cad.cli.build import (
+    STATE,
+    BuildTask,
+    check_jobs,
+    make_outdir,
+    run_tasks,
+    task_context,
+    write_task,
+)
 from onefold_cad.cli.output import one_line, warn
 from onefold_cad.errors import InvalidParameterError
 
@@ -105,13 +113,7 @@ def cmd_site(ns: argparse.Namespace) -> int:
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
     outdir = Path(ns.outdir)
-    created = not outdir.exists()
-    try:
-        outdir.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InvalidParameterError(
-            "--outdir", f"cannot create {str(outdir)!r}: {exc.strerror or exc}"
-        ) from None
+    created = make_outdir(outdir)
     n = len(jobs)
     targets = [
         f"{j.design.name}/{f}" for j in jobs for f in file_names(j.design.name, sheet_formats)

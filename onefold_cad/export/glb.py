@@ -95,12 +95,18 @@ def write_glb(
     placed.label = part.label
     placed.color = bd.Color(*COLOUR)
     size = design.sheet.size
+    return _export(placed, design.units, size, out)
+
+
+def _export(shape: bd.Shape, units: Units, size: float, out: Path) -> Path:
+    """Tessellate ``shape`` (deflections relative to ``size``) into the binary
+    glTF ``out``, atomically."""
     with atomic_output(out) as tmp:
         try:
             ok = bd.export_gltf(
-                placed,
+                shape,
                 tmp,
-                unit=_UNIT[design.units],
+                unit=_UNIT[units],
                 binary=True,
                 linear_deflection=LINEAR_DEFLECTION * size,
                 angular_deflection=ANGULAR_DEFLECTION,
@@ -130,18 +136,4 @@ def write_site_glb(
         placed.color = bd.Color(*COLOUR)
         children.append(placed)
     scene = bd.Compound(children=children, label=name)
-    with atomic_output(out) as tmp:
-        try:
-            ok = bd.export_gltf(
-                scene,
-                tmp,
-                unit=_UNIT[units],
-                binary=True,
-                linear_deflection=LINEAR_DEFLECTION * size,
-                angular_deflection=ANGULAR_DEFLECTION,
-            )
-        except Exception as err:  # RuntimeError, or OCC's Standard_Failure family
-            raise ExportError(f"writing glTF failed ({err.__class__.__name__}: {err})") from None
-        if not ok:
-            raise ExportError("writing glTF failed")
-    return out
+    return _export(scene, units, size, out)
