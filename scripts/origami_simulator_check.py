@@ -336,7 +336,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     from playwright.sync_api import sync_playwright
 
-    names = args.designs or sorted(p.stem for p in (ROOT / "templates").glob("*.toml"))
+    from onefold_cad.templates import list_templates
+
+    names = args.designs or [t.name for t in list_templates()]
     srv = serve(args.checkout)
     base = f"http://127.0.0.1:{srv.server_address[1]}"
     results = []
