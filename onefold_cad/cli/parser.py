@@ -59,6 +59,17 @@ def _raw_formatter(prog: str) -> argparse.HelpFormatter:
     return argparse.RawDescriptionHelpFormatter(prog, max_help_position=30, width=100)
 
 
+def _template_argument(parser: argparse.ArgumentParser, dest: str, nargs: str) -> None:
+    """The positional TEMPLATE (``nargs`` '?' or '*') of a command that falls
+    back on the default template."""
+    parser.add_argument(
+        dest,
+        nargs=nargs,
+        metavar="TEMPLATE",
+        help=f"template file or shipped template name (default: {DEFAULT_TEMPLATE})",
+    )
+
+
 def _add_common(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--name", help="the design's name (file stem); default: the template's, with the "
@@ -108,10 +119,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         formatter_class=_raw_formatter,
         allow_abbrev=False,
     )
-    build.add_argument(
-        "templates", nargs="*", metavar="TEMPLATE", help="template file or shipped template "
-        f"name (default: {DEFAULT_TEMPLATE})"
-    )  # fmt: skip
+    _template_argument(build, "templates", "*")
     out = build.add_argument_group("output")
     out.add_argument("-o", "--outdir", type=Path, default=Path("out"), metavar="DIR",
                      help="output folder (default: out)")  # fmt: skip
@@ -151,10 +159,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         formatter_class=_formatter,
         allow_abbrev=False,
     )
-    solve.add_argument(
-        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
-        f"name (default: {DEFAULT_TEMPLATE})"
-    )  # fmt: skip
+    _template_argument(solve, "template", "?")
     o = solve.add_argument_group("output")
     o.add_argument("--json", action="store_true", help="print the JSON report")
     _add_common(o)
@@ -176,10 +181,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         formatter_class=_formatter,
         allow_abbrev=False,
     )
-    explore.add_argument(
-        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
-        f"name (default: {DEFAULT_TEMPLATE})"
-    )  # fmt: skip
+    _template_argument(explore, "template", "?")
     explore.add_argument("--port", type=parse_int, default=8765, metavar="N",
                          help="port on 127.0.0.1 (0: any free port; default 8765)")  # fmt: skip
     explore.add_argument("--no-browser", action="store_true",
@@ -294,10 +296,7 @@ def _simulate_parser() -> FlagParser:
         formatter_class=_raw_formatter,
         allow_abbrev=False,
     )
-    p.add_argument(
-        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
-        f"name (default: {DEFAULT_TEMPLATE})"
-    )  # fmt: skip
+    _template_argument(p, "template", "?")
     g = p.add_argument_group("simulation")
     for flag, choice, default, text in (
         ("--supports", Supports, Supports.ANCHORED, "where the sheet touches the ground it is "
@@ -361,10 +360,7 @@ def _sweep_parser() -> FlagParser:
         formatter_class=_raw_formatter,
         allow_abbrev=False,
     )
-    p.add_argument(
-        "template", nargs="?", metavar="TEMPLATE", help="template file or shipped template "
-        f"name (default: {DEFAULT_TEMPLATE})"
-    )  # fmt: skip
+    _template_argument(p, "template", "?")
     g = p.add_argument_group("sweep")
     g.add_argument(
         "--vary",
