@@ -7,9 +7,9 @@ library is imported, so ``--help`` starts in a few milliseconds.
 from __future__ import annotations
 
 import argparse
-import textwrap
 from pathlib import Path
 
+from onefold_cad.cli.help_format import fill, formatter, raw_formatter
 from onefold_cad.cli.site_parser import site_parser
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
@@ -45,20 +45,6 @@ def parse_port(text: str) -> int:
     return port
 
 
-def _formatter(prog: str) -> argparse.HelpFormatter:
-    return argparse.HelpFormatter(prog, max_help_position=30, width=100)
-
-
-def _fill(text: str) -> str:
-    """``text`` wrapped for a raw help description (100 columns, words whole)."""
-    return textwrap.fill(text, 100, break_on_hyphens=False)
-
-
-def _raw_formatter(prog: str) -> argparse.HelpFormatter:
-    """Like :func:`_formatter`, the description and epilog kept as written."""
-    return argparse.RawDescriptionHelpFormatter(prog, max_help_position=30, width=100)
-
-
 def _template_argument(parser: argparse.ArgumentParser, dest: str, nargs: str) -> None:
     """The positional TEMPLATE (``nargs`` '?' or '*') of a command that falls
     back on the default template."""
@@ -86,7 +72,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     top = FlagParser(
         prog=PROG,
         usage=f"{PROG} [-h] [--version] COMMAND [ARGS]",
-        description=_fill(
+        description=fill(
             "Design One-Fold curved-origami forms and write the files to make them: STEP, "
             "DXF (annotated and cut-only), bend sheet, FOLD, GLB, JSON report and previews."
         ),
@@ -109,14 +95,14 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     build = FlagParser(
         prog=f"{PROG} build",
         usage=f"{PROG} build [TEMPLATE ...] [options]",
-        description=_fill(
+        description=fill(
             "Write the files below for each template's design (every one, or those "
             "--formats names): all files of all designs, or none. Flags change every "
             "template given; without a template they change the default one "
             f"({DEFAULT_TEMPLATE})."
         ),
         epilog=f"files (--formats NAME,NAME,...; default: all):\n{files_help()}",
-        formatter_class=_raw_formatter,
+        formatter_class=raw_formatter,
         allow_abbrev=False,
     )
     _template_argument(build, "templates", "*")
@@ -156,7 +142,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         usage=f"{PROG} solve [TEMPLATE] [options]",
         description="Solve a design and print the result; nothing is written. Fabrication "
         "problems are warnings here (exit status 0); only build refuses.",
-        formatter_class=_formatter,
+        formatter_class=formatter,
         allow_abbrev=False,
     )
     _template_argument(solve, "template", "?")
@@ -169,7 +155,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         prog=f"{PROG} templates",
         usage=f"{PROG} templates",
         description="List the shipped templates, one line each: name and description.",
-        formatter_class=_formatter,
+        formatter_class=formatter,
         allow_abbrev=False,
     )
     explore = FlagParser(
@@ -178,7 +164,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         description="Explore a design in the browser: sliders, the 3D form, the flat pattern, "
         "downloads. Serves a page on 127.0.0.1 until Ctrl-C; the solver runs here, the page "
         "only draws.",
-        formatter_class=_formatter,
+        formatter_class=formatter,
         allow_abbrev=False,
     )
     _template_argument(explore, "template", "?")
@@ -188,13 +174,13 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
                          help="only print the address; do not open a browser")  # fmt: skip
     fit = FlagParser(
         prog=f"{PROG} fit",
-        usage=f"{PROG} fit TEMPLATE --height H --span S [--depth D] [--min-tipping-margin DEG] "
-        "[--json] [-o DIR]",
+        usage=f"{PROG} fit TEMPLATE --height H --span S [--depth D]\n"
+        "         [--min-tipping-margin DEG] [--json] [-o DIR]",
         description="Find alpha, beta and h_c whose resting form has the target height and "
         "span (footprint width), and depth if given, each within 0.5 %. The template's sheet, "
         "material and model are kept; lengths are in its unit. A target out of reach is an "
         "error that gives the ranges the template's sheet can reach.",
-        formatter_class=_formatter,
+        formatter_class=formatter,
         allow_abbrev=False,
     )
     fit.add_argument(
@@ -246,7 +232,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "warnings) and onefold/fit (alpha, beta, h_c for a target height and span) until "
         "Ctrl-C. In Grasshopper, a Hops component's Path is http://127.0.0.1:5000/onefold/solve "
         "(docs/rhino.md). Needs onefold_cad[rhino] (ghhops-server, rhino3dm).",
-        formatter_class=_formatter,
+        formatter_class=formatter,
         allow_abbrev=False,
     )
     hops.add_argument(
@@ -280,9 +266,9 @@ def _simulate_parser() -> FlagParser:
 
     p = FlagParser(
         prog=f"{PROG} simulate",
-        usage=f"{PROG} simulate [TEMPLATE] [--supports anchored|frictionless] "
-        "[--reference flat|designed] [--json] [-o DIR] [options]",
-        description=_fill(
+        usage=f"{PROG} simulate [TEMPLATE] [--supports anchored|frictionless]\n"
+        "         [--reference flat|designed] [--json] [-o DIR] [options]",
+        description=fill(
             "Simulate the design's sheet as steel: bent flat into the design (where it "
             "yields), let go by the folding machine (its springback), and standing on the "
             "ground under its own weight (its sag, stresses, and whether it stands), with a "
@@ -293,7 +279,7 @@ def _simulate_parser() -> FlagParser:
             "about twice the nodes to say how converged the answer is (not for --mesh coarse, "
             "a preview)."
         ),
-        formatter_class=_raw_formatter,
+        formatter_class=raw_formatter,
         allow_abbrev=False,
     )
     _template_argument(p, "template", "?")
@@ -341,7 +327,7 @@ def _sweep_parser() -> FlagParser:
     p = FlagParser(
         prog=f"{PROG} sweep",
         usage=f"{PROG} sweep [TEMPLATE] --vary NAME=SPEC [--vary ...] -o DIR [options]",
-        description=_fill(
+        description=fill(
             "Evaluate many designs of one template: every design is solved, folded and "
             "stood on the ground (the STEP's body), on a local process pool or a Dask "
             "cluster. Writes DIR/results.parquet (every input and output, units in its "
@@ -357,7 +343,7 @@ def _sweep_parser() -> FlagParser:
             "e.g. onefold sweep patkau-one-fold --vary alpha=10:80:15 --vary hc=-50,0,50 -o out\n\n"
             f"measures (--measure NAME,...):\n{measure_help()}"
         ),
-        formatter_class=_raw_formatter,
+        formatter_class=raw_formatter,
         allow_abbrev=False,
     )
     _template_argument(p, "template", "?")

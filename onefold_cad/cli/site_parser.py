@@ -3,9 +3,9 @@ writers' registries for the file lists)."""
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
+from onefold_cad.cli.help_format import raw_formatter
 from onefold_cad.export.site_writers import SITE_WRITERS, site_files_help
 from onefold_cad.export.writers import WRITERS
 from onefold_cad.flags.design_flags import COMPENSATIONS, parse_choice, parse_int
@@ -26,9 +26,7 @@ def site_parser(prog: str = "onefold") -> FlagParser:
             "All files of the site, or none (docs/site.md)."
         ),
         epilog=f"site files (--formats NAME,NAME,...; default: all):\n{site_files_help()}",
-        formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(
-            prog, max_help_position=30, width=100
-        ),
+        formatter_class=raw_formatter,
         allow_abbrev=False,
     )
     p.add_argument("site", metavar="SITE", help="site file (TOML) or shipped site name")
