@@ -104,14 +104,43 @@ controls.addEventListener('change', render);
 controls.addEventListener('start', () => quality.orbit(true));
 controls.addEventListener('end', () => quality.orbit(false));
 
-const topMaterial = new THREE.MeshStandardMaterial({
-  color: 0xb9c6d3, metalness: 0.25, roughness: 0.5, side: THREE.FrontSide,
-  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+// The sheet: one mesh drawn on both sides (one pass over its triangles instead
+// of a mesh per side: software GL's cost of a frame is much per triangle); the
+// standard material takes the top face's colour, metalness and roughness on
+// front faces and the underside's on back faces.
+const TOP = { color: 0xb9c6d3, metalness: 0.25, roughness: 0.5 };
+const UNDER = { color: 0xa8825e, metalness: 0.1, roughness: 0.7 };
+const sheetMaterial = new THREE.MeshStandardMaterial({
+  ...TOP, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
 });
-const underMaterial = new THREE.MeshStandardMaterial({
-  color: 0xa8825e, metalness: 0.1, roughness: 0.7, side: THREE.BackSide,
-  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
-});
+sheetMaterial.onBeforeCompile = (shader) => {
+  Object.assign(shader.uniforms, {
+    underDiffuse: { value: new THREE.Color(UNDER.color) },
+    underMetalness: { value: UNDER.metalness },
+    underRoughness: { value: UNDER.roughness },
+  });
+  // the fragment shader's lines that read the colour, metalness and roughness
+  // (the last two in their chunks, not yet included)
+  const chunk = (name) => THREE.ShaderChunk[name];
+  const swap = [
+    ['vec4 diffuseColor = vec4( diffuse, opacity );',
+      'vec4 diffuseColor = vec4( gl_FrontFacing ? diffuse : underDiffuse, opacity );'],
+    ['#include <metalnessmap_fragment>', chunk('metalnessmap_fragment').replace(
+      'float metalnessFactor = metalness;',
+      'float metalnessFactor = gl_FrontFacing ? metalness : underMetalness;')],
+    ['#include <roughnessmap_fragment>', chunk('roughnessmap_fragment').replace(
+      'float roughnessFactor = roughness;',
+      'float roughnessFactor = gl_FrontFacing ? roughness : underRoughness;')],
+  ];
+  let text = shader.fragmentShader;
+  for (const [from, to] of swap) {
+    if (!text.includes(from) || !to.includes('gl_FrontFacing')) {
+      throw new Error(`three.js shader changed: no "${from}"`);
+    }
+    text = text.replace(from, to);
+  }
+  shader.fragmentShader = `uniform vec3 underDiffuse;\nuniform float underMetalness;\nuniform float underRoughness;\n${text}`;
+};
 const edgeMaterial = new THREE.LineBasicMaterial({ color: 0x374151 });
 const BEND_COLOURS = { UP: 0xd62828, DOWN: 0x1d4ed8 };
 const form = new THREE.Group();
@@ -132,7 +161,7 @@ let framed = false;
 let geometry = null; // the form's surface (both sides' meshes share it)
 let lines = null; // the sheet's edge and the crease: LineSegments on the same positions
 let meshKey = null; // the server's mesh_key of `geometry`'s triangles
-const surfaces = [new THREE.Mesh(undefined, topMaterial), new THREE.Mesh(undefined, underMaterial)];
+const surfaces = [new THREE.Mesh(undefined, sheetMaterial)];
 const edges = new THREE.LineSegments(undefined, edgeMaterial);
 form.add(...surfaces, edges);
 // crease halves (rods: a unit cylinder along y, scaled) and the apex (a unit sphere)
