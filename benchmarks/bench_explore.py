@@ -57,6 +57,8 @@ import time
 from pathlib import Path
 from urllib.parse import urlencode
 
+import numpy as np
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from docs_block import ROOT, machine_line, write_block  # noqa: E402
@@ -245,6 +247,13 @@ def _verdict(xs: list[float]) -> str:
     return "–" if not xs else ("PASS" if stats_of(xs).median <= CRITERION_MS else "FAIL")
 
 
+def _canvas(page) -> np.ndarray:
+    """The 3D view's pixels as the page shows them (a screenshot of the canvas)."""
+    from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB"))
+
+
 def _round(page, slider: str, vals: list[str]) -> dict[str, list]:
     """One round on ``page``: a drag of :data:`DRAG` inputs, its release, a typed value."""
     drag = [page.evaluate(MOVE, [slider, v, False]) for v in vals[:DRAG]]
@@ -314,7 +323,9 @@ def bench_template(
                     parts_rows.append(
                         f"| {template} | {label} | {slider} | {what} | " + " | ".join(cells) + " |"
                     )
+            shots = [_canvas(page) for page in pages]  # all at the last round's state, full
             for k in range(1, len(versions)):
+                changed = 100.0 * float(np.any(shots[0] != shots[k], axis=-1).mean())
                 ratios = {}
                 for what in ("drag", "full"):
                     ratios[what] = [
@@ -323,7 +334,7 @@ def bench_template(
                     ]
                 ratio_rows.append(
                     f"| {template} | {slider} | {versions[k][0]} | "
-                    f"{_fmt(ratios['drag'], '')} | {_fmt(ratios['full'], '')} |"
+                    f"{_fmt(ratios['drag'], '')} | {_fmt(ratios['full'], '')} | {changed:.2f} % |"
                 )
         for page in pages:
             page.close()
@@ -392,10 +403,13 @@ def main(argv: list[str] | None = None) -> int:
             "",
             "This tree's time over the baseline's, paired round by round (the same values, "
             "the same load): median [q1, q3] of the ratios; the baseline's drag frames are "
-            "full frames.",
+            "full frames. Last column: the share of the canvas's pixels that differ between "
+            "this tree's full frame and the baseline's, both at the slider's last state "
+            "(the same camera), as the page shows them (screenshots).",
             "",
-            "| template | slider | baseline | drag frame / baseline's | full update / baseline's |",
-            "|---|---|---|---|---|",
+            "| template | slider | baseline | drag frame / baseline's | "
+            "full update / baseline's | full frame's pixels changed |",
+            "|---|---|---|---|---|---|",
             *ratios,
         ]
     print("\n".join(table2), flush=True)

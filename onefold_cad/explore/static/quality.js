@@ -50,8 +50,7 @@ export function createQuality({ renderer, draw, busy, onSettled }) {
   function measure(full) {
     if (typeof gl.fenceSync !== 'function') return;
     const sync = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (!sync) return;
-    gl.flush();
+    if (!sync) return; // no flush: the frame's own end hands the commands over
     drawing += 1;
     const t0 = performance.now();
     const poll = () => {
