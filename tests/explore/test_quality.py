@@ -104,7 +104,10 @@ def test_a_slider_drag_shows_reduced_frames_then_the_full_frame_of_its_state(
         tab.page.mouse.move(x0 + 6 * k, y)
         tab.page.wait_for_timeout(40)
     tab.page.mouse.up()
-    _settled(tab) if slow else tab.page.wait_for_timeout(500)
+    if slow:
+        _settled(tab)
+    else:
+        tab.page.wait_for_timeout(500)
     _until(tab, "() => !document.getElementById('status').textContent.includes('solv')")
     frames = tab.page.evaluate("window.__frames")
     updates = [f for f in frames if f["event"] == "explore:updated"]
@@ -157,7 +160,8 @@ def test_orbiting_draws_reduced_frames_until_the_release(context, server, tmp_pa
     tab.page.mouse.move(cx, cy)
     tab.page.mouse.down()
     tab.page.mouse.move(cx + 40, cy, steps=4)
-    _until(tab, "() => document.getElementById('view').dataset.quality !== undefined")
+    want = "drag" if slow else "full"
+    _until(tab, f"() => document.getElementById('view').dataset.quality === '{want}'")
     held = tab.canvas()
     during = tab.page.evaluate("[document.getElementById('view').width, "
                                "document.getElementById('view').dataset.quality]")  # fmt: skip
