@@ -2,7 +2,7 @@
 
 Starts ``onefold explore TEMPLATE --no-browser --port 0`` (its own process),
 opens the page in Debian's Chromium (playwright, software WebGL: SwiftShader)
-and drags a slider as a user would: sets its value and fires ``input``, twice
+and drags a slider as a user would: sets its value and fires ``input``, four times
 (a drag), then ``change`` (the release), then types a value in the slider's
 number box (``input``: not a drag). Each is timed inside the page, from its
 event to the frame that shows it:
@@ -80,7 +80,7 @@ TEMPLATES = ["patkau-one-fold", "table1-row4", "star-polygon"]
 #: drag frames: what a user waits for while dragging a slider).
 CRITERION_MS = 50.0
 #: Slider inputs per drag (then its change event, then one typed value).
-DRAG = 2
+DRAG = 4
 #: The page's performance marks of one update, in order (explore.js).
 MARKS = ["explore:request", "explore:answer", "explore:parsed", "explore:form", "explore:drawn"]
 #: The breakdown's parts: name -> (from, to), times as in :data:`MOVE`'s answer.
