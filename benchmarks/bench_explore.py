@@ -2,32 +2,44 @@
 
 Starts ``onefold explore TEMPLATE --no-browser --port 0`` (its own process),
 opens the page in Debian's Chromium (playwright, software WebGL: SwiftShader)
-and moves a slider as a user would (sets the value, fires ``input``). Each
-update is timed inside the page from the slider's ``input`` event to
+and drags a slider as a user would: sets its value and fires ``input``, four times
+(a drag), then ``change`` (the release), then types a value in the slider's
+number box (``input``: not a drag). Each is timed inside the page, from its
+event to the frame that shows it:
 
-* **shown**: the frame that shows the new state: the page's first animation
-  frame after the new numbers, flat pattern and 3D form were set (its
-  ``explore:updated`` event), then that frame's style, layout and paint
-  (a task queued from the frame runs after them) and the GPU's drawing of
-  the 3D view (a one-pixel ``readPixels`` of the canvas returns only when the
-  WebGL commands before it are done: software GL draws on the CPU, after the
-  page's script has handed it the frame);
-* **rAF**: the page's first animation frame alone (the script's share; the
-  measure of earlier versions of this benchmark).
+* **drag frame**: a slider's ``input`` to the frame that shows the new state
+  while the drag goes on. On a GPU too slow for full frames (software GL here)
+  the page draws these at half the pixel ratio (quality.js); the criterion of
+  issue 24 (median <= 50 ms) is judged on this one: it is what a user waits
+  for, move after move, while dragging;
+* **settled**: the release (``change``) to the full-quality frame of the same
+  state (no server: the page redraws what it has);
+* **full update**: the number box's ``input`` to the full-quality frame of the
+  new state (a baseline without drag frames draws every update so).
+
+"The frame that shows" is the page's first animation frame after the frame
+was drawn (its ``explore:updated`` or ``explore:settled`` event), then that
+frame's style, layout and paint (a task queued from the frame runs after
+them) and the GPU's drawing of the 3D view (a one-pixel ``readPixels`` of the
+canvas returns only when the WebGL commands before it are done: software GL
+draws on the CPU, after the page's script has handed it the frame).
 
 The page's performance marks (``explore:request`` .. ``explore:drawn``) and
 the ``server_ms`` of its state give each update's breakdown: the server
 computing the state, the rest of the HTTP round trip, reading the JSON,
 setting numbers, messages and the 3D form, the flat pattern and the render
 call, waiting for the frame, then paint and the GPU. Interleaved with each
-move, round by round in alternating order, the same state is fetched over
-HTTP from Python (no browser). Prints medians with their spread (25th and
-75th percentile) and the worst move; asserts nothing; ``--write-docs``
+round, in alternating order, the same state is fetched over HTTP from Python
+(no browser). With ``--baseline COMMIT`` the explorer of that commit runs
+beside this tree's, round by round in alternating order, and the paired
+ratios (this tree / baseline, round by round) are printed. Prints medians with
+their spread (25th and 75th percentile); asserts nothing; ``--write-docs``
 pastes the tables into docs/benchmarks.md.
 
 Run from the repository root::
 
-    .venv/bin/python benchmarks/bench_explore.py [--moves 40] [--only NAME ...] [--write-docs]
+    .venv/bin/python benchmarks/bench_explore.py [--moves 40] [--only NAME ...]
+        [--baseline COMMIT] [--write-docs]
 """
 
 from __future__ import annotations
@@ -44,6 +56,8 @@ import tempfile
 import time
 from pathlib import Path
 from urllib.parse import urlencode
+
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -62,8 +76,11 @@ CHROMIUM_ARGS = [
     "--use-angle=swiftshader",
 ]
 TEMPLATES = ["patkau-one-fold", "table1-row4", "star-polygon"]
-#: Issue 24: the default template's page update in at most 50 ms (median, shown).
+#: Issue 24: the default template's page update in at most 50 ms (median of the
+#: drag frames: what a user waits for while dragging a slider).
 CRITERION_MS = 50.0
+#: Slider inputs per drag (then its change event, then one typed value).
+DRAG = 4
 #: The page's performance marks of one update, in order (explore.js).
 MARKS = ["explore:request", "explore:answer", "explore:parsed", "explore:form", "explore:drawn"]
 #: The breakdown's parts: name -> (from, to), times as in :data:`MOVE`'s answer.
@@ -77,30 +94,62 @@ PARTS = {
     "paint + GPU": ("raf", "shown"),
 }
 
-# In the page: move slider `id` to `value`, resolve with the times (ms from the
-# input event) of the update's marks, its first animation frame (raf) and the
-# frame shown (after that frame's paint and the GPU's drawing of the canvas).
-MOVE = """async ([id, value]) => {
-  const el = document.getElementById(id);
+# In the page: resolve `event`'s next occurrence with the times (ms from t0) of
+# its animation frame (raf) and of the frame shown (after that frame's paint and
+# the GPU's drawing of the canvas); null after `wait` ms without it.
+SHOWN = """(event, t0, wait) => {
   const gl = document.getElementById('view').getContext('webgl2');
   const px = new Uint8Array(4);
-  const done = new Promise((resolve) => window.addEventListener('explore:updated', (e) => {
-    const raf = performance.now();
-    setTimeout(() => {  // after the frame's style, layout and paint
-      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);  // the GPU's drawing done
-      resolve({ detail: e.detail, raf, shown: performance.now() });
-    }, 0);
-  }, { once: true }));
+  return new Promise((resolve) => {
+    const timer = setTimeout(() => resolve(null), wait);
+    window.addEventListener(event, (e) => {
+      clearTimeout(timer);
+      const raf = performance.now();
+      setTimeout(() => {  // after the frame's style, layout and paint
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);  // the GPU's drawing done
+        resolve({ detail: e.detail, raf: raf - t0, shown: performance.now() - t0 });
+      }, 0);
+    }, { once: true });
+  });
+}"""
+
+# In the page: set slider `id` (or its number box, `box`) to `value` and fire
+# `input`; resolve with the times (ms from the input event) of the update's
+# marks, its first animation frame (raf), the frame shown, and its quality.
+MOVE = (
+    """async ([id, value, box]) => {
+  const shown = """
+    + SHOWN
+    + """;
+  const el = document.getElementById(box ? `${id}-num` : id);
   const t0 = performance.now();
+  const done = shown('explore:updated', t0, 60000);
   el.value = value;
   el.dispatchEvent(new Event('input', { bubbles: true }));
   const r = await done;
-  const out = { ok: r.detail.ok, server: r.detail.server_ms, raf: r.raf - t0, shown: r.shown - t0 };
+  const out = { ok: r.detail.ok, server: r.detail.server_ms, raf: r.raf, shown: r.shown,
+    quality: r.detail.quality ?? null };
   for (const m of performance.getEntriesByType('mark')) {
     if (m.name.startsWith('explore:') && m.startTime >= t0) out[m.name] = m.startTime - t0;
   }
   return out;
 }"""
+)
+
+# In the page: release slider `id` (its change event); resolve with the times of
+# the full-quality frame it draws (explore:settled), or null when none comes.
+RELEASE = (
+    """async (id) => {
+  const shown = """
+    + SHOWN
+    + """;
+  const t0 = performance.now();
+  const done = shown('explore:settled', t0, 1500);
+  document.getElementById(id).dispatchEvent(new Event('change', { bubbles: true }));
+  const r = await done;
+  return r && { raf: r.raf, shown: r.shown, quality: r.detail.quality };
+}"""
+)
 
 
 def start_server(
@@ -190,14 +239,44 @@ def _parts(r: dict[str, float]) -> dict[str, float]:
     return out
 
 
+def _fmt(xs: list[float], unit: str = " ms") -> str:
+    return stats_of(xs).fmt(unit=unit) if xs else "–"
+
+
+def _verdict(xs: list[float]) -> str:
+    return "–" if not xs else ("PASS" if stats_of(xs).median <= CRITERION_MS else "FAIL")
+
+
+def _canvas(page) -> np.ndarray:
+    """The 3D view's pixels as the page shows them (a screenshot of the canvas)."""
+    from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB"))
+
+
+def _round(page, slider: str, vals: list[str]) -> dict[str, list]:
+    """One round on ``page``: a drag of :data:`DRAG` inputs, its release, a typed value."""
+    drag = [page.evaluate(MOVE, [slider, v, False]) for v in vals[:DRAG]]
+    # a release redraws only after a reduced frame (none on a baseline without them)
+    release = page.evaluate(RELEASE, slider) if drag[-1]["quality"] == "drag" else None
+    full = page.evaluate(MOVE, [slider, vals[DRAG], True])
+    for r in [*drag, full]:
+        if not r["ok"]:
+            raise SystemExit(f"{slider}={vals} gave an error state")
+    return {"drag": drag, "settled": [release] if release else [], "full": [full]}
+
+
 def bench_template(
     browser, template: str, moves: int, versions: list[tuple[str, Path | None]]
-) -> tuple[list[str], list[str]]:
-    """The table's rows and the breakdown's rows of ``template``, slider by slider,
-    for each version (label, package folder or None for this tree): one server
-    and one page each, their moves interleaved (the order rotated every round)."""
+) -> tuple[list[str], list[str], list[str]]:
+    """The table's rows, the breakdown's rows and the paired ratios' rows of
+    ``template``, slider by slider, for each version (label, package folder or
+    None for this tree): one server and one page each, their rounds interleaved
+    (the order rotated every round)."""
     procs, pages = [], []
-    rows, parts_rows = [], []
+    rows, parts_rows, ratio_rows = [], [], []
+    per = DRAG + 1  # values per round
+    rounds = max(1, moves // DRAG)
     try:
         for _, package in versions:
             proc, port = start_server(template, package)
@@ -208,41 +287,54 @@ def bench_template(
             pages.append(page)
         port = procs[0][1]
         for slider in ("alpha", "beta", "hc"):
-            vals = values(pages[0], slider, moves + 3)
+            vals = values(pages[0], slider, per * (rounds + 1))
             base = {k: pages[0].locator(f"#{k}-num").input_value() for k in ("alpha", "beta", "hc")}
             for page in pages:
-                for v in vals[:3]:  # warm up
-                    page.evaluate(MOVE, [slider, v])
-            answers: list[list[dict[str, float]]] = [[] for _ in pages]
+                _round(page, slider, vals[:per])  # warm up
+            got: list[list[dict[str, list]]] = [[] for _ in pages]
             http_ms: list[float] = []
             steps = [*range(len(pages)), "http"]
-            for i, v in enumerate(vals[3:]):
-                query = urlencode({**base, slider: v})
+            for i in range(rounds):
+                vs = vals[per * (i + 1) : per * (i + 2)]
                 for step in steps[i % len(steps) :] + steps[: i % len(steps)]:
                     if step == "http":
-                        http_ms.append(fetch_state(port, query))
-                        continue
-                    r = pages[step].evaluate(MOVE, [slider, v])
-                    if not r["ok"]:
-                        raise SystemExit(f"{template}: {slider}={v} gave an error state")
-                    answers[step].append(r)
-            h = stats_of(http_ms)
-            for (label, _), got in zip(versions, answers, strict=True):
-                shown = [r["shown"] for r in got]
-                s, f = stats_of(shown), stats_of([r["raf"] for r in got])
-                verdict = "PASS" if s.median <= CRITERION_MS else "FAIL"
-                http = h.fmt(unit=" ms") if got is answers[0] else "–"
+                        http_ms.append(fetch_state(port, urlencode({**base, slider: vs[0]})))
+                    else:
+                        got[step].append(_round(pages[step], slider, vs))
+            for k, ((label, _), rs) in enumerate(zip(versions, got, strict=True)):
+                drag = [r for g in rs for r in g["drag"]]
+                full = [r for g in rs for r in g["full"]]
+                shown_d = [r["shown"] for r in drag]
+                shown_f = [r["shown"] for r in full]
+                settled = [r["shown"] for g in rs for r in g["settled"]]
+                reduced = sum(r["quality"] == "drag" for r in drag)
                 rows.append(
-                    f"| {template} | {label} | {slider} | {s.fmt(unit=' ms')} | "
-                    f"{max(shown):.0f} ms | {f.fmt(unit=' ms')} | {http} | {verdict} |"
+                    f"| {template} | {label} | {slider} | {_fmt(shown_d)} | {max(shown_d):.0f} ms"
+                    f" | {reduced}/{len(drag)} | {_fmt(shown_f)} | {_fmt(settled)} | "
+                    f"{_fmt(http_ms) if k == 0 else '–'} | {_verdict(shown_d)} | "
+                    f"{_verdict(shown_f)} |"
                 )
-                split = [_parts(r) for r in got]
-                cells = []
-                for k in PARTS:
-                    m = stats_of([p[k] for p in split]).median
-                    cells.append("–" if math.isnan(m) else f"{m:.1f}")
-                parts_rows.append(
-                    f"| {template} | {label} | {slider} | " + " | ".join(cells) + " |"
+                for what, rs_ in (("drag", drag), ("full", full)):
+                    split = [_parts(r) for r in rs_]
+                    cells = []
+                    for name in PARTS:
+                        m = stats_of([p[name] for p in split]).median
+                        cells.append("–" if math.isnan(m) else f"{m:.1f}")
+                    parts_rows.append(
+                        f"| {template} | {label} | {slider} | {what} | " + " | ".join(cells) + " |"
+                    )
+            shots = [_canvas(page) for page in pages]  # all at the last round's state, full
+            for k in range(1, len(versions)):
+                changed = 100.0 * float(np.any(shots[0] != shots[k], axis=-1).mean())
+                ratios = {}
+                for what in ("drag", "full"):
+                    ratios[what] = [
+                        sum(r["shown"] for r in a[what]) / sum(r["shown"] for r in b[what])
+                        for a, b in zip(got[0], got[k], strict=True)
+                    ]
+                ratio_rows.append(
+                    f"| {template} | {slider} | {versions[k][0]} | "
+                    f"{_fmt(ratios['drag'], '')} | {_fmt(ratios['full'], '')} | {changed:.2f} % |"
                 )
         for page in pages:
             page.close()
@@ -250,14 +342,14 @@ def bench_template(
         for proc, _ in procs:
             proc.terminate()
             proc.wait(timeout=30)
-    return rows, parts_rows
+    return rows, parts_rows, ratio_rows
 
 
 def main(argv: list[str] | None = None) -> int:
     from playwright.sync_api import sync_playwright
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--moves", type=int, default=40, help="timed moves per slider")
+    ap.add_argument("--moves", type=int, default=40, help="timed drag frames per slider")
     ap.add_argument("--only", nargs="*", default=None, help="template names")
     ap.add_argument(
         "--baseline",
@@ -271,35 +363,55 @@ def main(argv: list[str] | None = None) -> int:
     versions: list[tuple[str, Path | None]] = [("this tree", None)]
     if args.baseline:
         versions.append((args.baseline, baseline_package(args.baseline, Path(home.name))))
+    rounds = max(1, args.moves // DRAG)
+    c = f"{CRITERION_MS:.0f} ms"
     header = [
-        f"Slider to shown update in Chromium (software WebGL), {args.moves} moves per slider; "
-        f"criterion: shown median <= {CRITERION_MS:.0f} ms.",
+        f"Slider to shown frame in Chromium (software WebGL), per slider {rounds} drags of "
+        f"{DRAG} inputs (the drag frames), their releases (settled) and {rounds} typed values "
+        f"(full update); criterion: the drag frame's median <= {c} (what a user waits for "
+        "while dragging; the full update's verdict beside it).",
         "",
-        "| template | version | slider | shown: median [q1, q3] | worst | rAF: median [q1, q3] | "
-        f"HTTP state alone: median [q1, q3] | shown <= {CRITERION_MS:.0f} ms |",
-        "|---|---|---|---|---|---|---|---|",
+        "| template | version | slider | drag frame: median [q1, q3] | worst | reduced | "
+        "full update: median [q1, q3] | settled: median [q1, q3] | "
+        f"HTTP state alone: median [q1, q3] | drag <= {c} | full <= {c} |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     print("\n".join(header), flush=True)
-    rows, parts = [], []
+    rows, parts, ratios = [], [], []
     with sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
         try:
             for template in args.only or TEMPLATES:
-                r, p = bench_template(browser, template, args.moves, versions)
+                r, p, q = bench_template(browser, template, args.moves, versions)
                 rows += r
                 parts += p
+                ratios += q
                 print("\n".join(r), flush=True)
         finally:
             browser.close()
             home.cleanup()
     table2 = [
         "",
-        "Where a shown update's time goes (medians of each part, ms):",
+        "Where an update's time goes (medians of each part, ms; drag frames and full updates):",
         "",
-        "| template | version | slider | " + " | ".join(PARTS) + " |",
-        "|---|---|---|" + "---|" * len(PARTS),
+        "| template | version | slider | frame | " + " | ".join(PARTS) + " |",
+        "|---|---|---|---|" + "---|" * len(PARTS),
         *parts,
     ]
+    if ratios:
+        table2 += [
+            "",
+            "This tree's time over the baseline's, paired round by round (the same values, "
+            "the same load): median [q1, q3] of the ratios; the baseline's drag frames are "
+            "full frames. Last column: the share of the canvas's pixels that differ between "
+            "this tree's full frame and the baseline's, both at the slider's last state "
+            "(the same camera), as the page shows them (screenshots).",
+            "",
+            "| template | slider | baseline | drag frame / baseline's | "
+            "full update / baseline's | full frame's pixels changed |",
+            "|---|---|---|---|---|---|",
+            *ratios,
+        ]
     print("\n".join(table2), flush=True)
     if args.write_docs:
         only = f" --only {' '.join(args.only)}" if args.only else ""

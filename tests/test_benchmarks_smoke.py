@@ -130,3 +130,12 @@ def test_bench_rest_runs_on_one_template(capsys):
     assert bench_rest.main(["--rounds", "1", "--only", "table1-row1", "--baseline", "0" * 40]) == 0
     out = capsys.readouterr().out
     assert "| table1-row1 | shell |" in out and "no baseline" in out
+
+
+def test_bench_state_parts_times_every_part(capsys):
+    import bench_state_parts
+
+    assert bench_state_parts.main(["--moves", "2"]) == 0
+    rows = [line.split(" | ")[0] for line in capsys.readouterr().out.splitlines()]
+    for part in ("| resting placement", "| flat pattern", "| whole state", "| JSON"):
+        assert part in rows

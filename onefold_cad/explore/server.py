@@ -62,6 +62,7 @@ STATIC: dict[str, tuple[str, str]] = {
     "/": ("index.html", "text/html; charset=utf-8"),
     "/static/explore.js": ("explore.js", _JS),
     "/static/simulate.js": ("simulate.js", _JS),
+    "/static/quality.js": ("quality.js", _JS),
     "/static/explore.css": ("explore.css", "text/css; charset=utf-8"),
     "/static/three/three.module.js": ("three/three.module.js", _JS),
     "/static/three/three.core.js": ("three/three.core.js", _JS),

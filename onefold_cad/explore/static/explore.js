@@ -1,10 +1,12 @@
 // onefold explore: the page draws what the server computes; it computes no geometry.
 // Each control change asks /api/state for the design's new state (the Python
 // solver is the one source of truth) and draws the form, the flat pattern, the
-// numbers and the messages it returns. The Simulate button is simulate.js's.
+// numbers and the messages it returns. The Simulate button is simulate.js's; the
+// reduced frames of a drag on a slow GPU are quality.js's.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/OrbitControls.js';
 import { createSimulation } from './simulate.js';
+import { createQuality } from './quality.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -85,7 +87,9 @@ function fillControls(page) {
 // -- 3D view --------------------------------------------------------------
 THREE.Object3D.DEFAULT_UP.set(0, 0, 1); // z up, as the form stands on the ground
 const canvas = $('view');
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+// no preserveDrawingBuffer: nothing reads the canvas back (the downloads are the
+// server's files), and keeping the buffer costs a copy of it on every frame
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
 renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xeef1f5);
@@ -97,15 +101,46 @@ camera.add(headlight);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x777777, 1.3));
 const controls = new OrbitControls(camera, canvas);
 controls.addEventListener('change', render);
+controls.addEventListener('start', () => quality.orbit(true));
+controls.addEventListener('end', () => quality.orbit(false));
 
-const topMaterial = new THREE.MeshStandardMaterial({
-  color: 0xb9c6d3, metalness: 0.25, roughness: 0.5, side: THREE.FrontSide,
-  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+// The sheet: one mesh drawn on both sides (one pass over its triangles instead
+// of a mesh per side: software GL's cost of a frame is much per triangle); the
+// standard material takes the top face's colour, metalness and roughness on
+// front faces and the underside's on back faces.
+const TOP = { color: 0xb9c6d3, metalness: 0.25, roughness: 0.5 };
+const UNDER = { color: 0xa8825e, metalness: 0.1, roughness: 0.7 };
+const sheetMaterial = new THREE.MeshStandardMaterial({
+  ...TOP, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
 });
-const underMaterial = new THREE.MeshStandardMaterial({
-  color: 0xa8825e, metalness: 0.1, roughness: 0.7, side: THREE.BackSide,
-  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
-});
+sheetMaterial.onBeforeCompile = (shader) => {
+  Object.assign(shader.uniforms, {
+    underDiffuse: { value: new THREE.Color(UNDER.color) },
+    underMetalness: { value: UNDER.metalness },
+    underRoughness: { value: UNDER.roughness },
+  });
+  // the fragment shader's lines that read the colour, metalness and roughness
+  // (the last two in their chunks, not yet included)
+  const chunk = (name) => THREE.ShaderChunk[name];
+  const swap = [
+    ['vec4 diffuseColor = vec4( diffuse, opacity );',
+      'vec4 diffuseColor = vec4( gl_FrontFacing ? diffuse : underDiffuse, opacity );'],
+    ['#include <metalnessmap_fragment>', chunk('metalnessmap_fragment').replace(
+      'float metalnessFactor = metalness;',
+      'float metalnessFactor = gl_FrontFacing ? metalness : underMetalness;')],
+    ['#include <roughnessmap_fragment>', chunk('roughnessmap_fragment').replace(
+      'float roughnessFactor = roughness;',
+      'float roughnessFactor = gl_FrontFacing ? roughness : underRoughness;')],
+  ];
+  let text = shader.fragmentShader;
+  for (const [from, to] of swap) {
+    if (!text.includes(from) || !to.includes('gl_FrontFacing')) {
+      throw new Error(`three.js shader changed: no "${from}"`);
+    }
+    text = text.replace(from, to);
+  }
+  shader.fragmentShader = `uniform vec3 underDiffuse;\nuniform float underMetalness;\nuniform float underRoughness;\n${text}`;
+};
 const edgeMaterial = new THREE.LineBasicMaterial({ color: 0x374151 });
 const BEND_COLOURS = { UP: 0xd62828, DOWN: 0x1d4ed8 };
 const form = new THREE.Group();
@@ -126,7 +161,7 @@ let framed = false;
 let geometry = null; // the form's surface (both sides' meshes share it)
 let lines = null; // the sheet's edge and the crease: LineSegments on the same positions
 let meshKey = null; // the server's mesh_key of `geometry`'s triangles
-const surfaces = [new THREE.Mesh(undefined, topMaterial), new THREE.Mesh(undefined, underMaterial)];
+const surfaces = [new THREE.Mesh(undefined, sheetMaterial)];
 const edges = new THREE.LineSegments(undefined, edgeMaterial);
 form.add(...surfaces, edges);
 // crease halves (rods: a unit cylinder along y, scaled) and the apex (a unit sphere)
@@ -250,8 +285,19 @@ function resize() {
   render();
 }
 
+// Each frame at the quality of the moment (quality.js): reduced while a drag
+// goes on and full frames are slow here, full otherwise.
+const quality = createQuality({
+  renderer,
+  draw: () => renderer.render(scene, camera),
+  busy: () => inflight || pending !== null,
+  onSettled: () => window.dispatchEvent(new CustomEvent('explore:settled', {
+    detail: { done: performance.now(), quality: quality.quality() },
+  })),
+});
+
 function render() {
-  renderer.render(scene, camera);
+  return quality.render();
 }
 
 const resizer = new ResizeObserver(resize);
@@ -321,6 +367,7 @@ function setDownloads(q, enabled) {
 const MARKS = ['explore:request', 'explore:answer', 'explore:parsed', 'explore:form', 'explore:drawn'];
 let inflight = false;
 let pending = null; // {templateOnly, fit}
+let frameQuality = null; // the quality of the frame the last update drew
 
 function request(templateOnly = false, fit = false) {
   simulation.clear(); // a simulation shows the design it was asked for only
@@ -334,6 +381,7 @@ async function run() {
   inflight = true;
   const started = performance.now();
   const q = query(job.templateOnly);
+  frameQuality = null;
   $('status').textContent = 'solving…';
   try {
     for (const m of MARKS) performance.clearMarks(m);
@@ -347,7 +395,7 @@ async function run() {
     $('status').textContent = state.ok
       ? `updated in ${Math.round(ms)} ms (server ${Math.round(state.server_ms)} ms)`
       : 'the design has an error: see the messages';
-    finish(started, state.ok, state.server_ms);
+    finish(started, state.ok, state.server_ms, frameQuality);
   } catch (err) {
     showMessages([{ level: 'error', text: `no answer from the server (${err})`, controls: [] }]);
     $('status').textContent = 'server not reachable';
@@ -355,6 +403,7 @@ async function run() {
   } finally {
     inflight = false;
     if (pending) run();
+    else quality.settle(); // a drag that ended while this update was on its way
   }
 }
 
@@ -376,16 +425,16 @@ function apply(state, job, q) {
   $('flat').innerHTML = state.flat_svg
     || '<p class="no-flat">No flat pattern for these values: see the messages.</p>';
   setDownloads(query(), true);
-  render();
+  frameQuality = render();
   performance.mark('explore:drawn');
 }
 
-function finish(started, ok, serverMs = null) {
+function finish(started, ok, serverMs = null, frame = null) {
   requestAnimationFrame(() => {
     updates += 1;
     document.body.dataset.updates = String(updates);
     window.dispatchEvent(new CustomEvent('explore:updated', {
-      detail: { started, done: performance.now(), ok, server_ms: serverMs },
+      detail: { started, done: performance.now(), ok, server_ms: serverMs, quality: frame },
     }));
   });
 }
@@ -394,8 +443,10 @@ function finish(started, ok, serverMs = null) {
 for (const name of SLIDERS) {
   $(name).addEventListener('input', () => {
     $(`${name}-num`).value = $(name).value;
+    quality.slide(); // a drag of the slider goes on until its change event
     request();
   });
+  $(name).addEventListener('change', () => quality.endSlide());
   $(`${name}-num`).addEventListener('input', () => {
     $(name).value = $(`${name}-num`).value;
     request();
