@@ -139,3 +139,16 @@ def test_bench_state_parts_times_every_part(capsys):
     rows = [line.split(" | ")[0] for line in capsys.readouterr().out.splitlines()]
     for part in ("| resting placement", "| flat pattern", "| whole state", "| JSON"):
         assert part in rows
+
+
+def test_bench_scale_reads_the_verdicts_of_a_generated_block(tmp_path):
+    import bench_scale
+    from docs_block import write_block
+
+    page = tmp_path / "b.md"
+    page.write_text("x\n<!-- BEGIN bench_rest -->\nold\n<!-- END bench_rest -->\ny\n")
+    body = "| a | 1 |\n| b | 2 | FAIL (>= 100/s) |\n\nPASS: the default template's solid"
+    write_block("bench_rest", body, "python benchmarks/bench_rest.py", page)
+    got = bench_scale.verdict_lines(bench_scale.block_text("bench_rest", page))
+    assert got == ["| b | 2 | FAIL (>= 100/s) |", "PASS: the default template's solid"]
+    assert {r[2] for r in bench_scale.RUNS} == {"bench_rest", "bench_sweep", "bench_explore"}
