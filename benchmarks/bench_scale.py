@@ -8,9 +8,11 @@ blocks, so the summary and the tables come from the same run.
 
 Run from the repository root (about 10 minutes on 2 cores)::
 
-    .venv/bin/python benchmarks/bench_scale.py [--write-docs] [--baseline COMMIT]
+    .venv/bin/python benchmarks/bench_scale.py [--write-docs] [--baseline COMMIT] [--summary-only]
 
 Without ``--write-docs`` the three run and print; nothing is written.
+``--summary-only`` runs nothing and rebuilds the summary from the three
+blocks as they stand (each keeps its own date and command).
 """
 
 from __future__ import annotations
@@ -46,8 +48,24 @@ RUNS = (
 
 
 def verdict_lines(block: str) -> list[str]:
-    """The lines of a generated block that carry a PASS or FAIL."""
-    return [line for line in block.splitlines() if re.search(r"\b(PASS|FAIL)\b", line)]
+    """The lines of a generated block that carry a PASS or FAIL; a table row
+    comes with its table's header and separator (once per table)."""
+    out: list[str] = []
+    header: list[str] = []
+    shown = False
+    previous = ""
+    for line in block.splitlines():
+        if line.startswith("|") and not previous.startswith("|"):
+            header, shown = [line], False  # a new table
+        elif line.startswith("|---"):
+            header.append(line)
+        if re.search(r"\b(PASS|FAIL)\b", line):
+            if line.startswith("|") and not shown:
+                out += header
+                shown = True
+            out.append(line)
+        previous = line
+    return out
 
 
 def block_text(name: str, path: Path = DOCS) -> str:
@@ -63,23 +81,34 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--write-docs", action="store_true")
     ap.add_argument("--baseline", default=None, help="the explorer's --baseline COMMIT")
+    ap.add_argument(
+        "--summary-only",
+        action="store_true",
+        help="run nothing: the summary block from the three blocks as they are",
+    )
     args = ap.parse_args(argv)
-    rows = ["| target | benchmark | verdict lines |", "|---|---|---|"]
+    parts: list[str] = []
     for script, extra, block, target in RUNS:
         cmd = [sys.executable, str(HERE / script), *extra]
         if script == "bench_explore.py" and args.baseline:
             cmd += ["--baseline", args.baseline]
         if args.write_docs:
             cmd.append("--write-docs")
-        print("$", " ".join(cmd[1:]), flush=True)
-        out = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True).stdout
-        print(out, flush=True)
-        found = verdict_lines(block_text(block) if args.write_docs else out)
-        rows.append(f"| {target} | `{script}` | " + "<br>".join(found or ["(no verdict)"]) + " |")
-    body = machine_line() + " The three benchmarks one after the other.\n\n" + "\n".join(rows)
+        if args.summary_only:
+            out = block_text(block)
+        else:
+            print("$", " ".join(cmd[1:]), flush=True)
+            run = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True)
+            out = block_text(block) if args.write_docs else run.stdout
+            print(run.stdout, flush=True)
+        found = verdict_lines(out)
+        found = found or ["(no verdict)"]
+        parts += [f"**{target}** (`{script}`, its block below):", "", *found, ""]
+    body = machine_line() + " The three benchmarks one after the other.\n\n" + "\n".join(parts)
     print(body)
     if args.write_docs:
         extra = f" --baseline {args.baseline}" if args.baseline else ""
+        extra += " --summary-only" if args.summary_only else ""
         write_block("bench_scale", body, f"python benchmarks/bench_scale.py --write-docs{extra}")
     return 0
 

@@ -147,8 +147,17 @@ def test_bench_scale_reads_the_verdicts_of_a_generated_block(tmp_path):
 
     page = tmp_path / "b.md"
     page.write_text("x\n<!-- BEGIN bench_rest -->\nold\n<!-- END bench_rest -->\ny\n")
-    body = "| a | 1 |\n| b | 2 | FAIL (>= 100/s) |\n\nPASS: the default template's solid"
+    body = (
+        "| k | v | t |\n|---|---|---|\n| a | 1 | |\n| b | 2 | FAIL (>= 100/s) |\n"
+        "| c | 3 | PASS |\n\nPASS: the default template's solid"
+    )
     write_block("bench_rest", body, "python benchmarks/bench_rest.py", page)
     got = bench_scale.verdict_lines(bench_scale.block_text("bench_rest", page))
-    assert got == ["| b | 2 | FAIL (>= 100/s) |", "PASS: the default template's solid"]
+    assert got == [
+        "| k | v | t |",
+        "|---|---|---|",
+        "| b | 2 | FAIL (>= 100/s) |",
+        "| c | 3 | PASS |",
+        "PASS: the default template's solid",
+    ]
     assert {r[2] for r in bench_scale.RUNS} == {"bench_rest", "bench_sweep", "bench_explore"}
