@@ -1,0 +1,180 @@
+"""The paper fan a FOLD file folds: few divisions, graded towards the crease.
+
+Simulators fold a FOLD file with explicit solvers that a vertex of many
+edges makes unstable (docs/formats.md, "vertex load"), so the file cannot
+hold the design's 90 divisions a side (nor the exact cone's infinitely
+many). It folds the paper fan over the design's frame curve with
+:func:`fold_divisions` divisions a side, solved for its own apex (the angle
+condition holds for it exactly, so the folded frame is isometric to the
+crease pattern).
+
+The crease is the dihedral between the two wedges beside it, and each of
+them is turned from the cone's tangent plane at the crease by about half
+its own turn: a fan of equal steps folds the crease 10 to 22 deg less than
+the design. So the file's fan is *graded*
+(:meth:`onefold_cad.geometry.arc.ArcSpacing.graded`): its division points,
+still on the frame curve, are spaced in arc parameter by widths growing by
+:data:`GRADING_RATIO` from each end of the arc up to an even width between.
+The wedge beside each crease half is as narrow as the mesh's bounds let it
+be: a flat angle at H of :data:`CREASE_WEDGE_DEG` (the face-angle bound
+``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare), at least the one
+whose relief-hole side 2 r sin(gamma / 2) is ``fold_mesh.MIN_EDGE`` of the
+sheet's size, and for a paper-model design at least the design's own first
+division (the same arc step, so that the file's crease is the design's to
+its apex's difference). The crease then folds within about k_g x gamma of
+the design's, k_g the geodesic curvature of the cone's spherical image at
+the crease (per radian of flat angle): under 1 deg where k_g < 0.98.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from onefold_cad.choices import Model
+from onefold_cad.design import Design
+from onefold_cad.errors import InvalidParameterError, NoSolutionError
+from onefold_cad.export.fold_mesh import MIN_EDGE, MIN_FACE_ANGLE_DEG
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+from onefold_cad.geometry.arc import ArcSpacing
+from onefold_cad.geometry.fan import PaperFan
+from onefold_cad.geometry.folding import FoldedSheet, fold
+from onefold_cad.geometry.solver import solve
+
+__all__ = [
+    "CREASE_TOLERANCE_DEG",
+    "CREASE_WEDGE_DEG",
+    "FOLD_DIVISIONS",
+    "GRADED_DIVISIONS",
+    "GRADING_RATIO",
+    "crease_wedges_deg",
+    "fold_divisions",
+    "fold_fan",
+    "fold_note",
+    "fold_spacing",
+]
+
+#: A paper-model design of at most this many divisions is written as its
+#: own fan (exact; 20 rays at H).
+FOLD_DIVISIONS = 10
+#: The divisions per side of every other file's graded fan (32 rays at H,
+#: a vertex load of at most 7.5 on the templates: the narrow wedges' short
+#: edges shorten the simulator's step).
+GRADED_DIVISIONS = 16
+#: The growth of the graded fan's wedge widths (arc parameter) from each
+#: end of the arc towards the even width between.
+GRADING_RATIO = 3.0
+#: The flat angle at H (deg) of the wedge beside each crease half, where
+#: nothing asks for a wider one: the mesh's face-angle bound, 1 % above.
+CREASE_WEDGE_DEG = 1.01 * MIN_FACE_ANGLE_DEG
+#: ``onefold build`` notes a file whose crease halves fold more than this
+#: (deg) away from the design's.
+CREASE_TOLERANCE_DEG = 1.0
+#: Rounds of the first widths' fit to their flat angles (each a 16-division solve).
+_FIT_ROUNDS = 5
+
+
+def fold_divisions(design: Design) -> int:
+    """The FOLD file's own division count: a paper-model design's
+    ``divisions`` up to :data:`GRADED_DIVISIONS`, else that many."""
+    n = design.frame.divisions
+    return min(n, GRADED_DIVISIONS) if design.model is Model.PAPER else GRADED_DIVISIONS
+
+
+def crease_wedges_deg(design: Design, folded: FoldedSheet) -> tuple[float, float]:
+    """The narrowest flat angles (deg) the file's wedges beside the +x and
+    the -x crease half may have (see the module notes): the mesh's bound,
+    the relief hole's side, a paper design's own first and last division."""
+    low = CREASE_WEDGE_DEG
+    hole = relief_hole_diameter(design, folded)
+    if hole > 0.0:
+        side = min(1.0, MIN_EDGE * design.sheet.size / hole)  # 2 r sin(g / 2) >= MIN_EDGE x size
+        low = max(low, 1.01 * math.degrees(2.0 * math.asin(side)))
+    surface = folded.solution.surface
+    if isinstance(surface, PaperFan) and surface.gammas is not None:
+        own = np.degrees(surface.gammas[[0, -1]])
+        return max(low, float(own[0])), max(low, float(own[1]))
+    return low, low
+
+
+def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
+    """The graded spacing of the file's fan of ``n`` divisions: first widths
+    fitted so that the wedges beside the crease halves have the flat angles
+    of :func:`crease_wedges_deg` (a paper design's own first arc step where
+    that is wide enough), growing by :data:`GRADING_RATIO`.
+
+    Raises:
+        NoSolutionError: a trial fan has no apex.
+    """
+    target = np.radians(crease_wedges_deg(design, folded))
+    frame = design.frame.with_changes(divisions=n)
+    surface = folded.solution.surface
+    if isinstance(surface, PaperFan):
+        first = np.full(2, 1.0 / design.frame.divisions)
+    else:  # the flat angles are about the arc's share of pi
+        first = target / math.pi
+    first = np.minimum(first, 1.0 / n)
+    for _ in range(_FIT_ROUNDS):
+        spacing = ArcSpacing.graded(n, (float(first[0]), float(first[1])), GRADING_RATIO)
+        gammas = solve(frame, Model.PAPER, spacing).surface.gammas
+        assert gammas is not None
+        ends = gammas[[0, -1]]
+        wide = ends >= target * (1.0 - 1e-9)
+        if np.all(wide) and (isinstance(surface, PaperFan) or np.all(ends <= 1.001 * target)):
+            break
+        grow = np.where(wide & isinstance(surface, PaperFan), 1.0, target / ends)
+        first = np.minimum(first * grow, 1.0 / n)
+    return spacing
+
+
+def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) -> FoldedSheet:
+    """The paper-model fan the FOLD file triangulates: ``folded`` itself when
+    it is a paper-model design of at most :data:`FOLD_DIVISIONS` divisions
+    (and ``divisions`` is None or its own); otherwise the graded paper fan
+    (:func:`fold_spacing`) over the design's frame curve with ``divisions``
+    triangles per side (None: :func:`fold_divisions`), solved for its own
+    apex and folded. See the module notes.
+
+    Raises:
+        InvalidParameterError: ('divisions') the fan of that many divisions has
+            no non-trivial apex (always so for 1 division).
+    """
+    own = design.frame.divisions
+    n = fold_divisions(design) if divisions is None else divisions
+    if isinstance(folded.solution.surface, PaperFan) and n == own and own <= FOLD_DIVISIONS:
+        return folded
+    try:
+        spacing = fold_spacing(design, folded, n)
+        frame = design.frame.with_changes(divisions=n)
+        return fold(solve(frame, Model.PAPER, spacing), design.sheet)
+    except NoSolutionError:
+        raise InvalidParameterError(
+            "divisions",
+            f"the FOLD file folds the paper fan of {n} triangles per side over this "
+            "frame curve, which has no non-trivial apex for this frame; use more "
+            "divisions (at least 2)",
+        ) from None
+
+
+def fold_note(design: Design, folded: FoldedSheet) -> str | None:
+    """The line a build prints when the FOLD file's crease halves fold more
+    than :data:`CREASE_TOLERANCE_DEG` away from the design's (:func:`fold_fan`),
+    with both halves' fold angles in degrees (the file's and the design's);
+    None otherwise. Shown, never silent: the file is a model for simulators,
+    the DXF and STEP carry the design's angles."""
+    fan = fold_fan(design, folded)
+    if fan is folded:
+        return None
+    pairs = zip(fan.crease, folded.crease, strict=True)
+    gap = max(abs(a.fold_angle_deg - b.fold_angle_deg) for a, b in pairs)
+    if gap <= CREASE_TOLERANCE_DEG:
+        return None
+    n = len(fan.solution.surface.gammas) if isinstance(fan.solution.surface, PaperFan) else 0
+    own = " / ".join(f"{h.fold_angle_deg:.2f}" for h in folded.crease)
+    file = " / ".join(f"{h.fold_angle_deg:.2f}" for h in fan.crease)
+    return (
+        f"the .fold file folds a graded fan of {n} divisions a side so that simulators "
+        f"stay stable: its crease halves fold {file} deg, the design's {own} deg, "
+        f"more than {CREASE_TOLERANCE_DEG:g} deg apart (docs/formats.md, 'Which polyhedron')"
+    )
