@@ -18,8 +18,9 @@ still on the frame curve, are spaced in arc parameter by widths growing by
 The wedge beside each crease half is as narrow as the mesh's bounds let it
 be: a flat angle at H of :data:`CREASE_WEDGE_DEG` (the face-angle bound
 ``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare), at least the one
-whose relief-hole side 2 r sin(gamma / 2) is ``fold_mesh.MIN_EDGE`` of the
-sheet's size, and for a paper-model design at least the design's own first
+whose relief-hole side 2 r sin(gamma / 2) is :data:`HOLE_SIDE` of the
+sheet's size (Origami Simulator's explicit solver goes NaN or creeps on
+shorter ones), and for a paper-model design at least the design's own first
 division (the same arc step, so that the file's crease is the design's to
 its apex's difference). The crease then folds within about k_g x gamma of
 the design's, k_g the geodesic curvature of the cone's spherical image at
@@ -35,7 +36,7 @@ import numpy as np
 from onefold_cad.choices import Model
 from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
-from onefold_cad.export.fold_mesh import MIN_EDGE, MIN_FACE_ANGLE_DEG
+from onefold_cad.export.fold_mesh import MIN_FACE_ANGLE_DEG
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.arc import ArcSpacing
 from onefold_cad.geometry.fan import PaperFan
@@ -46,8 +47,8 @@ __all__ = [
     "CREASE_TOLERANCE_DEG",
     "CREASE_WEDGE_DEG",
     "FOLD_DIVISIONS",
-    "GRADED_DIVISIONS",
     "GRADING_RATIO",
+    "HOLE_SIDE",
     "crease_wedges_deg",
     "fold_divisions",
     "fold_fan",
@@ -55,19 +56,23 @@ __all__ = [
     "fold_spacing",
 ]
 
-#: A paper-model design of at most this many divisions is written as its
-#: own fan (exact; 20 rays at H).
-FOLD_DIVISIONS = 10
-#: The divisions per side of every other file's graded fan (32 rays at H,
-#: a vertex load of at most 7.5 on the templates: the narrow wedges' short
-#: edges shorten the simulator's step).
-GRADED_DIVISIONS = 16
+#: The FOLD file's divisions per side: a paper-model design of at most this
+#: many is written as its own fan (exact; 32 equal rays at H, a vertex load
+#: of 13.5 at most), every other design as a graded fan of this many (a load
+#: of at most 7.5 on the templates: its narrow wedges' short edges shorten
+#: the simulator's step).
+FOLD_DIVISIONS = 16
 #: The growth of the graded fan's wedge widths (arc parameter) from each
 #: end of the arc towards the even width between.
 GRADING_RATIO = 3.0
 #: The flat angle at H (deg) of the wedge beside each crease half, where
 #: nothing asks for a wider one: the mesh's face-angle bound, 1 % above.
 CREASE_WEDGE_DEG = 1.01 * MIN_FACE_ANGLE_DEG
+#: The shortest side (relative to the sheet's size) the graded fan gives a
+#: cut relief hole's polygon, 2 r sin(gamma / 2) beside the crease: on
+#: shorter sides Origami Simulator went NaN (broken-vault, 2.5e-5 and, at
+#: 90 divisions, 4.7e-5) or crept (docs/formats.md, "Relief hole").
+HOLE_SIDE = 2e-4
 #: ``onefold build`` notes a file whose crease halves fold more than this
 #: (deg) away from the design's.
 CREASE_TOLERANCE_DEG = 1.0
@@ -77,9 +82,9 @@ _FIT_ROUNDS = 5
 
 def fold_divisions(design: Design) -> int:
     """The FOLD file's own division count: a paper-model design's
-    ``divisions`` up to :data:`GRADED_DIVISIONS`, else that many."""
+    ``divisions`` up to :data:`FOLD_DIVISIONS`, else that many."""
     n = design.frame.divisions
-    return min(n, GRADED_DIVISIONS) if design.model is Model.PAPER else GRADED_DIVISIONS
+    return min(n, FOLD_DIVISIONS) if design.model is Model.PAPER else FOLD_DIVISIONS
 
 
 def crease_wedges_deg(design: Design, folded: FoldedSheet) -> tuple[float, float]:
@@ -89,7 +94,7 @@ def crease_wedges_deg(design: Design, folded: FoldedSheet) -> tuple[float, float
     low = CREASE_WEDGE_DEG
     hole = relief_hole_diameter(design, folded)
     if hole > 0.0:
-        side = min(1.0, MIN_EDGE * design.sheet.size / hole)  # 2 r sin(g / 2) >= MIN_EDGE x size
+        side = min(1.0, HOLE_SIDE * design.sheet.size / hole)  # 2 r sin(g / 2) >= HOLE_SIDE x size
         low = max(low, 1.01 * math.degrees(2.0 * math.asin(side)))
     surface = folded.solution.surface
     if isinstance(surface, PaperFan) and surface.gammas is not None:
@@ -130,8 +135,8 @@ def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
 
 def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) -> FoldedSheet:
     """The paper-model fan the FOLD file triangulates: ``folded`` itself when
-    it is a paper-model design of at most :data:`FOLD_DIVISIONS` divisions
-    (and ``divisions`` is None or its own); otherwise the graded paper fan
+    it is a paper-model design's and ``divisions`` (None:
+    :func:`fold_divisions`) is its own; otherwise the graded paper fan
     (:func:`fold_spacing`) over the design's frame curve with ``divisions``
     triangles per side (None: :func:`fold_divisions`), solved for its own
     apex and folded. See the module notes.
@@ -142,7 +147,7 @@ def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) 
     """
     own = design.frame.divisions
     n = fold_divisions(design) if divisions is None else divisions
-    if isinstance(folded.solution.surface, PaperFan) and n == own and own <= FOLD_DIVISIONS:
+    if isinstance(folded.solution.surface, PaperFan) and n == own:
         return folded
     try:
         spacing = fold_spacing(design, folded, n)

@@ -199,15 +199,16 @@ class ArcSpacing:
         (fractions of the span), with ``first`` = (f+, f-) the widths beside
         the +x and the -x end, r = ``ratio`` > 1 their growth, and the cap c
         the width that makes the widths add up to the span. Where the growth
-        cannot fill the span (f r^i too small), r is raised until it can.
+        cannot fill the span (f r^i too small), r is raised until it can (a
+        fan of two wedges has them in the ratio f+ : f-).
         A first width above the cap is the cap (the fan is then even there)."""
         fp, fm = first
         if n < 1 or not (fp > 0.0 and fm > 0.0) or not ratio > 1.0:
             raise InvalidParameterError(
                 "spacing", "a graded spacing needs n >= 1, first widths > 0 and a ratio > 1"
             )
-        if n == 1:
-            return cls.from_widths([1.0])
+        if n <= 2:  # no wedge between the two ends: their widths in the ratio f+ : f-
+            return cls.from_widths([fp, fm][:n] if n == 2 else [1.0])
         i = np.arange(n, dtype=float)
 
         def growth(r: float) -> Array:
