@@ -120,15 +120,17 @@ def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
     else:  # the flat angles are about the arc's share of pi
         first = target / math.pi
     first = np.minimum(first, 1.0 / n)
+    paper = isinstance(surface, PaperFan)
     for _ in range(_FIT_ROUNDS):
         spacing = ArcSpacing.graded(n, (float(first[0]), float(first[1])), GRADING_RATIO)
         gammas = solve(frame, Model.PAPER, spacing).surface.gammas
         assert gammas is not None
         ends = gammas[[0, -1]]
-        wide = ends >= target * (1.0 - 1e-9)
-        if np.all(wide) and (isinstance(surface, PaperFan) or np.all(ends <= 1.001 * target)):
+        wide = ends >= target
+        if np.all(wide) and (paper or np.all(ends <= 1.002 * target)):
             break
-        grow = np.where(wide & isinstance(surface, PaperFan), 1.0, target / ends)
+        # aim 0.1 % above the target: the flat angle grows about as the width
+        grow = np.where(wide & paper, 1.0, 1.001 * target / ends)
         first = np.minimum(first * grow, 1.0 / n)
     return spacing
 
