@@ -28,18 +28,23 @@ mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
 Which polyhedral surface. A FOLD file has flat faces, and simulators fold
 it with explicit solvers that a vertex of many edges makes unstable (Origami
-Simulator: see docs/formats.md, "vertex load"). So the file folds the
-paper's fan over the design's frame curve with its own division count,
-:func:`fold_divisions`: the design's ``divisions``, at most
-:data:`FOLD_DIVISIONS` per side (without a relief hole all 2 x divisions
-rays meet at H). The fan is solved for its own apex (the angle condition
-then holds exactly for it) and folded by the fan's own code, so each ray's
-fold angle is that fan's. A paper-model design at no more than
-:data:`FOLD_DIVISIONS` divisions is written as it is. Otherwise the file's
-fan approximates the design's surface (the exact cone, or the paper fan of
-more divisions) to O(1 / divisions^2); ``onefold:max_deviation_from_design``
-records the largest distance between the two (fold frame, matched by flat
-point) and ``onefold:mesh`` both division counts. An inscribed polyhedral
+Simulator: see docs/formats.md, "vertex load"). So the file folds a paper
+fan over the design's frame curve with its own division count,
+:func:`fold_divisions` (:data:`FOLD_DIVISIONS` per side, or a paper-model
+design's own divisions if fewer: then it is written as it is), graded
+towards the crease (:mod:`onefold_cad.export.fold_fan`: its division points
+on the frame curve, narrow wedges beside the crease halves, so that the
+file's crease folds as the design's to about k_g x the narrowest wedge
+allowed). The fan is solved for its own apex (the angle condition then
+holds exactly for it) and folded by the fan's own code, so each ray's fold
+angle is that fan's. It approximates the design's surface (the exact cone,
+or the paper fan of more divisions) to O(1 / divisions^2);
+``onefold:max_deviation_from_design`` records the largest distance between
+the two (fold frame, matched by flat point), ``onefold:design_crease_fold_angle_deg``
+the design's crease, and ``onefold:mesh`` both division counts and the
+grading (``grading_ratio``, ``wedge_widths_of_span``: each wedge's share of
+the arc, ``crease_wedges_deg``: the flat angles beside the two crease
+halves). An inscribed polyhedral
 cone (the exact apex, rulings at chosen angles) would not do: its
 triangles' apex angles are chords of the cone's directions, so they add up
 to less than 180 deg per side and the folded triangles cannot have their
@@ -70,7 +75,7 @@ import numpy as np
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import FabricationError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.fold_fan import (
+from onefold_cad.export.fold_fan import (  # the file's fan: see the module notes
     FOLD_DIVISIONS,
     GRADING_RATIO,
     fold_divisions,

@@ -56,7 +56,10 @@ def _errors(design: Design):
     folded = build_design(design)
     fan = fold_fan(design, folded)
     err = np.array(
-        [a.fold_angle_deg - b.fold_angle_deg for a, b in zip(fan.crease, folded.crease, strict=True)]
+        [
+            a.fold_angle_deg - b.fold_angle_deg
+            for a, b in zip(fan.crease, folded.crease, strict=True)
+        ]
     )
     return folded, fan, err
 
