@@ -17,12 +17,12 @@ still on the frame curve, are spaced in arc parameter by widths growing by
 :data:`GRADING_RATIO` from each end of the arc up to an even width between.
 The wedge beside each crease half is as narrow as the mesh's bounds let it
 be: a flat angle at H of :data:`CREASE_WEDGE_DEG` (the face-angle bound
-``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare), at least the one
-whose relief-hole side 2 r sin(gamma / 2) is :data:`HOLE_SIDE` of the
-sheet's size (Origami Simulator's explicit solver goes NaN or creeps on
-shorter ones), and for a paper-model design at least the design's own first
-division (the same arc step, so that the file's crease is the design's to
-its apex's difference). The crease then folds within about k_g x gamma of
+``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare), or with a relief hole
+the one whose hole side 2 r sin(gamma / 2) is :data:`HOLE_SIDE` of the
+sheet's size if wider (Origami Simulator's explicit solver goes NaN or
+creeps on shorter ones); a paper-model design keeps its own first division
+where that is wider (the same arc step, so that the file's crease is the
+design's to its apex's difference). The crease then folds within about k_g x gamma of
 the design's, k_g the geodesic curvature of the cone's spherical image at
 the crease (per radian of flat angle): under 1 deg where k_g < 0.98.
 """
@@ -89,25 +89,24 @@ def fold_divisions(design: Design) -> int:
 
 def crease_wedges_deg(design: Design, folded: FoldedSheet) -> tuple[float, float]:
     """The narrowest flat angles (deg) the file's wedges beside the +x and
-    the -x crease half may have (see the module notes): the mesh's bound,
-    the relief hole's side, a paper design's own first and last division."""
+    the -x crease half may have (see the module notes): the mesh's bound
+    (:data:`CREASE_WEDGE_DEG`) and, with a relief hole, the one that gives
+    its polygon sides of :data:`HOLE_SIDE` (1 % more)."""
     low = CREASE_WEDGE_DEG
     hole = relief_hole_diameter(design, folded)
     if hole > 0.0:
         side = min(1.0, HOLE_SIDE * design.sheet.size / hole)  # 2 r sin(g / 2) >= HOLE_SIDE x size
         low = max(low, 1.01 * math.degrees(2.0 * math.asin(side)))
-    surface = folded.solution.surface
-    if isinstance(surface, PaperFan) and surface.gammas is not None:
-        own = np.degrees(surface.gammas[[0, -1]])
-        return max(low, float(own[0])), max(low, float(own[1]))
     return low, low
 
 
 def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
-    """The graded spacing of the file's fan of ``n`` divisions: first widths
-    fitted so that the wedges beside the crease halves have the flat angles
-    of :func:`crease_wedges_deg` (a paper design's own first arc step where
-    that is wide enough), growing by :data:`GRADING_RATIO`.
+    """The graded spacing of the file's fan of ``n`` divisions, growing by
+    :data:`GRADING_RATIO`: a paper design's own first and last arc steps
+    (1 / divisions of the arc) where their wedges are at least as wide as
+    :func:`crease_wedges_deg`, else (and for the exact model) first widths
+    fitted so that the wedges beside the crease halves have those flat angles
+    (to 0.2 %).
 
     Raises:
         NoSolutionError: a trial fan has no apex.
