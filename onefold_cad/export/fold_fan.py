@@ -17,14 +17,23 @@ still on the frame curve, are spaced in arc parameter by widths growing by
 :data:`GRADING_RATIO` from each end of the arc up to an even width between.
 The wedge beside each crease half is as narrow as the mesh's bounds let it
 be: a flat angle at H of :data:`CREASE_WEDGE_DEG` (the face-angle bound
-``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare), or with a relief hole
-the one whose hole side 2 r sin(gamma / 2) is :data:`HOLE_SIDE` of the
-sheet's size if wider (Origami Simulator's explicit solver goes NaN or
-creeps on shorter ones); a paper-model design keeps its own first division
-where that is wider (the same arc step, so that the file's crease is the
-design's to its apex's difference). The crease then folds within about k_g x gamma of
-the design's, k_g the geodesic curvature of the cone's spherical image at
-the crease (per radian of flat angle): under 1 deg where k_g < 0.98.
+``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare); a paper-model design
+keeps its own first division where that is wider (the same arc step, so
+that the file's crease is the design's to its apex's difference). The
+crease then folds within about k_g x gamma of the design's, k_g the geodesic
+curvature of the cone's spherical image at the crease (per radian of flat
+angle): under 1 deg where k_g < 0.98.
+
+A design with a relief hole is not graded: its file's fan has
+:data:`HOLE_DIVISIONS` equal divisions a side (a paper-model design of fewer
+is its own fan). The hole is cut as the polygon of its crossings with the
+rays, so a narrow wedge gives it a side 2 r sin(gamma / 2) short against the
+sheet; Origami Simulator's explicit solver went NaN on such sides
+(broken-vault, 2.5e-5 of the size), crept (patkau-one-fold 41 % from its
+form after 160 000 steps) or, with the sides held at 2e-4 of the size,
+settled broken-vault with a crease folded the wrong way (docs/formats.md,
+"Relief hole"). Equal divisions fold right there; their crease is the
+shallower one a build notes (:func:`fold_note`).
 """
 
 from __future__ import annotations
@@ -48,31 +57,28 @@ __all__ = [
     "CREASE_WEDGE_DEG",
     "FOLD_DIVISIONS",
     "GRADING_RATIO",
-    "HOLE_SIDE",
-    "crease_wedges_deg",
+    "HOLE_DIVISIONS",
     "fold_divisions",
     "fold_fan",
     "fold_note",
     "fold_spacing",
 ]
 
-#: The FOLD file's divisions per side: a paper-model design of at most this
-#: many is written as its own fan (exact; 32 equal rays at H, a vertex load
-#: of 13.5 at most), every other design as a graded fan of this many (a load
-#: of at most 7.5 on the templates: its narrow wedges' short edges shorten
-#: the simulator's step).
+#: The FOLD file's divisions per side without a relief hole: a paper-model
+#: design of at most this many is written as its own fan (exact; 32 equal
+#: rays at H, a vertex load of 13.5 at most), every other design as a graded
+#: fan of this many (a load of at most 7.5 on the templates: its narrow
+#: wedges' short edges shorten the simulator's step).
 FOLD_DIVISIONS = 16
+#: With a relief hole: the file's fan has this many equal divisions a side
+#: (a paper-model design of fewer is its own fan; see the module notes).
+HOLE_DIVISIONS = 10
 #: The growth of the graded fan's wedge widths (arc parameter) from each
 #: end of the arc towards the even width between.
 GRADING_RATIO = 3.0
 #: The flat angle at H (deg) of the wedge beside each crease half, where
 #: nothing asks for a wider one: the mesh's face-angle bound, 1 % above.
 CREASE_WEDGE_DEG = 1.01 * MIN_FACE_ANGLE_DEG
-#: The shortest side (relative to the sheet's size) the graded fan gives a
-#: cut relief hole's polygon, 2 r sin(gamma / 2) beside the crease: on
-#: shorter sides Origami Simulator went NaN (broken-vault, 2.5e-5 and, at
-#: 90 divisions, 4.7e-5) or crept (docs/formats.md, "Relief hole").
-HOLE_SIDE = 2e-4
 #: ``onefold build`` notes a file whose crease halves fold more than this
 #: (deg) away from the design's.
 CREASE_TOLERANCE_DEG = 1.0
@@ -80,38 +86,28 @@ CREASE_TOLERANCE_DEG = 1.0
 _FIT_ROUNDS = 5
 
 
-def fold_divisions(design: Design) -> int:
-    """The FOLD file's own division count: a paper-model design's
-    ``divisions`` up to :data:`FOLD_DIVISIONS`, else that many."""
+def fold_divisions(design: Design, folded: FoldedSheet) -> int:
+    """The FOLD file's own division count: :data:`FOLD_DIVISIONS`, or with a
+    relief hole :data:`HOLE_DIVISIONS`; a paper-model design's own
+    ``divisions`` where fewer."""
+    hole = relief_hole_diameter(design, folded) > 0.0
+    most = HOLE_DIVISIONS if hole else FOLD_DIVISIONS
     n = design.frame.divisions
-    return min(n, FOLD_DIVISIONS) if design.model is Model.PAPER else FOLD_DIVISIONS
-
-
-def crease_wedges_deg(design: Design, folded: FoldedSheet) -> tuple[float, float]:
-    """The narrowest flat angles (deg) the file's wedges beside the +x and
-    the -x crease half may have (see the module notes): the mesh's bound
-    (:data:`CREASE_WEDGE_DEG`) and, with a relief hole, the one that gives
-    its polygon sides of :data:`HOLE_SIDE` (1 % more)."""
-    low = CREASE_WEDGE_DEG
-    hole = relief_hole_diameter(design, folded)
-    if hole > 0.0:
-        side = min(1.0, HOLE_SIDE * design.sheet.size / hole)  # 2 r sin(g / 2) >= HOLE_SIDE x size
-        low = max(low, 1.01 * math.degrees(2.0 * math.asin(side)))
-    return low, low
+    return min(n, most) if design.model is Model.PAPER else most
 
 
 def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
     """The graded spacing of the file's fan of ``n`` divisions, growing by
-    :data:`GRADING_RATIO`: a paper design's own first and last arc steps
-    (1 / divisions of the arc) where their wedges are at least as wide as
-    :func:`crease_wedges_deg`, else (and for the exact model) first widths
-    fitted so that the wedges beside the crease halves have those flat angles
-    (to 0.2 %).
+    :data:`GRADING_RATIO` (a design without a relief hole): a paper design's
+    own first and last arc steps (1 / divisions of the arc) where their
+    wedges are at least :data:`CREASE_WEDGE_DEG` wide, else (and for the
+    exact model) first widths fitted so that the wedges beside the crease
+    halves have that flat angle (to 0.2 %).
 
     Raises:
         NoSolutionError: a trial fan has no apex.
     """
-    target = np.radians(crease_wedges_deg(design, folded))
+    target = np.radians(np.full(2, CREASE_WEDGE_DEG))
     frame = design.frame.with_changes(divisions=n)
     surface = folded.solution.surface
     if isinstance(surface, PaperFan):
@@ -137,21 +133,23 @@ def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
 def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) -> FoldedSheet:
     """The paper-model fan the FOLD file triangulates: ``folded`` itself when
     it is a paper-model design's and ``divisions`` (None:
-    :func:`fold_divisions`) is its own; otherwise the graded paper fan
-    (:func:`fold_spacing`) over the design's frame curve with ``divisions``
-    triangles per side (None: :func:`fold_divisions`), solved for its own
-    apex and folded. See the module notes.
+    :func:`fold_divisions`) is its own; otherwise the paper fan over the
+    design's frame curve with ``divisions`` triangles per side (None:
+    :func:`fold_divisions`), graded (:func:`fold_spacing`) unless the design
+    has a relief hole, solved for its own apex and folded. See the module
+    notes.
 
     Raises:
         InvalidParameterError: ('divisions') the fan of that many divisions has
             no non-trivial apex (always so for 1 division).
     """
     own = design.frame.divisions
-    n = fold_divisions(design) if divisions is None else divisions
+    n = fold_divisions(design, folded) if divisions is None else divisions
     if isinstance(folded.solution.surface, PaperFan) and n == own:
         return folded
+    hole = relief_hole_diameter(design, folded) > 0.0
     try:
-        spacing = fold_spacing(design, folded, n)
+        spacing = None if hole else fold_spacing(design, folded, n)
         frame = design.frame.with_changes(divisions=n)
         return fold(solve(frame, Model.PAPER, spacing), design.sheet)
     except NoSolutionError:
@@ -176,11 +174,14 @@ def fold_note(design: Design, folded: FoldedSheet) -> str | None:
     gap = max(abs(a.fold_angle_deg - b.fold_angle_deg) for a, b in pairs)
     if gap <= CREASE_TOLERANCE_DEG:
         return None
-    n = len(fan.solution.surface.gammas) if isinstance(fan.solution.surface, PaperFan) else 0
+    surface = fan.solution.surface
+    assert isinstance(surface, PaperFan) and surface.gammas is not None
+    n = len(surface.gammas)
+    kind = f"an even fan of {n}" if surface.spacing is None else f"a graded fan of {n}"
     own = " / ".join(f"{h.fold_angle_deg:.2f}" for h in folded.crease)
     file = " / ".join(f"{h.fold_angle_deg:.2f}" for h in fan.crease)
     return (
-        f"the .fold file folds a graded fan of {n} divisions a side so that simulators "
+        f"the .fold file folds {kind} divisions a side so that simulators "
         f"stay stable: its crease halves fold {file} deg, the design's {own} deg, "
         f"more than {CREASE_TOLERANCE_DEG:g} deg apart (docs/formats.md, 'Which polyhedron')"
     )

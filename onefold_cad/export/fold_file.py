@@ -35,8 +35,10 @@ design's own divisions if fewer: then it is written as it is), graded
 towards the crease (:mod:`onefold_cad.export.fold_fan`: its division points
 on the frame curve, narrow wedges beside the crease halves, so that the
 file's crease folds as the design's to about k_g x the narrowest wedge
-allowed). The fan is solved for its own apex (the angle condition then
-holds exactly for it) and folded by the fan's own code, so each ray's fold
+allowed), except with a relief hole (``fold_fan.HOLE_DIVISIONS`` equal
+divisions: Origami Simulator did not fold the graded holed fans right).
+The fan is solved for its own apex (the angle condition then holds exactly
+for it) and folded by the fan's own code, so each ray's fold
 angle is that fan's. It approximates the design's surface (the exact cone,
 or the paper fan of more divisions) to O(1 / divisions^2);
 ``onefold:max_deviation_from_design`` records the largest distance between

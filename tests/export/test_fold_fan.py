@@ -17,8 +17,7 @@ from onefold_cad.export.fold_fan import (
     CREASE_TOLERANCE_DEG,
     CREASE_WEDGE_DEG,
     FOLD_DIVISIONS,
-    HOLE_SIDE,
-    crease_wedges_deg,
+    HOLE_DIVISIONS,
     fold_fan,
     fold_note,
 )
@@ -79,16 +78,16 @@ def test_every_templates_crease_folds_as_the_designs_to_its_narrowest_wedge(name
     if design.model.value == "paper":
         assert np.abs(err).max() <= 0.1
     ends = np.degrees(fan.solution.surface.gammas[[0, -1]])
-    assert np.all(ends >= np.array(crease_wedges_deg(design, folded)) * (1 - 1e-9))
+    assert np.all(ends >= CREASE_WEDGE_DEG * (1 - 1e-9))
     assert np.all(ends >= MIN_FACE_ANGLE_DEG)
 
 
-def test_a_paper_design_keeps_its_own_first_arc_step_and_an_exact_one_the_bound():
+def test_a_paper_design_keeps_its_own_first_arc_step_and_a_holed_one_equal_steps():
     """table1-row1 (paper, 90 divisions): the file's first and last wedges
     are the design's own arc steps, 1/90 of the span; patkau-one-fold (exact,
-    a relief hole of 19 mm on a 3962 mm sheet): its wedges beside the crease
-    are those whose hole side is HOLE_SIDE of the size, 2 asin(HOLE_SIDE x
-    size / d) (1 % more), wider than CREASE_WEDGE_DEG."""
+    a relief hole of 19 mm): not graded, the paper fan of HOLE_DIVISIONS equal
+    divisions, to the bit the one solved without a spacing; star-polygon
+    (exact, no hole): graded, its crease wedges CREASE_WEDGE_DEG wide."""
     design = load_template("table1-row1")
     fan = fold_fan(design, build_design(design))
     sp = fan.solution.surface.spacing
@@ -97,11 +96,17 @@ def test_a_paper_design_keeps_its_own_first_arc_step_and_an_exact_one_the_bound(
     assert sp.steps[-2] / sp.per_span == pytest.approx(1.0 / 90.0, rel=1e-12)
     design = load_template("patkau-one-fold")
     folded = build_design(design)
-    d = relief_hole_diameter(design, folded)
-    want = 1.01 * math.degrees(2.0 * math.asin(HOLE_SIDE * design.sheet.size / d))
-    assert want > CREASE_WEDGE_DEG
+    assert relief_hole_diameter(design, folded) > 0.0
+    surface = fold_fan(design, folded).solution.surface
+    assert surface.spacing is None
+    even = solve(design.frame.with_changes(divisions=HOLE_DIVISIONS), "paper").surface
+    assert np.array_equal(surface.gammas, even.gammas)
+    assert np.array_equal(surface.directions, even.directions)
+    design = load_template("star-polygon")
+    folded = build_design(design)
+    assert relief_hole_diameter(design, folded) == 0.0
     ends = np.degrees(fold_fan(design, folded).solution.surface.gammas[[0, -1]])
-    np.testing.assert_allclose(ends, want, rtol=2e-3)
+    np.testing.assert_allclose(ends, CREASE_WEDGE_DEG, rtol=2e-3)
 
 
 def test_the_build_notes_a_crease_beyond_the_tolerance_with_both_angles():
@@ -155,9 +160,12 @@ def test_property_drawn_creases_fold_as_the_designs_to_their_narrowest_wedge(
     assert np.all(np.abs(err) <= 1.5 * _predicted_error_deg(design, folded, fan) + 0.15)
     ends = np.degrees(fan.solution.surface.gammas[[0, -1]])
     sp = fan.solution.surface.spacing
-    even = np.array([sp.steps[1], sp.steps[-2]]) / sp.per_span >= (1.0 - 1e-9) / sp.divisions
-    # as wide as allowed, or as wide as an even fan's (a hole too small for it)
-    assert np.all((ends >= np.array(crease_wedges_deg(design, folded)) * (1 - 1e-9)) | even)
+    if relief_hole_diameter(design, folded) > 0.0:  # equal divisions (module notes)
+        assert sp is None and len(ends) and len(fan.solution.surface.gammas) == HOLE_DIVISIONS
+    else:
+        even = np.array([sp.steps[1], sp.steps[-2]]) / sp.per_span >= (1.0 - 1e-9) / sp.divisions
+        # as wide as allowed, or as wide as an even fan's
+        assert np.all((ends >= CREASE_WEDGE_DEG * (1 - 1e-9)) | even)
     assert fold_data(design, folded)["onefold:mesh"]["min_face_angle_deg"] >= min(
         MIN_FACE_ANGLE_DEG, float(ends.min())
     ) * (1 - 1e-9)

@@ -27,6 +27,7 @@ from onefold_cad import (
     build_design,
     solve,
 )
+from onefold_cad.export.fold_fan import HOLE_DIVISIONS
 from onefold_cad.export.fold_file import (
     FOLD_DIVISIONS,
     fold_data,
@@ -34,6 +35,7 @@ from onefold_cad.export.fold_file import (
     fold_fan,
     write_fold,
 )
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
 from tests.angles import OPEN_ANGLE, cos_deg, frame_unless_on_end, refused_below_bound
@@ -563,7 +565,7 @@ def test_fold_file_is_exact_to_itself_over_the_whole_frame_range(
     except NoSolutionError:  # the core's answer for this frame: nothing to write
         return
     try:
-        solve(frame.with_changes(divisions=fold_divisions(design)), "paper")
+        solve(frame.with_changes(divisions=fold_divisions(design, folded)), "paper")
     except NoSolutionError:  # the exact model's FOLD file is such a fan: refused
         with pytest.raises(InvalidParameterError) as err:
             fold_data(design, folded)
@@ -601,8 +603,9 @@ def _vertex_load(points: np.ndarray, edges: np.ndarray) -> np.ndarray:
 
 @pytest.mark.parametrize("name", list(DESIGNS) + ["paper-square", "table1-row2"])
 def test_the_file_folds_a_fan_of_few_enough_divisions_for_explicit_solvers(name):
-    """Every template's file: its fan has FOLD_DIVISIONS rays per side, or a
-    paper design's own divisions if fewer (counted from the crease pattern's
+    """Every template's file: its fan has FOLD_DIVISIONS rays per side
+    (HOLE_DIVISIONS with a relief hole), or a paper design's own divisions if
+    fewer (counted from the crease pattern's
     M/V edges' directions),
     onefold:mesh records both counts, no vertex has 100 edges (Origami
     Simulator's shaders stop there) and every vertex's load is under 15."""
@@ -610,8 +613,9 @@ def test_the_file_folds_a_fan_of_few_enough_divisions_for_explicit_solvers(name)
     folded = build_design(design)
     f = _parse(fold_data(design, folded))
     paper = design.model.value == "paper"
-    n = min(design.frame.divisions, FOLD_DIVISIONS) if paper else FOLD_DIVISIONS
-    assert fold_divisions(design) == n
+    most = HOLE_DIVISIONS if relief_hole_diameter(design, folded) > 0.0 else FOLD_DIVISIONS
+    n = min(design.frame.divisions, most) if paper else most
+    assert fold_divisions(design, folded) == n
     assert f.doc["onefold:mesh"]["divisions"] == n
     assert f.doc["onefold:mesh"]["design_divisions"] == design.frame.divisions
     h = _apex_flat(design)
