@@ -238,10 +238,16 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
         "onefold:surface": (
             "the paper model's fan of planar triangles"
             if fan is folded
-            else f"a graded paper fan of {n} divisions per side over the design's frame "
-            "curve (its division points on the curve, narrow wedges beside the crease: "
-            "onefold:mesh wedge_widths_of_span), solved for its own apex: an isometric "
-            f"polyhedral approximation of the design's {design.model.value} model"
+            else (
+                f"a graded paper fan of {n} divisions per side over the design's frame "
+                "curve (its division points on the curve, narrow wedges beside the crease: "
+                "onefold:mesh wedge_widths_of_span)"
+                if spacing is not None
+                else f"the paper fan of {n} equal divisions per side over the design's "
+                "frame curve (not graded: a relief hole)"
+            )
+            + ", solved for its own apex: an isometric polyhedral approximation of the "
+            f"design's {design.model.value} model"
         ),
         "onefold:apex_height": fan.solution.apex_height,
         "onefold:crease": [

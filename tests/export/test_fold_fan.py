@@ -102,11 +102,17 @@ def test_a_paper_design_keeps_its_own_first_arc_step_and_a_holed_one_equal_steps
     even = solve(design.frame.with_changes(divisions=HOLE_DIVISIONS), "paper").surface
     assert np.array_equal(surface.gammas, even.gammas)
     assert np.array_equal(surface.directions, even.directions)
+    record = fold_data(design, folded)
+    assert "equal divisions" in record["onefold:surface"]
+    assert "grading_ratio" not in record["onefold:mesh"]
     design = load_template("star-polygon")
     folded = build_design(design)
     assert relief_hole_diameter(design, folded) == 0.0
     ends = np.degrees(fold_fan(design, folded).solution.surface.gammas[[0, -1]])
     np.testing.assert_allclose(ends, CREASE_WEDGE_DEG, rtol=2e-3)
+    record = fold_data(design, folded)
+    assert record["onefold:surface"].startswith("a graded paper fan of 16 divisions")
+    assert record["onefold:mesh"]["crease_wedges_deg"] == pytest.approx(ends.tolist())
 
 
 def test_the_build_notes_a_crease_beyond_the_tolerance_with_both_angles():
