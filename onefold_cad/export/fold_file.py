@@ -28,18 +28,25 @@ mountain negative, 0 for ``F`` and ``B`` (the spec's convention).
 
 Which polyhedral surface. A FOLD file has flat faces, and simulators fold
 it with explicit solvers that a vertex of many edges makes unstable (Origami
-Simulator: see docs/formats.md, "vertex load"). So the file folds the
-paper's fan over the design's frame curve with its own division count,
-:func:`fold_divisions`: the design's ``divisions``, at most
-:data:`FOLD_DIVISIONS` per side (without a relief hole all 2 x divisions
-rays meet at H). The fan is solved for its own apex (the angle condition
-then holds exactly for it) and folded by the fan's own code, so each ray's
-fold angle is that fan's. A paper-model design at no more than
-:data:`FOLD_DIVISIONS` divisions is written as it is. Otherwise the file's
-fan approximates the design's surface (the exact cone, or the paper fan of
-more divisions) to O(1 / divisions^2); ``onefold:max_deviation_from_design``
-records the largest distance between the two (fold frame, matched by flat
-point) and ``onefold:mesh`` both division counts. An inscribed polyhedral
+Simulator: see docs/formats.md, "vertex load"). So the file folds a paper
+fan over the design's frame curve with its own division count,
+:func:`fold_divisions` (:data:`FOLD_DIVISIONS` per side, or a paper-model
+design's own divisions if fewer: then it is written as it is), graded
+towards the crease (:mod:`onefold_cad.export.fold_fan`: its division points
+on the frame curve, narrow wedges beside the crease halves, so that the
+file's crease folds as the design's to about k_g x the narrowest wedge
+allowed), except with a relief hole (``fold_fan.HOLE_DIVISIONS`` equal
+divisions: Origami Simulator did not fold the graded holed fans right).
+The fan is solved for its own apex (the angle condition then holds exactly
+for it) and folded by the fan's own code, so each ray's fold
+angle is that fan's. It approximates the design's surface (the exact cone,
+or the paper fan of more divisions) to O(1 / divisions^2);
+``onefold:max_deviation_from_design`` records the largest distance between
+the two (fold frame, matched by flat point), ``onefold:design_crease_fold_angle_deg``
+the design's crease, and ``onefold:mesh`` both division counts and the
+grading (``grading_ratio``, ``wedge_widths_of_span``: each wedge's share of
+the arc, ``crease_wedges_deg``: the flat angles beside the two crease
+halves). An inscribed polyhedral
 cone (the exact apex, rulings at chosen angles) would not do: its
 triangles' apex angles are chords of the cone's directions, so they add up
 to less than 180 deg per side and the folded triangles cannot have their
@@ -67,17 +74,22 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.choices import Model
 from onefold_cad.design import Design, rest_once
-from onefold_cad.errors import FabricationError, InvalidParameterError, NoSolutionError
+from onefold_cad.errors import FabricationError
 from onefold_cad.export.atomic import atomic_output
+from onefold_cad.export.fold_fan import (  # the file's fan: see the module notes
+    FOLD_DIVISIONS,
+    GRADING_RATIO,
+    fold_divisions,
+    fold_fan,
+    fold_note,
+)
 from onefold_cad.export.fold_mesh import FACET, division_rays, fold_mesh, mesh_quality
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.geometry.fan import PaperFan
-from onefold_cad.geometry.folding import FoldedSheet, fold
+from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.sheet import sheet_inradius
-from onefold_cad.geometry.solver import solve
 
 __all__ = [
     "FOLD_DIVISIONS",
@@ -92,64 +104,10 @@ __all__ = [
 
 #: The FOLD spec version written.
 FOLD_SPEC = 1.2
-#: The most divisions per side the FOLD file's fan has: at H (no relief
-#: hole) 2 x this many rays meet, and Origami Simulator's explicit solver is
-#: stable only while a vertex's edges are few (docs/formats.md, "vertex load").
-FOLD_DIVISIONS = 10
 #: The shortest edge a cut relief hole may add, relative to the sheet's size
 #: (:attr:`Sheet.size`): shorter ones would leave faces of no area once the
 #: coordinates are rounded (about 1e-16 of the size).
 RESOLUTION = 1e-12
-
-
-def fold_divisions(design: Design) -> int:
-    """The FOLD file's own division count: the design's ``divisions``, at most
-    :data:`FOLD_DIVISIONS` (see the module notes and docs/formats.md)."""
-    return min(design.frame.divisions, FOLD_DIVISIONS)
-
-
-def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) -> FoldedSheet:
-    """The paper-model fan the FOLD file triangulates: the paper fan over the
-    design's frame curve with ``divisions`` triangles per side (None:
-    :func:`fold_divisions`), solved for its own apex and folded; ``folded``
-    itself when that is the design's own fan (the paper model at its own
-    divisions). See the module notes.
-
-    Raises:
-        InvalidParameterError: ('divisions') the fan of that many divisions has
-            no non-trivial apex (always so for 1 division).
-    """
-    n = fold_divisions(design) if divisions is None else divisions
-    if isinstance(folded.solution.surface, PaperFan) and n == design.frame.divisions:
-        return folded
-    try:
-        return fold(solve(design.frame.with_changes(divisions=n), Model.PAPER), design.sheet)
-    except NoSolutionError:
-        raise InvalidParameterError(
-            "divisions",
-            f"the FOLD file folds the paper fan of {n} triangles per side over this "
-            "frame curve, which has no non-trivial apex for this frame; use more "
-            "divisions (at least 2)",
-        ) from None
-
-
-def fold_note(design: Design, folded: FoldedSheet) -> str | None:
-    """The line a build prints when the FOLD file folds a coarser fan than
-    the design's surface (:func:`fold_fan`), with both crease halves' fold
-    angles in degrees (the file's fan's and the design's); None when the file
-    folds the design's own fan. Shown, never silent: the file is a model for
-    simulators, the DXF and STEP carry the design's angles."""
-    fan = fold_fan(design, folded)
-    if fan is folded:
-        return None
-    n = fold_divisions(design)
-    own = " / ".join(f"{h.fold_angle_deg:.1f}" for h in folded.crease)
-    file = " / ".join(f"{h.fold_angle_deg:.1f}" for h in fan.crease)
-    return (
-        f"the .fold file folds a fan of {n} divisions a side so that simulators stay "
-        f"stable: its crease halves fold {file} deg, the design's {own} deg "
-        "(docs/formats.md, 'Which polyhedron')"
-    )
 
 
 def _hole_radius(design: Design, fan: FoldedSheet, hole: float) -> float:
@@ -253,6 +211,16 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
     quality = mesh_quality(mesh, design.sheet.size)
     n = len(mesh.ray_theta) // 2
     quality |= {"divisions": n, "design_divisions": design.frame.divisions}
+    surface = fan.solution.surface
+    spacing = surface.spacing if isinstance(surface, PaperFan) else None
+    if spacing is not None:  # the graded fan's wedges (fold_fan)
+        steps = np.asarray(spacing.steps)
+        widths = np.abs(np.diff(steps)) / spacing.per_span
+        quality |= {
+            "grading_ratio": GRADING_RATIO,
+            "wedge_widths_of_span": widths.tolist(),
+            "crease_wedges_deg": np.degrees(surface.gammas[[0, -1]]).tolist(),
+        }
 
     units = design.units.value
     frame = design.frame
@@ -270,9 +238,16 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
         "onefold:surface": (
             "the paper model's fan of planar triangles"
             if fan is folded
-            else f"the paper fan of {n} divisions per side over the design's frame "
-            "curve, solved for its own apex: an isometric polyhedral approximation of "
-            f"the design's {design.model.value} model"
+            else (
+                f"a graded paper fan of {n} divisions per side over the design's frame "
+                "curve (its division points on the curve, narrow wedges beside the crease: "
+                "onefold:mesh wedge_widths_of_span)"
+                if spacing is not None
+                else f"the paper fan of {n} equal divisions per side over the design's "
+                "frame curve (not graded: a relief hole)"
+            )
+            + ", solved for its own apex: an isometric polyhedral approximation of the "
+            f"design's {design.model.value} model"
         ),
         "onefold:apex_height": fan.solution.apex_height,
         "onefold:crease": [
@@ -294,6 +269,7 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
             abs(fan.solution.apex_height - folded.solution.apex_height),
         )
         extras["onefold:design_apex_height"] = folded.solution.apex_height
+        extras["onefold:design_crease_fold_angle_deg"] = [c.fold_angle_deg for c in folded.crease]
         extras["onefold:max_deviation_from_design"] = dev
 
     folded_frame = {

@@ -15,21 +15,28 @@ from the -x end) and L the end's distance from H
 
 (an identity for cos(phi) -/+ cos(alpha) and sin(phi) + sin(alpha)). Each
 point is then exact to a rounding error of its own distance from the end.
+
+The paper's fan divides the arc into equal steps of arc parameter; an
+:class:`ArcSpacing` places a fan's division points elsewhere on the same
+arc (a graded fan, narrow beside the ends: :meth:`ArcSpacing.graded`).
 """
 
 from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.frame_curve import ArcGeometry, FrameCurve
 from onefold_cad.geometry.numeric import Array, cross3
 
 __all__ = [
     "ArcFrames",
+    "ArcSpacing",
     "arc_range",
     "arc_points",
     "arc_tangents",
@@ -101,13 +108,18 @@ def division_angles(frame: FrameCurve) -> Array:
     return phi
 
 
-def division_points(g: ArcGeometry, n: int) -> Array:
+def division_points(g: ArcGeometry, n: int, spacing: ArcSpacing | None = None) -> Array:
     """In-plane coordinates ``(2, n + 1)`` (rows x and d, units of R) of the
     fan's division points, from the +x end to the -x end: the first half
     measured from the +x end, the rest from the -x end (the same arc
-    parameters, k (pi + 2 alpha) / n, each from its nearer end)."""
-    steps, front = _end_steps(n)
-    m = steps * (0.5 * g.span / n)  # half the distance from the nearer end
+    parameters, k (pi + 2 alpha) / n, each from its nearer end); with a
+    ``spacing`` (of ``n`` divisions), at its arc parameters instead."""
+    if spacing is None:
+        steps, front = _end_steps(n)
+        per_span = float(n)
+    else:
+        steps, front, per_span = spacing.steps, spacing.front, spacing.per_span
+    m = steps * (0.5 * g.span / per_span)  # half the distance from the nearer end
     sn = np.sin(m)
     sn += sn
     m -= g.alpha
@@ -131,6 +143,92 @@ def _end_steps(n: int) -> tuple[Array, int]:
     steps = np.concatenate((np.arange(front), np.arange(back - 1, -1, -1))).astype(float)
     steps.setflags(write=False)
     return steps, front
+
+
+@dataclass(frozen=True, eq=False)
+class ArcSpacing:
+    """Where a paper fan's ``divisions + 1`` division points lie on the frame
+    arc: point k at ``steps[k] * span / per_span`` of arc parameter from its
+    nearer end (span = pi + 2 alpha, the whole arc), the first ``front``
+    points from the +x end, the others from the -x end (see the module notes:
+    each point exact to a rounding error of its own distance from its end).
+
+    Attributes:
+        steps: ``(divisions + 1,)`` read-only floats, 0 at both ends,
+            increasing over the first ``front`` points and decreasing after.
+        front: how many points are measured from the +x end.
+        per_span: the span in the units of ``steps``.
+    """
+
+    steps: Array
+    front: int
+    per_span: float
+
+    @property
+    def divisions(self) -> int:
+        """The number of triangles (wedges) of the fan."""
+        return len(self.steps) - 1
+
+    @classmethod
+    def uniform(cls, n: int) -> ArcSpacing:
+        """The paper's equal steps: :class:`PaperFan` without a spacing, to the bit."""
+        steps, front = _end_steps(n)
+        return cls(steps, front, float(n))
+
+    @classmethod
+    def from_widths(cls, widths: ArrayLike) -> ArcSpacing:
+        """The spacing whose wedges have the arc-parameter ``widths`` ``(n,)``
+        (positive, any unit: scaled to the span), each point placed by summing
+        the widths from its nearer end (the uniform split of :meth:`uniform`)."""
+        w = np.asarray(widths, dtype=float)
+        if w.ndim != 1 or len(w) < 1 or not np.all(w > 0.0) or not np.all(np.isfinite(w)):
+            raise InvalidParameterError("spacing", "the wedge widths must be positive and finite")
+        n = len(w)
+        back = (n + 1) // 2
+        front = n + 1 - back
+        head = np.concatenate(([0.0], np.cumsum(w[: front - 1])))
+        tail = np.concatenate(([0.0], np.cumsum(w[::-1][: back - 1])))[::-1]
+        steps = np.concatenate((head, tail))
+        steps.setflags(write=False)
+        return cls(steps, front, float(np.add.reduce(w)))
+
+    @classmethod
+    def graded(cls, n: int, first: tuple[float, float], ratio: float) -> ArcSpacing:
+        """A fan of ``n`` wedges narrow beside the arc's ends and even between:
+        wedge i (from the +x end) has the width min(f+ r^i, f- r^(n-1-i), c)
+        (fractions of the span), with ``first`` = (f+, f-) the widths beside
+        the +x and the -x end, r = ``ratio`` > 1 their growth, and the cap c
+        the width that makes the widths add up to the span. Where the growth
+        cannot fill the span (f r^i too small), r is raised until it can (a
+        fan of two wedges has them in the ratio f+ : f-).
+        A first width above the cap is the cap (the fan is then even there)."""
+        fp, fm = first
+        if n < 1 or not (fp > 0.0 and fm > 0.0) or not ratio > 1.0:
+            raise InvalidParameterError(
+                "spacing", "a graded spacing needs n >= 1, first widths > 0 and a ratio > 1"
+            )
+        if n <= 2:  # no wedge between the two ends: their widths in the ratio f+ : f-
+            return cls.from_widths([fp, fm][:n] if n == 2 else [1.0])
+        i = np.arange(n, dtype=float)
+
+        def growth(r: float) -> Array:
+            return np.minimum(fp * r**i, fm * r ** (n - 1.0 - i))
+
+        g = growth(ratio)
+        while float(np.add.reduce(g)) < 1.0:
+            ratio *= 1.25
+            g = growth(ratio)
+        return cls.from_widths(np.minimum(g, _cap(g, 1.0)))
+
+
+def _cap(g: Array, total: float) -> float:
+    """The c with sum(min(g_i, c)) = ``total`` (<= sum g)."""
+    gs = np.sort(g)
+    below = np.concatenate(([0.0], np.cumsum(gs)[:-1]))  # sum of the k smallest
+    k = np.arange(len(gs))
+    c = (total - below) / (len(gs) - k)  # the cap if the k smallest stay below it
+    ok = (c >= np.concatenate(([0.0], gs[:-1]))) & (c <= gs)
+    return float(c[np.flatnonzero(ok)[0]])
 
 
 class ArcFrames:

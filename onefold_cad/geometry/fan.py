@@ -13,7 +13,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onefold_cad.geometry.arc import division_points
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.arc import ArcSpacing, division_points
 from onefold_cad.geometry.frame_curve import FrameCurve
 from onefold_cad.geometry.numeric import Array, cross3
 from onefold_cad.geometry.surface import EPS, DirectionSurface
@@ -27,9 +28,13 @@ _KAHAN_MAX = 2048
 
 
 class PaperFan(DirectionSurface):
-    """The fan of ``divisions`` planar triangles of the paper (section 3.2).
+    """The fan of ``divisions`` planar triangles of the paper (section 3.2):
+    over the paper's equally spaced division points, or over those of a
+    ``spacing`` (:class:`ArcSpacing`, of the frame's ``divisions``) on the
+    same arc.
 
     Attributes:
+        spacing: the spacing given (None: the paper's equal steps).
         directions: once the apex is set, the ``(divisions + 1, 3)`` unit
             direction-vectors from the apex to the division points, from the
             f-line's +x end to its -x end.
@@ -38,11 +43,16 @@ class PaperFan(DirectionSurface):
             angles theta_k = gamma_1 + ... + gamma_k (radians), theta_0 = 0.
     """
 
-    def __init__(self, frame: FrameCurve) -> None:
+    def __init__(self, frame: FrameCurve, spacing: ArcSpacing | None = None) -> None:
         super().__init__(frame)
         g = self.geometry
         n = frame.divisions
-        pts = division_points(g, n)  # rows x, d
+        if spacing is not None and spacing.divisions != n:
+            raise InvalidParameterError(
+                "spacing", f"the spacing has {spacing.divisions} divisions, the frame {n}"
+            )
+        self.spacing = spacing
+        pts = division_points(g, n, spacing)  # rows x, d
         x, d = pts
         # Speed (the paper model's whole solve + fold takes ~60 us at 90
         # divisions, ~0.2-0.4 us per numpy call): every call below works on

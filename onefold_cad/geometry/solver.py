@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 
 from onefold_cad.choices import Model
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
+from onefold_cad.geometry.arc import ArcSpacing
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.frame_curve import FrameCurve
@@ -307,12 +308,16 @@ def _resolve(
     raise fail("the verified search did not converge", (h, h))
 
 
-def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
+def solve(
+    frame: FrameCurve, model: Model | str = Model.EXACT, spacing: ArcSpacing | None = None
+) -> Solution:
     """Find the apex that satisfies the angle condition (360 deg around A).
 
     Args:
         frame: the validated frame curve.
         model: 'exact' (continuous cone) or 'paper' (triangle fan).
+        spacing: paper model only: the fan's division points at these arc
+            parameters (of ``frame.divisions``) instead of the paper's equal steps.
 
     Returns:
         The :class:`Solution`, verified at the returned apex to within
@@ -325,18 +330,20 @@ def solve(frame: FrameCurve, model: Model | str = Model.EXACT) -> Solution:
             and the reason.
     """
     m = Model.parse(model)
+    if spacing is not None and m is not Model.PAPER:
+        raise InvalidParameterError("spacing", "only the paper model's fan has a spacing")
     try:
-        return _solve(frame, m)
+        return _solve(frame, m, spacing)
     except FloatingPointError as exc:
         # only when the caller made numpy raise on underflow: a vanishing term
         # of a design near the limits of double precision; harmless here
         if "underflow" not in str(exc):
             raise
         with np.errstate(under="ignore"):
-            return _solve(frame, m)
+            return _solve(frame, m, spacing)
 
 
-def _solve(frame: FrameCurve, m: Model) -> Solution:
+def _solve(frame: FrameCurve, m: Model, spacing: ArcSpacing | None) -> Solution:
     t0 = time.perf_counter()
     if m is Model.PAPER and frame.divisions == 1:
         raise _no_root(
@@ -345,7 +352,7 @@ def _solve(frame: FrameCurve, m: Model) -> Solution:
             "the sum of apex angles never exceeds 180 deg: a single triangle's apex "
             "angle is below 180 deg for every apex height (use 2 or more divisions)",
         )
-    surface: DirectionSurface = PaperFan(frame) if m is Model.PAPER else ExactCone(frame)
+    surface: DirectionSurface = PaperFan(frame, spacing) if m is Model.PAPER else ExactCone(frame)
     g = surface.geometry
     near = min(g.l_plus, g.l_minus)
     if near <= 0.0:

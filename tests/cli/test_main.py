@@ -908,8 +908,9 @@ def test_only_the_program_freezes_the_garbage_collector(tmp_path, as_process):
 
 
 def test_a_coarser_fold_file_is_said_with_both_crease_angles(tmp_path):
-    """The FOLD file's fan is coarser than patkau-one-fold's (90 divisions):
-    the build says so on stderr with the file's crease angles (its
+    """The FOLD file's graded fan folds patkau-one-fold's crease more than
+    1 deg away from the design's (its relief hole keeps the crease wedges
+    wide): the build says so on stderr with the file's crease angles (its
     onefold:crease) and the design's (the report's), and keeps it out of the
     report; a build without the FOLD file says nothing of it."""
     out = tmp_path / "out"
@@ -917,8 +918,8 @@ def test_a_coarser_fold_file_is_said_with_both_crease_angles(tmp_path):
     assert proc.returncode == 0, proc.stderr
     fold = json.loads((out / "patkau-one-fold.fold").read_text())
     report = json.loads((out / "patkau-one-fold.json").read_text())
-    file = " / ".join(f"{c['fold_angle_deg']:.1f}" for c in fold["onefold:crease"])
-    own = " / ".join(f"{report['fold_angles_deg'][k]:.1f}" for k in ("plus_x", "minus_x"))
+    file = " / ".join(f"{c['fold_angle_deg']:.2f}" for c in fold["onefold:crease"])
+    own = " / ".join(f"{report['fold_angles_deg'][k]:.2f}" for k in ("plus_x", "minus_x"))
     assert file != own
     (line,) = [s for s in proc.stderr.splitlines() if ".fold file" in s]
     assert f"fold {file} deg, the design's {own} deg" in line

@@ -27,7 +27,15 @@ from onefold_cad import (
     build_design,
     solve,
 )
-from onefold_cad.export.fold_file import FOLD_DIVISIONS, fold_data, fold_fan, write_fold
+from onefold_cad.export.fold_fan import HOLE_DIVISIONS
+from onefold_cad.export.fold_file import (
+    FOLD_DIVISIONS,
+    fold_data,
+    fold_divisions,
+    fold_fan,
+    write_fold,
+)
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
 from tests.angles import OPEN_ANGLE, cos_deg, frame_unless_on_end, refused_below_bound
@@ -360,15 +368,30 @@ def test_rulings_of_a_cone_over_a_convex_arc_are_mountains_beside_a_valley_creas
     assert set(kinds) <= {*RAY_KINDS, "facet", "outline", "hole"}
 
 
-def test_exact_model_writes_the_paper_fan_of_its_divisions():
+def test_exact_model_writes_a_graded_paper_fan_and_a_paper_design_its_own():
+    """At 40 divisions: the exact design's file is the graded paper fan of
+    :func:`fold_fan` (its rays' flat angles, its crease), recorded with its
+    wedge widths (adding up to the span, narrowest beside the crease) and its
+    deviation; the paper design's is its own fan, exactly."""
     exact, paper = _quad("exact", divisions=40), _quad("paper", divisions=40)
-    a = fold_data(exact, build_design(exact), divisions=40)
-    b = fold_data(paper, build_design(paper), divisions=40)
-    assert a["vertices_coords"] == b["vertices_coords"]
-    assert a["file_frames"][0]["vertices_coords"] == b["file_frames"][0]["vertices_coords"]
-    assert a["edges_foldAngle"] == b["edges_foldAngle"]
+    folded = build_design(exact)
+    a = fold_data(exact, folded, divisions=40)
+    fan = fold_fan(exact, folded, divisions=40)
     assert a["onefold:model"] == "exact" and "onefold:max_deviation_from_design" in a
+    widths = np.array(a["onefold:mesh"]["wedge_widths_of_span"])
+    assert len(widths) == 40 and widths.sum() == pytest.approx(1.0, rel=1e-12)
+    assert widths[0] == widths.min() and widths[-1] == widths.min()
+    assert a["onefold:crease"][0]["fold_angle_deg"] == fan.crease[0].fold_angle_deg
+    np.testing.assert_allclose(
+        a["onefold:mesh"]["crease_wedges_deg"], np.degrees(fan.solution.surface.gammas[[0, -1]])
+    )
+    own = build_design(paper)
+    b = fold_data(paper, own, divisions=40)
     assert "onefold:max_deviation_from_design" not in b  # the paper design's own fan
+    assert "wedge_widths_of_span" not in b["onefold:mesh"]
+    assert [c["fold_angle_deg"] for c in b["onefold:crease"]] == [
+        c.fold_angle_deg for c in own.crease
+    ]
 
 
 def _rms_after_best_fit(p: np.ndarray, q: np.ndarray) -> float:
@@ -480,12 +503,21 @@ def test_a_relief_hole_wider_than_the_sheet_is_refused_naming_it(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_exact_model_with_one_division_is_refused_naming_divisions(tmp_path):
-    design = _quad("exact", divisions=1)
+def test_exact_models_file_does_not_depend_on_its_divisions():
+    """Only the paper model's fan has divisions: an exact design of 1 or 90
+    writes the same graded fan of FOLD_DIVISIONS."""
+    one, many = _quad("exact", divisions=1), _quad("exact", divisions=90)
+    a, b = fold_data(one, build_design(one)), fold_data(many, build_design(many))
+    assert a["vertices_coords"] == b["vertices_coords"]
+    assert a["edges_foldAngle"] == b["edges_foldAngle"]
+    assert a["onefold:mesh"]["divisions"] == FOLD_DIVISIONS
+
+
+def test_a_fan_of_one_division_is_refused_naming_divisions(tmp_path):
+    design = _quad("exact")
     with pytest.raises(InvalidParameterError) as err:
-        write_fold(design, build_design(design), tmp_path / "x.fold")
+        fold_data(design, build_design(design), divisions=1)
     assert err.value.parameter == "divisions"
-    assert list(tmp_path.iterdir()) == []
 
 
 def test_write_failure_raises_export_error_and_leaves_nothing(tmp_path):
@@ -533,8 +565,8 @@ def test_fold_file_is_exact_to_itself_over_the_whole_frame_range(
     except NoSolutionError:  # the core's answer for this frame: nothing to write
         return
     try:
-        solve(frame, "paper")
-    except NoSolutionError:  # the exact model's FOLD file is that fan: refused
+        solve(frame.with_changes(divisions=fold_divisions(design, folded)), "paper")
+    except NoSolutionError:  # the exact model's FOLD file is such a fan: refused
         with pytest.raises(InvalidParameterError) as err:
             fold_data(design, folded)
         assert err.value.parameter == "divisions"
@@ -571,14 +603,19 @@ def _vertex_load(points: np.ndarray, edges: np.ndarray) -> np.ndarray:
 
 @pytest.mark.parametrize("name", list(DESIGNS) + ["paper-square", "table1-row2"])
 def test_the_file_folds_a_fan_of_few_enough_divisions_for_explicit_solvers(name):
-    """Every template's file: its fan has min(divisions, FOLD_DIVISIONS) rays
-    per side (counted from the crease pattern's M/V edges' directions),
+    """Every template's file: its fan has FOLD_DIVISIONS rays per side
+    (HOLE_DIVISIONS with a relief hole), or a paper design's own divisions if
+    fewer (counted from the crease pattern's
+    M/V edges' directions),
     onefold:mesh records both counts, no vertex has 100 edges (Origami
     Simulator's shaders stop there) and every vertex's load is under 15."""
     design = load_template(name)
     folded = build_design(design)
     f = _parse(fold_data(design, folded))
-    n = min(design.frame.divisions, FOLD_DIVISIONS)
+    paper = design.model.value == "paper"
+    most = HOLE_DIVISIONS if relief_hole_diameter(design, folded) > 0.0 else FOLD_DIVISIONS
+    n = min(design.frame.divisions, most) if paper else most
+    assert fold_divisions(design, folded) == n
     assert f.doc["onefold:mesh"]["divisions"] == n
     assert f.doc["onefold:mesh"]["design_divisions"] == design.frame.divisions
     h = _apex_flat(design)
