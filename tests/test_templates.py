@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,10 +21,10 @@ from onefold_cad.templates import (
     load_template,
     read_template,
 )
+from tests.shipped import DESIGN_TEMPLATES, REPO_TEMPLATES
 
-REPO_TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
 # site-*.toml are site files (onefold site), not design templates
-SHIPPED = sorted(p.stem for p in REPO_TEMPLATES.glob("*.toml") if not p.stem.startswith("site-"))
+SHIPPED = DESIGN_TEMPLATES
 
 # The paper's Table 1: (H_c, alpha, beta, divisions, Y+, Y-, X+, X-).
 TABLE1 = {

@@ -5,7 +5,6 @@ template and on property-drawn designs; the note a build prints."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,12 +26,9 @@ from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.arc import ArcFrames, arc_range
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
+from tests.shipped import DESIGN_TEMPLATES
 
-TEMPLATES = sorted(
-    p.stem
-    for p in (Path(__file__).parents[2] / "templates").glob("*.toml")
-    if not p.stem.startswith("site-")
-)
+TEMPLATES = DESIGN_TEMPLATES
 
 
 def _predicted_error_deg(design: Design, folded, fan) -> np.ndarray:

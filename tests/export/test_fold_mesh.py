@@ -25,13 +25,9 @@ from onefold_cad.export.fold_mesh import (
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
+from tests.shipped import DESIGN_TEMPLATES
 
-# the shipped design templates (site-*.toml are site files, onefold site)
-TEMPLATES = sorted(
-    p.stem
-    for p in (Path(__file__).parents[2] / "templates").glob("*.toml")
-    if not p.stem.startswith("site-")
-)
+TEMPLATES = DESIGN_TEMPLATES
 
 
 def test_face_angles_of_a_3_4_5_triangle_worked_by_hand():
