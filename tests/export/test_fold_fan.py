@@ -5,6 +5,7 @@ template and on property-drawn designs; the note a build prints."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -171,3 +172,32 @@ def test_property_drawn_creases_fold_as_the_designs_to_their_narrowest_wedge(
     assert fold_data(design, folded)["onefold:mesh"]["min_face_angle_deg"] >= min(
         MIN_FACE_ANGLE_DEG, float(ends.min())
     ) * (1 - 1e-9)
+
+
+def test_the_docs_crease_table_is_the_files():
+    """docs/formats.md's crease table ("Graded towards the crease"): each
+    template's design crease, the file's crease now and the file's largest
+    distance from the design's fold now are what the files record, to the
+    digits shown (the first half's angles; table1-row4 lists both)."""
+    docs = (Path(__file__).parents[2] / "docs" / "formats.md").read_text(encoding="utf-8")
+    rows = {}
+    for line in docs.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        name = cells[0].split(" ")[0]
+        if len(cells) == 5 and name in TEMPLATES:
+            rows[name] = cells
+    assert sorted(rows) == TEMPLATES
+    for name, cells in rows.items():
+        design = load_template(name)
+        folded = build_design(design)
+        doc = fold_data(design, folded)
+        design_deg = [float(x) for x in cells[1].split(" / ")]
+        file_deg = [float(x.split(" (")[0]) for x in cells[3].split(" / ")]
+        now = float(cells[4].split(" / ")[1].rstrip(" %"))
+        halves = range(len(design_deg))
+        want = [folded.crease[i].fold_angle_deg for i in halves]
+        got = [doc["onefold:crease"][i]["fold_angle_deg"] for i in halves]
+        assert design_deg == pytest.approx(want, abs=0.005)
+        assert file_deg == pytest.approx(got, abs=0.005)
+        dev = 100.0 * doc["onefold:max_deviation_from_design"] / design.sheet.size
+        assert now == pytest.approx(dev, abs=0.005)
