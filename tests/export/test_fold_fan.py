@@ -4,15 +4,13 @@ template and on property-drawn designs; the note a build prints."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
-from hypothesis import strategies as st
 
-from onefold_cad import Design, FrameCurve, Material, NoSolutionError, Sheet, build_design, solve
+from onefold_cad import Design, NoSolutionError, build_design, solve
 from onefold_cad.export.fold_fan import (
     CREASE_TOLERANCE_DEG,
     CREASE_WEDGE_DEG,
@@ -25,8 +23,8 @@ from onefold_cad.export.fold_file import fold_data
 from onefold_cad.export.fold_mesh import MIN_FACE_ANGLE_DEG
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.arc import ArcFrames, arc_range
-from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
+from tests.export.fold_designs import fold_designs
 from tests.shipped import DESIGN_TEMPLATES
 
 TEMPLATES = DESIGN_TEMPLATES
@@ -131,27 +129,13 @@ def test_the_build_notes_a_crease_beyond_the_tolerance_with_both_angles():
 
 
 @settings(max_examples=20, deadline=None)
-@given(
-    alpha=st.floats(10.0, 80.0),
-    beta=st.floats(10.0, 80.0),
-    frac=st.floats(-0.8, 0.8),
-    divisions=st.integers(2, 120),
-    model=st.sampled_from(["paper", "exact"]),
-    quad=st.tuples(*[st.floats(50.0, 1000.0)] * 4),
-    hole=st.sampled_from([0.0, 0.01, 0.1]),
-)
-def test_property_drawn_creases_fold_as_the_designs_to_their_narrowest_wedge(
-    alpha, beta, frac, divisions, model, quad, hole
-):
+@given(design=fold_designs())
+def test_property_drawn_creases_fold_as_the_designs_to_their_narrowest_wedge(design: Design):
     """A drawn design (the ranges of tests/export/test_fold_mesh.py): the
     file's crease halves within 1.5 x the first-order error of their wedges
     (+ 0.15 deg), and
     the wedges no narrower than allowed (so the mesh's face-angle bound holds
     at H)."""
-    frame = FrameCurve(alpha, beta, frac * 100.0 * math.cos(math.radians(alpha)), 100.0, divisions)
-    sheet = Sheet.quadrilateral(*quad)
-    design = Design("p", frame, sheet, model=model,
-                    material=Material(relief_hole=hole * 2.0 * sheet_inradius(sheet)))  # fmt: skip
     try:
         folded, fan, err = _errors(design)
     except (NoSolutionError, ValueError):  # no fold, or no fan for the exact model: no file

@@ -10,9 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from hypothesis import given, settings
-from hypothesis import strategies as st
 
-from onefold_cad import Design, FrameCurve, Material, NoSolutionError, Sheet, build_design
+from onefold_cad import Design, FrameCurve, NoSolutionError, Sheet, build_design
 from onefold_cad.export.fold_file import fold_data, fold_fan
 from onefold_cad.export.fold_mesh import (
     MIN_EDGE,
@@ -23,8 +22,8 @@ from onefold_cad.export.fold_mesh import (
     mesh_limits,
 )
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.sheet import sheet_inradius
 from onefold_cad.templates import load_template
+from tests.export.fold_designs import fold_designs
 from tests.shipped import DESIGN_TEMPLATES
 
 TEMPLATES = DESIGN_TEMPLATES
@@ -150,28 +149,14 @@ def test_limits_of_a_square_about_its_centre_worked_by_hand():
 
 
 @settings(max_examples=25, deadline=None)
-@given(
-    alpha=st.floats(10.0, 80.0),
-    beta=st.floats(10.0, 80.0),
-    frac=st.floats(-0.8, 0.8),
-    divisions=st.integers(2, 120),
-    model=st.sampled_from(["paper", "exact"]),
-    quad=st.tuples(*[st.floats(50.0, 1000.0)] * 4),
-    hole=st.sampled_from([0.0, 0.01, 0.1]),
-)
-def test_property_drawn_designs_mesh_within_the_bounds_their_geometry_allows(
-    alpha, beta, frac, divisions, model, quad, hole
-):
+@given(design=fold_designs())
+def test_property_drawn_designs_mesh_within_the_bounds_their_geometry_allows(design: Design):
     """A drawn frame, division count, quadrilateral sheet and relief hole (a
     fraction of twice H's distance to the nearest edge): the mesh is planar
     and isometric wedge by wedge (:func:`_check_mesh`); its smallest angle is
     at least the bound or, where the design itself has a smaller one (a
     wedge's apex angle, a corner, a ray meeting the outline), that one, to
     Triangle's rounding; likewise its shortest edge."""
-    frame = FrameCurve(alpha, beta, frac * 100.0 * math.cos(math.radians(alpha)), 100.0, divisions)
-    sheet = Sheet.quadrilateral(*quad)
-    design = Design("p", frame, sheet, model=model,
-                    material=Material(relief_hole=hole * 2.0 * sheet_inradius(sheet)))  # fmt: skip
     try:
         folded = build_design(design)
         fan = fold_fan(design, folded)
