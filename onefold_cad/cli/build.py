@@ -13,7 +13,7 @@ import gc
 import signal
 import sys
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -40,6 +40,7 @@ __all__ = [
     "cmd_build",
     "interrupted_text",
     "make_outdir",
+    "output_folder",
     "run_tasks",
     "task_context",
     "write_task",
@@ -255,6 +256,24 @@ def make_outdir(outdir: Path) -> bool:
     return created
 
 
+@contextlib.contextmanager
+def output_folder(outdir: Path) -> Iterator[Path]:
+    """A command's output folder (:func:`make_outdir`), removed again on the
+    way out when this call created it and left it empty (a refused or failed
+    command leaves no folder behind).
+
+    Raises:
+        InvalidParameterError: ('--outdir') it cannot be created.
+    """
+    created = make_outdir(outdir)
+    try:
+        yield outdir
+    finally:
+        with contextlib.suppress(OSError):
+            if created and outdir.is_dir() and not any(outdir.iterdir()):
+                outdir.rmdir()
+
+
 def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
     from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
@@ -277,8 +296,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     found = check_jobs(jobs, formats, ns)
     n = len(jobs)
     outdir = Path(ns.outdir)
-    created = make_outdir(outdir)
-    try:
+    with output_folder(outdir):
         for p in recover(outdir):
             warn(f"finished an interrupted earlier build: {p}")
         check_targets(outdir, [f for j in jobs for f in file_names(j.design.name, formats)])
@@ -293,10 +311,6 @@ def cmd_build(ns: argparse.Namespace) -> int:
             pause_point("staged")
             for p in staging.commit(files):
                 print(p, flush=True)
-    finally:
-        with contextlib.suppress(OSError):
-            if created and outdir.is_dir() and not any(outdir.iterdir()):
-                outdir.rmdir()
     return 0
 
 

@@ -10,7 +10,6 @@ at a time in worker processes (:func:`onefold_cad.cli.build.run_tasks`).
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
 import time
 from dataclasses import dataclass
@@ -21,7 +20,7 @@ from onefold_cad.cli.build import (
     STATE,
     BuildTask,
     check_jobs,
-    make_outdir,
+    output_folder,
     run_tasks,
     task_context,
     write_task,
@@ -113,13 +112,12 @@ def cmd_site(ns: argparse.Namespace) -> int:
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
     outdir = Path(ns.outdir)
-    created = make_outdir(outdir)
     n = len(jobs)
     targets = [
         f"{j.design.name}/{f}" for j in jobs for f in file_names(j.design.name, sheet_formats)
     ]
     site_names = site_file_names(spec.name, formats)
-    try:
+    with output_folder(outdir):
         for p in recover(outdir):
             warn(f"finished an interrupted earlier build: {p}")
         check_targets(outdir, [*targets, *site_names])
@@ -152,10 +150,6 @@ def cmd_site(ns: argparse.Namespace) -> int:
             pause_point("staged")
             for p in staging.commit(files, targets=[*targets, *site_names]):
                 print(p, flush=True)
-    finally:
-        with contextlib.suppress(OSError):
-            if created and outdir.is_dir() and not any(outdir.iterdir()):
-                outdir.rmdir()
     return 0
 
 
