@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from onefold_cad.choices import Model
-from onefold_cad.design import Design
+from onefold_cad.design import Design, derived
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.export.fold_mesh import MIN_FACE_ANGLE_DEG
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
@@ -136,8 +136,9 @@ def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) 
     :func:`fold_divisions`) is its own; otherwise the paper fan over the
     design's frame curve with ``divisions`` triangles per side (None:
     :func:`fold_divisions`), graded (:func:`fold_spacing`) unless the design
-    has a relief hole, solved for its own apex and folded. See the module
-    notes.
+    has a relief hole, solved for its own apex and folded; once per design,
+    fold and division count (the build's note and the file share it). See
+    the module notes.
 
     Raises:
         InvalidParameterError: ('divisions') the fan of that many divisions has
@@ -147,6 +148,11 @@ def fold_fan(design: Design, folded: FoldedSheet, divisions: int | None = None) 
     n = fold_divisions(design, folded) if divisions is None else divisions
     if isinstance(folded.solution.surface, PaperFan) and n == own:
         return folded
+    return derived(design, ("fold_fan", folded, n), lambda: _fold_fan(design, folded, n))
+
+
+def _fold_fan(design: Design, folded: FoldedSheet, n: int) -> FoldedSheet:
+    """:func:`fold_fan`'s fan of ``n`` divisions, computed."""
     hole = relief_hole_diameter(design, folded) > 0.0
     try:
         spacing = None if hole else fold_spacing(design, folded, n)
