@@ -14,6 +14,9 @@ caught by the examples' own bounded work, not by the clock.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
+import pytest
 from hypothesis import settings
 
 settings.register_profile(
@@ -23,3 +26,18 @@ settings.register_profile(
     "explore", derandomize=False, max_examples=500, print_blob=True, deadline=None
 )
 settings.load_profile("default")
+
+
+@pytest.fixture
+def cli(capfd: pytest.CaptureFixture[str]) -> Callable[..., tuple[int, str, str]]:
+    """``onefold``'s ``main()`` in this process (imports already paid): (exit
+    status, stdout, stderr)."""
+    from onefold_cad.cli.main import main
+
+    def call(*args: str) -> tuple[int, str, str]:
+        capfd.readouterr()
+        rc = main(list(args))
+        out, err = capfd.readouterr()
+        return rc, out, err
+
+    return call

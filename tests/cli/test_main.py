@@ -64,19 +64,6 @@ def refused(proc: subprocess.CompletedProcess[str], param: str, words: str, fold
 
 
 @pytest.fixture
-def cli(capfd):
-    """``main()`` in this process (imports already paid): (exit status, stdout, stderr)."""
-
-    def call(*args: str) -> tuple[int, str, str]:
-        capfd.readouterr()
-        rc = main(list(args))
-        out, err = capfd.readouterr()
-        return rc, out, err
-
-    return call
-
-
-@pytest.fixture
 def solve_json(cli):
     def call(*args: str) -> dict:
         rc, out, err = cli("solve", *args, "--json")

@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 import rhino3dm
 from ezdxf.colors import aci2rgb
-from scipy.interpolate import BSpline
 
 from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
 from onefold_cad.export.dxf import LAYERS as DXF_LAYERS
@@ -24,6 +23,7 @@ from onefold_cad.fabrication.flat_pattern import flat_pattern_once
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.fabrication.report import design_report
 from onefold_cad.fabrication.rules import resting_placement
+from tests.nurbs_area import surface_area
 
 FLOAT32 = float(np.finfo(np.float32).eps)
 #: The issue's bound on a face point's distance from the exact cone (x sheet size).
@@ -242,28 +242,7 @@ def test_faces_areas_add_up_to_the_sheets(case, request):
     """Integrated from the file's control nets (Gauss-Legendre on each knot
     span): the folded sheet keeps the flat area, less the relief hole."""
     design, folded, doc = request.getfixturevalue(case)
-    gu, wu = np.polynomial.legendre.leggauss(8)
-    total = 0.0
-    for s in _faces(doc):
-        n = s.ToNurbsSurface()
-        assert (n.OrderU, n.OrderV) == (4, 2) and not n.IsRational
-        knots = np.array([n.KnotsU[i] for i in range(len(n.KnotsU))])
-        knots = np.concatenate([knots[:1], knots, knots[-1:]])
-        count = n.Points.CountU
-        net = np.array(
-            [[[(q := n.Points[i, j]).X, q.Y, q.Z] for j in range(2)] for i in range(count)]
-        )
-        inner, outer = BSpline(knots, net[:, 0], 3), BSpline(knots, net[:, 1], 3)
-        d_in, d_out = inner.derivative(), outer.derivative()
-        spans = np.unique(knots)
-        for a, b in zip(spans[:-1], spans[1:], strict=True):
-            u = 0.5 * (a + b) + 0.5 * (b - a) * gu
-            for v, wv in zip(0.5 + 0.5 * gu, 0.5 * wu, strict=True):
-                su = (1 - v) * d_in(u) + v * d_out(u)
-                sv = outer(u) - inner(u)
-                total += float(
-                    np.sum(0.5 * (b - a) * wu * wv * np.linalg.norm(np.cross(su, sv), axis=1))
-                )
+    total = sum(surface_area(s) for s in _faces(doc))
     hole = relief_hole_diameter(design, folded)
     assert total == pytest.approx(design.sheet.area - math.pi * hole**2 / 4.0, rel=1e-6)
 

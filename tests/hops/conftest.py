@@ -9,7 +9,6 @@ from typing import Any
 
 import pytest
 
-from onefold_cad.cli.main import main
 from onefold_cad.hops.inputs import FIT_INPUTS, SOLVE_INPUTS, hops_request
 from onefold_cad.hops.server import make_server
 from tests.hops.client import post
@@ -47,18 +46,5 @@ def fit(url: str) -> Callable[..., tuple[int, Any]]:
 
     def call(**values: Any) -> tuple[int, Any]:
         return post(f"{url}/solve", hops_request("onefold/fit", FIT_INPUTS, values))
-
-    return call
-
-
-@pytest.fixture
-def cli(capfd) -> Callable[..., tuple[int, str, str]]:
-    """``main()`` in this process: (exit status, stdout, stderr)."""
-
-    def call(*args: str) -> tuple[int, str, str]:
-        capfd.readouterr()
-        rc = main(list(args))
-        out, err = capfd.readouterr()
-        return rc, out, err
 
     return call

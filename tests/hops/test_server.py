@@ -17,7 +17,8 @@ from onefold_cad.cli.main import main
 from onefold_cad.hops.components import Answer, HopsOutput
 from onefold_cad.hops.inputs import FIT_INPUTS, SOLVE_INPUTS, hops_request
 from onefold_cad.hops.server import Component, OneFoldHops
-from tests.hops.client import cli_error, data, get, outputs, post, shoelace, surface_area
+from tests.hops.client import cli_error, data, get, outputs, post, shoelace
+from tests.nurbs_area import surface_area
 
 #: The paper-square template (200 x 200 mm, 0.1 mm paper) at alpha 40, beta 35.
 SOLVE = {"template": "paper-square", "alpha": 40.0, "beta": 35.0}
