@@ -10,13 +10,17 @@ relative to the apex; lengths in the design unit.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import MIRROR, Body
+from onefold_cad.geometry.body_kinks import section_kinks
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3, gauss_legendre, panel_rule, sorted_unique
+from onefold_cad.geometry.sheet import Sheet
 
 __all__ = ["mass_properties"]
 
@@ -34,13 +38,17 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     sides = []
     for lower in (False, True):
         breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-        sides.append((lower, breaks))
+        sides.append((lower, breaks, _towards_poles(folded.sheet, breaks, lower)))
     if body.exact:
         total, moment = _exact_slabs(body, sides)
-    else:  # planar triangles: no curvature within them
+    else:  # planar triangles: no curvature within them, kinks at their rays
         total, moment = 0.0, np.zeros(3)
-        for lower, breaks in sides:
-            theta, weights = _sector_rule(_graded(breaks))
+        rays = np.asarray(getattr(cone, "thetas", []), dtype=float)
+        for lower, breaks, poles in sides:
+            inside = rays[(rays > breaks[0]) & (rays < breaks[-1])]
+            graded = _graded(breaks, _PAPER_HALVINGS)
+            breaks = sorted_unique(np.concatenate([graded, poles, inside]))
+            theta, weights = _sector_rule(breaks, _PAPER_POINTS, _PAPER_PANELS)
             u, e = cone.frames(theta)
             n, k = cross3(u, e), np.zeros(len(theta))
             vals = weights @ _slab_moments(body, theta, np.full(len(theta), lower), u, n, k)
@@ -49,26 +57,46 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     return total, moment / total
 
 
-def _exact_slabs(body: Body, sides: list[tuple[bool, Array]]) -> tuple[float, Array]:
+def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array]]) -> tuple[float, Array]:
     """The exact model's measure and first moment (see :func:`mass_properties`)
-    from both sides' ``(lower, vertex angles)``, their rules evaluated together.
+    from both sides' ``(lower, vertex angles, breaks towards poles)``, their
+    rules evaluated together.
 
     The rule runs in the arc's phi (no inversion at every node): dtheta =
     |du/dphi| dphi, theta being u's arc length; its panels end at the vertex
-    rays (the edge radius's kinks) and are graded towards the crease ends
+    rays (the edge radius's kinks) and at the section's own kinks
+    (:func:`~onefold_cad.geometry.body_kinks.section_kinks`), and are graded towards the crease ends
     (:func:`_graded`), the graded breaks' arc parameters from the cone's
     table (their errors vanish towards the crease ends, where they crowd),
     the vertex rays' exact."""
     folded = body.folded
     cone = folded.solution.surface
     assert isinstance(cone, ExactCone)
-    rules = []
-    for lower, breaks in sides:
-        graded = _graded(breaks)
+    grades, ats = [], []
+    for lower, breaks, poles in sides:
+        graded = sorted_unique(np.concatenate([_graded(breaks, _EXACT_HALVINGS), poles]))
         at = cone.phi_near(graded)
         at[np.searchsorted(graded, breaks)] = body.vertex_phis[int(lower)]
-        phi, weights = _sector_rule(np.maximum.accumulate(at))
-        rules.append((phi, weights, graded))
+        grades.append(graded)
+        ats.append(np.maximum.accumulate(at))
+    rules = []
+    found = section_kinks(body, ats)
+    kink_thetas = cone.theta_near(np.concatenate(found)) if sum(map(len, found)) else None
+    start = 0
+    for graded, at, kinks in zip(grades, ats, found, strict=True):
+        th, ph = graded, at
+        if len(kinks):
+            assert kink_thetas is not None
+            th = np.concatenate([graded, kink_thetas[start : start + len(kinks)]])
+            ph = np.concatenate([at, kinks])
+            order = np.argsort(ph, kind="stable")
+            th, ph = np.maximum.accumulate(th[order]), ph[order]
+            start += len(kinks)
+        edges = _panel_edges(cone, th, ph, _EXACT_PANELS)
+        lo, hi = edges[:-1], edges[1:]
+        keep = hi > lo
+        nodes, weights = panel_rule(0.5 * (lo + hi)[keep], 0.5 * (hi - lo)[keep], _EXACT_POINTS)
+        rules.append((nodes.ravel(), weights.ravel(), graded))
     phi = np.concatenate([r[0] for r in rules])
     lower = np.repeat([False, True], [len(r[0]) for r in rules])
     theta = cone.theta_near(phi)
@@ -88,13 +116,41 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array]]) -> tuple[float, Ar
     return total, moment
 
 
-def _graded(breaks: Array) -> Array:
+def _towards_poles(sheet: Sheet, breaks: Array, lower: bool) -> Array:
+    """Breaks ``(k,)`` (flat angles) grading each sector between vertex rays
+    towards an end near which its ray length is steep: along a straight
+    edge r = d / sin(psi_s - theta), whose pole psi_s lies beyond the end
+    vertex by the edge's angle there with the ray (the angle of the triangle
+    H, start, end at that vertex). An edge nearly along its end's ray (a
+    needle's) puts the pole within a degree or two: breaks at that distance
+    times 1, 2, 4, ... from the end, up to half the sector (none for a
+    sector whose ends' angles are a quarter of it or more)."""
+    psi = -breaks if lower else breaks
+    r = sheet.ray_lengths(psi)
+    p = r[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
+    width = np.diff(breaks)
+    out = []
+    for i in np.nonzero(width > 0.0)[0]:
+        a, b = p[i], p[i + 1]
+        for end, other, sign in ((b, a, -1.0), (a, b, 1.0)):
+            edge, back = other - end, -end
+            cos = float(edge @ back) / max(float(np.hypot(*edge) * np.hypot(*back)), 1e-300)
+            angle = math.acos(min(max(cos, -1.0), 1.0))
+            if not 0.0 < angle < 0.25 * width[i]:
+                continue
+            steps = angle * 2.0 ** np.arange(int(math.log2(0.5 * width[i] / angle)) + 1)
+            start = breaks[i + 1] if sign < 0 else breaks[i]
+            out.append(start + sign * steps)
+    return np.concatenate(out) if out else np.empty(0)
+
+
+def _graded(breaks: Array, halvings: int) -> Array:
     """The sector breaks ``(m,)`` (flat angles, or the arc parameters of the
     vertex rays) graded towards both crease ends, halving the distance to
-    each 28 times: the cut at the crease (thick sheet), and a sheet edge
-    passing near H (r = d / sin(theta + psi): a peak of width psi at theta =
-    0 or pi, e.g. a needle's tip)."""
-    grade = 0.5 ** np.arange(3, 31)
+    each ``halvings`` times from an eighth of the end sector: the cut at the
+    crease (thick sheet), and a sheet edge passing near H (r = d / sin(theta
+    + psi): a peak of width psi at theta = 0 or pi, e.g. a needle's tip)."""
+    grade = 0.5 ** np.arange(3, 3 + halvings)
     near = breaks[0] + (breaks[1] - breaks[0]) * grade
     far = breaks[-1] - (breaks[-1] - breaks[-2]) * grade
     return sorted_unique(np.concatenate([breaks, near, far]))
@@ -228,28 +284,70 @@ def _block_moments(body: Body) -> list[tuple[float, Array]]:
     return out
 
 
-#: Panels of the 16-point Gauss-Legendre rule per sector between vertex rays.
-_PANELS = 8
+#: Gauss-Legendre points per panel. Every sector's integrand is smooth: its
+#: breaks are the vertex rays, the grading towards the crease ends and
+#: towards a vertex whose edge runs nearly along its ray (:func:`_towards_poles`),
+#: and the kinks within: the section's for the exact model
+#: (:func:`~onefold_cad.geometry.body_kinks.section_kinks`), the division rays
+#: for the paper model's planar wedges (a few degrees each: 4 points). Against
+#: a rule of 40 points, 32 panels and 40 halvings the measure and the centre
+#: of mass agree within 1e-12 (of the measure, of the size) on every template,
+#: and the paper sheet's centroid is its folded pieces' to 1e-12
+#: (tests/geometry/test_body_mass.py). The rule before (16 points, 8 panels,
+#: 28 halvings, none of those breaks) was off by up to 7e-10 of the volume on
+#: the templates, 2e-8 of the size on drawn thick sheets, 9e-7 on the paper
+#: model and 1e-7 on needles.
+_EXACT_POINTS = 16
+_PAPER_POINTS = 4
+#: Panels per sector, at most (in proportion to its flat angle), and the
+#: grading's halvings towards the crease ends: the exact model's, and the
+#: paper model's (whose sectors, between its rays, are narrow).
+_EXACT_PANELS, _EXACT_HALVINGS = 8, 8
+_PAPER_PANELS, _PAPER_HALVINGS = 8, 28
 
 
-def _sector_rule(breaks: Array) -> tuple[Array, Array]:
-    """Nodes and weights of a composite 16-point Gauss-Legendre rule over the
-    sectors between consecutive ``breaks`` (the edge radius is smooth within
-    each): up to 8 panels per sector, in proportion to its width.
+def _panel_edges(cone: ExactCone, theta: Array, phi: Array, panels: int) -> Array:
+    """The arc parameters ``(p + 1,)`` of the panels' ends: each sector between
+    consecutive breaks (flat angles ``theta`` and their arc parameters
+    ``phi``, both ``(m,)`` and sorted) cut into up to ``panels`` panels of
+    equal flat angle, in proportion to its flat angle (a needle's edge,
+    close to H, makes its ray length steep in theta; in phi a flat frame
+    can crowd that into a corner of the sector); the new ends' arc
+    parameters from the cone's table, the breaks' kept."""
+    width = np.diff(theta)
+    count = np.clip(np.ceil(panels * width / max(float(width.max()), 1e-300)), 1, panels)
+    count = np.where(width > 0.0, count, 1).astype(int)
+    owner = np.repeat(np.arange(len(width)), count)
+    first = np.concatenate([[0], np.cumsum(count)[:-1]])
+    step = np.arange(len(owner)) - first[owner]
+    inner = step > 0
+    edges = np.empty(len(owner) + 1)
+    edges[:-1][~inner] = phi[:-1]
+    edges[-1] = phi[-1]
+    if inner.any():
+        own = owner[inner]
+        edges[:-1][inner] = cone.phi_near(theta[own] + width[own] * step[inner] / count[own])
+    return np.maximum.accumulate(edges)
 
-    The caller also grades the breaks towards the crease (halving the
-    distance 28 times): the cut at the fold's plane of symmetry leaves only
+
+def _sector_rule(breaks: Array, points: int, panels: int) -> tuple[Array, Array]:
+    """Nodes and weights of a composite ``points``-point Gauss-Legendre rule
+    over the sectors between consecutive ``breaks`` (the integrand is smooth
+    within each): up to ``panels`` panels per sector, in proportion to its width.
+
+    The caller also grades the breaks towards the crease (:func:`_graded`):
+    the cut at the fold's plane of symmetry leaves only
     r > C / theta of a thick sheet's concave side there, a feature on every
     scale from the hole's radius to the sheet's edge; and a sheet edge that
     passes near H along the crease peaks there on the scale of its angle."""
     lo, hi = breaks[:-1], breaks[1:]
     keep = hi > lo
     lo, hi = lo[keep], hi[keep]
-    panels = np.clip(np.ceil(_PANELS * (hi - lo) / np.max(hi - lo)), 1, _PANELS).astype(int)
-    owner = np.repeat(np.arange(len(lo)), panels)
-    step = ((hi - lo) / panels)[owner]
-    first = np.concatenate([[0], np.cumsum(panels)[:-1]])
+    count = np.clip(np.ceil(panels * (hi - lo) / np.max(hi - lo)), 1, panels).astype(int)
+    owner = np.repeat(np.arange(len(lo)), count)
+    step = ((hi - lo) / count)[owner]
+    first = np.concatenate([[0], np.cumsum(count)[:-1]])
     a = lo[owner] + (np.arange(len(owner)) - first[owner]) * step
     half = 0.5 * step
-    nodes, weights = panel_rule(a + half, half, 16)
+    nodes, weights = panel_rule(a + half, half, points)
     return nodes.ravel(), weights.ravel()
