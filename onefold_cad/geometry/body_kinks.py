@@ -10,10 +10,14 @@ passes the hole (r_out = rho): there the closed forms change and the
 integrand kinks, and a Gauss-Legendre panel across a kink converges only
 algebraically (the rule of 16 points was off by up to 7e-10 of the volume on
 the templates, all of it from the panel holding a kink). The rule's breaks
-are put at the kinks instead. Angles in radians, lengths in the design unit.
+are put at the kinks instead: in the arc parameter for the exact model, in
+the flat angle for the paper model's planar wedges (whose thick sheet the
+same plane cuts). Angles in radians, lengths in the design unit.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,9 +25,9 @@ from numpy.typing import NDArray
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import Body
 from onefold_cad.geometry.cone import ExactCone
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, cross3
 
-__all__ = ["section_kinks"]
+__all__ = ["Section", "arc_section", "flat_section", "section_kinks"]
 
 #: Points looked at inside a sector wider than 1/16 of its side's arc, so
 #: that a kink inside a wide sector is bracketed (the graded sectors near the
@@ -31,17 +35,48 @@ __all__ = ["section_kinks"]
 _LOOKS = 16
 
 
-def _corners(body: Body, frames: ArcFrames, phi: Array, lower: NDArray[np.bool_]) -> Array:
-    """The five functions ``(5, k)`` whose zeros are the kinks, at arc
-    parameters ``phi`` of the +y side or the -y one (``lower``):
-    rho u_y + s n_y and r_out u_y + s n_y for s = s0, s1 (the cut's line
-    through a corner of the slab), and r_out - rho."""
-    cone = body.folded.solution.surface
+#: ``(t, lower) -> (u_y, n_y, r_out)`` at parameters ``t`` ``(k,)`` of the
+#: +y side or the -y one: the ruling's and the top normal's y components and
+#: the ray length there.
+Section = Callable[[Array, NDArray[np.bool_]], tuple[Array, Array, Array]]
+
+
+def arc_section(body: Body) -> Section:
+    """The exact model's :data:`Section` in the arc parameter phi (the rule's
+    own variable, :mod:`~onefold_cad.geometry.body_mass`)."""
+    folded = body.folded
+    cone = folded.solution.surface
     assert isinstance(cone, ExactCone)
-    theta = cone.theta_near(phi)
-    u, _, n = frames.frames(phi)
-    r_out = body.folded.sheet.ray_lengths(np.where(lower, -theta, theta))
-    uy, ny = u[:, 1], n[:, 1]
+    frames = ArcFrames(folded.solution.frame, folded.apex)
+
+    def at(phi: Array, lower: NDArray[np.bool_]) -> tuple[Array, Array, Array]:
+        theta = cone.theta_near(phi)
+        u, _, n = frames.frames(phi)
+        return u[:, 1], n[:, 1], folded.sheet.ray_lengths(np.where(lower, -theta, theta))
+
+    return at
+
+
+def flat_section(body: Body) -> Section:
+    """Any surface's :data:`Section` in the flat angle theta (the paper
+    model's planar wedges: their frames at theta)."""
+    folded = body.folded
+    surface = folded.solution.surface
+
+    def at(theta: Array, lower: NDArray[np.bool_]) -> tuple[Array, Array, Array]:
+        u, e = surface.frames(theta)
+        n = cross3(u, e)
+        return u[:, 1], n[:, 1], folded.sheet.ray_lengths(np.where(lower, -theta, theta))
+
+    return at
+
+
+def _corners(body: Body, section: Section, t: Array, lower: NDArray[np.bool_]) -> Array:
+    """The five functions ``(5, k)`` whose zeros are the kinks, at parameters
+    ``t`` of the +y side or the -y one (``lower``): rho u_y + s n_y and
+    r_out u_y + s n_y for s = s0, s1 (the cut's line through a corner of
+    the slab), and r_out - rho."""
+    uy, ny, r_out = section(t, lower)
     s0, s1 = body.s_range
     rho = body.hole
     return np.stack(
@@ -64,8 +99,9 @@ def _inverse_cubic(xs: Array, fs: Array) -> Array:
     return out
 
 
-def section_kinks(body: Body, breaks: list[Array]) -> list[Array]:
-    """Per side (+y, then -y), the arc parameters strictly inside that side's
+def section_kinks(body: Body, section: Section, breaks: list[Array]) -> list[Array]:
+    """Per side (+y, then -y), the parameters of ``section`` (:func:`arc_section`,
+    :func:`flat_section`) strictly inside that side's
     sorted ``breaks`` ``(m,)`` at which the section's closed forms change
     (:func:`_corners`' zeros), to about 1e-12 of the arc; none for a sheet
     without thickness. A zero is found where one of the functions changes
@@ -73,8 +109,6 @@ def section_kinks(body: Body, breaks: list[Array]) -> list[Array]:
     :data:`_LOOKS` points inside each sector wider than 1/16 of its side."""
     if body.s_range[1] <= body.s_range[0]:
         return [np.empty(0) for _ in breaks]
-    folded = body.folded
-    frames = ArcFrames(folded.solution.frame, folded.apex)
     looks, sides = [], []
     for side, b in enumerate(breaks):
         lo, hi = b[:-1], b[1:]
@@ -85,7 +119,7 @@ def section_kinks(body: Body, breaks: list[Array]) -> list[Array]:
         looks.append(at)
         sides.append(np.full(len(at), side == 1))
     phi, lower = np.concatenate(looks), np.concatenate(sides)
-    values = _corners(body, frames, phi, lower)
+    values = _corners(body, section, phi, lower)
     # brackets: a sign change between neighbours of one side
     same = lower[1:] == lower[:-1]
     fun, left = np.nonzero((np.signbit(values[:, 1:]) != np.signbit(values[:, :-1])) & same)
@@ -100,7 +134,7 @@ def section_kinks(body: Body, breaks: list[Array]) -> list[Array]:
     t = np.linspace(0.0, 1.0, _LOOKS + 1)
     grid = a[:, None] + (b - a)[:, None] * t  # (c, _LOOKS + 1)
     k = np.arange(len(a))
-    inner = _corners(body, frames, grid[:, 1:-1].ravel(), np.repeat(side_of, _LOOKS - 1))
+    inner = _corners(body, section, grid[:, 1:-1].ravel(), np.repeat(side_of, _LOOKS - 1))
     f = np.empty_like(grid)
     f[:, 0], f[:, -1] = values[fun, left], values[fun, left + 1]
     f[:, 1:-1] = inner[np.repeat(fun, _LOOKS - 1), np.arange(inner.shape[1])].reshape(

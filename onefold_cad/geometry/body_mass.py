@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import MIRROR, Body
-from onefold_cad.geometry.body_kinks import section_kinks
+from onefold_cad.geometry.body_kinks import arc_section, flat_section, section_kinks
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3, gauss_legendre, panel_rule, sorted_unique
 from onefold_cad.geometry.sheet import Sheet
@@ -38,17 +38,27 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     sides = []
     for lower in (False, True):
         breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
-        sides.append((lower, breaks, _towards_poles(folded.sheet, breaks, lower)))
+        sides.append((lower, breaks, *_towards_poles(folded.sheet, breaks, lower)))
     if body.exact:
         total, moment = _exact_slabs(body, sides)
     else:  # planar triangles: no curvature within them, kinks at their rays
         total, moment = 0.0, np.zeros(3)
         rays = np.asarray(getattr(cone, "thetas", []), dtype=float)
-        for lower, breaks, poles in sides:
+        grades = []
+        for _, breaks, poles, _ in sides:
             inside = rays[(rays > breaks[0]) & (rays < breaks[-1])]
             graded = _graded(breaks, _PAPER_HALVINGS)
-            breaks = sorted_unique(np.concatenate([graded, poles, inside]))
-            theta, weights = _sector_rule(breaks, _PAPER_POINTS, _PAPER_PANELS)
+            grades.append(sorted_unique(np.concatenate([graded, poles, inside])))
+        kinks = section_kinks(body, flat_section(body), grades)
+        for (lower, ends, _, spans), graded, cuts in zip(sides, grades, kinks, strict=True):
+            breaks = np.sort(np.concatenate([graded, cuts]))
+            if body.thickness > 0.0:  # the cut r > C / theta near the crease ends
+                near = (ends[1] - ends[0]) / 8.0, (ends[-1] - ends[-2]) / 8.0
+                crease = [[ends[0], ends[0] + near[0]], [ends[-1] - near[1], ends[-1]]]
+                spans = np.vstack([spans, crease])
+            theta, weights = _sector_rule(
+                breaks, _PAPER_POINTS, _PAPER_PANELS, (_EXACT_POINTS, spans)
+            )
             u, e = cone.frames(theta)
             n, k = cross3(u, e), np.zeros(len(theta))
             vals = weights @ _slab_moments(body, theta, np.full(len(theta), lower), u, n, k)
@@ -57,10 +67,10 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     return total, moment / total
 
 
-def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array]]) -> tuple[float, Array]:
+def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> tuple[float, Array]:
     """The exact model's measure and first moment (see :func:`mass_properties`)
-    from both sides' ``(lower, vertex angles, breaks towards poles)``, their
-    rules evaluated together.
+    from both sides' ``(lower, vertex angles, breaks towards poles, their
+    spans)``, their rules evaluated together.
 
     The rule runs in the arc's phi (no inversion at every node): dtheta =
     |du/dphi| dphi, theta being u's arc length; its panels end at the vertex
@@ -73,30 +83,19 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array]]) -> tuple[fl
     cone = folded.solution.surface
     assert isinstance(cone, ExactCone)
     grades, ats = [], []
-    for lower, breaks, poles in sides:
+    for lower, breaks, poles, _ in sides:
         graded = sorted_unique(np.concatenate([_graded(breaks, _EXACT_HALVINGS), poles]))
         at = cone.phi_near(graded)
         at[np.searchsorted(graded, breaks)] = body.vertex_phis[int(lower)]
         grades.append(graded)
         ats.append(np.maximum.accumulate(at))
     rules = []
-    found = section_kinks(body, ats)
-    kink_thetas = cone.theta_near(np.concatenate(found)) if sum(map(len, found)) else None
-    start = 0
-    for graded, at, kinks in zip(grades, ats, found, strict=True):
-        th, ph = graded, at
-        if len(kinks):
-            assert kink_thetas is not None
-            th = np.concatenate([graded, kink_thetas[start : start + len(kinks)]])
-            ph = np.concatenate([at, kinks])
-            order = np.argsort(ph, kind="stable")
-            th, ph = np.maximum.accumulate(th[order]), ph[order]
-            start += len(kinks)
-        edges = _panel_edges(cone, th, ph, _EXACT_PANELS)
-        lo, hi = edges[:-1], edges[1:]
-        keep = hi > lo
-        nodes, weights = panel_rule(0.5 * (lo + hi)[keep], 0.5 * (hi - lo)[keep], _EXACT_POINTS)
-        rules.append((nodes.ravel(), weights.ravel(), graded))
+    for graded, at, kinks in zip(
+        grades, ats, section_kinks(body, arc_section(body), ats), strict=True
+    ):
+        breaks = np.sort(np.concatenate([at, kinks]))
+        phi, weights = _sector_rule(breaks, _EXACT_POINTS, _EXACT_PANELS)
+        rules.append((phi, weights, graded))
     phi = np.concatenate([r[0] for r in rules])
     lower = np.repeat([False, True], [len(r[0]) for r in rules])
     theta = cone.theta_near(phi)
@@ -116,20 +115,22 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array]]) -> tuple[fl
     return total, moment
 
 
-def _towards_poles(sheet: Sheet, breaks: Array, lower: bool) -> Array:
+def _towards_poles(sheet: Sheet, breaks: Array, lower: bool) -> tuple[Array, Array]:
     """Breaks ``(k,)`` (flat angles) grading each sector between vertex rays
     towards an end near which its ray length is steep: along a straight
     edge r = d / sin(psi_s - theta), whose pole psi_s lies beyond the end
     vertex by the edge's angle there with the ray (the angle of the triangle
     H, start, end at that vertex). An edge nearly along its end's ray (a
     needle's) puts the pole within a degree or two: breaks at that distance
-    times 1, 2, 4, ... from the end, up to half the sector (none for a
-    sector whose ends' angles are a quarter of it or more)."""
+    times 1/16, 1/8, ... 1, 2, 4, ... from the end, up to half the sector
+    (none for a sector whose ends' angles are a quarter of it or more); and
+    the spans ``(j, 2)`` so graded, where a rule of few points would
+    converge too slowly."""
     psi = -breaks if lower else breaks
     r = sheet.ray_lengths(psi)
     p = r[:, None] * np.column_stack([np.cos(psi), np.sin(psi)])
     width = np.diff(breaks)
-    out = []
+    out, spans = [], []
     for i in np.nonzero(width > 0.0)[0]:
         a, b = p[i], p[i + 1]
         for end, other, sign in ((b, a, -1.0), (a, b, 1.0)):
@@ -138,10 +139,11 @@ def _towards_poles(sheet: Sheet, breaks: Array, lower: bool) -> Array:
             angle = math.acos(min(max(cos, -1.0), 1.0))
             if not 0.0 < angle < 0.25 * width[i]:
                 continue
-            steps = angle * 2.0 ** np.arange(int(math.log2(0.5 * width[i] / angle)) + 1)
+            steps = angle * 2.0 ** np.arange(-4, int(math.log2(0.5 * width[i] / angle)) + 1)
             start = breaks[i + 1] if sign < 0 else breaks[i]
             out.append(start + sign * steps)
-    return np.concatenate(out) if out else np.empty(0)
+            spans.append(sorted((start, start + sign * 0.5 * width[i])))
+    return (np.concatenate(out) if out else np.empty(0)), np.array(spans).reshape(-1, 2)
 
 
 def _graded(breaks: Array, halvings: int) -> Array:
@@ -287,53 +289,33 @@ def _block_moments(body: Body) -> list[tuple[float, Array]]:
 #: Gauss-Legendre points per panel. Every sector's integrand is smooth: its
 #: breaks are the vertex rays, the grading towards the crease ends and
 #: towards a vertex whose edge runs nearly along its ray (:func:`_towards_poles`),
-#: and the kinks within: the section's for the exact model
-#: (:func:`~onefold_cad.geometry.body_kinks.section_kinks`), the division rays
-#: for the paper model's planar wedges (a few degrees each: 4 points). Against
-#: a rule of 40 points, 32 panels and 40 halvings the measure and the centre
-#: of mass agree within 1e-12 (of the measure, of the size) on every template,
-#: and the paper sheet's centroid is its folded pieces' to 1e-12
-#: (tests/geometry/test_body_mass.py). The rule before (16 points, 8 panels,
-#: 28 halvings, none of those breaks) was off by up to 7e-10 of the volume on
-#: the templates, 2e-8 of the size on drawn thick sheets, 9e-7 on the paper
-#: model and 1e-7 on needles.
+#: and the kinks within (:mod:`~onefold_cad.geometry.body_kinks`: where the
+#: fold's plane cuts a corner of the thick slab), and for the paper model its
+#: division rays, between which its planar wedges (a few degrees each) take 4
+#: points in up to 2 panels, the graded spans near a pole and, for a thick sheet, near the
+#: crease ends 16. Against a rule of 40 points, 32 panels and 40 halvings the
+#: measure and the centre of mass agree within 1e-12 (of the measure, of the
+#: size) on every template, and the paper sheet's centroid is its folded
+#: pieces' to 1e-12 (tests/geometry/test_body_mass.py). The rule before (16
+#: points, 8 panels, 28 halvings, none of those breaks) was off by up to 7e-10
+#: of the volume on the templates, 2e-8 of the size on drawn thick sheets,
+#: 9e-7 on the paper templates and 1e-7 on needles.
 _EXACT_POINTS = 16
 _PAPER_POINTS = 4
-#: Panels per sector, at most (in proportion to its flat angle), and the
-#: grading's halvings towards the crease ends: the exact model's, and the
-#: paper model's (whose sectors, between its rays, are narrow).
+#: Panels per sector, at most (in proportion to its width), and the
+#: grading's halvings towards the crease ends, for each model.
 _EXACT_PANELS, _EXACT_HALVINGS = 8, 8
-_PAPER_PANELS, _PAPER_HALVINGS = 8, 28
+_PAPER_PANELS, _PAPER_HALVINGS = 2, 8
 
 
-def _panel_edges(cone: ExactCone, theta: Array, phi: Array, panels: int) -> Array:
-    """The arc parameters ``(p + 1,)`` of the panels' ends: each sector between
-    consecutive breaks (flat angles ``theta`` and their arc parameters
-    ``phi``, both ``(m,)`` and sorted) cut into up to ``panels`` panels of
-    equal flat angle, in proportion to its flat angle (a needle's edge,
-    close to H, makes its ray length steep in theta; in phi a flat frame
-    can crowd that into a corner of the sector); the new ends' arc
-    parameters from the cone's table, the breaks' kept."""
-    width = np.diff(theta)
-    count = np.clip(np.ceil(panels * width / max(float(width.max()), 1e-300)), 1, panels)
-    count = np.where(width > 0.0, count, 1).astype(int)
-    owner = np.repeat(np.arange(len(width)), count)
-    first = np.concatenate([[0], np.cumsum(count)[:-1]])
-    step = np.arange(len(owner)) - first[owner]
-    inner = step > 0
-    edges = np.empty(len(owner) + 1)
-    edges[:-1][~inner] = phi[:-1]
-    edges[-1] = phi[-1]
-    if inner.any():
-        own = owner[inner]
-        edges[:-1][inner] = cone.phi_near(theta[own] + width[own] * step[inner] / count[own])
-    return np.maximum.accumulate(edges)
-
-
-def _sector_rule(breaks: Array, points: int, panels: int) -> tuple[Array, Array]:
+def _sector_rule(
+    breaks: Array, points: int, panels: int, fine: tuple[int, Array] | None = None
+) -> tuple[Array, Array]:
     """Nodes and weights of a composite ``points``-point Gauss-Legendre rule
     over the sectors between consecutive ``breaks`` (the integrand is smooth
-    within each): up to ``panels`` panels per sector, in proportion to its width.
+    within each): up to ``panels`` panels per sector, in proportion to its
+    width; ``fine``: (more points, spans ``(j, 2)``) for the panels whose
+    middle lies in one of those spans.
 
     The caller also grades the breaks towards the crease (:func:`_graded`):
     the cut at the fold's plane of symmetry leaves only
@@ -349,5 +331,12 @@ def _sector_rule(breaks: Array, points: int, panels: int) -> tuple[Array, Array]
     first = np.concatenate([[0], np.cumsum(count)[:-1]])
     a = lo[owner] + (np.arange(len(owner)) - first[owner]) * step
     half = 0.5 * step
-    nodes, weights = panel_rule(a + half, half, points)
-    return nodes.ravel(), weights.ravel()
+    mid = a + half
+    if fine is None or not len(fine[1]):
+        nodes, weights = panel_rule(mid, half, points)
+        return nodes.ravel(), weights.ravel()
+    more, spans = fine
+    near = ((mid[:, None] >= spans[:, 0]) & (mid[:, None] <= spans[:, 1])).any(axis=1)
+    n0, w0 = panel_rule(mid[~near], half[~near], points)
+    n1, w1 = panel_rule(mid[near], half[near], more)
+    return np.concatenate([n0.ravel(), n1.ravel()]), np.concatenate([w0.ravel(), w1.ravel()])

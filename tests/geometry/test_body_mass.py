@@ -11,9 +11,7 @@ integrand within each panel. The references here do not share that premise:
   missed would leave at about 1e-10 of the size (the rule before the kinks
   were breaks: 16 points were off by up to 2e-8 of the size, 9e-7 on the
   paper model);
-* the kinks themselves against the geometry they come from: where the cut of
-  the fold's plane of symmetry, y = r u_y + s n_y = 0, passes a corner of the
-  slab (r = rho or r_out, s = s0 or s1).
+* the kinks themselves: tests/geometry/test_body_kinks.py.
 """
 
 from __future__ import annotations
@@ -28,9 +26,7 @@ from hypothesis import strategies as st
 import onefold_cad.geometry.body_mass as body_mass
 from onefold_cad import Material, fold, solve
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import Body
-from onefold_cad.geometry.body_kinks import section_kinks
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.templates import load_template
 from tests.geometry.folds import fold_or_none
@@ -83,21 +79,22 @@ def test_every_template_s_mass_is_the_finer_rule_s(name: str, kind: str) -> None
 @given(
     frame=frames(divisions=90),
     sheet=sheets,
+    model=st.sampled_from(["exact", "paper"]),
     thickness=st.one_of(st.just(0.0), st.floats(1e-3, 2e-2)),
     surface=st.sampled_from(["INSIDE", "MID", "OUTSIDE"]),
     hole=st.floats(0.0, 0.5),
 )
-def test_drawn_exact_designs_mass_is_the_finer_rule_s(frame, sheet, thickness, surface, hole):
-    """Thickness and hole as fractions of the sheet's size (a hole up to half
-    the distance from H to the nearest edge). Within 1e-7 over the whole
-    range: most designs agree within 1e-12, but a needle on a flat frame (a
-    sheet some 12 times longer than wide folded along its long diagonal,
-    alpha = beta = 5 deg) with a thin slab is off by up to 1e-8 (its ray
-    length and the cut's kink crowd into the last degree before the crease
-    end). The rule before this one was off by 1e-7 on such needles without
-    any thickness; the template test above is the one that tells the rules
-    apart at their kinks."""
-    folded = fold_or_none(frame, sheet, "exact")
+def test_drawn_designs_mass_is_the_finer_rule_s(frame, sheet, model, thickness, surface, hole):
+    """Either model; thickness and hole as fractions of the sheet's size (a
+    hole up to half the distance from H to the nearest edge). Within 1e-6
+    over the whole range: most designs agree within 1e-12, but needles on a
+    flat frame (a sheet 20 to 60 times longer than wide folded along its
+    long diagonal, alpha = beta = 5 deg) with a thick sheet are off by up
+    to 2e-7 (the paper model; 1e-8 the exact one): their ray length, the
+    cut's kinks and its r > C / theta crowd into the last degree before the
+    crease end. The rule before was off by 4e-7 on such a paper needle. The
+    template test above is the one that tells the rules apart at 1e-12."""
+    folded = fold_or_none(frame, sheet, model)
     if folded is None:
         return
     size = float(np.max(np.hypot(*sheet.vertices.T)))
@@ -106,8 +103,8 @@ def test_drawn_exact_designs_mass_is_the_finer_rule_s(frame, sheet, thickness, s
     body = Body(folded, material, "shell")
     measure, com = mass_properties(body)
     fine_measure, fine_com = _fine(folded, material, "shell")
-    assert abs(measure - fine_measure) <= 1e-7 * fine_measure
-    assert float(np.abs(com - fine_com).max()) <= 1e-7 * body.size
+    assert abs(measure - fine_measure) <= 1e-6 * fine_measure
+    assert float(np.abs(com - fine_com).max()) <= 1e-6 * body.size
 
 
 def _clip(poly: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -159,37 +156,3 @@ def test_paper_sheet_s_centroid_is_its_folded_pieces(name: str) -> None:
     exact = moment / total - folded.apex
     assert abs(area - total) <= 1e-12 * total
     assert float(np.abs(com - exact).max()) <= 1e-12 * body.size
-
-
-@pytest.mark.parametrize("name", ["patkau-one-fold", "broken-vault"])
-def test_kinks_are_where_the_cut_passes_a_corner_of_the_slab(name: str) -> None:
-    design = load_template(name)
-    folded = fold(solve(design.frame, design.model), design.sheet)
-    material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
-    body = Body(folded, material, "solid")
-    cone, arc = folded.solution.surface, ArcFrames(folded.solution.frame, folded.apex)
-    (s0, s1), rho = body.s_range, body.hole
-
-    def corners(phi: np.ndarray, lower: bool) -> np.ndarray:
-        theta = cone.theta_of_phi(phi)
-        u, _, n = arc.frames(phi)
-        r_out = folded.sheet.ray_lengths(-theta if lower else theta)
-        return np.stack([r * u[:, 1] + s * n[:, 1] for r in (rho, r_out) for s in (s0, s1)])
-
-    ends = [body.vertex_phis[0][[0, -1]], body.vertex_phis[1][[0, -1]]]
-    kinks = section_kinks(body, [np.linspace(*e, 65) for e in ends])
-    for lower, (found, (p0, p1)) in enumerate(zip(kinks, ends, strict=True)):
-        assert len(found) >= 2  # the cut meets the slab near both crease ends
-        values = corners(found, bool(lower))
-        # each a zero of one of them (the functions' scale: the sheet's size)
-        assert np.all(np.min(np.abs(values), axis=0) <= 1e-9 * body.size)
-        # and every sign change on a fine grid (graded to the ends) is one
-        g = 0.5 ** np.arange(1, 40)
-        grid = np.unique(np.concatenate([np.linspace(p0, p1, 4001), p0 + (p1 - p0) * g,
-                                         p1 - (p1 - p0) * g]))  # fmt: skip
-        v = corners(grid, bool(lower))
-        for row in v:
-            for i in np.nonzero(np.signbit(row[1:]) != np.signbit(row[:-1]))[0]:
-                assert (
-                    np.min(np.abs(found - 0.5 * (grid[i] + grid[i + 1]))) <= grid[i + 1] - grid[i]
-                )
