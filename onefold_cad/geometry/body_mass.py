@@ -39,32 +39,45 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     for lower in (False, True):
         breaks = np.clip(np.asarray(lo if lower else up, dtype=float), 0.0, cone.total_angle)
         sides.append((lower, breaks, *_towards_poles(folded.sheet, breaks, lower)))
-    if body.exact:
-        total, moment = _exact_slabs(body, sides)
-    else:  # planar triangles: no curvature within them, kinks at their rays
-        total, moment = 0.0, np.zeros(3)
-        rays = np.asarray(getattr(cone, "thetas", []), dtype=float)
-        grades = []
-        for _, breaks, poles, _ in sides:
-            inside = rays[(rays > breaks[0]) & (rays < breaks[-1])]
-            graded = _graded(breaks, _PAPER_HALVINGS)
-            grades.append(sorted_unique(np.concatenate([graded, poles, inside])))
-        kinks = section_kinks(body, flat_section(body), grades)
-        for (lower, ends, _, spans), graded, cuts in zip(sides, grades, kinks, strict=True):
-            breaks = np.sort(np.concatenate([graded, cuts]))
-            if body.thickness > 0.0:  # the cut r > C / theta near the crease ends
-                near = (ends[1] - ends[0]) / 8.0, (ends[-1] - ends[-2]) / 8.0
-                crease = [[ends[0], ends[0] + near[0]], [ends[-1] - near[1], ends[-1]]]
-                spans = np.vstack([spans, crease])
-            theta, weights = _sector_rule(
-                breaks, _PAPER_POINTS, _PAPER_PANELS, (_EXACT_POINTS, spans)
-            )
-            u, e = cone.frames(theta)
-            n, k = cross3(u, e), np.zeros(len(theta))
-            vals = weights @ _slab_moments(body, theta, np.full(len(theta), lower), u, n, k)
-            total += vals[0]
-            moment += vals[1:] * (MIRROR if lower else np.ones(3))
+    slabs = _exact_slabs if body.exact else _paper_slabs
+    total, moment = slabs(body, sides)
     return total, moment / total
+
+
+def _paper_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> tuple[float, Array]:
+    """The paper model's measure and first moment (see :func:`mass_properties`),
+    ``sides`` as :func:`_exact_slabs`': planar triangles, no curvature within
+    them, the rule in the flat angle with breaks at the division rays (where
+    the wedges' planes kink) and at the thick sheet's cut (:func:`flat_section`)."""
+    cone = body.folded.solution.surface
+    total, moment = 0.0, np.zeros(3)
+    rays = np.asarray(getattr(cone, "thetas", []), dtype=float)
+    # a thick sheet's cut leaves r > C / theta near the crease ends, steep
+    # over the first degrees whatever the sheet's vertices: graded from an
+    # eighth of the side (in halvings), on the finer rule
+    reach = cone.total_angle / 8.0
+    steps = reach * 0.5 ** np.arange(_PAPER_HALVINGS + 1)
+    grades = []
+    for _, breaks, poles, _ in sides:
+        inside = rays[(rays > breaks[0]) & (rays < breaks[-1])]
+        graded = [_graded(breaks, _PAPER_HALVINGS), poles, inside]
+        if body.thickness > 0.0:
+            graded += [breaks[0] + steps, breaks[-1] - steps]
+        kept = sorted_unique(np.concatenate(graded))
+        grades.append(kept[(kept >= breaks[0]) & (kept <= breaks[-1])])
+    kinks = section_kinks(body, flat_section(body), grades)
+    for (lower, ends, _, spans), graded, cuts in zip(sides, grades, kinks, strict=True):
+        breaks = np.sort(np.concatenate([graded, cuts]))
+        if body.thickness > 0.0:
+            crease = [[ends[0], ends[0] + reach], [ends[-1] - reach, ends[-1]]]
+            spans = np.vstack([spans, crease])
+        theta, weights = _sector_rule(breaks, _PAPER_POINTS, _PAPER_PANELS, (_EXACT_POINTS, spans))
+        u, e = cone.frames(theta)
+        n, k = cross3(u, e), np.zeros(len(theta))
+        vals = weights @ _slab_moments(body, theta, np.full(len(theta), lower), u, n, k)
+        total += vals[0]
+        moment += vals[1:] * (MIRROR if lower else np.ones(3))
+    return total, moment
 
 
 def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> tuple[float, Array]:
@@ -292,14 +305,15 @@ def _block_moments(body: Body) -> list[tuple[float, Array]]:
 #: and the kinks within (:mod:`~onefold_cad.geometry.body_kinks`: where the
 #: fold's plane cuts a corner of the thick slab), and for the paper model its
 #: division rays, between which its planar wedges (a few degrees each) take 4
-#: points in up to 2 panels, the graded spans near a pole and, for a thick sheet, near the
-#: crease ends 16. Against a rule of 40 points, 32 panels and 40 halvings the
+#: points in up to 2 panels, the spans graded towards a pole and, for a thick
+#: sheet, the eighth of each side at a crease end (graded too: the cut's
+#: r > C / theta) 16. Against a rule of 40 points, 32 panels and 40 halvings the
 #: measure and the centre of mass agree within 1e-12 (of the measure, of the
 #: size) on every template, and the paper sheet's centroid is its folded
 #: pieces' to 1e-12 (tests/geometry/test_body_mass.py). The rule before (16
 #: points, 8 panels, 28 halvings, none of those breaks) was off by up to 7e-10
 #: of the volume on the templates, 2e-8 of the size on drawn thick sheets,
-#: 9e-7 on the paper templates and 1e-7 on needles.
+#: 9e-7 on the paper templates and 1e-7 to 4e-7 on needles.
 _EXACT_POINTS = 16
 _PAPER_POINTS = 4
 #: Panels per sector, at most (in proportion to its width), and the
