@@ -106,7 +106,10 @@ def section_kinks(body: Body, section: Section, breaks: list[Array]) -> list[Arr
     (:func:`_corners`' zeros), to about 1e-12 of the arc; none for a sheet
     without thickness. A zero is found where one of the functions changes
     sign between neighbouring points looked at: the breaks, and
-    :data:`_LOOKS` points inside each sector wider than 1/16 of its side."""
+    :data:`_LOOKS` points inside each sector wider than 1/16 of its side.
+    On the paper model a sign change across a division ray, where the
+    wedges' normal jumps, is found too, within a refined step of the ray:
+    one more break where the integrand is smooth on either side."""
     if body.s_range[1] <= body.s_range[0]:
         return [np.empty(0) for _ in breaks]
     looks, sides = [], []

@@ -88,8 +88,9 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> t
     The rule runs in the arc's phi (no inversion at every node): dtheta =
     |du/dphi| dphi, theta being u's arc length; its panels end at the vertex
     rays (the edge radius's kinks) and at the section's own kinks
-    (:func:`~onefold_cad.geometry.body_kinks.section_kinks`), and are graded towards the crease ends
-    (:func:`_graded`), the graded breaks' arc parameters from the cone's
+    (:func:`~onefold_cad.geometry.body_kinks.section_kinks`), and are graded
+    towards the crease ends (:func:`_graded`) and towards poles
+    (:func:`_towards_poles`), the graded breaks' arc parameters from the cone's
     table (their errors vanish towards the crease ends, where they crowd),
     the vertex rays' exact."""
     folded = body.folded

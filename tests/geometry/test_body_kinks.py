@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from onefold_cad import fold, solve
+from onefold_cad import Material, fold, solve
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body import Body
-from onefold_cad.geometry.body_kinks import arc_section, section_kinks
+from onefold_cad.geometry.body_kinks import arc_section, flat_section, section_kinks
 from onefold_cad.templates import load_template
 
 
@@ -49,3 +49,39 @@ def test_kinks_are_where_the_cut_passes_a_corner_of_the_slab(name: str) -> None:
                 assert (
                     np.min(np.abs(found - 0.5 * (grid[i] + grid[i + 1]))) <= grid[i + 1] - grid[i]
                 )
+
+
+def test_the_paper_model_s_kinks_are_in_the_flat_angle() -> None:
+    """table1-row1's paper fan as a sheet 1 % of its size thick, no hole:
+    the same corners, the wedges' frames at theta."""
+    design = load_template("table1-row1")
+    folded = fold(solve(design.frame, design.model), design.sheet)
+    thick = Material(thickness=0.01 * folded.sheet.size, relief_hole=0.0)
+    body = Body(folded, thick, "shell")
+    fan = folded.solution.surface
+    (s0, s1), rho = body.s_range, body.hole
+    assert s1 > s0
+
+    def corners(theta: np.ndarray, lower: bool) -> np.ndarray:
+        u, e = fan.frames(theta)
+        n = np.cross(u, e)
+        r_out = folded.sheet.ray_lengths(-theta if lower else theta)
+        return np.stack([r * u[:, 1] + s * n[:, 1] for r in (rho, r_out) for s in (s0, s1)])
+
+    ends = [np.array([0.0, fan.total_angle])] * 2
+    kinks = section_kinks(body, flat_section(body), [np.linspace(*e, 65) for e in ends])
+    rays = np.asarray(fan.thetas)
+    for lower, found in enumerate(kinks):
+        assert len(found) >= 2
+        # each a zero of one of them, or a sign change across a division ray
+        # (where the wedges' normal jumps), within the refined step of it
+        zero = np.min(np.abs(corners(found, bool(lower))), axis=0) <= 1e-9 * body.size
+        at_ray = np.min(np.abs(found[:, None] - rays[None, :]), axis=1) <= np.pi / 64 / 16
+        assert np.all(zero | at_ray) and zero.sum() >= 2
+        g = 0.5 ** np.arange(1, 40)
+        t = fan.total_angle
+        grid = np.unique(np.concatenate([np.linspace(0.0, t, 4001), t * g, t - t * g]))
+        for row in corners(grid, bool(lower)):
+            for i in np.nonzero(np.signbit(row[1:]) != np.signbit(row[:-1]))[0]:
+                step = max(grid[i + 1] - grid[i], np.pi / 64 / 16)  # a jump's: the refined step
+                assert np.min(np.abs(found - 0.5 * (grid[i] + grid[i + 1]))) <= step
