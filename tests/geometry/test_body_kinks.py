@@ -6,6 +6,8 @@ from the sheet."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import pytest
 
@@ -40,15 +42,7 @@ def test_kinks_are_where_the_cut_passes_a_corner_of_the_slab(name: str) -> None:
         # each a zero of one of them (the functions' scale: the sheet's size)
         assert np.all(np.min(np.abs(values), axis=0) <= 1e-9 * body.size)
         # and every sign change on a fine grid (graded to the ends) is one
-        g = 0.5 ** np.arange(1, 40)
-        grid = np.unique(np.concatenate([np.linspace(p0, p1, 4001), p0 + (p1 - p0) * g,
-                                         p1 - (p1 - p0) * g]))  # fmt: skip
-        v = corners(grid, bool(lower))
-        for row in v:
-            for i in np.nonzero(np.signbit(row[1:]) != np.signbit(row[:-1]))[0]:
-                assert (
-                    np.min(np.abs(found - 0.5 * (grid[i] + grid[i + 1]))) <= grid[i + 1] - grid[i]
-                )
+        _every_sign_change_found(found, lambda t, lo=bool(lower): corners(t, lo), p0, p1, 0.0)
 
 
 def test_the_paper_model_s_kinks_are_in_the_flat_angle() -> None:
@@ -78,10 +72,26 @@ def test_the_paper_model_s_kinks_are_in_the_flat_angle() -> None:
         zero = np.min(np.abs(corners(found, bool(lower))), axis=0) <= 1e-9 * body.size
         at_ray = np.min(np.abs(found[:, None] - rays[None, :]), axis=1) <= np.pi / 64 / 16
         assert np.all(zero | at_ray) and zero.sum() >= 2
-        g = 0.5 ** np.arange(1, 40)
-        t = fan.total_angle
-        grid = np.unique(np.concatenate([np.linspace(0.0, t, 4001), t * g, t - t * g]))
-        for row in corners(grid, bool(lower)):
-            for i in np.nonzero(np.signbit(row[1:]) != np.signbit(row[:-1]))[0]:
-                step = max(grid[i + 1] - grid[i], np.pi / 64 / 16)  # a jump's: the refined step
-                assert np.min(np.abs(found - 0.5 * (grid[i] + grid[i + 1]))) <= step
+        # a jump is found within the refined step of its bracket
+        _every_sign_change_found(
+            found, lambda t, lo=bool(lower): corners(t, lo), 0.0, fan.total_angle, np.pi / 1024
+        )
+
+
+def _every_sign_change_found(
+    found: np.ndarray,
+    corners: Callable[[np.ndarray], np.ndarray],
+    p0: float,
+    p1: float,
+    slack: float,
+) -> None:
+    """Every sign change of ``corners`` on a fine grid of [p0, p1] (4001
+    points, graded towards both ends) lies within its grid step, or
+    ``slack``, of one of the ``found`` kinks."""
+    g = 0.5 ** np.arange(1, 40)
+    grid = np.unique(np.concatenate([np.linspace(p0, p1, 4001), p0 + (p1 - p0) * g,
+                                     p1 - (p1 - p0) * g]))  # fmt: skip
+    for row in corners(grid):
+        for i in np.nonzero(np.signbit(row[1:]) != np.signbit(row[:-1]))[0]:
+            step = max(grid[i + 1] - grid[i], slack)
+            assert np.min(np.abs(found - 0.5 * (grid[i] + grid[i + 1]))) <= step
