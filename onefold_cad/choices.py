@@ -175,3 +175,18 @@ class MeshLevel(Choice):
     COARSE = "coarse"
     NORMAL = "normal"
     FINE = "fine"
+
+    @property
+    def checked(self) -> bool:
+        """Whether simulate solves again on a finer mesh by default (its
+        convergence check): on every level but the coarse preview."""
+        return self is not MeshLevel.COARSE
+
+
+#: ``onefold simulate``'s default settings (the convergence check's: :attr:`MeshLevel.checked`).
+SIMULATION_DEFAULTS: dict[str, Choice] = {
+    "supports": Supports.ANCHORED,
+    "reference": Reference.FLAT,
+    "crease": Crease.HELD,
+    "mesh": MeshLevel.NORMAL,
+}

@@ -104,9 +104,13 @@ def cmd_sweep(ns: argparse.Namespace) -> int:
 
     from onefold_cad.flags.parser import UsageError
     from onefold_cad.sweep.backends import check_dask
-    from onefold_cad.sweep.plan import make_plan
+    from onefold_cad.sweep.plan import SIMULATION_SETTINGS, make_plan
     from onefold_cad.sweep.runner import run_sweep
 
+    if ns.scheduler is not None and not ns.scheduler.strip():
+        raise UsageError(
+            "--scheduler: empty; give PROTOCOL://HOST:PORT (tcp://10.0.0.5:8786) or local"
+        )
     scheduler = ns.scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
     if scheduler:
         check_dask()
@@ -124,6 +128,7 @@ def cmd_sweep(ns: argparse.Namespace) -> int:
         measures=[m for text in ns.measure for m in text.split(",") if m.strip()],
         objectives=ns.objectives,
         images=ns.images,
+        simulation={k: getattr(ns, k) for k in SIMULATION_SETTINGS},
     )
     STATE["interrupted"] = (
         f"the finished designs are kept in {ns.outdir / 'journal.jsonl'} and the files "

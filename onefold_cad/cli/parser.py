@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
 
 from onefold_cad.cli.help_format import fill, formatter, raw_formatter
 from onefold_cad.cli.site_parser import site_parser
@@ -259,11 +260,6 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
 
 def _simulate_parser() -> FlagParser:
     """``onefold simulate``: the mechanics' options, then the design flags."""
-    from onefold_cad.choices import Crease, MeshLevel, Reference, Supports
-
-    def words(choice: type) -> tuple[str, ...]:
-        return tuple(c.value for c in choice)
-
     p = FlagParser(
         prog=f"{PROG} simulate",
         usage=f"{PROG} simulate [TEMPLATE] [--supports anchored|frictionless]\n"
@@ -283,28 +279,7 @@ def _simulate_parser() -> FlagParser:
         allow_abbrev=False,
     )
     _template_argument(p, "template", "?")
-    g = p.add_argument_group("simulation")
-    for flag, choice, default, text in (
-        ("--supports", Supports, Supports.ANCHORED, "where the sheet touches the ground it is "
-         "anchored (does not slide; default) or slides freely"),
-        ("--reference", Reference, Reference.FLAT, "the stress-free form: the flat sheet "
-         "(forming, springback, standing; default) or the designed form (a structural check)"),
-        ("--crease", Crease, Crease.HELD, "the crease keeps its set angle (default), or bends "
-         "with its bend zone's own stiffness"),
-        ("--mesh", MeshLevel, MeshLevel.NORMAL, "mesh fineness (default normal; coarse: a quick "
-         "preview without the convergence check)"),
-    ):  # fmt: skip
-        g.add_argument(
-            flag, type=parse_choice(words(choice)), default=default.value,
-            metavar="|".join(words(choice)), help=text,
-        )  # fmt: skip
-    check = g.add_mutually_exclusive_group()
-    check.add_argument(
-        "--check", dest="check", action="store_true", default=None,
-        help="solve again on a mesh with about twice the nodes (default, but for coarse)",
-    )  # fmt: skip
-    check.add_argument("--no-check", dest="check", action="store_false",
-                       help="skip the convergence check")  # fmt: skip
+    simulation_options(p.add_argument_group("simulation"), defaults=True)
     o = p.add_argument_group("output")
     o.add_argument("--json", action="store_true",
                    help="print the JSON report with its simulation section")  # fmt: skip
@@ -315,6 +290,38 @@ def _simulate_parser() -> FlagParser:
     _add_common(o)
     add_design_flags(p)
     return p
+
+
+def simulation_options(g: Any, *, defaults: bool) -> None:
+    """``onefold simulate``'s options (supports, reference, crease, mesh, the
+    convergence check) on the argument group ``g``; ``defaults``: their
+    defaults set (simulate), else None where not given (sweep: they need
+    ``--measure simulate``, and the plan fills in simulate's defaults)."""
+    from onefold_cad.choices import SIMULATION_DEFAULTS
+
+    for name, text in (
+        ("supports", "where the sheet touches the ground it is anchored (does not slide; "
+         "default) or slides freely"),
+        ("reference", "the stress-free form: the flat sheet (forming, springback, standing; "
+         "default) or the designed form (a structural check)"),
+        ("crease", "the crease keeps its set angle (default), or bends with its bend zone's "
+         "own stiffness"),
+        ("mesh", "mesh fineness (default normal; coarse: a quick preview without the "
+         "convergence check)"),
+    ):  # fmt: skip
+        default = SIMULATION_DEFAULTS[name]
+        words = tuple(c.value for c in type(default))
+        g.add_argument(
+            f"--{name}", type=parse_choice(words), default=default.value if defaults else None,
+            metavar="|".join(words), help=text,
+        )  # fmt: skip
+    check = g.add_mutually_exclusive_group()
+    check.add_argument(
+        "--check", dest="check", action="store_true", default=None,
+        help="solve again on a mesh with about twice the nodes (default, but for coarse)",
+    )  # fmt: skip
+    check.add_argument("--no-check", dest="check", action="store_false",
+                       help="skip the convergence check")  # fmt: skip
 
 
 def _sweep_parser() -> FlagParser:
@@ -418,6 +425,10 @@ def _sweep_parser() -> FlagParser:
         "workers; needs onefold_cad[cluster]",
     )
     g.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    simulation_options(
+        p.add_argument_group("simulation (with --measure simulate; as onefold simulate's)"),
+        defaults=False,
+    )
     add_design_flags(p)
     return p
 

@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from onefold_cad.choices import MeshLevel
 from onefold_cad.cli.output import warn
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
@@ -157,7 +158,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
     design = job.design
     folded = build_design(design)
-    check = ns.check if ns.check is not None else ns.mesh != "coarse"
+    check = ns.check if ns.check is not None else MeshLevel.parse(ns.mesh).checked
     progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}")
     sim = simulate(
         design,

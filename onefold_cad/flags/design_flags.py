@@ -125,8 +125,8 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
     Flag("kerf", "--kerf", parse_float, "cutting kerf >= 0", _MAT, "LENGTH"),
     Flag("relief_hole", "--relief-hole", parse_float, "relief hole diameter at the apex >= 0 "
          "(0: none)", _MAT, "DIAMETER"),
-    Flag("density", "--density", parse_float, "density in kg/m^3 > 0 (e.g. 7850 for steel), "
-         "whatever the design unit", _MAT, "KG/M3"),
+    Flag("density", "--density", parse_float, "density in kg/m^3, in [1e-15, 1e15] (e.g. 7850 for "
+         "steel), whatever the design unit", _MAT, "KG/M3"),
     Flag("youngs_modulus", "--youngs-modulus", parse_float, "Young's modulus in GPa, > 0 "
          "(193 for 304 stainless; for `simulate`)", _MAT, "GPA"),
     Flag("poisson", "--poisson", parse_float, "Poisson's ratio, > -1 and < 0.5 (0.29 for 304 "

@@ -14,11 +14,16 @@ from onefold_cad.choices import SheetSurface
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.checks import closed_interval, finite
 
-__all__ = ["MAX_MODULUS_GPA", "Material", "default_relief_hole", "sheet_offsets"]
+__all__ = ["DENSITY_RANGE", "MAX_MODULUS_GPA", "Material", "default_relief_hole", "sheet_offsets"]
 
 #: The largest Young's modulus a material may have (GPa): ten times diamond's
 #: (about 1 050-1 220 GPa), so no real sheet is refused.
 MAX_MODULUS_GPA = 10_000.0
+#: The densities a material may have (kg/m^3): wide enough that one given in
+#: another unit (7.85e-9 t/mm^3, 7.85e6 g/m^3) is only warned about
+#: (:data:`onefold_cad.fabrication.rules.PLAUSIBLE_DENSITY`), narrow enough that
+#: a sheet's mass and weight neither underflow nor overflow.
+DENSITY_RANGE = (1e-15, 1e15)
 
 
 @dataclass(frozen=True)
@@ -33,8 +38,9 @@ class Material:
         relief_hole: diameter of the relief hole at the apex >= 0 (0 = none);
             None chooses the default: none for t = 0, 2 * t + 2 * r otherwise
             (at least 3 * t).
-        density: kg/m^3 > 0 (e.g. 7850 for steel), or None; independent of
-            the design's length unit (see :func:`onefold_cad.fabrication.mass.design_mass`).
+        density: kg/m^3 within :data:`DENSITY_RANGE` (e.g. 7850 for steel), or
+            None; independent of the design's length unit (see
+            :func:`onefold_cad.fabrication.mass.design_mass`).
         name: a material description for the notes (e.g. '304 stainless').
         sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
         youngs_modulus: Young's modulus E in GPa (0 < E <= 10 000), or None;
@@ -75,8 +81,11 @@ class Material:
             set_(self, "relief_hole", v)
         if self.density is not None:
             v = finite("density", self.density)
-            if v <= 0.0:
-                raise InvalidParameterError("density", f"must be > 0, got {v:g}")
+            lo, hi = DENSITY_RANGE
+            if not lo <= v <= hi:
+                raise InvalidParameterError(
+                    "density", f"must be in [{lo:g}, {hi:g}] kg/m^3, got {v:g}"
+                )
             set_(self, "density", v)
         set_(self, "sheet_surface", SheetSurface.parse(self.sheet_surface))
         set_(self, "name", str(self.name))

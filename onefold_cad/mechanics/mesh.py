@@ -361,7 +361,10 @@ def mesh_sheet(
         pslg["holes"] = np.array(holes)
     h_max = float(np.max(h_of(allv)))
     quality = f"q{min_angle:g}"
-    out = triangle.triangulate(pslg, f"p{quality}a{0.433 * h_max**2:.17g}")
+    try:
+        out = triangle.triangulate(pslg, f"p{quality}a{0.433 * h_max**2:.17g}")
+    except RuntimeError as exc:  # Triangle's own refusal of the outline
+        raise InvalidParameterError("mesh", f"the sheet cannot be meshed ({exc})") from None
     for _ in range(max_passes):
         v, t = out["vertices"], out["triangles"]
         p = v[t]

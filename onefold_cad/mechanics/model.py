@@ -23,7 +23,8 @@ import numpy as np
 from onefold_cad.choices import Crease, MeshLevel, Model
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
+from onefold_cad.fabrication.rules import PLAUSIBLE_DENSITY
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.placement import RestingPlacement
@@ -39,6 +40,7 @@ __all__ = [
     "MESH_LEVELS",
     "SheetModel",
     "FINER",
+    "check_simulable",
     "sheet_model",
     "shell_material",
 ]
@@ -140,9 +142,61 @@ def shell_material(design: Design, yield_stress_MPa: float | None = None) -> She
     nu = _required(m.poisson, "poisson", "Poisson's ratio", "--poisson NU")
     sy = _required(m.yield_stress, "yield_stress", "yield stress", "--yield-stress MPA")
     rho = _required(m.density, "density", "density", "--density KG/M3")
+    lo, hi = PLAUSIBLE_DENSITY
+    if not lo <= rho <= hi:  # the stages' force tolerances are relative to the weight
+        raise InvalidParameterError(
+            "density",
+            f"simulate needs a sheet material's density, {lo:g} to {hi:g} kg/m^3 (its force "
+            f"tolerances are relative to the sheet's weight), got {rho:g}",
+        )
     sy = sy if yield_stress_MPa is None else yield_stress_MPa
     metres = design.units.mm / 1000.0
     return ShellMaterial(e * 1e9, nu, m.thickness * metres, rho, sy * 1e6)
+
+
+def check_simulable(design: Design) -> None:
+    """Check that ``design`` can be simulated whatever its fold (a sweep asks
+    before any design runs; :func:`sheet_model` also checks the relief hole,
+    which the fold sizes).
+
+    Raises:
+        InvalidParameterError: the paper model, no thickness or a missing
+            elastic value (named, with the flag that sets it).
+    """
+    if design.model is not Model.EXACT:
+        raise InvalidParameterError(
+            "model",
+            "simulate needs the exact model (--model exact): the paper's fan has no "
+            "smooth surface to bend",
+        )
+    shell_material(design)
+
+
+def _hole_radius(design: Design, folded: FoldedSheet) -> float:
+    """The radius (design unit) of the relief hole the sheet is meshed around:
+    the one every export cuts, at least the smallest a sheet of its thickness
+    takes without overlapping itself around H (where the cones' curvature
+    grows without bound, the solid's smallest hole)."""
+    d = relief_hole_diameter(design, folded)
+    if d <= 0.0:
+        raise InvalidParameterError(
+            "relief_hole",
+            "simulate needs a relief hole > 0 at the apex (the cones' curvature grows "
+            "without bound at H); set --relief-hole",
+        )
+    try:
+        need = solid_min_relief_hole(folded, design.material)
+    except InvalidParameterError:  # no mitre (a flat fold): nothing overlaps at H
+        need = 0.0
+    if d < need:
+        u = design.units.value
+        raise InvalidParameterError(
+            "relief_hole",
+            f"simulate needs a relief hole of at least {need:.4g} {u}, the smallest a sheet "
+            f"{design.material.thickness:g} {u} thick takes without overlapping itself around "
+            f"H, got {d:g} {u}",
+        )
+    return 0.5 * d
 
 
 def _director_normals(folded: FoldedSheet, mesh: SheetMesh, scale: float) -> Array:
@@ -204,23 +258,12 @@ def sheet_model(
         InvalidParameterError: the paper model, no thickness, no relief hole,
             a missing elastic value, an unknown level or crease model.
     """
-    if design.model is not Model.EXACT:
-        raise InvalidParameterError(
-            "model",
-            "simulate needs the exact model (--model exact): the paper's fan has no "
-            "smooth surface to bend",
-        )
+    check_simulable(design)
     level = MeshLevel.parse(level)
     crease = Crease.parse(crease).value
     material = shell_material(design, yield_stress_MPa)
     scale = design.units.mm / 1000.0
-    hole = 0.5 * relief_hole_diameter(design, folded) * scale
-    if hole <= 0.0:
-        raise InvalidParameterError(
-            "relief_hole",
-            "simulate needs a relief hole > 0 at the apex (the cones' curvature grows "
-            "without bound at H); set --relief-hole",
-        )
+    hole = _hole_radius(design, folded) * scale
     rest = rest_once(folded)
     size = design.sheet.size * scale
     h = MESH_LEVELS[level] * size if h_max is None else float(h_max)

@@ -162,6 +162,12 @@ class DaskSession:
         except OSError as exc:
             self.close()
             raise UsageError(f"--scheduler {address}: no scheduler answers ({exc})") from None
+        except (ValueError, TypeError) as exc:  # distributed's own parse of the address
+            self.close()
+            raise UsageError(
+                f"--scheduler {address}: not a scheduler's address ({exc}); give "
+                "PROTOCOL://HOST:PORT (tcp://10.0.0.5:8786) or local"
+            ) from None
         self.slots = workers or max(1, sum(self.client.nthreads().values()))
 
     def __enter__(self) -> DaskSession:

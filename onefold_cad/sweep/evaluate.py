@@ -33,6 +33,8 @@ class Batch:
         designs: ``(key, flags)`` of each design (flags: dest -> value).
         measures: the measure names (``rest`` first).
         images: also draw each design's thumbnail.
+        settings: the measures' settings as ``(name, value)`` pairs
+            (:attr:`~onefold_cad.sweep.plan.SweepPlan.simulation`).
     """
 
     template: str
@@ -41,6 +43,7 @@ class Batch:
     designs: tuple[tuple[str, dict[str, Any]], ...]
     measures: tuple[str, ...]
     images: bool = False
+    settings: tuple[tuple[str, Any], ...] = ()
 
 
 def _one_line(exc: BaseException) -> str:
@@ -58,11 +61,13 @@ def evaluate_design(
     implicit: bool = False,
     images: bool = False,
     memo: dict[str, Any] | None = None,
+    settings: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """One design's row: ``name``, ``status``, ``error``, ``seconds``, the
     measures' columns (None where the design failed) and, with ``images``,
     ``png`` (the thumbnail's bytes). ``memo``: shared by the designs of one
-    template (:func:`~onefold_cad.flags.jobs.template_job`)."""
+    template (:func:`~onefold_cad.flags.jobs.template_job`); ``settings``: the
+    measures' (name -> value, ``simulate``'s options)."""
     t0 = time.perf_counter()
     row: dict[str, Any] = {"name": None, "status": "ok", "error": ""}
     try:
@@ -71,7 +76,7 @@ def evaluate_design(
         folded = build_design(design)
         rest = resting_placement(design, folded)
         for m in measures:
-            row.update(MEASURES[m].compute(design, folded, rest))
+            row.update(MEASURES[m].compute(design, folded, rest, settings or {}))
         if images:
             from onefold_cad.export.preview import thumbnail_png
 
@@ -90,10 +95,13 @@ def evaluate_batch(batch: Batch) -> list[dict[str, Any]]:
     (what depends on the template alone made once for the batch)."""
     memo: dict[str, Any] = {}
     b = batch
+    settings = dict(b.settings)
     return [
         {
             "key": key,
-            **evaluate_design(b.template, b.raw, flags, b.measures, b.implicit, b.images, memo),
+            **evaluate_design(
+                b.template, b.raw, flags, b.measures, b.implicit, b.images, memo, settings
+            ),
         }
         for key, flags in b.designs
     ]

@@ -3,16 +3,17 @@
 Every design is solved, folded and stood on the ground (the body the STEP
 holds, :func:`~onefold_cad.fabrication.rules.resting_placement`): the
 :data:`REST` columns. ``--measure NAME,...`` adds the columns of further
-:class:`Measure` entries (``bends``, ``mass``). A measure is a name, its
-columns (with their units) and a function of the design, its fold and its
-resting placement that returns one plain value per column; the runner only
-reads this table, so a new measure (say ``simulate``, from the mechanics
-layer) is one more :func:`register` call in this module and nothing else.
+:class:`Measure` entries (``bends``, ``mass``, ``simulate``). A measure is a
+name, its columns (with their units) and a function of the design, its fold,
+its resting placement and the sweep's settings (``simulate``'s options) that
+returns one plain value per column; the runner only reads this table, so a
+new measure is one more :func:`register` call in this module and nothing else.
 
 Units are kinds (:data:`UNIT_KINDS`) resolved per design: ``length`` is the
 design's unit (``mm``, ``in``, ``ft``), ``mass`` the report's (kg for mm
 designs, lb otherwise). Every value equals the one ``onefold solve --json``
-reports for the same flags.
+reports for the same flags (``simulate``'s: ``onefold simulate --json``'s,
+with the same settings).
 """
 
 from __future__ import annotations
@@ -32,11 +33,15 @@ __all__ = [
     "UNIT_KINDS",
     "Column",
     "Measure",
+    "Settings",
     "measure_help",
     "measure_names",
     "register",
     "resolve_unit",
 ]
+
+#: A sweep's measure settings: name -> value.
+Settings = Mapping[str, Any]
 
 #: The unit kinds of a column, and what each means.
 UNIT_KINDS = {
@@ -47,6 +52,9 @@ UNIT_KINDS = {
     "mass": "kg for mm designs, lb for inch and foot designs (the mass_unit column)",
     "kg/m^3": "kilograms per cubic metre",
     "s": "seconds",
+    "N": "newtons",
+    "J": "joules",
+    "MPa": "megapascals",
 }
 
 
@@ -75,14 +83,16 @@ class Measure:
         name: what ``--measure`` calls it.
         help: one line for ``--help``.
         columns: the columns it fills.
-        compute: ``(design, folded, rest) -> {column: value}``, plain values
-            (float, int, bool, str or None), in the units of ``columns``.
+        compute: ``(design, folded, rest, settings) -> {column: value}``,
+            plain values (float, int, bool, str or None), in the units of
+            ``columns``; ``settings``: the sweep's measure settings (name ->
+            value, :attr:`~onefold_cad.sweep.plan.SweepPlan.settings`).
     """
 
     name: str
     help: str
     columns: tuple[Column, ...]
-    compute: Callable[[Design, FoldedSheet, RestingPlacement], Mapping[str, Any]]
+    compute: Callable[[Design, FoldedSheet, RestingPlacement, Settings], Mapping[str, Any]]
 
 
 def resolve_unit(kind: str, units: str, mass_unit: str | None = None) -> str:
@@ -97,7 +107,9 @@ def resolve_unit(kind: str, units: str, mass_unit: str | None = None) -> str:
     return kind
 
 
-def _rest(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[str, Any]:
+def _rest(
+    design: Design, folded: FoldedSheet, rest: RestingPlacement, settings: Settings
+) -> dict[str, Any]:
     plus, minus = folded.crease
     return {
         "units": design.units.value,
@@ -143,7 +155,9 @@ REST = Measure(
 )
 
 
-def _bends(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[str, Any]:
+def _bends(
+    design: Design, folded: FoldedSheet, rest: RestingPlacement, settings: Settings
+) -> dict[str, Any]:
     from onefold_cad.fabrication.bend_checks import check_bends
     from onefold_cad.geometry.bend_model import crease_bends
 
@@ -156,7 +170,9 @@ def _bends(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[
     return out
 
 
-def _mass(design: Design, folded: FoldedSheet, rest: RestingPlacement) -> dict[str, Any]:
+def _mass(
+    design: Design, folded: FoldedSheet, rest: RestingPlacement, settings: Settings
+) -> dict[str, Any]:
     from onefold_cad.fabrication.mass import design_mass
     from onefold_cad.fabrication.report import report_flat_pattern
 
@@ -215,6 +231,119 @@ register(
 )
 
 
+def _simulate(
+    design: Design, folded: FoldedSheet, rest: RestingPlacement, settings: Settings
+) -> dict[str, Any]:
+    """The simulation's headline values, as ``onefold simulate --json``'s
+    ``simulation`` section has them (None where its stage is not run)."""
+    from onefold_cad.mechanics.simulate import simulate
+
+    data = simulate(
+        design,
+        folded,
+        supports=settings["supports"],
+        reference=settings["reference"],
+        crease=settings["crease"],
+        level=settings["mesh"],
+        convergence=settings["check"],
+    ).to_data()
+    formed, released = data.get("formed") or {}, data.get("released") or {}
+    standing, designed = data["standing"], data.get("designed") or {}
+    return {
+        "sim_weight_N": data["weight_N"],
+        "sim_nodes": data["mesh"]["nodes"],
+        "sim_mesh_change": (data["convergence"] or {}).get("max_deviation_change"),
+        "formed_bending_energy_J": formed.get("bending_energy_J"),
+        "formed_plastic_share": formed.get("plastic_area_share"),
+        "released_max_deviation": released.get("max_deviation"),
+        "released_rms_deviation": released.get("rms_deviation"),
+        "standing_stands": standing["stands"],
+        "standing_reason": standing["reason"] or "",
+        **{f"standing_{k}": standing[k] for k in _STANDING},
+        "designed_max_displacement": designed.get("max_displacement"),
+        "designed_max_stress_MPa": designed.get("max_stress_MPa"),
+        "sim_warnings": len(data["warnings"]),
+    }
+
+
+#: The standing stage's number columns: its key in the simulation's data -> (unit, help).
+_STANDING = {
+    "load_factor": ("", "share of its weight carried on its load path (1: all of it)"),
+    "max_deviation": ("length", "largest distance from the designed form, standing"),
+    "rms_deviation": ("length", "rms distance from the designed form, standing"),
+    "max_displacement": ("length", "largest movement under its weight, standing"),
+    "height": ("length", "height of the simulated form, standing"),
+    "tipping_margin_deg": ("deg", "tipping margin of the simulated form, standing"),
+    "max_stress_MPa": ("MPa", "largest stress at the sheet's faces, standing"),
+    "utilisation": ("", "largest stress over the yield stress, standing"),
+}
+
+register(
+    Measure(
+        "simulate",
+        "the sheet as steel, as onefold simulate (the simulation options): formed, sprung "
+        "back, standing under its weight",
+        (
+            Column("sim_weight_N", "float", "N", "the sheet's weight"),
+            Column("sim_nodes", "int", "", "nodes of the simulation's mesh"),
+            Column(
+                "sim_mesh_change",
+                "float",
+                "",
+                "relative change of the largest deviation "
+                "on a mesh of twice the nodes (empty without --check)",
+            ),
+            Column(
+                "formed_bending_energy_J",
+                "float",
+                "J",
+                "work of bending the flat sheet into the design (reference flat)",
+            ),
+            Column(
+                "formed_plastic_share",
+                "float",
+                "",
+                "share of the sheet's area that yields when bent into the design (reference flat)",
+            ),
+            Column(
+                "released_max_deviation",
+                "float",
+                "length",
+                "largest springback from the designed form, let go (reference flat)",
+            ),
+            Column(
+                "released_rms_deviation",
+                "float",
+                "length",
+                "rms springback from the designed form, let go (reference flat)",
+            ),
+            Column("standing_stands", "bool", "", "the simulated sheet stands on its supports"),
+            Column("standing_reason", "str", "", "why it does not stand (empty when it does)"),
+            *(Column(f"standing_{k}", "float", u, h) for k, (u, h) in _STANDING.items()),
+            Column(
+                "designed_max_displacement",
+                "float",
+                "length",
+                "largest movement of the designed form under its weight (reference designed)",
+            ),
+            Column(
+                "designed_max_stress_MPa",
+                "float",
+                "MPa",
+                "largest stress of the designed form under its weight (reference designed)",
+            ),
+            Column(
+                "sim_warnings",
+                "int",
+                "",
+                "warnings of the simulation (onefold simulate prints them)",
+            ),
+        ),  # fmt: skip
+        _simulate,
+    )
+)
+
+
 def measure_names() -> tuple[str, ...]:
     """The names ``--measure`` takes (every measure but the always-on ``rest``)."""
     return tuple(n for n in MEASURES if n != REST.name)
@@ -225,8 +354,13 @@ def measure_help() -> str:
     import textwrap
 
     lines = []
+    width = max(len(n) for n in MEASURES)
     for m in MEASURES.values():
         cols = ", ".join(c.name for c in m.columns)
-        lines.append(f"  {m.name:<6} {m.help}; columns:")
-        lines += textwrap.wrap(cols, 96, initial_indent=" " * 9, subsequent_indent=" " * 9)
+        lines += textwrap.wrap(
+            f"{m.name:<{width}} {m.help}; columns:", 96, initial_indent="  ",
+            subsequent_indent=" " * (width + 3),
+        )  # fmt: skip
+        pad = " " * (width + 3)
+        lines += textwrap.wrap(cols, 96, initial_indent=pad, subsequent_indent=pad)
     return "\n".join(lines)

@@ -30,12 +30,21 @@ from onefold_cad.sweep.samplers import SAMPLERS, count_of, grid_points, sample_p
 from onefold_cad.sweep.spec import VarySpec, parse_vary, unit_kind
 from onefold_cad.templates import DEFAULT_TEMPLATE
 
-__all__ = ["IMAGES_UP_TO", "MAX_DESIGNS", "SweepPlan", "input_values", "make_plan"]
+__all__ = [
+    "IMAGES_UP_TO",
+    "MAX_DESIGNS",
+    "SIMULATION_SETTINGS",
+    "SweepPlan",
+    "input_values",
+    "make_plan",
+]
 
 #: Thumbnails are drawn by default for sweeps of at most this many designs.
 IMAGES_UP_TO = 1000
 #: The most designs one sweep may have.
 MAX_DESIGNS = 10_000_000
+#: The settings of ``--measure simulate``: ``onefold simulate``'s options.
+SIMULATION_SETTINGS = ("supports", "reference", "crease", "mesh", "check")
 #: The columns every row has besides its inputs and measures.
 ROW_COLUMNS = (
     Column("key", "str", "", "stable hash of the design's inputs (template data and flags)"),
@@ -62,6 +71,8 @@ class SweepPlan:
         objectives: the Pareto objectives (may be empty).
         points: the varied flags' values of each design.
         keys: each design's key (``points`` order).
+        simulation: ``--measure simulate``'s settings (:data:`SIMULATION_SETTINGS`,
+            as ``(name, value)`` pairs; empty without that measure).
     """
 
     template: str
@@ -77,6 +88,19 @@ class SweepPlan:
     objectives: tuple[Objective, ...]
     points: tuple[dict[str, Any], ...]
     keys: tuple[str, ...]
+    simulation: tuple[tuple[str, Any], ...] = ()
+
+    @property
+    def settings(self) -> dict[str, Any]:
+        """The measures' settings (name -> value): ``simulation``'s."""
+        return dict(self.simulation)
+
+    @property
+    def measure_tags(self) -> tuple[str, ...]:
+        """The measures as the journal records a row's: each name, ``simulate``
+        with its settings (a design simulated otherwise is not finished)."""
+        sim = ",".join(f"{k}={v}" for k, v in self.simulation)
+        return tuple(f"{m}({sim})" if m == "simulate" else m for m in self.measures)
 
     @property
     def input_columns(self) -> tuple[Column, ...]:
@@ -116,15 +140,23 @@ def input_values(point: dict[str, Any]) -> dict[str, Any]:
 
 
 def _check_value(
-    base: tuple[dict[str, Any], str, bool, dict[str, Any]], spec: VarySpec, value: Any
+    base: tuple[dict[str, Any], str, bool, dict[str, Any]],
+    spec: VarySpec,
+    value: Any,
+    simulated: bool = False,
 ) -> None:
-    """Build the template's design with the fixed flags and ``value`` alone."""
+    """Build the template's design with the fixed flags and ``value`` alone
+    (``simulated``: and check that simulate can take it)."""
     raw, path, implicit, fixed = base
     if spec.flag.kind is parse_int:
         value = int(round(value))
     flags = {**fixed, spec.dest: value}
     try:
-        template_job(raw, path, flags, None, implicit)
+        design = template_job(raw, path, flags, None, implicit).design
+        if simulated:
+            from onefold_cad.mechanics.model import check_simulable
+
+            check_simulable(design)
     except InvalidParameterError as exc:
         raise UsageError(f"--vary {spec.text}: {exc}") from None
 
@@ -197,6 +229,38 @@ def _measures(names: Sequence[str]) -> tuple[str, ...]:
     return tuple(out)
 
 
+def _simulation(
+    measures: tuple[str, ...], given: dict[str, Any] | None
+) -> tuple[tuple[str, Any], ...]:
+    """``--measure simulate``'s settings, ``onefold simulate``'s defaults where
+    not ``given`` (None values); none without that measure, where any given
+    is an error."""
+    from onefold_cad.choices import SIMULATION_DEFAULTS, MeshLevel
+
+    given = {k: v for k, v in (given or {}).items() if v is not None}
+    for k in given:
+        if k not in SIMULATION_SETTINGS:
+            raise UsageError(f"simulation: unknown setting {k!r} (one of: "
+                             f"{', '.join(SIMULATION_SETTINGS)})")  # fmt: skip
+    if "simulate" not in measures:
+        if given:
+            flag = "--" + next(iter(given))
+            flag = "--check/--no-check" if flag == "--check" else flag
+            raise UsageError(f"{flag}: is a setting of --measure simulate, which is not asked for")
+        return ()
+    out: dict[str, Any] = {}
+    for name, default in SIMULATION_DEFAULTS.items():
+        try:
+            out[name] = type(default).parse(given.get(name, default.value)).value
+        except InvalidParameterError as exc:
+            raise UsageError(f"--{name}: {exc}") from None
+    check = given.get("check", MeshLevel.parse(out["mesh"]).checked)
+    if not isinstance(check, bool):
+        raise UsageError(f"--check: must be True or False, got {check!r}")
+    out["check"] = check
+    return tuple((k, out[k]) for k in SIMULATION_SETTINGS)
+
+
 def make_plan(
     template: str | None,
     vary: Sequence[str],
@@ -208,6 +272,7 @@ def make_plan(
     measures: Sequence[str] = (),
     objectives: str | None = None,
     images: bool | None = None,
+    simulation: dict[str, Any] | None = None,
 ) -> SweepPlan:
     """The checked plan of a sweep (nothing is run or written).
 
@@ -221,6 +286,8 @@ def make_plan(
         objectives: ``--objectives`` text (``max:tipping_margin_deg,...``).
         images: draw thumbnails (None: when there are at most
             :data:`IMAGES_UP_TO` designs).
+        simulation: ``--measure simulate``'s settings (:data:`SIMULATION_SETTINGS`;
+            None or missing: ``onefold simulate``'s defaults).
 
     Raises:
         UsageError: anything that would stop a design from running, as one
@@ -231,19 +298,27 @@ def make_plan(
     fixed = {k: v for k, v in (fixed or {}).items() if v is not None}
     specs = _specs(vary, fixed)
     mnames = _measures(measures)
+    sim = _simulation(mnames, simulation)
     try:
         path = find_template(template or DEFAULT_TEMPLATE)
         raw = read_template(path)
-        template_job(raw, path, fixed, None, template is None)
+        base = template_job(raw, path, fixed, None, template is None).design
     except InvalidParameterError as exc:
         raise UsageError(str(exc)) from None
+    if sim:
+        from onefold_cad.mechanics.model import check_simulable
+
+        try:
+            check_simulable(base)
+        except InvalidParameterError as exc:
+            raise UsageError(f"--measure simulate: {exc}") from None
     specs, pts = _points(specs, sampler, samples, seed)
     for s in specs:  # a range's ends, a list's every value
         values = (s.low, s.high) if s.is_range and not s.values else s.values
         if s.is_range and s.values:
             values = (s.values[0], s.values[-1])
         for v in values:
-            _check_value((raw, str(path), template is None, fixed), s, v)
+            _check_value((raw, str(path), template is None, fixed), s, v, bool(sim))
     digest = hashlib.sha1(json.dumps(raw, sort_keys=True, default=str).encode()).hexdigest()
     unique: dict[str, dict[str, Any]] = {}
     for p in pts:  # a point made twice (rounded whole numbers) is one design, where first made
@@ -251,7 +326,7 @@ def make_plan(
     keys, pts = tuple(unique), list(unique.values())
     plan = SweepPlan(
         str(path), raw, template is None, fixed, tuple(specs), sampler, samples, seed, mnames,
-        len(pts) <= IMAGES_UP_TO if images is None else images, (), tuple(pts), keys,
+        len(pts) <= IMAGES_UP_TO if images is None else images, (), tuple(pts), keys, sim,
     )  # fmt: skip
     if objectives:
         cols = [*plan.input_columns, *plan.output_columns]

@@ -1,9 +1,9 @@
 """Run a sweep: the designs not yet in the journal, in batches, on a backend.
 
 :func:`run_sweep` reads the folder's journal, skips every design it holds
-finished (same key, the measures asked for, its thumbnail if asked for),
-hands the others to the backend in batches and journals each row as its
-batch comes back (a thumbnail first goes to ``img/KEY.png``). Batches grow
+finished (same key, the measures asked for with their settings, its
+thumbnail if asked for), hands the others to the backend in batches and
+journals each row as its batch comes back (a thumbnail first goes to ``img/KEY.png``). Batches grow
 to about :data:`BATCH_SECONDS` of work each (from the time designs took so
 far), so a worker gets few messages and a stopped sweep loses little. The
 files are rebuilt from the journal at the end, and also when the run is
@@ -66,7 +66,7 @@ def is_finished(row: dict[str, Any] | None, plan: SweepPlan, folder: Path) -> bo
     """Whether a journal row finishes its design for ``plan``."""
     if row is None or row.get("status") not in ("ok", "error"):
         return False
-    if not set(plan.measures) <= set(row.get("measures", ())):
+    if not set(plan.measure_tags) <= set(row.get("measures", ())):
         return False
     if plan.images and row["status"] == "ok":
         return bool(row.get("img")) and (folder / row["img"]).is_file()
@@ -102,7 +102,7 @@ class _Batches:
         self.next += len(idx)
         p = self.plan
         designs = tuple((p.keys[i], p.flags_of(i)) for i in idx)
-        return Batch(p.template, p.raw, p.implicit, designs, p.measures, p.images)
+        return Batch(p.template, p.raw, p.implicit, designs, p.measures, p.images, p.simulation)
 
 
 def _backend(
@@ -178,4 +178,4 @@ def _journal_row(plan: SweepPlan, i: int, row: dict[str, Any], out: Path) -> dic
         with atomic_output(out / name) as tmp:
             tmp.write_bytes(png)
         row["img"] = name
-    return {**input_values(plan.points[i]), "measures": list(plan.measures), **row}
+    return {**input_values(plan.points[i]), "measures": list(plan.measure_tags), **row}

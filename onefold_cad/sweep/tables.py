@@ -78,6 +78,7 @@ def plan_metadata(plan: SweepPlan) -> dict[str, Any]:
         "samples": plan.samples,
         "seed": plan.seed,
         "measures": list(plan.measures),
+        "simulation": plan.settings,
         "objectives": [o.text for o in plan.objectives],
         "designs": len(plan.points),
     }

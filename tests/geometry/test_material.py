@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.material import MAX_MODULUS_GPA, Material
+from onefold_cad.geometry.material import DENSITY_RANGE, MAX_MODULUS_GPA, Material
 from onefold_cad.templates import design_to_data, load_template
 
 
@@ -37,6 +37,10 @@ def test_every_value_in_range_is_kept(e, nu, share):
         ({"yield_stress": 0.0}, "yield_stress"),
         ({"youngs_modulus": 193.0, "yield_stress": math.nextafter(193e3, 1e6)}, "yield_stress"),
         ({"yield_stress": math.nextafter(MAX_MODULUS_GPA * 1e3, math.inf)}, "yield_stress"),
+        # a mass that underflows (1e-320 made simulate's best fit divide 0 by 0) or overflows
+        ({"density": math.nextafter(DENSITY_RANGE[0], 0.0)}, "density"),
+        ({"density": math.nextafter(DENSITY_RANGE[1], math.inf)}, "density"),
+        ({"density": 1e-320}, "density"),
     ],
 )
 def test_values_outside_the_range_name_the_parameter(changes, name):
@@ -50,6 +54,7 @@ def test_the_edges_inside_the_range_are_allowed():
     assert m.poisson < 0.5
     assert Material(youngs_modulus=193.0, yield_stress=193e3).yield_stress == 193e3
     assert Material(poisson=math.nextafter(-1.0, 0.0)).poisson > -1.0
+    assert [Material(density=d).density for d in DENSITY_RANGE] == list(DENSITY_RANGE)
 
 
 def test_the_stainless_template_has_its_data_and_writes_it_back():

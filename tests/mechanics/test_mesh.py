@@ -135,3 +135,11 @@ def test_build_mesh_reorients_and_rejects():
         build_mesh(nodes, [[0, 1, 2], [0, 2, 3]], crease_pairs=[[0, 1]])  # a boundary edge
     with pytest.raises(InvalidParameterError):
         mesh_sheet([[0, 0], [1, 0], [1, 1]], size=(0.5, 0, 0.1))
+
+
+def test_an_outline_triangle_cannot_mesh_names_the_mesh():
+    """Triangle's own refusal (a hole of 1e-320 m, which its arithmetic cannot
+    place) is a named error, not the library's RuntimeError."""
+    with pytest.raises(InvalidParameterError) as info:
+        mesh_sheet(OUTLINE, size=(0.02, 0.1, 0.3), hole_radius=1e-320, creases=CREASES)
+    assert info.value.parameter == "mesh"

@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -135,10 +136,18 @@ def test_the_convergence_check_reports_the_change(patkau):
         ("paper-square", {}, "youngs_modulus"),
         ("star-polygon", {}, "thickness"),
         ("table1-row1", {}, "model"),
+        # below the smallest hole its 3.57 mm take without overlapping around H
+        # (3.908 mm, thick_map.min_relief_hole; 4 mm simulates)
+        ("patkau-one-fold", {"relief_hole": 3.8}, "relief_hole"),
+        ("patkau-one-fold", {"relief_hole": 1e-320}, "relief_hole"),
+        # no sheet material's density: the stages' tolerances follow the weight
+        ("patkau-one-fold", {"density": 7.85e-9}, "density"),
+        ("patkau-one-fold", {"density": 8e6}, "density"),
     ],
 )
 def test_what_cannot_be_simulated_names_the_value(template, changes, name):
     design = load_template(template)
+    design = replace(design, material=design.material.with_changes(**changes))
     with pytest.raises(InvalidParameterError) as info:
         run(design, build_design(design), level="coarse")
     assert info.value.parameter == name

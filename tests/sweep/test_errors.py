@@ -33,6 +33,17 @@ ONEFOLD = str(Path(sys.executable).parent / "onefold")
         (["--vary", "alpha=30:40", "--sampler", "halton"], "--sampler: must be one of grid, lhs"),
         (["--vary", "alpha=30,40", "-j", "0"], "--jobs: must be at least 1"),
         (["--vary", "alpha=30,40", "--alpha", "20"], "--alpha is also given as a fixed flag"),
+        (["--vary", "alpha=30,40", "--mesh", "coarse"], "--mesh: is a setting of --measure simu"),
+        (["--vary", "alpha=30,40", "--no-check"], "--check/--no-check: is a setting of --measure"),
+        (["--vary", "alpha=30,40", "--mesh", "medium", "--measure", "simulate"], "--mesh: "),
+        (
+            ["--vary", "alpha=30,40", "--measure", "simulate"],
+            "--measure simulate: model: simulate needs the exact model",
+        ),
+        (
+            ["--vary", "alpha=30,40", "--measure", "simulate", "--model", "exact"],
+            "--measure simulate: thickness: simulate needs a sheet with thickness > 0",
+        ),
     ],
 )
 def test_bad_input_is_one_line_exit_2_and_nothing_written(tmp_path, capfd, args, says):
@@ -61,6 +72,23 @@ def test_without_dask_the_scheduler_says_what_to_install(tmp_path, capfd, monkey
         assert rc == 2 and err.count("\n") == 1
         assert "pip install 'onefold_cad[cluster]'" in err
     assert not (tmp_path / "s").exists()
+
+
+@pytest.mark.parametrize(
+    ("address", "says"),
+    [
+        ("nan", "--scheduler nan: not a scheduler's address (missing port number"),
+        ("foo://x:1", "--scheduler foo://x:1: not a scheduler's address (unknown address scheme"),
+        ("", "--scheduler: empty; give PROTOCOL://HOST:PORT"),
+    ],
+)
+def test_an_address_dask_cannot_read_is_one_line(tmp_path, capfd, address, says):
+    out = tmp_path / "s"
+    rc = main(["sweep", "table1-row1", "--vary", "alpha=30,40", "-o", str(out),
+               "--scheduler", address])  # fmt: skip
+    _, err = capfd.readouterr()
+    assert rc == 2 and err == f"onefold: error: {err[16:]}" and says in err, err
+    assert err.count("\n") == 1 and not out.exists()
 
 
 def test_the_installed_command_exits_2_with_one_line(tmp_path):

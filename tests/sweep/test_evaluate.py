@@ -77,7 +77,7 @@ def test_a_failing_design_records_its_error_and_the_sweep_goes_on(tmp_path):
 
 
 def test_any_exception_of_a_design_is_its_row_s_error(monkeypatch):
-    def boom(design, folded, rest):
+    def boom(design, folded, rest, settings):
         raise ZeroDivisionError("no luck")
 
     monkeypatch.setitem(
