@@ -14,27 +14,18 @@ pareto.csv and writes the numbers into docs/sweep.md (the block
 
 from __future__ import annotations
 
-import argparse
-import subprocess
 import sys
-import time
 from pathlib import Path
 
-DOCS = Path(__file__).resolve().parent
-ROOT = DOCS.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from sweep_run import ROOT, run_study  # noqa: E402
+
 OUT = ROOT / "out" / "sweep-steel"
 COMMAND = [
     "onefold", "sweep", "patkau-one-fold",
     "--vary", "thickness=2,3,3.57,5,6.35", "--measure", "simulate,mass", "--no-images",
     "-o", "out/sweep-steel",
 ]  # fmt: skip
-
-
-def _run(extra: list[str]) -> float:
-    exe = str(Path(sys.executable).parent / "onefold")
-    t0 = time.perf_counter()
-    subprocess.run([exe, *COMMAND[1:], *extra], cwd=ROOT, check=True)
-    return time.perf_counter() - t0
 
 
 def _mm(v: float | None) -> str:
@@ -101,7 +92,7 @@ def block(seconds: float | None) -> str:
             "ends at "
             + " and ".join(f"{r['standing_load_factor']:.2f}" for r in down)
             + " of the weight (a limit point: the sheet gives way under less than its own "
-            "weight; the reason column of results.parquet has the words)"
+            "weight; `standing_reason` in results.parquet has the words)"
             + (f"; from {min(r['thickness'] for r in up):g} mm up they stand." if up else "."),
         ]
     if len(ok) >= 2:
@@ -126,21 +117,7 @@ def block(seconds: float | None) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--scheduler", help="a Dask scheduler's address (default: the process pool)")
-    ap.add_argument("-j", "--jobs", help="worker processes")
-    args = ap.parse_args(argv)
-    extra = (["--scheduler", args.scheduler] if args.scheduler else []) + (
-        ["-j", args.jobs] if args.jobs else []
-    )
-    fresh = not (OUT / "journal.jsonl").exists()
-    seconds = _run(extra)
-    sys.path.insert(0, str(DOCS))
-    from make_reference import write_block
-
-    text = block(seconds if fresh else None)
-    write_block(DOCS / "sweep.md", "sweep-steel", text)
-    print(text)
+    print(run_study(__doc__.split("\n\n")[0], COMMAND, OUT, block, "sweep-steel", argv))
     return 0
 
 

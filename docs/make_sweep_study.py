@@ -14,16 +14,14 @@ that block comes from this run.
 
 from __future__ import annotations
 
-import argparse
 import csv
 import shutil
-import subprocess
 import sys
-import time
 from pathlib import Path
 
-DOCS = Path(__file__).resolve().parent
-ROOT = DOCS.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from sweep_run import DOCS, ROOT, run_study  # noqa: E402
+
 IMAGES = DOCS / "images"
 OUT = ROOT / "out" / "sweep-patkau"
 #: The study's targets: the height (mm, within HEIGHT_TOLERANCE) and the margin (deg).
@@ -37,13 +35,6 @@ COMMAND = [
     "--objectives", f"target:height={HEIGHT:g},max:tipping_margin_deg,max:footprint_area",
     "-o", "out/sweep-patkau",
 ]  # fmt: skip
-
-
-def _run(extra: list[str]) -> float:
-    exe = str(Path(sys.executable).parent / "onefold")
-    t0 = time.perf_counter()
-    subprocess.run([exe, *COMMAND[1:], *extra], cwd=ROOT, check=True)
-    return time.perf_counter() - t0
 
 
 def _fmt(v: float, digits: int = 4) -> str:
@@ -145,25 +136,18 @@ def _acos_deg(x: float) -> float:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--scheduler", help="a Dask scheduler's address (default: the process pool)")
-    ap.add_argument("-j", "--jobs", help="worker processes")
-    args = ap.parse_args(argv)
-    extra = (["--scheduler", args.scheduler] if args.scheduler else []) + (
-        ["-j", args.jobs] if args.jobs else []
-    )
-    fresh = not (OUT / "journal.jsonl").exists()
-    seconds = _run(extra)
-    sys.path.insert(0, str(DOCS))
-    from make_reference import write_block
+    picked: list[dict] = []
 
-    text, good = block(seconds if fresh else None)
+    def text(seconds: float | None) -> str:
+        out, good = block(seconds)
+        picked.extend(good)
+        return out
+
+    print(run_study(__doc__.split("\n\n")[0], COMMAND, OUT, text, "sweep-study", argv))
     IMAGES.mkdir(exist_ok=True)
     shutil.copyfile(OUT / "parallel.png", IMAGES / "sweep-patkau-parallel.png")
-    for i, r in enumerate(good[:3], start=1):
+    for i, r in enumerate(picked[:3], start=1):
         shutil.copyfile(OUT / r["img"], IMAGES / f"sweep-patkau-best-{i}.png")
-    write_block(DOCS / "sweep.md", "sweep-study", text)
-    print(text)
     return 0
 
 

@@ -127,12 +127,12 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
          "(0: none)", _MAT, "DIAMETER"),
     Flag("density", "--density", parse_float, "density in kg/m^3, in [1e-15, 1e15] (e.g. 7850 for "
          "steel), whatever the design unit", _MAT, "KG/M3"),
-    Flag("youngs_modulus", "--youngs-modulus", parse_float, "Young's modulus in GPa, > 0 "
-         "(193 for 304 stainless; for `simulate`)", _MAT, "GPA"),
+    Flag("youngs_modulus", "--youngs-modulus", parse_float, "Young's modulus in GPa, in [1e-6, "
+         "10000] (193 for 304 stainless; for `simulate`)", _MAT, "GPA"),
     Flag("poisson", "--poisson", parse_float, "Poisson's ratio, > -1 and < 0.5 (0.29 for 304 "
          "stainless; for `simulate`)", _MAT, "NU"),
-    Flag("yield_stress", "--yield-stress", parse_float, "yield stress in MPa, > 0 and at most "
-         "the modulus (215 for 304 stainless; for `simulate`)", _MAT, "MPA"),
+    Flag("yield_stress", "--yield-stress", parse_float, "yield stress in MPa, at least 0.001 "
+         "and at most the modulus (215 for 304 stainless; for `simulate`)", _MAT, "MPA"),
     Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
          "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
 )  # fmt: skip

@@ -14,11 +14,24 @@ from onefold_cad.choices import SheetSurface
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.checks import closed_interval, finite
 
-__all__ = ["DENSITY_RANGE", "MAX_MODULUS_GPA", "Material", "default_relief_hole", "sheet_offsets"]
+__all__ = [
+    "DENSITY_RANGE",
+    "MAX_MODULUS_GPA",
+    "MIN_MODULUS_GPA",
+    "MIN_YIELD_MPA",
+    "Material",
+    "default_relief_hole",
+    "sheet_offsets",
+]
 
 #: The largest Young's modulus a material may have (GPa): ten times diamond's
 #: (about 1 050-1 220 GPa), so no real sheet is refused.
 MAX_MODULUS_GPA = 10_000.0
+#: The smallest Young's modulus (GPa) and yield stress (MPa), both 1 kPa: a
+#: thousandth of a soft rubber's modulus and of lead's yield stress, so no
+#: real sheet is refused and the plastic moment (sigma_y t^2 / 4, in SI)
+#: stays far from underflow (1e-320 MPa gave simulate a division by zero).
+MIN_MODULUS_GPA, MIN_YIELD_MPA = 1e-6, 1e-3
 #: The densities a material may have (kg/m^3): wide enough that one given in
 #: another unit (7.85e-9 t/mm^3, 7.85e6 g/m^3) is only warned about
 #: (:data:`onefold_cad.fabrication.rules.PLAUSIBLE_DENSITY`), narrow enough that
@@ -97,9 +110,10 @@ class Material:
         set_ = object.__setattr__
         if self.youngs_modulus is not None:
             e = finite("youngs_modulus", self.youngs_modulus)
-            if not 0.0 < e <= MAX_MODULUS_GPA:
+            if not MIN_MODULUS_GPA <= e <= MAX_MODULUS_GPA:
                 raise InvalidParameterError(
-                    "youngs_modulus", f"must be > 0 and <= {MAX_MODULUS_GPA:g} GPa, got {e:g}"
+                    "youngs_modulus",
+                    f"must be in [{MIN_MODULUS_GPA:g}, {MAX_MODULUS_GPA:g}] GPa, got {e:g}",
                 )
             set_(self, "youngs_modulus", e)
         if self.poisson is not None:
@@ -111,9 +125,10 @@ class Material:
             sy = finite("yield_stress", self.yield_stress)
             top = (MAX_MODULUS_GPA if self.youngs_modulus is None else self.youngs_modulus) * 1e3
             what = "Young's modulus" if self.youngs_modulus is not None else "the largest modulus"
-            if not 0.0 < sy <= top:
+            if not MIN_YIELD_MPA <= sy <= top:
                 raise InvalidParameterError(
-                    "yield_stress", f"must be > 0 and <= {top:g} MPa ({what}), got {sy:g}"
+                    "yield_stress",
+                    f"must be in [{MIN_YIELD_MPA:g}, {top:g}] MPa (up to {what}), got {sy:g}",
                 )
             set_(self, "yield_stress", sy)
 

@@ -278,67 +278,63 @@ _STANDING = {
     "utilisation": ("", "largest stress over the yield stress, standing"),
 }
 
+#: The simulation's other columns, before and after the standing ones: (name, kind, unit,
+#: help).
+_SIMULATED = (
+    ("sim_weight_N", "float", "N", "the sheet's weight"),
+    ("sim_nodes", "int", "", "nodes of the simulation's mesh"),
+    (
+        "sim_mesh_change",
+        "float",
+        "",
+        "relative change of the largest deviation on a mesh of "
+        "twice the nodes (empty without --check)",
+    ),
+    (
+        "formed_bending_energy_J",
+        "float",
+        "J",
+        "work of bending the flat sheet into the design (reference flat)",
+    ),
+    (
+        "formed_plastic_share",
+        "float",
+        "",
+        "share of the sheet's area that yields when bent into the design (reference flat)",
+    ),
+    (
+        "released_max_deviation",
+        "float",
+        "length",
+        "largest springback from the designed form, let go (reference flat)",
+    ),
+    (
+        "released_rms_deviation",
+        "float",
+        "length",
+        "rms springback from the designed form, let go (reference flat)",
+    ),
+    ("standing_stands", "bool", "", "the simulated sheet stands on its supports"),
+    ("standing_reason", "str", "", "why it does not stand (empty when it does)"),
+)
+_LAST = (
+    ("designed_max_displacement", "float", "length", "largest movement of the designed form "
+     "under its weight (reference designed)"),
+    ("designed_max_stress_MPa", "float", "MPa", "largest stress of the designed form under its "
+     "weight (reference designed)"),
+    ("sim_warnings", "int", "", "warnings of the simulation (onefold simulate prints them)"),
+)  # fmt: skip
+
 register(
     Measure(
         "simulate",
         "the sheet as steel, as onefold simulate (the simulation options): formed, sprung "
         "back, standing under its weight",
         (
-            Column("sim_weight_N", "float", "N", "the sheet's weight"),
-            Column("sim_nodes", "int", "", "nodes of the simulation's mesh"),
-            Column(
-                "sim_mesh_change",
-                "float",
-                "",
-                "relative change of the largest deviation "
-                "on a mesh of twice the nodes (empty without --check)",
-            ),
-            Column(
-                "formed_bending_energy_J",
-                "float",
-                "J",
-                "work of bending the flat sheet into the design (reference flat)",
-            ),
-            Column(
-                "formed_plastic_share",
-                "float",
-                "",
-                "share of the sheet's area that yields when bent into the design (reference flat)",
-            ),
-            Column(
-                "released_max_deviation",
-                "float",
-                "length",
-                "largest springback from the designed form, let go (reference flat)",
-            ),
-            Column(
-                "released_rms_deviation",
-                "float",
-                "length",
-                "rms springback from the designed form, let go (reference flat)",
-            ),
-            Column("standing_stands", "bool", "", "the simulated sheet stands on its supports"),
-            Column("standing_reason", "str", "", "why it does not stand (empty when it does)"),
+            *(Column(*c) for c in _SIMULATED),
             *(Column(f"standing_{k}", "float", u, h) for k, (u, h) in _STANDING.items()),
-            Column(
-                "designed_max_displacement",
-                "float",
-                "length",
-                "largest movement of the designed form under its weight (reference designed)",
-            ),
-            Column(
-                "designed_max_stress_MPa",
-                "float",
-                "MPa",
-                "largest stress of the designed form under its weight (reference designed)",
-            ),
-            Column(
-                "sim_warnings",
-                "int",
-                "",
-                "warnings of the simulation (onefold simulate prints them)",
-            ),
-        ),  # fmt: skip
+            *(Column(*c) for c in _LAST),
+        ),
         _simulate,
     )
 )

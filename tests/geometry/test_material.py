@@ -10,17 +10,24 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.material import DENSITY_RANGE, MAX_MODULUS_GPA, Material
+from onefold_cad.geometry.material import (
+    DENSITY_RANGE,
+    MAX_MODULUS_GPA,
+    MIN_MODULUS_GPA,
+    MIN_YIELD_MPA,
+    Material,
+)
 from onefold_cad.templates import design_to_data, load_template
 
 
 @given(
-    st.floats(1e-9, MAX_MODULUS_GPA),
+    st.floats(MIN_MODULUS_GPA, MAX_MODULUS_GPA),
     st.floats(-1.0, 0.5, exclude_min=True, exclude_max=True),
-    st.floats(1e-6, 1.0),
+    st.floats(0.0, 1.0),
 )
 def test_every_value_in_range_is_kept(e, nu, share):
-    sy = share * e * 1e3  # up to the modulus itself, in MPa
+    # from the smallest yield stress up to the modulus itself, in MPa
+    sy = min(MIN_YIELD_MPA + share * (e * 1e3 - MIN_YIELD_MPA), e * 1e3)
     m = Material(youngs_modulus=e, poisson=nu, yield_stress=sy)
     assert (m.youngs_modulus, m.poisson, m.yield_stress) == (e, nu, sy)
 
@@ -29,6 +36,9 @@ def test_every_value_in_range_is_kept(e, nu, share):
     ("changes", "name"),
     [
         ({"youngs_modulus": 0.0}, "youngs_modulus"),
+        ({"youngs_modulus": math.nextafter(MIN_MODULUS_GPA, 0.0)}, "youngs_modulus"),
+        ({"yield_stress": math.nextafter(MIN_YIELD_MPA, 0.0)}, "yield_stress"),
+        ({"yield_stress": 1e-320}, "yield_stress"),
         ({"youngs_modulus": math.nextafter(MAX_MODULUS_GPA, math.inf)}, "youngs_modulus"),
         ({"youngs_modulus": math.nan}, "youngs_modulus"),
         ({"poisson": 0.5}, "poisson"),
@@ -55,6 +65,8 @@ def test_the_edges_inside_the_range_are_allowed():
     assert Material(youngs_modulus=193.0, yield_stress=193e3).yield_stress == 193e3
     assert Material(poisson=math.nextafter(-1.0, 0.0)).poisson > -1.0
     assert [Material(density=d).density for d in DENSITY_RANGE] == list(DENSITY_RANGE)
+    low = Material(youngs_modulus=MIN_MODULUS_GPA, yield_stress=MIN_YIELD_MPA)
+    assert (low.youngs_modulus, low.yield_stress) == (MIN_MODULUS_GPA, MIN_YIELD_MPA)
 
 
 def test_the_stainless_template_has_its_data_and_writes_it_back():
