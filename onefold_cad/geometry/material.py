@@ -56,10 +56,10 @@ class Material:
             :func:`onefold_cad.fabrication.mass.design_mass`).
         name: a material description for the notes (e.g. '304 stainless').
         sheet_surface: the reference surface (INSIDE, OUTSIDE, MID).
-        youngs_modulus: Young's modulus E in GPa (0 < E <= 10 000), or None;
+        youngs_modulus: Young's modulus E in GPa (1e-6 <= E <= 10 000), or None;
             independent of the design's length unit, like the density.
         poisson: Poisson's ratio nu, -1 < nu < 0.5, or None.
-        yield_stress: the yield stress sigma_y in MPa, 0 < sigma_y <= E (a
+        yield_stress: the yield stress sigma_y in MPa, 1e-3 <= sigma_y <= E (a
             yield stress as high as the modulus itself never yields: a check
             of the elastic model), or None.
 

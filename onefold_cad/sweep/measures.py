@@ -283,40 +283,19 @@ _STANDING = {
 _SIMULATED = (
     ("sim_weight_N", "float", "N", "the sheet's weight"),
     ("sim_nodes", "int", "", "nodes of the simulation's mesh"),
-    (
-        "sim_mesh_change",
-        "float",
-        "",
-        "relative change of the largest deviation on a mesh of "
-        "twice the nodes (empty without --check)",
-    ),
-    (
-        "formed_bending_energy_J",
-        "float",
-        "J",
-        "work of bending the flat sheet into the design (reference flat)",
-    ),
-    (
-        "formed_plastic_share",
-        "float",
-        "",
-        "share of the sheet's area that yields when bent into the design (reference flat)",
-    ),
-    (
-        "released_max_deviation",
-        "float",
-        "length",
-        "largest springback from the designed form, let go (reference flat)",
-    ),
-    (
-        "released_rms_deviation",
-        "float",
-        "length",
-        "rms springback from the designed form, let go (reference flat)",
-    ),
+    ("sim_mesh_change", "float", "", "relative change of the largest deviation on a mesh of "
+     "twice the nodes (empty without --check)"),
+    ("formed_bending_energy_J", "float", "J", "work of bending the flat sheet into the design "
+     "(reference flat)"),
+    ("formed_plastic_share", "float", "", "share of the sheet's area that yields when bent "
+     "into the design (reference flat)"),
+    ("released_max_deviation", "float", "length", "largest springback from the designed form, "
+     "let go (reference flat)"),
+    ("released_rms_deviation", "float", "length", "rms springback from the designed form, let "
+     "go (reference flat)"),
     ("standing_stands", "bool", "", "the simulated sheet stands on its supports"),
     ("standing_reason", "str", "", "why it does not stand (empty when it does)"),
-)
+)  # fmt: skip
 _LAST = (
     ("designed_max_displacement", "float", "length", "largest movement of the designed form "
      "under its weight (reference designed)"),

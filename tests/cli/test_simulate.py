@@ -58,11 +58,11 @@ def test_progress_goes_to_stderr_and_the_stages_to_the_report(written):
 
 
 BAD = [
-    (["--youngs-modulus", "-193"], "youngs-modulus", "> 0"),
+    (["--youngs-modulus", "-193"], "youngs-modulus", "in [1e-06, 10000] GPa"),
     (["--poisson", "0.5"], "poisson", "< 0.5"),
     (["--poisson", "-1.2"], "poisson", "> -1"),
     (["--thickness", "0"], "thickness", "thickness > 0"),
-    (["--yield-stress", "0"], "yield-stress", "> 0"),
+    (["--yield-stress", "0"], "yield-stress", "in [0.001, "),
     (["--supports", "floor"], "supports", "anchored, frictionless"),
     (["--reference", "built"], "reference", "flat, designed"),
     (["--mesh", "huge"], "mesh", "coarse, normal, fine"),

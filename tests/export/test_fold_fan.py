@@ -145,32 +145,26 @@ def test_the_build_notes_a_crease_beyond_the_tolerance_with_both_angles():
 @settings(max_examples=20, deadline=None)
 @given(design=fold_designs())
 def test_property_drawn_creases_fold_as_the_designs_to_their_narrowest_wedge(design: Design):
-    """A drawn design (the ranges of tests/export/test_fold_mesh.py): the
-    file's crease halves within 1.5 x the first-order error of their wedges
-    (+ 0.15 deg), and
-    the wedges no narrower than allowed (so the mesh's face-angle bound holds
-    at H)."""
+    """A drawn design (the ranges of tests/export/test_fold_mesh.py): each of
+    the file's crease halves folds as the dihedral of its first wedges at the
+    file's apex (computed here from its division points), and so does a paper
+    design's own; the two within the build's tolerance, or the build's note
+    says how far apart; the wedges no narrower than allowed (so the mesh's
+    face-angle bound holds at H). The first-order model of the difference is
+    checked on the templates above: on drawn designs the file's own apex moves
+    it by more than any constant (0.16 deg at alpha 39, beta 10 with the same
+    first wedges; 1.15 deg against 0.65 first-order at alpha 10, beta 10,
+    h_c 77, 11 divisions on the hole's 10)."""
     try:
         folded, fan, err = _errors(design)
     except (NoSolutionError, ValueError):  # no fold, or no fan for the exact model: no file
         return
     if fan is folded:
         return
-    own, file = folded.solution.surface, fan.solution.surface
-    if design.model.value == "paper" and np.allclose(
-        own.points[[1, -2]], file.points[[1, -2]], rtol=0.0, atol=1e-12 * design.frame.radius
-    ):
-        # the file keeps the design's first arc steps: only the apex differs
-        # (0.16 deg at alpha 39, beta 10, 36 divisions), and each crease folds
-        # as the dihedral of its first wedges at its own apex
-        for f in (folded, fan):
-            got = [c.fold_angle_deg for c in f.crease]
-            assert np.allclose(got, _paper_crease_deg(f.solution.surface, f.apex), atol=1e-9)
-        assert np.all(np.abs(err) <= CREASE_TOLERANCE_DEG) or fold_note(design, folded)
-    else:
-        # the apex's own difference weighs more at a low tilt (0.88 against 0.62
-        # deg first-order at alpha 34, beta 10)
-        assert np.all(np.abs(err) <= 1.5 * _predicted_error_deg(design, folded, fan) + 0.15)
+    for f in (fan, folded) if design.model.value == "paper" else (fan,):
+        got = [c.fold_angle_deg for c in f.crease]
+        assert np.allclose(got, _paper_crease_deg(f.solution.surface, f.apex), atol=1e-9)
+    assert np.all(np.abs(err) <= CREASE_TOLERANCE_DEG) or fold_note(design, folded)
     ends = np.degrees(fan.solution.surface.gammas[[0, -1]])
     sp = fan.solution.surface.spacing
     if relief_hole_diameter(design, folded) > 0.0:  # equal divisions (module notes)
