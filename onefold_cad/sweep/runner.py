@@ -3,11 +3,11 @@
 :func:`run_sweep` reads the folder's journal, skips every design it holds
 finished (same key, the measures asked for with their settings, its
 thumbnail if asked for), hands the others to the backend in batches and
-journals each row as its batch comes back (a thumbnail first goes to ``img/KEY.png``). Batches grow
-to about :data:`BATCH_SECONDS` of work each (from the time designs took so
-far), so a worker gets few messages and a stopped sweep loses little. The
-files are rebuilt from the journal at the end, and also when the run is
-stopped (Ctrl-C, SIGTERM) or fails.
+journals each row as its batch comes back (a thumbnail first goes to
+``img/KEY.png``). Batches grow to about :data:`BATCH_SECONDS` of work each
+(from the time designs took so far), so a worker gets few messages and a
+stopped sweep loses little. The files are rebuilt from the journal at the
+end, and also when the run is stopped (Ctrl-C, SIGTERM) or fails.
 """
 
 from __future__ import annotations
