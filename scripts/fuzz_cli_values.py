@@ -6,11 +6,12 @@ reports every run that breaks the project's rule for bad input: an exit
 status other than 0, 1 or 2, a Python traceback on stderr, or on status 2
 more than one line of stderr or any file written. Runs past ``--timeout``
 are listed apart (slow, not wrong). ``simulate`` runs on the coarse mesh
-(unless ``--mesh`` is the flag tried) and a sweep on two designs.
+(unless ``--mesh`` is the flag tried), a sweep on two designs and a build
+of the DXF and the JSON report (unless ``--formats`` is the flag tried).
 
 Run from the repository root::
 
-    .venv/bin/python scripts/fuzz_cli_values.py [--timeout 120] [--only sweep simulate fit]
+    .venv/bin/python scripts/fuzz_cli_values.py [--timeout 120] [--only sweep simulate ...]
 """
 
 from __future__ import annotations
@@ -31,6 +32,12 @@ FLAGS = {
                  "--youngs-modulus", "--poisson", "--yield-stress", "--density",
                  "--bend-radius", "--k-factor", "--relief-hole"),
     "fit": ("--height", "--span", "--depth", "--min-tipping-margin"),
+    "solve": ("--alpha", "--beta", "--hc", "--radius", "--divisions", "--x-plus", "--polygon",
+              "--rectangle", "--apex-fraction", "--thickness", "--bend-radius", "--k-factor",
+              "--kerf", "--relief-hole", "--density", "--units", "--model", "--sheet-surface",
+              "--name"),
+    "build": ("--formats", "--body", "--compensation", "--placement", "--name", "--thickness",
+              "--bend-radius", "--k-factor", "--kerf", "--relief-hole", "--alpha", "--beta"),
 }  # fmt: skip
 
 
@@ -44,6 +51,12 @@ def _argv(exe: str, command: str, flag: str, value: str, out: Path) -> list[str]
         argv += ["--mesh", "coarse"]
     if command == "fit" and flag != "--height":
         argv += ["--height", "3000"]
+    if command == "build":
+        argv += (
+            ["-o", str(out / "build"), "--formats", "dxf,json"]
+            if flag != "--formats"
+            else ["-o", str(out / "build")]
+        )
     return argv
 
 

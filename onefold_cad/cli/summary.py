@@ -96,9 +96,12 @@ def summary(report: dict[str, Any]) -> str:
     ]
     for half in ("plus_x", "minus_x"):
         h = c[half]
+        ba, bd = (
+            "-" if h[k] is None else f"{h[k]:.4g}" for k in ("bend_allowance", "bend_deduction")
+        )  # none for a crease folded flat onto itself (its warning says so)
         lines.append(
             f"  crease {half:<8}  fold {h['fold_angle_deg']:.4g} deg {h['bend']:<4}  "
-            f"length {h['length']:.6g}  BA {h['bend_allowance']:.4g}  BD {h['bend_deduction']:.4g}"
+            f"length {h['length']:.6g}  BA {ba}  BD {bd}"
         )
     lines.append(
         f"  relief hole diameter     {report['relief_hole_diameter']:.4g} {u}"

@@ -16,7 +16,13 @@ import numpy as np
 
 from onefold_cad.choices import Units
 from onefold_cad.errors import FabricationError
-from onefold_cad.geometry.bend_model import BendValues, bend_model, blank_move, crease_bends
+from onefold_cad.geometry.bend_model import (
+    BendValues,
+    bend_model,
+    bendable,
+    blank_move,
+    crease_bends,
+)
 from onefold_cad.geometry.fan_folds import RulingFold, ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
@@ -54,7 +60,8 @@ class BendProblem:
         kind: 'setback' (large beside the flanges), 'corner' (a sheet corner
             in the bend zone), 'edge' (a sheet edge across the bend zone) or
             'width' (the blank's width across the bend off by more than
-            MAX_WIDTH_ERROR_FRACTION x t).
+            MAX_WIDTH_ERROR_FRACTION x t), or 'closed' (folded flat onto
+            itself: no bend model at all, whatever the thickness).
         parameter: what to change, as the CLI spells it.
         message: one line: the half, its angle, the numbers, what to change.
     """
@@ -191,11 +198,14 @@ def check_bends(
     Returns:
         The problems found (empty: the compensated blank is valid), each with
         a one-line message naming the half, its fold angle, the numbers and
-        what to change. Zero thickness: always empty.
+        what to change. Zero thickness: empty but for a crease half folded
+        flat onto itself (then that problem alone, whatever the thickness).
     """
     mat, sheet = material, folded.sheet
-    if mat.thickness <= 0.0:
-        return ()
+    closed = tuple(_closed(c.name, c.fold_angle_deg) for c in folded.crease
+                   if not bendable(c.fold_angle_deg))  # fmt: skip
+    if closed or mat.thickness <= 0.0:
+        return closed
     bends = crease_bends(folded, mat)
     d = blank_move(bends).shift
     u = Units.parse(units).value
@@ -316,6 +326,17 @@ def check_bends(
         )
     order = {"setback": 0, "corner": 1, "edge": 2, "width": 3}
     return tuple(sorted(problems, key=lambda q: order[q.kind]))
+
+
+def _closed(half: str, angle_deg: float) -> BendProblem:
+    """The problem of a crease half folded flat onto itself (the bend model's
+    fold angles end short of 180 deg: :func:`~onefold_cad.geometry.bend_model.bendable`)."""
+    return BendProblem(
+        half, angle_deg, "closed", "beta",
+        f"{half}: folds {angle_deg:.6g} deg, flat onto itself (beta within rounding of 90 "
+        "deg): a bend of 180 deg has no bend allowance, set-back or deduction; set a "
+        "smaller beta",
+    )  # fmt: skip
 
 
 def bend_error(problems: tuple[BendProblem, ...]) -> FabricationError | None:

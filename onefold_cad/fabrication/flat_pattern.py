@@ -260,11 +260,12 @@ def flat_pattern(
     hole_problem = relief_hole_problem(design, folded)
     if hole_problem is not None:
         raise hole_problem
-    bends = crease_bends(folded, mat)
     problems = check_bends(folded, mat, design.units)
     error = bend_error(problems)
-    if error is not None and comp is Compensation.SHARP:
-        raise error
+    closed = bend_error(tuple(p for p in problems if p.kind == "closed"))
+    if closed is not None or (error is not None and comp is Compensation.SHARP):
+        raise closed or error
+    bends = crease_bends(folded, mat)
     sharp = comp is Compensation.SHARP and t > 0.0
     move = blank_move(bends, comp if t > 0.0 else Compensation.NONE)
     shift = move.shift

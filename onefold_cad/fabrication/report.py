@@ -38,8 +38,9 @@ from onefold_cad.fabrication.rules import (
     fabrication_warnings,
     resting_placement,
     solid_bend_problem,
+    solid_problem,
 )
-from onefold_cad.geometry.bend_model import crease_bends
+from onefold_cad.geometry.bend_model import bendable, crease_bends
 from onefold_cad.geometry.developability import developability
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import edge_lengths_2d
@@ -94,17 +95,20 @@ def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None
 
 def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     out: dict[str, Any] = {}
-    for half, bv in zip(folded.crease, crease_bends(folded, design.material), strict=True):
+    bendable_ = all(bendable(c.fold_angle_deg) for c in folded.crease)
+    bends = crease_bends(folded, design.material) if bendable_ else (None, None)
+    for half, bv in zip(folded.crease, bends, strict=True):
+        # a crease folded flat onto itself has no bend model (its warning says so)
         out[half.name] = {
             "length": float(half.length),
             "fold_angle_deg": float(half.fold_angle_deg),
             "bend": half.bend,
-            "bend_allowance": bv.allowance,
-            "outside_setback": bv.outside_setback,
-            "bend_deduction": bv.deduction,
-            "reference_surface": bv.reference.value,
-            "setback": bv.setback,
-            "shift": bv.shift,
+            "bend_allowance": None if bv is None else bv.allowance,
+            "outside_setback": None if bv is None else bv.outside_setback,
+            "bend_deduction": None if bv is None else bv.deduction,
+            "reference_surface": None if bv is None else bv.reference.value,
+            "setback": None if bv is None else bv.setback,
+            "shift": None if bv is None else bv.shift,
             "end_flat": _floats(half.end_flat),
             "end_3d": _floats(half.end_3d),
         }
@@ -117,7 +121,8 @@ def _solid_min_hole(design: Design, folded: FoldedSheet, warnings: list[str]) ->
     try:
         return solid_min_relief_hole(folded, design.material)
     except InvalidParameterError as exc:  # e.g. a flat fold has no mitre
-        warnings.append(str(exc))
+        if not any(str(exc) in w for w in warnings):  # design_warnings' "no STEP solid"
+            warnings.append(str(exc))
         return None
 
 
@@ -196,11 +201,13 @@ def design_warnings(
     problems = check_bends(folded, design.material, design.units)
     error = bend_error(problems)
     bends = []
-    if error is not None and comp is Compensation.NONE:
+    if error is not None and comp is Compensation.NONE and problems[0].kind != "closed":
         bends.append(
             f"{error}; with --compensation none build writes the uncompensated blank (the "
             "designed outline; its notes say so) and the STEP as designed"
         )
+    elif any(p.kind == "closed" for p in problems):  # no bend model, whatever the compensation
+        bends.append(f"{error}; build refuses the DXF, cut DXF, bend sheet and flat preview")
     elif error is not None:
         solid = solid_bend_problem(design, folded) is not None  # the writers' own check
         refused = "the DXF, cut DXF, bend sheet and flat preview" + (
@@ -213,6 +220,13 @@ def design_warnings(
         stability = stability_warnings(resting_placement(design, folded, body), design.units.value)
     except (InvalidParameterError, NoSolutionError):  # no such body: its writer says why
         stability = []
+    solid = solid_problem(design, folded) if body is None else None
+    if solid is not None:  # the default solid cannot be made: the shell stands instead
+        stability.insert(
+            0,
+            f"no STEP solid: {solid}; the form stands and is rated as its reference surface "
+            "(zero thickness), and build refuses the solid",
+        )
     return [
         *getattr(folded.solution, "warnings", ()),
         *fabrication_warnings(design, folded),

@@ -9,10 +9,11 @@ from __future__ import annotations
 
 from onefold_cad.choices import Compensation
 from onefold_cad.design import Design, rest_once
-from onefold_cad.errors import FabricationError
+from onefold_cad.errors import FabricationError, InvalidParameterError
 from onefold_cad.fabrication.bend_checks import bend_error, check_bends
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.placement import RestingPlacement
 
 __all__ = [
@@ -21,6 +22,7 @@ __all__ = [
     "fabrication_warnings",
     "resting_placement",
     "solid_bend_problem",
+    "solid_problem",
 ]
 
 #: Densities (kg/m^3) outside this range are not those of a sheet material: lighter
@@ -49,12 +51,40 @@ def resting_placement(
     A relief hole that does not fit the sheet (:func:`relief_hole_problem`,
     which every writer of the part refuses and ``solve`` warns about) leaves
     no part to stand: the form is then placed as the sheet without a hole, on
-    its reference surface."""
+    its reference surface. So is a default solid that cannot be made
+    (:func:`solid_problem`, which ``solve`` warns about and the STEP refuses),
+    with the reference surface's own centre of mass (the thick sheet's mass
+    needs the solid's mitre blocks)."""
+    m, kind = _resting_material(design, folded, body)
+    if body is None and kind == "solid" and solid_problem(design, folded) is not None:
+        m, kind = m.with_changes(thickness=0.0, bend_radius=0.0), "shell"
+    return rest_once(folded, m, kind)
+
+
+def _resting_material(
+    design: Design, folded: FoldedSheet, body: str | None
+) -> tuple[Material, str]:
+    """The material (its relief hole resolved) and the body :func:`resting_placement`
+    stands, before a default solid's own problem."""
     body = default_body(design) if body is None else body
     m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
     if relief_hole_problem(design, folded) is not None:
-        m, body = m.with_changes(relief_hole=0.0), "shell"
-    return rest_once(folded, m, body)
+        return m.with_changes(relief_hole=0.0), "shell"
+    return m, body
+
+
+def solid_problem(design: Design, folded: FoldedSheet) -> InvalidParameterError | None:
+    """Why the default body, a solid (:func:`default_body`), cannot be made
+    and stood (a fold flat or folded through has no mitre at the crease), or
+    None (it can, or the default body is the shell)."""
+    m, body = _resting_material(design, folded, None)
+    if body != "solid":
+        return None
+    try:
+        rest_once(folded, m, "solid")
+    except InvalidParameterError as exc:
+        return exc
+    return None
 
 
 def solid_bend_problem(

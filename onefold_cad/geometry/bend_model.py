@@ -48,6 +48,7 @@ __all__ = [
     "BlankMove",
     "bend_model",
     "bend_values",
+    "bendable",
     "blank_move",
     "crease_bends",
     "fold_angle",
@@ -61,6 +62,14 @@ FOLD_ANGLE_RANGE_DEG = (0.0, 180.0)
 _DIRECTIONS = ("UP", "DOWN")
 
 
+def bendable(angle_deg: float) -> bool:
+    """Whether the bend model takes the fold angle ``angle_deg`` (deg): in
+    :data:`FOLD_ANGLE_RANGE_DEG` (a crease folded flat onto itself, 180 deg,
+    has no bend allowance or set-back)."""
+    lo, hi = FOLD_ANGLE_RANGE_DEG
+    return bool(lo <= angle_deg < hi)
+
+
 def fold_angle(angle_deg: float, name: str = "angle_deg") -> float:
     """``angle_deg`` as a float, if it is a fold angle in
     :data:`FOLD_ANGLE_RANGE_DEG` (the one check of that range).
@@ -69,8 +78,8 @@ def fold_angle(angle_deg: float, name: str = "angle_deg") -> float:
         InvalidParameterError: naming ``name``, with the range.
     """
     psi = finite(name, angle_deg)
-    lo, hi = FOLD_ANGLE_RANGE_DEG
-    if not lo <= psi < hi:
+    if not bendable(psi):
+        lo, hi = FOLD_ANGLE_RANGE_DEG
         raise InvalidParameterError(name, f"must be in [{lo:g}, {hi:g}) deg, got {angle_deg:g}")
     return psi
 

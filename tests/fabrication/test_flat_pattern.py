@@ -224,7 +224,9 @@ def test_blank_corners_where_the_bend_model_puts_them(
     every sheet corner moved across the fold line by the mean of the two halves' hand
     shifts, and every other outline point on a moved edge at BA/2 of its half; a
     design they reject raises FabricationError, and compensation 'none' still writes
-    the designed outline."""
+    the designed outline (but for a crease folded onto itself, beta within rounding
+    of 90 deg, which has no bend model at all: hypothesis found alpha 71, beta
+    89.99999999999997)."""
     try:
         frame = FrameCurve(alpha, beta, hc * 100.0 * math.cos(math.radians(alpha)), 100.0, 90)
     except InvalidParameterError:  # |h_c| rounded onto the open range's end
@@ -246,6 +248,10 @@ def test_blank_corners_where_the_bend_model_puts_them(
         with pytest.raises(FabricationError) as info:
             flat_pattern(design, folded)
         assert problems[0].message in str(info.value)
+        if problems[0].kind == "closed":  # folded onto itself: no bend model to write
+            with pytest.raises(FabricationError, match="^beta: "):
+                flat_pattern(design, folded, "none")
+            return
         with tempfile.TemporaryDirectory() as tmp:
             path = export_design_dxf(design, Path(tmp) / "n.dxf", folded, compensation="none")
             out = dxf_outline(path)
