@@ -206,12 +206,11 @@ def check_jobs(
     # Every design solves, and every writer's checks pass, before any file is written.
     for i, job in enumerate(jobs, 1):
         d = job.design
-        progress.line(i, n, d.name, f"started: {_describe(d)}")
+        # a design's lines wait for its checks: a refusal is the one line on stderr
+        lines = [f"started: {_describe(d)}"]
         t0 = time.perf_counter()
         folded = build_design(d)
-        for text in _material_text(d, folded, job):
-            progress.line(i, n, d.name, text)
-        progress.line(i, n, d.name, f"solve {time.perf_counter() - t0:.2f} s")
+        lines += [*_material_text(d, folded, job), f"solve {time.perf_counter() - t0:.2f} s"]
         ctx = BuildContext(d, folded, body, ns.compensation, job.sources, placement=ns.placement)
         t0 = time.perf_counter()
         try:
@@ -221,6 +220,8 @@ def check_jobs(
             if n == 1:
                 raise exc from None
             raise _prefixed(exc, d.name) from None
+        for text in lines:
+            progress.line(i, n, d.name, text)
         if any(WRITERS[f].needs_flat_pattern for f in formats):
             progress.line(i, n, d.name, f"flat pattern {time.perf_counter() - t0:.2f} s")
             from onefold_cad.fabrication.bend_table import bend_table
