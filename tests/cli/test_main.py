@@ -617,6 +617,16 @@ def test_bad_input_exits_2_with_one_line_and_no_file(tmp_path, command, args, pa
     refused(run(command, *args, *extra, cwd=tmp_path), param, words, tmp_path)
 
 
+def test_a_value_refused_after_the_fold_is_one_line_even_with_progress(tmp_path):
+    """--kerf against the relief hole, which the fold sizes: checked after the
+    solve, refused before its progress lines (not -q) are printed."""
+    out = tmp_path / "out"
+    proc = run("build", "patkau-one-fold", "--kerf", "90", "--formats", "dxf", "-o", str(out))
+    assert proc.returncode == 2 and proc.stderr.count("\n") == 1, proc.stderr
+    assert proc.stderr.startswith("onefold: error: --kerf: must be < the relief hole's diameter")
+    assert not out.exists()
+
+
 def test_solve_warns_where_build_refuses_a_relief_hole():
     proc = run("solve", "--relief-hole", "1e6")
     assert proc.returncode == 0
