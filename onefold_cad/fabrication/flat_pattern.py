@@ -262,9 +262,9 @@ def flat_pattern(
         raise hole_problem
     problems = check_bends(folded, mat, design.units)
     error = bend_error(problems)
-    closed = bend_error(tuple(p for p in problems if p.kind == "closed"))
-    if closed is not None or (error is not None and comp is Compensation.SHARP):
-        raise closed or error
+    # a crease folded onto itself (check_bends gives it alone) has no bend model to write
+    if error is not None and (comp is Compensation.SHARP or problems[0].kind == "closed"):
+        raise error
     bends = crease_bends(folded, mat)
     sharp = comp is Compensation.SHARP and t > 0.0
     move = blank_move(bends, comp if t > 0.0 else Compensation.NONE)

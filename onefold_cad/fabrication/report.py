@@ -95,8 +95,10 @@ def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None
 
 def _crease(design: Design, folded: FoldedSheet) -> dict[str, Any]:
     out: dict[str, Any] = {}
-    bendable_ = all(bendable(c.fold_angle_deg) for c in folded.crease)
-    bends = crease_bends(folded, design.material) if bendable_ else (None, None)
+    if all(bendable(c.fold_angle_deg) for c in folded.crease):
+        bends: tuple[Any, Any] = crease_bends(folded, design.material)
+    else:
+        bends = (None, None)
     for half, bv in zip(folded.crease, bends, strict=True):
         # a crease folded flat onto itself has no bend model (its warning says so)
         out[half.name] = {
@@ -201,12 +203,13 @@ def design_warnings(
     problems = check_bends(folded, design.material, design.units)
     error = bend_error(problems)
     bends = []
-    if error is not None and comp is Compensation.NONE and problems[0].kind != "closed":
+    closed = bool(problems) and problems[0].kind == "closed"  # alone: no bend model at all
+    if error is not None and comp is Compensation.NONE and not closed:
         bends.append(
             f"{error}; with --compensation none build writes the uncompensated blank (the "
             "designed outline; its notes say so) and the STEP as designed"
         )
-    elif any(p.kind == "closed" for p in problems):  # no bend model, whatever the compensation
+    elif closed:  # whatever the compensation
         bends.append(f"{error}; build refuses the DXF, cut DXF, bend sheet and flat preview")
     elif error is not None:
         solid = solid_bend_problem(design, folded) is not None  # the writers' own check

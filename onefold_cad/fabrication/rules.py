@@ -56,8 +56,11 @@ def resting_placement(
     with the reference surface's own centre of mass (the thick sheet's mass
     needs the solid's mitre blocks)."""
     m, kind = _resting_material(design, folded, body)
-    if body is None and kind == "solid" and solid_problem(design, folded) is not None:
-        m, kind = m.with_changes(thickness=0.0, bend_radius=0.0), "shell"
+    if body is None and kind == "solid":
+        try:
+            return rest_once(folded, m, "solid")
+        except InvalidParameterError:  # solid_problem: no mitre at the crease
+            m, kind = m.with_changes(thickness=0.0, bend_radius=0.0), "shell"
     return rest_once(folded, m, kind)
 
 
