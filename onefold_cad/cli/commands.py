@@ -94,7 +94,7 @@ def cmd_hops(ns: argparse.Namespace) -> int:
     """Serve the Grasshopper Hops components until Ctrl-C (``onefold_cad.hops``)."""
     from onefold_cad.hops.serve import serve
 
-    serve(ns.host, ns.port)
+    serve(ns.host, ns.port, ns.templates, ns.allow_host)
     return 0
 
 

@@ -227,7 +227,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
                      help="no progress lines on stderr when building (-o)")  # fmt: skip
     hops = FlagParser(
         prog=f"{PROG} hops",
-        usage=f"{PROG} hops [--port N] [--host ADDRESS]",
+        usage=f"{PROG} hops [--port N] [--host ADDRESS] [--templates DIR] [--allow-host NAME]",
         description="Serve the Grasshopper Hops components onefold/solve (a design: the folded "
         "form's Breps, creases, apex, flat pattern, fold angles, height, span, tipping margin, "
         "warnings) and onefold/fit (alpha, beta, h_c for a target height and span) until "
@@ -243,6 +243,17 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     hops.add_argument(
         "--host", default="127.0.0.1", metavar="ADDRESS",
         help="address to listen on (default 127.0.0.1: this machine only)",
+    )  # fmt: skip
+    hops.add_argument(
+        "--templates", default=None, metavar="DIR",
+        help="a folder of your own templates: a request may name its .toml files by name "
+        "(requests never name a path; without it, the shipped templates only)",
+    )  # fmt: skip
+    hops.add_argument(
+        "--allow-host", action="append", default=[], metavar="NAME",
+        help="a name or address of this machine that clients may use in the Host header "
+        "(repeatable; the listening address, and the loopback names for a loopback one, "
+        "are always allowed)",
     )  # fmt: skip
     return {
         "": top,

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import functools
 import json
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -81,7 +81,8 @@ def _flag_input(dest: str) -> HopsInput:
 _TEMPLATE = HopsInput(
     "template",
     "text",
-    f"template file or shipped template name (default: {DEFAULT_TEMPLATE})",
+    f"template name: a shipped template, or one of the folder the server was started with "
+    f"(onefold hops --templates DIR); never a path (default: {DEFAULT_TEMPLATE})",
 )
 
 #: The inputs of ``onefold/solve``, in the component's order.
@@ -182,7 +183,7 @@ def _value(inp: HopsInput, item: Mapping[str, Any]) -> Any:
     return float(value)
 
 
-def read_values(inputs: Sequence[HopsInput], values: Iterable[Mapping[str, Any]]) -> dict[str, Any]:
+def read_values(inputs: Sequence[HopsInput], values: object) -> dict[str, Any]:
     """The value of each input in a Hops request's ``values`` (None for an
     input without data), read as :data:`KINDS` say: a float, an int, a
     string, or a curve's CommonObject JSON (a dict, decoded by the caller).
@@ -192,13 +193,19 @@ def read_values(inputs: Sequence[HopsInput], values: Iterable[Mapping[str, Any]]
         InvalidParameterError: named by the input: a required input without
             data, more than one value for an input, or a value of the wrong kind.
     """
+    if not isinstance(values, list | tuple):
+        raise InvalidParameterError("values", "must be a list of Hops' values")
     given: dict[str, Mapping[str, Any]] = {}
     for entry in values:
-        if not isinstance(entry, Mapping) or not isinstance(entry.get("InnerTree"), Mapping):
+        tree = entry.get("InnerTree") if isinstance(entry, Mapping) else None
+        if not isinstance(tree, Mapping) or not all(
+            isinstance(branch, list) and all(isinstance(item, Mapping) for item in branch)
+            for branch in tree.values()
+        ):
             raise InvalidParameterError(
                 "values", "each value needs a ParamName and an InnerTree (Hops' DataTree)"
             )
-        given[str(entry.get("ParamName"))] = entry["InnerTree"]
+        given[str(entry.get("ParamName"))] = tree
     names = {inp.name for inp in inputs}
     unknown = sorted(set(given) - names)
     if unknown:

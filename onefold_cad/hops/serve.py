@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+from collections.abc import Sequence
+from pathlib import Path
 
 from onefold_cad.flags.parser import UsageError
 
@@ -30,18 +32,28 @@ def check_installed() -> None:
         )
 
 
-def serve(host: str = "127.0.0.1", port: int = 5000) -> None:
+def serve(
+    host: str = "127.0.0.1",
+    port: int = 5000,
+    template_dir: str | None = None,
+    allow_hosts: Sequence[str] = (),
+) -> None:
     """Serve the Hops components on ``host:port`` (0: any free port) until
-    Ctrl-C; the address goes to stderr first.
+    Ctrl-C; the address goes to stderr first. Requests may name the shipped
+    templates and those of ``template_dir`` (``--templates``), and be sent
+    to the server's own address or a name of ``allow_hosts``.
 
     Raises:
-        UsageError: a missing package, or an address it cannot listen on.
+        UsageError: a missing package, a folder that is not one, or an
+            address it cannot listen on.
     """
     check_installed()
+    if template_dir is not None and not Path(template_dir).is_dir():
+        raise UsageError(f"--templates: not a folder: {template_dir!r}")
     from onefold_cad.hops.server import COMPONENTS, make_server
 
     try:
-        server = make_server(host, port)
+        server = make_server(host, port, template_dir, allow_hosts)
     except OSError as exc:
         why = exc.strerror or str(exc)
         raise UsageError(f"--host/--port: cannot listen on {host}:{port} ({why})") from None

@@ -14,6 +14,11 @@ optional input) and answers as compute does (Resthopper's ``Schema``):
 the component's error. MESSAGE is the command's one-line message for the
 same value (``--alpha: must be in (0, 90) deg, got 95``), never a traceback:
 an unexpected failure is one line too, its traceback on the server's stderr.
+
+A request's ``template`` is a name (:func:`~onefold_cad.hops.guard.resolve_template`:
+the shipped templates and those of the server's folder, never a path), and
+the HTTP is :mod:`onefold_cad.hops.http`'s (Host and Origin checked, bodies
+and connections bounded, every malformed request answered in one line).
 """
 
 from __future__ import annotations
@@ -23,7 +28,7 @@ import sys
 import traceback
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from http.server import ThreadingHTTPServer
+from pathlib import Path
 from typing import Any
 
 from onefold_cad.errors import OneFoldError
@@ -36,8 +41,16 @@ from onefold_cad.hops.components import (
     fit_answer,
     solve_answer,
 )
-from onefold_cad.hops.ghhops import HopsComponent, HopsDefault, hopsdefault
+from onefold_cad.hops.ghhops import HopsComponent, HopsDefault
 from onefold_cad.hops.ghhops import ghhops_server as hs
+from onefold_cad.hops.guard import allowed_hosts, resolve_template
+from onefold_cad.hops.http import (
+    HopsHandler,
+    HopsServer,
+    RequestError,
+    error_answer,
+    parse_request,
+)
 from onefold_cad.hops.inputs import (
     FIT_INPUTS,
     SOLVE_INPUTS,
@@ -126,17 +139,15 @@ def _param(name: str, kind: str, description: str, many: bool, optional: bool) -
     return Param(name, name, description, access=access, optional=optional)
 
 
-def error_answer(message: str) -> str:
-    """The JSON of an answer that is one error (one line)."""
-    return json.dumps({"values": [], "errors": [" ".join(message.split())], "warnings": []})
-
-
 class OneFoldHops(HopsDefault):
     """ghhops-server's standard-library server with :data:`COMPONENTS`."""
 
-    def __init__(self, components: Sequence[Component] = COMPONENTS) -> None:
+    def __init__(
+        self, components: Sequence[Component] = COMPONENTS, template_dir: Path | None = None
+    ) -> None:
         hs.Hops()  # sets ghhops' rhino3dm codec (the params module's encoder)
         super().__init__()
+        self.template_dir = template_dir
         self.specs: dict[str, Component] = {}
         for c in components:
             self.specs[c.uri] = c
@@ -156,17 +167,54 @@ class OneFoldHops(HopsDefault):
             )  # fmt: skip
 
     def solve(self, uri: str, payload: Any) -> tuple[bool, str]:
-        """ghhops' routing, with a request that is not JSON answered as an error."""
+        """ghhops' entry: ``payload`` (the body, bytes or text) read and solved
+        as :meth:`solve_request` does; a body that is not Hops' JSON, or a
+        component that does not exist, is an error answer."""
         try:
-            return super().solve(uri, payload)
-        except (ValueError, KeyError, TypeError) as exc:
-            return False, error_answer(f"the request is not Hops' JSON ({exc})")
+            raw = payload if isinstance(payload, bytes) else str(payload).encode("utf-8")
+            return self.solve_request(uri, parse_request(raw))
+        except RequestError as exc:
+            return False, error_answer(f"the request is not Hops' JSON: {exc}")
+        except LookupError as exc:
+            return False, error_answer(str(exc.args[0]) if exc.args else "no such component")
 
     def _process_solve_request(self, comp: HopsComponent, payload: Any) -> tuple[bool, str]:
+        """ghhops' own reading of a request, never used: :meth:`solve` reads it."""
+        raw = payload if isinstance(payload, bytes) else str(payload).encode("utf-8")
+        try:
+            return self._process_request(comp, parse_request(raw))
+        except RequestError as exc:
+            return False, error_answer(f"the request is not Hops' JSON: {exc}")
+
+    def solve_request(self, uri: str, request: Mapping[str, Any]) -> tuple[bool, str]:
+        """Solve the component of ``uri`` (``/onefold/solve``; ``/solve``: the
+        one ``request``'s ``pointer`` names) for ``request`` (its JSON,
+        read): (solved, the answer's JSON).
+
+        Raises:
+            RequestError: a ``pointer`` that is not text.
+            LookupError: no such component (its message: one line).
+        """
+        if uri == HopsDefault.SOLVE_ROUTE:
+            pointer = request.get("pointer")
+            if not isinstance(pointer, str):
+                raise RequestError(
+                    f"the request's pointer must name a component, got {pointer!r:.40}"
+                )
+            uri = pointer if pointer.startswith("/") else "/" + pointer
+        comp = self._components.get(uri)
+        if comp is None:
+            raise LookupError(
+                f"no Hops component {uri[:80]!r} (the server's: {', '.join(self.specs)})"
+            )
+        return self._process_request(comp, request)
+
+    def _process_request(self, comp: HopsComponent, request: Mapping[str, Any]) -> tuple[bool, str]:
         spec = self.specs[comp.uri]
         try:
-            request = json.loads(payload)
             values = read_values(spec.inputs, request.get("values", []))
+            if values.get("template") is not None:  # a name, never a path the request makes up
+                values["template"] = resolve_template(values["template"], self.template_dir)
             answer = spec.answer(values, request)
             outputs = [p.from_result(v) for p, v in zip(comp.outputs, answer.values, strict=True)]
             text = json.dumps({"values": outputs, "warnings": list(answer.warnings), "errors": []})
@@ -182,13 +230,25 @@ class OneFoldHops(HopsDefault):
         return True, text
 
 
-def make_server(host: str = "127.0.0.1", port: int = 5000) -> ThreadingHTTPServer:
+def make_server(
+    host: str = "127.0.0.1",
+    port: int = 5000,
+    template_dir: str | Path | None = None,
+    allow_hosts: Sequence[str] = (),
+) -> HopsServer:
     """A server of :class:`OneFoldHops` on ``host:port`` (0: any free port),
-    bound but not yet serving (``serve_forever``), with ghhops' request
-    handler (``HopsDefault.start`` gives no handle to its server, so no free
-    port and no shutdown)."""
-    app = OneFoldHops()
-    handler = type("Handler", (hopsdefault._HopsHTTPHandler,), {"hops": app})
-    server = ThreadingHTTPServer((host, port), handler)
-    server.daemon_threads = True
+    bound but not yet serving (``serve_forever``).
+
+    Args:
+        template_dir: a folder whose ``.toml`` templates requests may name
+            (by name; None: the shipped templates only).
+        allow_hosts: more names the ``Host`` header may give (the machine's
+            name on a network); its own address is always allowed, and the
+            loopback names when it listens on a loopback address.
+    """
+    folder = None if template_dir is None else Path(template_dir).resolve()
+    app = OneFoldHops(template_dir=folder)
+    handler = type("Handler", (HopsHandler,), {"hops": app})
+    server = HopsServer((host, port), handler)
+    server.hosts = allowed_hosts(host, int(server.server_address[1]), allow_hosts)
     return server

@@ -72,3 +72,9 @@ def test_the_command_serves_until_ctrl_c():
             proc.wait()
     assert proc.returncode == 0
     assert rest.rstrip().endswith("onefold hops: stopped") and "Traceback" not in rest
+
+
+def test_a_templates_folder_that_is_not_one_is_one_line(cli, tmp_path):
+    rc, out, err = cli("hops", "--port", "0", "--templates", str(tmp_path / "none"))
+    assert rc == 2 and out == ""
+    assert err == f"onefold: error: --templates: not a folder: {str(tmp_path / 'none')!r}\n"

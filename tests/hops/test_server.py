@@ -178,7 +178,6 @@ def test_design_warnings_are_hops_warnings(solve, cli):
          "divisions"),
         ({"sheet_width": 100.0}, ["solve", "--rectangle", "100.0x"], "rectangle"),
         ({"apex_fraction": 1.5}, ["solve", "--apex-fraction", "1.5"], "apex-fraction"),
-        ({"template": "no-such"}, ["solve", "no-such"], "no-such"),
         ({"placement": "up"}, ["build", "--placement", "up"], "placement"),
     ],
 )  # fmt: skip
@@ -235,7 +234,7 @@ def test_an_unknown_input_asks_hops_to_rebuild(url):
 
 def test_a_body_that_is_not_json_is_an_error_not_an_empty_answer(url):
     status, answer = post(f"{url}/solve", b"{not json")
-    assert status == 500 and answer["values"] == []
+    assert status == 400 and answer["values"] == []
     assert "not Hops' JSON" in answer["errors"][0]
 
 
