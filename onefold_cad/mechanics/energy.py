@@ -28,6 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.mechanics.assembly import pattern_of
 from onefold_cad.mechanics.kinematics import (
     METRIC_HESSIAN,
@@ -36,9 +37,10 @@ from onefold_cad.mechanics.kinematics import (
     transported_director,
 )
 from onefold_cad.mechanics.plastic import moment
+from onefold_cad.mechanics.section import SectionResponse
 from onefold_cad.mechanics.shell import Shell, unpack
 
-__all__ = ["Evaluation", "evaluate", "second_fundamental_form"]
+__all__ = ["Evaluation", "evaluate", "second_fundamental_form", "section_response"]
 
 F = NDArray[np.float64]
 #: b = B u
@@ -80,6 +82,22 @@ def second_fundamental_form(shell: Shell, q: F) -> F:
     return director_slopes(x[mesh.triangles], d[mesh.face_directors], 0)[0] @ _B.T
 
 
+def section_response(shell: Shell, q: F) -> SectionResponse:
+    """The faces' J2 sections (``Shell.plasticity``) at state ``q``, from the
+    state at the increment's start: stresses through the thickness and the
+    internal variables after it (an increment's equilibrium moves them on)."""
+    if shell.plasticity is None:
+        raise InvalidParameterError("plasticity", "the shell has no J2 sections")
+    mesh = shell.mesh
+    x = unpack(mesh, q)[0]
+    eps = (face_metric(x[mesh.triangles])[0] - shell.ref_metric) / 2
+    r = second_fundamental_form(shell, q) - shell.rest_curvature
+    lmap = shell.cartesian
+    return shell.plasticity.respond(
+        np.einsum("mij,mj->mi", lmap, eps), np.einsum("mij,mj->mi", lmap, r)
+    )
+
+
 #: Faces per chunk of the vectorised face terms (keeps the (c, 3, 12, 12) temporaries
 #: in cache).
 CHUNK = 2048
@@ -88,7 +106,7 @@ CHUNK = 2048
 def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     """Membrane and bending of a run of faces: energies (J) and, with ``order``, the
     (c, 12) gradients and (c, 12, 12) Hessians over the faces' own unknowns."""
-    mesh, mat = shell.mesh, shell.material
+    mesh = shell.mesh
     d_all, dd_all, d2d_all = directors
     tri = mesh.triangles[faces]
     c = len(tri)
@@ -96,13 +114,57 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     area, kform = shell.ref_area[faces], shell.form[faces]
     a, da = face_metric(xf)
     eps = (a - shell.ref_metric[faces]) / 2
-    keps = np.einsum("mij,mj->mi", kform, eps)
-    cm = area * mat.membrane_stiffness / 2
-    e_mem = float(np.sum(cm * np.einsum("mi,mi->m", eps, keps)))
     fd = mesh.face_directors[faces]
     u, du_z, d2u_z = director_slopes(xf, d_all[fd], order)
     b = u @ _B.T
     r = b - shell.rest_curvature[faces]
+    if shell.plasticity is not None:
+        law = _section_law(shell, faces, area, eps, r)
+    else:
+        law = _elastic_law(shell, faces, area, kform, eps, r)
+    e_mem, e_bend, g_eps, g_r, h_blocks = law
+    if order == 0:
+        return e_mem, e_bend, None, None
+    # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
+    maps = shell.edge_maps[faces]
+    dd_y = dd_all[fd] @ maps  # (c, 3, 3, 12): d d_i / d y
+    du = du_z[:, :, :9] @ np.eye(9, 12) + np.einsum("mik,mikj->mij", du_z[:, :, 9:], dd_y)
+    w_u = g_r @ _B  # dW/du
+    g_face = np.einsum("mi,mij->mj", w_u, du)
+    g_face[:, :9] += np.einsum("mi,mij->mj", g_eps / 2, da)  # d eps = da / 2
+    if order == 1:
+        return e_mem, e_bend, g_face, None
+    jz = np.zeros((c, 3, 12, 12))  # dz/dy
+    jz[:, :, :9, :9] = np.eye(9)
+    jz[:, :, 9:, :] = dd_y
+    d2u = jz.transpose(0, 1, 3, 2) @ d2u_z @ jz
+    # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
+    curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
+    d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
+    h_ee, h_er, h_rr = h_blocks()
+    jr = np.einsum("ij,mjk->mik", _B, du)  # d r / d y
+    h_face = jr.transpose(0, 2, 1) @ h_rr @ jr
+    h_face += np.einsum("mi,miab->mab", w_u, d2u)
+    je = da / 2  # d eps / d x (c, 3, 9)
+    h_face[:, :9, :9] += je.transpose(0, 2, 1) @ h_ee @ je + (
+        (g_eps / 2) @ METRIC_HESSIAN.reshape(3, 81)
+    ).reshape(c, 9, 9)
+    if h_er is not None:
+        cross = je.transpose(0, 2, 1) @ h_er @ jr  # (c, 9, 12)
+        h_face[:, :9, :] += cross
+        h_face[:, :, :9] += cross.transpose(0, 2, 1)
+    return e_mem, e_bend, g_face, h_face
+
+
+def _elastic_law(shell: Shell, faces: slice, area: F, kform: F, eps: F, r: F):
+    """St Venant-Kirchhoff membrane and the bending law (elastic, or with the
+    faces' accumulated plastic curvature ``plastic.moment``): the energies
+    (J), their gradients in ``eps`` and ``r`` (c, 3) and a function of the
+    Hessian blocks ``(d2/deps2, d2/deps dr or None, d2/dr2)``."""
+    mat = shell.material
+    keps = np.einsum("mij,mj->mi", kform, eps)
+    cm = area * mat.membrane_stiffness / 2
+    e_mem = float(np.sum(cm * np.einsum("mi,mi->m", eps, keps)))
     kr = np.einsum("mij,mj->mi", kform, r)
     stiff = area * mat.bending_stiffness / 2
     rkr = np.einsum("mi,mi->m", r, kr)
@@ -119,37 +181,42 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
         e_face = area * work
         coef = area * phi
         extra = area * psi
-    e_bend = float(np.sum(e_face))
-    if order == 0:
-        return e_mem, e_bend, None, None
-    # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
-    maps = shell.edge_maps[faces]
-    dd_y = dd_all[fd] @ maps  # (c, 3, 3, 12): d d_i / d y
-    du = du_z[:, :, :9] @ np.eye(9, 12) + np.einsum("mik,mikj->mij", du_z[:, :, 9:], dd_y)
-    w_u = coef[:, None] * (kr @ _B)  # dW/du
-    g_face = np.einsum("mi,mij->mj", w_u, du)
-    g_face[:, :9] += np.einsum("mi,mij->mj", keps * cm[:, None], da)
-    if order == 1:
-        return e_mem, e_bend, g_face, None
-    jz = np.zeros((c, 3, 12, 12))  # dz/dy
-    jz[:, :, :9, :9] = np.eye(9)
-    jz[:, :, 9:, :] = dd_y
-    d2u = jz.transpose(0, 1, 3, 2) @ d2u_z @ jz
-    # + sum_k du/dd_k d2(d_k)/dy2, contracted over k before mapping (e, angle) -> y.
-    curv = np.einsum("mik,mikab->miab", du_z[:, :, 9:], d2d_all[fd])
-    d2u += maps.transpose(0, 1, 3, 2) @ curv @ maps
-    q_uu = _B.T @ kform @ _B
-    h_uu = coef[:, None, None] * q_uu
-    if extra is not None:
-        kb = kr @ _B
-        h_uu = h_uu + extra[:, None, None] * np.einsum("mi,mj->mij", kb, kb)
-    h_face = du.transpose(0, 2, 1) @ h_uu @ du
-    h_face += np.einsum("mi,miab->mab", w_u, d2u)
-    h_face[:, :9, :9] += cm[:, None, None] * (
-        0.5 * (da.transpose(0, 2, 1) @ (kform @ da))
-        + (keps @ METRIC_HESSIAN.reshape(3, 81)).reshape(c, 9, 9)
-    )
-    return e_mem, e_bend, g_face, h_face
+
+    def blocks():
+        h_rr = coef[:, None, None] * kform
+        if extra is not None:
+            h_rr = h_rr + extra[:, None, None] * np.einsum("mi,mj->mij", kr, kr)
+        return 2 * cm[:, None, None] * kform, None, h_rr
+
+    return e_mem, float(np.sum(e_face)), 2 * cm[:, None] * keps, coef[:, None] * kr, blocks
+
+
+def _section_law(shell: Shell, faces: slice, area: F, eps: F, r: F):
+    """Membrane and bending together as J2 sections (``Shell.plasticity``):
+    the energies (J; the membrane's share ``N . eps_m / 2``, the rest
+    bending), the gradients in ``eps`` and ``r`` (c, 3) and a function of the
+    Hessian blocks, each ``L^T (section tangent) L`` times the face's area."""
+    assert shell.plasticity is not None
+    lmap = shell.cartesian[faces]
+    em = np.einsum("mij,mj->mi", lmap, eps)
+    kc = np.einsum("mij,mj->mi", lmap, r)
+    resp = shell.plasticity.respond(em, kc, faces)
+    total = area * resp.energy
+    e_mem = float(np.sum(area * np.einsum("mi,mi->m", resp.force, em) / 2))
+    g_eps = area[:, None] * np.einsum("mji,mj->mi", lmap, resp.force)
+    g_r = area[:, None] * np.einsum("mji,mj->mi", lmap, resp.moment)
+
+    def blocks():
+        t = resp.tangent
+        lt = lmap.transpose(0, 2, 1)
+        scale = area[:, None, None]
+        return (
+            scale * (lt @ t[:, :3, :3] @ lmap),
+            scale * (lt @ t[:, :3, 3:] @ lmap),
+            scale * (lt @ t[:, 3:, 3:] @ lmap),
+        )
+
+    return e_mem, float(np.sum(total)) - e_mem, g_eps, g_r, blocks
 
 
 def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:

@@ -270,6 +270,7 @@ def solve_path(
     max_move: float | None = None,
     max_solves: int = 64,
     callback: Progress | None = None,
+    accepted: Callable[[float, Equilibrium], None] | None = None,
     **options: object,
 ) -> Equilibrium:
     """Continuation: equilibria of ``shell_at(s)`` for ``s`` from 0 to 1, each solve
@@ -281,6 +282,9 @@ def solve_path(
     snapping through), and grows after quick ones; every solve (``solve``'s
     ``options``) gets at most ``step_iter`` Newton iterations (a step that
     needs more is halved); at most ``max_solves`` solves in all.
+    ``accepted(s, equilibrium)`` is called after each step the path keeps
+    (a path-dependent material moves its internal variables on there, so
+    ``shell_at`` gives the next step's shell with them).
 
     Raises:
         PathStalled: the step fell below ``min_step``, or ``max_solves`` solves
@@ -322,6 +326,8 @@ def solve_path(
             continue
         total += eq.iterations
         q, s, last = eq.q, target, eq
+        if accepted is not None:
+            accepted(s, eq)
         if s >= 1.0:
             return replace(eq, iterations=total)
         if eq.iterations <= 6:

@@ -241,7 +241,8 @@ def update(law: J2Law, strain: F, state: J2State) -> J2Response:
         tangent[k] = _consistent_tangent(law, c, xi, pxi, phi, dg, alpha_new[k])
     d = eps - ep_new
     energy = 0.5 * np.einsum("ki,ij,kj->k", d, c, d) + _kinematic_energy(law, ep_new)
-    energy += law.hardening_iso * alpha_new**2 / 2.0 + law.yield_stress * (alpha_new - alpha)
+    energy += law.hardening_iso * alpha_new**2 / 2.0
+    energy[flows] += law.yield_stress * (alpha_new[flows] - alpha[flows])  # the dissipation
     new = J2State(ep_new.reshape(shape + (3,)), beta_new.reshape(shape + (3,)),
                   alpha_new.reshape(shape))  # fmt: skip
     return J2Response(

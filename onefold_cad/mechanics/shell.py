@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.mechanics.kinematics import face_metric, transported_director
+from onefold_cad.mechanics.layered import Plasticity, cartesian_map
 from onefold_cad.mechanics.material import ShellMaterial, strain_form
 from onefold_cad.mechanics.mesh import SheetMesh
 
@@ -55,6 +56,10 @@ class Shell:
         load: (N,) or None: external generalised forces on the unknowns (N on
             coordinates, N m on director angles), energy ``-load . q`` (a
             forming machine's grip, say).
+        plasticity: None, or J2 plasticity through the thickness
+            (:class:`~onefold_cad.mechanics.layered.Plasticity`): membrane and
+            bending of every face then follow the section's law from the
+            faces' internal variables (``accumulated`` is not used with it).
 
     Director angles are measured about each edge from its reference director
     (``edge_frames``: made in the reference form, carried along the edge by
@@ -70,6 +75,7 @@ class Shell:
     gravity: F
     accumulated: F | None = None
     load: F | None = None
+    plasticity: Plasticity | None = None
 
     @classmethod
     def create(
@@ -124,6 +130,12 @@ class Shell:
     def form(self) -> F:
         """(m, 3, 3) the quadratic form ``K`` of the strain energies (``material.strain_form``)."""
         return strain_form(self.ref_metric, self.material.poisson)
+
+    @cached_property
+    def cartesian(self) -> F:
+        """(m, 3, 3) each face's map from covariant strains to the Cartesian
+        Voigt ones of its reference frame (``layered.cartesian_map``)."""
+        return cartesian_map(self.ref_metric)
 
     @cached_property
     def edge_frames(self) -> tuple[F, F]:

@@ -34,7 +34,7 @@ from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.shell import Shell, moved, rigid_dofs, unpack
 
-__all__ = ["Formed", "Placed", "Stage", "form", "place", "release", "stand"]
+__all__ = ["Formed", "Placed", "Stage", "form", "in_plane_restraint", "place", "release", "stand"]
 
 #: Newton's tolerance: the residual force relative to the sheet's weight.
 RTOL = 1e-7
@@ -162,7 +162,7 @@ def place(model: SheetModel, q: Array) -> Placed:
     return Placed(placed, z <= 1e-9 * size, rot, shift)
 
 
-def _in_plane_restraint(x: Array, contacts: np.ndarray) -> list[int]:
+def in_plane_restraint(x: Array, contacts: np.ndarray) -> list[int]:
     """DOF ids that remove a frictionless stand's in-plane rigid motion (x and y
     of one contact, the other horizontal direction of the farthest one): they
     carry nothing, for the weight is vertical."""
@@ -197,7 +197,7 @@ def stand(
     """
     ground = Ground(supports)
     x = unpack(model.mesh, placed.q)[0]
-    fixed = _in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
+    fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
     base = model.shell.with_changes(rest_curvature=rest_curvature)
     g = np.array([0.0, 0.0, -GRAVITY])
     eq = solve_path(

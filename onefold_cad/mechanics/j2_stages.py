@@ -1,0 +1,223 @@
+"""The forming sequence with J2 plasticity through the thickness: forming,
+springback and standing, each face a section of the J2 law
+(:mod:`onefold_cad.mechanics.layered`) whose internal variables carry the
+sheet's history from one stage to the next.
+
+- :func:`form`: the flat sheet bent into the design along forms isometric to
+  it: at every point of every face the strain grows in proportion, from 0 to
+  the designed curvature times its height (membrane strain 0: the shell's
+  membrane reference is the designed triangles, so the discrete form's chord
+  strains are not taken for stretching), in :data:`FORMING_STEPS` return
+  mappings. The crease is the shell's hinge at its set angle.
+- :func:`release`: the forming machine lets go: the forces it held the
+  formed sheet with (the energy's gradient there) ramp down to zero, with a
+  statically determinate 3-2-1 restraint (which carries nothing) and no
+  gravity; each accepted step of the ramp moves the internal variables on,
+  so unloading, reverse yielding and the Bauschinger effect follow the law.
+- :func:`stand`: on the ground, gravity ramped from 0 (anchored or
+  frictionless feet), again step by step through the law.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from onefold_cad.geometry.numeric import Array
+from onefold_cad.mechanics.energy import evaluate, second_fundamental_form, section_response
+from onefold_cad.mechanics.equilibrium import Equilibrium, Ground, solve_path
+from onefold_cad.mechanics.j2 import J2Law, von_mises
+from onefold_cad.mechanics.kinematics import face_metric
+from onefold_cad.mechanics.layered import Plasticity, form_along
+from onefold_cad.mechanics.model import GRAVITY, SheetModel
+from onefold_cad.mechanics.newton import Progress
+from onefold_cad.mechanics.section import SectionResponse, ThicknessRule
+from onefold_cad.mechanics.shell import Shell, director_angles, pack, rigid_dofs, unpack
+from onefold_cad.mechanics.stages import (
+    MAX_MOVE,
+    MIN_LOAD_STEP,
+    RTOL,
+    STEP_ITERATIONS,
+    Placed,
+    in_plane_restraint,
+)
+
+__all__ = [
+    "FORMING_STEPS",
+    "RELEASE_STEP",
+    "J2Stage",
+    "form",
+    "form_to",
+    "j2_shell",
+    "release",
+    "release_from",
+    "stand",
+]
+
+#: Return-mapping increments of the forming path (proportional: the answer is
+#: the same to rounding for any number on a radial path; a few keep the
+#: stress history of non-radial points).
+FORMING_STEPS = 4
+#: The release ramp's first step (a share of the grip's forces).
+RELEASE_STEP = 1.0
+
+
+@dataclass(frozen=True)
+class J2Stage:
+    """A stage of the sheet as J2 sections.
+
+    Attributes:
+        q: the state.
+        equilibrium: the equilibrium (None for the imposed forming).
+        plasticity: the faces' law and internal variables after the stage.
+        response: the faces' sections at the stage's end (stresses through
+            the thickness, in the faces' reference frames).
+    """
+
+    q: Array
+    equilibrium: Equilibrium | None
+    plasticity: Plasticity
+    response: SectionResponse
+
+    def surface_stress(self) -> Array:
+        """``(m,)`` the larger von Mises stress of the sheet's two surfaces (Pa)."""
+        s = self.response.stress
+        return np.maximum(von_mises(s[:, 0]), von_mises(s[:, -1]))
+
+    def surface_plastic_strain(self) -> Array:
+        """``(m,)`` the larger equivalent plastic strain of the two surfaces."""
+        e = self.plasticity.state.equivalent
+        return np.maximum(e[:, 0], e[:, -1])
+
+
+def j2_shell(
+    model: SheetModel,
+    points: int | None = None,
+    hardening_iso: float = 0.0,
+    hardening_kin: float = 0.0,
+) -> Shell:
+    """The model's shell with virgin J2 sections (``points`` through the
+    thickness, the section's default if None; hardening moduli in Pa) and no
+    rest curvature: the plastic strains carry the formed curvature."""
+    mat = model.material
+    law = J2Law(mat.youngs_modulus, mat.poisson, mat.yield_stress, hardening_iso, hardening_kin)
+    rule = ThicknessRule(mat.thickness) if points is None else ThicknessRule(mat.thickness, points)
+    shell = model.shell
+    return shell.with_changes(
+        rest_curvature=np.zeros_like(shell.rest_curvature),
+        plasticity=Plasticity.virgin(law, rule, model.mesh.n_faces),
+    )
+
+
+def form_to(shell: Shell, q: Array) -> J2Stage:
+    """Bend the flat sheet into the state ``q`` (imposed: nodes and directors)
+    along the proportional path, its J2 sections from ``shell.plasticity``;
+    the membrane strain is the one at ``q`` about the shell's reference."""
+    assert shell.plasticity is not None
+    mesh = shell.mesh
+    x = unpack(mesh, q)[0]
+    eps = (face_metric(x[mesh.triangles])[0] - shell.ref_metric) / 2
+    membrane = np.einsum("mij,mj->mi", shell.cartesian, eps)
+    resp = form_along(shell.plasticity, membrane, _curvatures(shell, q), FORMING_STEPS)
+    return J2Stage(q, None, shell.plasticity.moved_on(resp.state), resp)
+
+
+def form(model: SheetModel, shell: Shell) -> J2Stage:
+    """Bend the flat sheet into the design (``shell``: :func:`j2_shell`, whose
+    membrane reference is the designed triangles: no membrane strain)."""
+    q = pack(model.designed, director_angles(shell, model.designed, model.normals))
+    return form_to(shell, q)
+
+
+def _curvatures(shell: Shell, q: Array) -> Array:
+    """``(m, 3)`` the faces' Cartesian curvatures at ``q`` about the rest form."""
+    b = second_fundamental_form(shell, q) - shell.rest_curvature
+    return np.einsum("mij,mj->mi", shell.cartesian, b)
+
+
+def _path(
+    shell_at, q0: Array, plasticity: Plasticity, **options: object
+) -> tuple[Equilibrium, Plasticity, SectionResponse]:
+    """``solve_path`` with the internal variables moved on at every accepted step."""
+    holder = {"p": plasticity, "resp": None}
+
+    def at(s: float) -> Shell:
+        return shell_at(s).with_changes(plasticity=holder["p"])
+
+    def accepted(s: float, eq: Equilibrium) -> None:
+        resp = section_response(at(s), eq.q)
+        holder["p"], holder["resp"] = holder["p"].moved_on(resp.state), resp
+
+    eq = solve_path(at, q0, accepted=accepted, **options)  # type: ignore[arg-type]
+    return eq, holder["p"], holder["resp"]  # type: ignore[return-value]
+
+
+def release_from(
+    shell: Shell,
+    formed: J2Stage,
+    fixed: ArrayLike,
+    force_scale: float,
+    progress: Progress | None = None,
+) -> J2Stage:
+    """Let a formed sheet go: the forces that held it in ``formed`` ramp down
+    to zero, ``fixed`` (a statically determinate restraint) held."""
+    held = shell.with_changes(plasticity=formed.plasticity)
+    grip = evaluate(held, formed.q, 1).gradient
+    assert grip is not None
+    grip = grip.copy()
+    grip[np.asarray(fixed, dtype=np.int64)] = 0.0  # the restraint's own: it carries nothing
+    eq, plasticity, resp = _path(
+        lambda s: shell.with_changes(load=(1.0 - s) * grip),
+        formed.q,
+        formed.plasticity,
+        fixed=fixed,
+        force_scale=force_scale,
+        first_step=RELEASE_STEP,
+        rtol=RTOL,
+        callback=progress,
+    )
+    return J2Stage(eq.q, eq, plasticity, resp)
+
+
+def release(model: SheetModel, shell: Shell, formed: J2Stage, progress: Progress | None = None
+            ) -> J2Stage:  # fmt: skip
+    """Let the formed design go on a 3-2-1 restraint (see the module docstring)."""
+    return release_from(shell, formed, rigid_dofs(model.designed), model.weight_N, progress)
+
+
+def stand(
+    model: SheetModel,
+    shell: Shell,
+    placed: Placed,
+    plasticity: Plasticity,
+    supports: str,
+    progress: Progress | None = None,
+) -> J2Stage:
+    """Carry the sheet's weight on the ground from ``placed`` (see
+    :func:`onefold_cad.mechanics.stages.stand`), through the law.
+
+    Raises:
+        PathStalled: no equilibrium under the full weight.
+    """
+    ground = Ground(supports)  # type: ignore[arg-type]
+    x = unpack(model.mesh, placed.q)[0]
+    fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
+    g = np.array([0.0, 0.0, -GRAVITY])
+    eq, p, resp = _path(
+        lambda s: shell.with_changes(gravity=s * g),
+        placed.q,
+        plasticity,
+        fixed=fixed,
+        ground=ground,
+        contacts=placed.contacts,
+        force_scale=model.weight_N,
+        first_step=1.0,
+        min_step=MIN_LOAD_STEP,
+        step_iter=STEP_ITERATIONS,
+        max_move=MAX_MOVE * model.size,
+        rtol=RTOL,
+        callback=progress,
+    )
+    return J2Stage(eq.q, eq, p, resp)

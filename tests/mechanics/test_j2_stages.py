@@ -1,0 +1,44 @@
+"""The forming stage with J2 sections on a real design, against the cones'
+closed form: the surfaces yield where the cone's curvature k / r passes the
+plane-strain first yield, inside r = |k| E' t sqrt(1 - nu + nu^2) / (2 sigma_y)
+(issue 35's (f)); no stress above the flow stress."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from onefold_cad.design import build_design
+from onefold_cad.mechanics import j2_stages
+from onefold_cad.mechanics.model import sheet_model
+from onefold_cad.templates import load_template
+from tests.mechanics.test_simulate import _cone_integrals
+
+
+@pytest.fixture(scope="module")
+def formed():
+    design = load_template("patkau-one-fold")
+    folded = build_design(design)
+    model = sheet_model(design, folded, h_max=0.3)
+    shell = j2_stages.j2_shell(model)
+    return design, folded, shell, j2_stages.form(model, shell)
+
+
+def test_the_formed_plastic_share_is_the_area_inside_the_plane_strain_yield_radius(formed):
+    design, folded, shell, stage = formed
+    m = design.material
+    nu = m.poisson
+    e_plane = m.youngs_modulus * 1e9 / (1 - nu**2)
+    r_per_k = e_plane * m.thickness * 1e-3 * math.sqrt(1 - nu + nu**2) / (2 * m.yield_stress * 1e6)
+    _, area_mm2, _ = _cone_integrals(design, folded, k_scale=r_per_k * 1e3)
+    yielded = shell.ref_area[stage.surface_plastic_strain() > 0].sum()  # m^2
+    assert yielded / (area_mm2 * 1e-6) == pytest.approx(1.0, abs=0.02)
+
+
+def test_no_stress_above_the_flow_stress(formed):
+    design, _, _, stage = formed
+    sy = design.material.yield_stress * 1e6
+    assert stage.surface_stress().max() <= sy * (1 + 1e-9)
+    assert np.all(stage.response.plastic[:, [0, -1]].any(axis=1) | (stage.surface_stress() < sy))
