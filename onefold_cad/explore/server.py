@@ -18,6 +18,15 @@ It listens on 127.0.0.1 and answers GET requests only:
 Requests whose ``Host`` is not this server's own address (DNS rebinding),
 that come from another site (``Sec-Fetch-Site`` / ``Origin``), that carry a
 body, or whose target or values are too long are refused.
+
+It serves at most :data:`MAX_CONNECTIONS` connections at once, each on its
+own thread (one more is answered ``503`` at once and closed, never queued
+on a thread), and drops a connection silent for :data:`TIMEOUT` seconds: a
+few hundred half-sent requests cannot hold a thread each. (The Hops server
+bounds its connections the same way, ``onefold_cad.hops.http.HopsServer``;
+this is a copy of its few lines, for the explorer sits below Hops and may not
+import it, and the one lower home both could share would be a new module in
+the package's bottom layer.)
 """
 
 from __future__ import annotations
@@ -26,6 +35,7 @@ import base64
 import hashlib
 import json
 import re
+import socket
 import sys
 import threading
 import traceback
@@ -48,12 +58,26 @@ from onefold_cad.explore.downloads import KINDS, make_download
 from onefold_cad.explore.simulation import simulation_state
 from onefold_cad.explore.state import design_state, problem_state
 
-__all__ = ["DEFAULT_PORT", "MAX_TARGET", "ExploreServer", "load_templates", "make_server", "serve"]
+__all__ = [
+    "DEFAULT_PORT",
+    "MAX_CONNECTIONS",
+    "MAX_TARGET",
+    "TIMEOUT",
+    "ExploreServer",
+    "load_templates",
+    "make_server",
+    "serve",
+]
 
 #: The port ``onefold explore`` listens on unless ``--port`` says otherwise.
 DEFAULT_PORT = 8765
 #: Longest accepted request target (path and query, characters).
 MAX_TARGET = 8192
+#: Connections served at once (a browser opens six to a server; a simulation
+#: keeps one for seconds); one more is answered 503 and closed.
+MAX_CONNECTIONS = 16
+#: Seconds a connection may stay silent (a slow or half-sent request).
+TIMEOUT = 30.0
 
 _TEXT = "text/plain; charset=utf-8"
 _JS = "text/javascript; charset=utf-8"
@@ -128,9 +152,14 @@ class ExploreServer(ThreadingHTTPServer):
     allow_reuse_address = True
 
     def __init__(
-        self, templates: dict[str, dict[str, Any]], initial: str, port: int = DEFAULT_PORT
+        self,
+        templates: dict[str, dict[str, Any]],
+        initial: str,
+        port: int = DEFAULT_PORT,
+        max_connections: int = MAX_CONNECTIONS,
     ) -> None:
         super().__init__(("127.0.0.1", port), ExploreHandler)
+        self.slots = threading.BoundedSemaphore(max_connections)
         self.templates = templates
         self.initial = initial
         self.port = int(self.server_address[1])
@@ -141,6 +170,39 @@ class ExploreServer(ThreadingHTTPServer):
         self.csp = _csp(self.static["/"])
         self.verbose = False
 
+    def process_request(self, request: Any, client_address: Any) -> None:
+        """Serve the connection on a thread of its own if a slot is free,
+        else answer 503 at once and close it."""
+        if not self.slots.acquire(blocking=False):
+            _busy(request)
+            self.shutdown_request(request)
+            return
+        try:
+            super().process_request(request, client_address)
+        except BaseException:
+            self.slots.release()
+            raise
+
+    def process_request_thread(self, request: Any, client_address: Any) -> None:
+        try:
+            super().process_request_thread(request, client_address)
+        finally:
+            self.slots.release()
+
+
+def _busy(sock: socket.socket) -> None:
+    """Answer 503 on a connection no thread serves (one line, then close)."""
+    body = b"server busy: too many connections at once, try again\n"
+    head = (
+        f"HTTP/1.1 503 Service Unavailable\r\nContent-Type: {_TEXT}\r\n"
+        f"Content-Length: {len(body)}\r\nConnection: close\r\nRetry-After: 1\r\n\r\n"
+    ).encode("ascii")
+    try:
+        sock.settimeout(1.0)
+        sock.sendall(head + body)
+    except OSError:
+        pass
+
 
 class ExploreHandler(BaseHTTPRequestHandler):
     """Answers the page's GET requests; refuses everything else."""
@@ -149,7 +211,7 @@ class ExploreHandler(BaseHTTPRequestHandler):
     server_version = "onefold-explore"
     sys_version = ""
     protocol_version = "HTTP/1.1"
-    timeout = 30  # seconds a connection may stay silent
+    timeout = TIMEOUT
 
     # -- responses ----------------------------------------------------------
     def _send(

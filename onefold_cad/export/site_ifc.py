@@ -22,11 +22,22 @@ of it (OCCT's linear deflection) and turning at most
 difference from the B-rep's is measured and reported (:class:`IfcResult`).
 The tests validate the file with ``ifcopenshell.validate`` (20 s for the
 shipped site: too slow for every write). Lengths in the site's unit.
+
+Deterministic files: two writes of one site are byte-identical, so a BIM
+program that reads the file again sees the same objects. FILE_NAME holds the
+file's own name and :data:`~onefold_cad.export.step.STEP_TIMESTAMP` (not the
+clock), every relation lists its objects in file order, and every GlobalId
+is derived (uuid5, in IFC's 22-character form) from the site's name, the
+sheet an object belongs to (the project, the site and their relations:
+none) and the object's class and rank among that sheet's objects of its
+class: a plate keeps its GlobalId while its sheet keeps its name, and two
+sites of different names share none.
 """
 
 from __future__ import annotations
 
 import os
+import uuid
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -36,8 +47,12 @@ import numpy as np
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.site_context import MESH_ANGLE, MESH_DEFLECTION, SiteContext, SiteSheet
 from onefold_cad.export.site_mesh import mesh_area
+from onefold_cad.export.step import STEP_TIMESTAMP
 
 __all__ = ["IfcResult", "write_site_ifc"]
+
+#: The namespace of the file's GlobalIds (uuid5 of the site, sheet, class, rank).
+_ID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_DNS, "ifc.onefold_cad")
 
 #: One site unit in metres.
 _METRES = {"mm": 1e-3, "in": 0.0254, "ft": 0.3048}
@@ -131,6 +146,35 @@ def _quantities(f: Any, plate: Any, sheet: SiteSheet, units: str) -> None:
     pset.edit_qto(f, qto=qto, properties=values)
 
 
+def _roots(f: Any) -> set[int]:
+    """The ids of the file's rooted objects (those with a GlobalId)."""
+    return {e.id() for e in f.by_type("IfcRoot")}
+
+
+def _ordered_relations(f: Any) -> None:
+    """Every relation's related objects in file order (IfcOpenShell's API keeps
+    them as a set: their order changed from run to run)."""
+    for rel in f.by_type("IfcRelationship"):
+        for i in range(len(rel)):
+            value = rel[i]
+            if isinstance(value, tuple) and len(value) > 1 and all(hasattr(v, "id") for v in value):
+                rel[i] = tuple(sorted(value, key=lambda v: v.id()))
+
+
+def _fixed_ids(f: Any, site: str, owners: dict[int, str]) -> None:
+    """Give every rooted object a GlobalId derived from ``site``, its owner
+    (``owners``: object id -> sheet name; the others the site's) and its
+    class and rank among its owner's objects of that class (file order)."""
+    from ifcopenshell.guid import compress
+
+    seen: dict[tuple[str, str], int] = {}
+    for e in sorted(f.by_type("IfcRoot"), key=lambda e: e.id()):
+        owner = owners.get(e.id(), "")
+        rank = seen[(owner, e.is_a())] = seen.get((owner, e.is_a()), -1) + 1
+        key = "\0".join((site, owner, e.is_a(), str(rank)))
+        e.GlobalId = compress(uuid.uuid5(_ID_NAMESPACE, key).hex)
+
+
 def write_site_ifc(ctx: SiteContext, path: str | os.PathLike[str]) -> IfcResult:
     """Write SITE.ifc (atomically, validated first).
 
@@ -163,7 +207,9 @@ def write_site_ifc(ctx: SiteContext, path: str | os.PathLike[str]) -> IfcResult:
         else "IfcOpenShell serialises pythonOCC shapes, not OCP's"
     )
     errors, counts = {}, {}
+    owners: dict[int, str] = {}
     for s in ctx.sheets:
+        before = _roots(f)
         plate = root.create_entity(f, ifc_class="IfcPlate", predefined_type="SHEET", name=s.name)
         spatial.assign_container(f, relating_structure=site, products=[plate])
         geometry.edit_object_placement(f, product=plate, matrix=s.site.matrix, is_si=False)
@@ -171,7 +217,12 @@ def write_site_ifc(ctx: SiteContext, path: str | os.PathLike[str]) -> IfcResult:
         geometry.assign_representation(f, product=plate, representation=rep)
         _material(f, plate, s)
         _quantities(f, plate, s, ctx.units)
+        owners.update(dict.fromkeys(_roots(f) - before, s.name))
+    _fixed_ids(f, ctx.name, owners)
+    _ordered_relations(f)
     out = Path(path)
+    f.header.file_name.name = out.name
+    f.header.file_name.time_stamp = STEP_TIMESTAMP
     with atomic_output(out) as tmp:
         f.write(str(tmp))
     deviation = MESH_DEFLECTION * ctx.size

@@ -205,8 +205,11 @@ def stand(
     x = unpack(model.mesh, placed.q)[0]
     fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
     g = np.array([0.0, 0.0, -GRAVITY])
+    moved = placed.shell.with_changes(
+        rest_curvature=shell.rest_curvature, plasticity=shell.plasticity
+    )  # the reference in the resting frame, as the placed state's directors are measured
     eq, p, resp = _path(
-        lambda s: shell.with_changes(gravity=s * g),
+        lambda s: moved.with_changes(gravity=s * g),
         placed.q,
         plasticity,
         fixed=fixed,

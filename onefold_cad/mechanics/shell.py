@@ -244,20 +244,29 @@ def directors(shell: Shell, q: ArrayLike) -> F:
     return transported_director(t0[edge], r0[edge], vec, angles, 0)[0]
 
 
-def moved(shell: Shell, q: ArrayLike, rotation: ArrayLike, translation: ArrayLike) -> F:
-    """The state ``q`` moved rigidly, ``x -> rotation @ x + translation``, its
-    directors turning with it (director angles are measured from directors
-    transported along each edge from the reference, which a rigid motion of
-    the state alone does not turn: the angles are found again).
+def moved(
+    shell: Shell, q: ArrayLike, rotation: ArrayLike, translation: ArrayLike
+) -> tuple[Shell, F]:
+    """The shell and its state ``q`` moved rigidly together, ``x -> rotation @ x +
+    translation``.
 
-    Raises:
-        InvalidParameterError: an edge of the moved state points against its
-            reference direction.
+    The reference form moves with the state, so every edge's reference frame
+    (``Shell.edge_frames``) turns with it and the director angles, measured from
+    directors transported along each edge from that frame, keep their values:
+    the moved state has the same energy, directors and stresses. (Moving the
+    state alone would measure its directors from the unmoved reference, whose
+    transport has no meaning for an edge turned 90 deg or more: a long sheet
+    stood on its side turns that far.)
+
+    Returns:
+        The moved shell (its reference moved; the other fields as given) and the
+        moved state, to be used together.
     """
     rot = np.asarray(rotation, dtype=float)
-    x = unpack(shell.mesh, q)[0] @ rot.T + np.asarray(translation, dtype=float)
-    turned = directors(shell, q) @ rot.T
-    return pack(x, director_angles(shell, x, turned))
+    shift = np.asarray(translation, dtype=float)
+    x, angles = unpack(shell.mesh, q)
+    placed = shell.with_changes(reference=shell.reference @ rot.T + shift)
+    return placed, pack(x @ rot.T + shift, angles)
 
 
 def flat_positions(mesh: SheetMesh) -> F:

@@ -136,7 +136,7 @@ def _standing(
         return stalled, None, None
     eq = stage.equilibrium
     x = eq.positions
-    loaded = model.shell.with_changes(rest_curvature=rest_curvature)
+    loaded = placed.shell.with_changes(rest_curvature=rest_curvature)
     stress = face_stress(loaded, eq.q, state if state is not None else None) / 1e6
     dev = _standing_deviation(model, folded, x)
     mass = model.shell.node_mass

@@ -87,15 +87,20 @@ class Placed:
     """A form stood rigidly on the ground before it carries its weight.
 
     Attributes:
-        q: the placed state (resting frame, m).
+        q: the placed state (resting frame, m), its director angles measured in
+            ``shell``'s frames.
         contacts: ``(n,)`` bool, its nodes on the ground.
         rotation, translation: the rigid motion from the state it came from.
+        shell: the model's shell moved with it (``shell.moved``: its reference
+            in the resting frame), the one to evaluate ``q`` and the states
+            after it with.
     """
 
     q: Array
     contacts: np.ndarray
     rotation: Array
     translation: Array
+    shell: Shell
 
 
 def form(model: SheetModel) -> Formed:
@@ -157,9 +162,9 @@ def place(model: SheetModel, q: Array) -> Placed:
     rot = tilt @ rot
     shift = tilt @ (shift - com) + com
     shift[2] -= float(np.min(x @ rot[2] + shift[2]))
-    placed = moved(shell, q, rot, shift)
+    shell, placed = moved(shell, q, rot, shift)
     z = unpack(model.mesh, placed)[0][:, 2]
-    return Placed(placed, z <= 1e-9 * size, rot, shift)
+    return Placed(placed, z <= 1e-9 * size, rot, shift, shell)
 
 
 def in_plane_restraint(x: Array, contacts: np.ndarray) -> list[int]:
@@ -198,7 +203,7 @@ def stand(
     ground = Ground(supports)
     x = unpack(model.mesh, placed.q)[0]
     fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
-    base = model.shell.with_changes(rest_curvature=rest_curvature)
+    base = placed.shell.with_changes(rest_curvature=rest_curvature)
     g = np.array([0.0, 0.0, -GRAVITY])
     eq = solve_path(
         lambda s: base.with_changes(gravity=s * g),

@@ -222,3 +222,68 @@ def test_the_command_serves_until_interrupted():
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+
+
+def test_half_sent_requests_are_bounded_and_time_out(monkeypatch):
+    """More slow clients than the server has slots (issue 38, item 4): each
+    slot is held by a half-sent request, the extra ones are answered 503 at
+    once, the slow ones are dropped after the timeout (5 s here, the margin
+    for opening them all on a busy machine), and then it answers. Loopback
+    only, 26 connections, at most a minute."""
+    import threading
+    import time
+
+    from onefold_cad.explore import server as explore_server
+
+    handler = explore_server.ExploreHandler
+    monkeypatch.setattr(handler, "timeout", 5.0)
+    lock, now, peak = threading.Lock(), [0], [0]
+    handle = handler.handle
+
+    def counted(self):
+        with lock:
+            now[0] += 1
+            peak[0] = max(peak[0], now[0])
+        try:
+            handle(self)
+        finally:
+            with lock:
+                now[0] -= 1
+
+    def wait_for(count: int) -> None:
+        deadline = time.monotonic() + 30
+        while now[0] != count and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert now[0] == count
+
+    monkeypatch.setattr(handler, "handle", counted)
+    srv = make_server("paper-square", port=0)
+    thread = threading.Thread(target=srv.serve_forever, daemon=True)
+    thread.start()
+    bound = explore_server.MAX_CONNECTIONS
+    half = f"GET /api/templates HTTP/1.1\r\nHost: 127.0.0.1:{srv.port}\r\nAcc".encode()
+    slow, answers = [], []
+    try:
+        for i in range(bound + 10):
+            s = socket.create_connection(("127.0.0.1", srv.port), timeout=10)
+            s.sendall(half)
+            slow.append(s)
+            if i < bound:
+                wait_for(i + 1)  # served on a thread of its own, waiting for the rest
+            else:
+                answers.append(s.recv(400))
+        assert peak[0] == bound
+        busy = b"\r\n\r\nserver busy: too many connections at once, try again\n"
+        for a in answers:
+            assert a.startswith(b"HTTP/1.1 503 Service Unavailable\r\n") and a.endswith(busy), a
+        wait_for(0)  # every slow one dropped after the timeout
+        for s in slow[:bound]:
+            assert s.recv(400) == b""  # closed by the server, nothing answered
+        status, _, body = get(srv, "/api/templates")
+        assert status == 200 and json.loads(body)["initial"] == "paper-square"
+    finally:
+        for s in slow:
+            s.close()
+        srv.shutdown()
+        srv.server_close()
+        thread.join(10)
