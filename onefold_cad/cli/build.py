@@ -42,6 +42,7 @@ __all__ = [
     "make_outdir",
     "output_folder",
     "run_tasks",
+    "say_removed",
     "task_context",
     "write_task",
 ]
@@ -277,7 +278,7 @@ def output_folder(outdir: Path) -> Iterator[Path]:
 
 def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
-    from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
+    from onefold_cad.export.atomic import FileSet, Staging, check_targets, pause_point, recover
     from onefold_cad.export.writers import file_names, parse_formats
 
     refs = list(ns.templates)
@@ -298,10 +299,9 @@ def cmd_build(ns: argparse.Namespace) -> int:
     n = len(jobs)
     outdir = Path(ns.outdir)
     with output_folder(outdir):
-        for p in recover(outdir):
-            warn(f"finished an interrupted earlier build: {p}")
+        recover(outdir, say=warn)
         check_targets(outdir, [f for j in jobs for f in file_names(j.design.name, formats)])
-        with Staging(outdir) as staging:
+        with Staging(outdir, say=warn) as staging:
             STATE["staging"] = staging
             tasks = [
                 BuildTask(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
@@ -310,9 +310,21 @@ def cmd_build(ns: argparse.Namespace) -> int:
             ]  # fmt: skip
             files = [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]
             pause_point("staged")
-            for p in staging.commit(files):
+            sets = [FileSet(s, tuple(file_names(s, list(WRITERS)))) for s in stems]
+            for p in staging.commit(files, sets=sets):
                 print(p, flush=True)
+            say_removed(staging.removed)
     return 0
+
+
+def say_removed(removed: Sequence[Path]) -> None:
+    """One warning naming the files of the call's designs that an earlier
+    run left and the commit removed, none of them written by this call (they
+    would not match the new files)."""
+    if removed:
+        names = ", ".join(str(p) for p in removed)
+        warn(f"removed {names}: left by an earlier run, not written by this one (they would "
+             "not match its files)")  # fmt: skip
 
 
 #: The staging area of the running build (main says whether it was committed).

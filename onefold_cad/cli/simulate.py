@@ -122,7 +122,8 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
     is a released form (reference 'flat'). A form that does not exist is not
     written, and a warning says which file is missing and why.
     """
-    from onefold_cad.export.atomic import Staging, check_targets, recover
+    from onefold_cad.cli.build import say_removed
+    from onefold_cad.export.atomic import FileSet, Staging, check_targets, recover
     from onefold_cad.export.simulation_glb import write_simulation_glb
     from onefold_cad.export.simulation_pictures import render_deviation, render_stress
     from onefold_cad.fabrication.report import report_json
@@ -137,16 +138,19 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
     names = [f"{name}.json", f"{name}-deviation.png", f"{name}-stress.png"]
     names += [f"{name}-{form}.glb" for form in forms]
     outdir.mkdir(parents=True, exist_ok=True)
-    recover(outdir)
+    recover(outdir, say=warn)
     check_targets(outdir, names)
-    with Staging(outdir) as stage:
+    every = [*names[:3], *(f"{name}-{form}.glb" for form in ("standing", "released"))]
+    with Staging(outdir, say=warn) as stage:
         paths = [stage.path / n for n in names]
         paths[0].write_text(report_json(report))
         render_deviation(sim, paths[1], title=name)
         render_stress(sim, paths[2], title=name)
         for form, path in zip(forms, paths[3:], strict=True):
             write_simulation_glb(sim, path, form)
-        return stage.commit(paths)
+        done = stage.commit(paths, sets=[FileSet(name, tuple(every))])
+    say_removed(stage.removed)
+    return done
 
 
 def cmd_simulate(ns: argparse.Namespace) -> int:

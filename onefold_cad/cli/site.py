@@ -22,6 +22,7 @@ from onefold_cad.cli.build import (
     check_jobs,
     output_folder,
     run_tasks,
+    say_removed,
     task_context,
     write_task,
 )
@@ -96,10 +97,10 @@ def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteCo
 
 def cmd_site(ns: argparse.Namespace) -> int:
     """Build a site: its sheets' files and the site's, all or nothing."""
-    from onefold_cad.export.atomic import Staging, check_targets, pause_point, recover
+    from onefold_cad.export.atomic import FileSet, Staging, check_targets, pause_point, recover
     from onefold_cad.export.site_clearance import measure_clearance
     from onefold_cad.export.site_writers import SITE_WRITERS, site_file_names
-    from onefold_cad.export.writers import file_names, parse_formats
+    from onefold_cad.export.writers import WRITERS, file_names, parse_formats
     from onefold_cad.flags.site_jobs import site_jobs
     from onefold_cad.site.spec import read_site
 
@@ -118,10 +119,9 @@ def cmd_site(ns: argparse.Namespace) -> int:
     ]
     site_names = site_file_names(spec.name, formats)
     with output_folder(outdir):
-        for p in recover(outdir):
-            warn(f"finished an interrupted earlier build: {p}")
+        recover(outdir, say=warn)
         check_targets(outdir, [*targets, *site_names])
-        with Staging(outdir) as staging:
+        with Staging(outdir, say=warn) as staging:
             STATE["staging"] = staging
             tasks = [
                 BuildTask(i, n, job, sheet_formats, None, ns.compensation,
@@ -148,8 +148,15 @@ def cmd_site(ns: argparse.Namespace) -> int:
                 _say(ns.quiet, spec.name, _ifc_text(ctx.sections["ifc"], spec.units))
             files = [Path(f) for b in built for f in b.files] + ctx.files
             pause_point("staged")
-            for p in staging.commit(files, targets=[*targets, *site_names]):
+            sets = [
+                FileSet(j.design.name, tuple(file_names(j.design.name, list(WRITERS))),
+                        folder=j.design.name)
+                for j in jobs
+            ]  # fmt: skip
+            sets.append(FileSet(spec.name, tuple(site_file_names(spec.name, list(SITE_WRITERS)))))
+            for p in staging.commit(files, targets=[*targets, *site_names], sets=sets):
                 print(p, flush=True)
+            say_removed(staging.removed)
     return 0
 
 

@@ -4,58 +4,70 @@
 folder, renamed over the target only when writing succeeded.
 
 :class:`Staging` writes a *set* of files (everything ``onefold build``
-produces in one call) so that no signal leaves part of a set in the output
-folder:
+produces in one call) so that no reader of the output folder ever sees the
+files of one design from two builds:
 
 1. The files are written into a private staging folder inside the output
    folder, ``.onefold-XXXXXXXX.partial/``, whose ``lock`` file the writing
    process holds locked (``flock``) for as long as it lives; the kernel drops
    the lock when the process dies, however it dies.
 2. :meth:`Staging.commit` checks every target first (a folder where a file
-   must go, two files with one name), then writes the commit journal
-   ``commit.json`` (the list of renames) atomically and durably (temporary
-   file, fsync, rename, fsync of the folder), then renames the files into
-   place. SIGINT, SIGTERM and SIGHUP are held back from the journal to the
-   last rename (and acted on afterwards), so only SIGKILL or a power cut can
-   stop a commit half way.
-3. :func:`recover`, run by every build before it writes, finishes the
-   commit of any staging folder whose owner is dead (its lock is free) and
-   has a journal (the renames are idempotent: a file already moved is
-   skipped), and removes staging folders of dead runs without one.
+   must go, two files with one name), then writes the commit's journal
+   atomically and durably and carries it out
+   (:mod:`onefold_cad.export.commit_steps`): for every :class:`FileSet` (the
+   files of one design, of any format) a marker ``NAME.incomplete`` appears,
+   the old files go, the new ones are renamed in, the marker goes. So at
+   every instant the files of a set are a subset of the old set or of the
+   new one, never a mixture, and a set that is not complete has its marker
+   beside it. SIGINT, SIGTERM and SIGHUP are held back from the journal to
+   the last step (and acted on afterwards), so only SIGKILL or a power cut
+   can stop a commit half way.
+3. :func:`recover`, run by every build before it writes and by every commit
+   (under the folder's lock, before its own steps), finishes the commit of
+   any staging folder whose owner is dead (its lock is free) and that has a
+   journal (each step is idempotent), and removes the staging folders of
+   dead runs without one, one line each to ``say``.
 
-So the output folder holds the old set, or the new set, or (only after a
-SIGKILL between the journal and the last rename) a mixture together with a
-journal that the next build into that folder completes before doing
-anything else. The renames of one commit never interleave with another
-process's commit: both hold an ``flock`` on the output folder meanwhile.
+The steps of one commit never interleave with another process's commit: both
+hold an ``flock`` on the output folder meanwhile.
 """
 
 from __future__ import annotations
 
 import contextlib
 import fcntl
-import json
 import os
 import shutil
 import signal
-import sys
 import tempfile
 import threading
-import time
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
 from onefold_cad.errors import ExportError
+from onefold_cad.export.commit_steps import (
+    INIT,
+    LOCK,
+    MARKER_SUFFIX,
+    PARTIAL,
+    PREFIX,
+    FileSet,
+    apply_journal,
+    pause_point,
+    recover_locked,
+    write_journal,
+)
 
-__all__ = ["Staging", "atomic_output", "check_targets", "pause_point", "recover"]
+__all__ = [
+    "MARKER_SUFFIX",
+    "FileSet",
+    "Staging",
+    "atomic_output",
+    "check_targets",
+    "pause_point",
+    "recover",
+]
 
-_PREFIX = ".onefold-"
-_PARTIAL = ".partial"
-_INIT = ".init"
-_JOURNAL = "commit.json"
-_LOCK = "lock"
-#: A staging folder still being set up (``.init``) older than this (s) is a leftover.
-_INIT_GRACE_S = 600.0
 _HELD = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 
@@ -90,14 +102,6 @@ def _file_mode() -> int:
     mask = os.umask(0o022)
     os.umask(mask)
     return 0o666 & ~mask
-
-
-def _fsync_dir(path: Path) -> None:
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
 
 
 @contextlib.contextmanager
@@ -140,16 +144,6 @@ def _signals_held() -> Iterator[None]:
             signal.raise_signal(s)
 
 
-def pause_point(point: str) -> None:
-    """Fault-injection point for the tests: when ``ONEFOLD_TEST_PAUSE`` names
-    ``point``, say so on stderr and wait for a line on stdin (the test sends
-    a signal meanwhile). Does nothing otherwise."""
-    if os.environ.get("ONEFOLD_TEST_PAUSE") != point:
-        return
-    os.write(2, f"onefold-test: paused at {point}\n".encode())
-    sys.stdin.buffer.readline()
-
-
 def check_targets(outdir: Path, names: Sequence[str]) -> None:
     """Raise :class:`ExportError` naming the path if a file of ``names`` cannot
     take its place in ``outdir``: a folder (or anything but a file) is in the
@@ -176,22 +170,32 @@ class Staging:
     :meth:`commit` moves them into ``outdir``. Leaving the block without a
     commit (an error, Ctrl-C, SIGTERM) removes the folder and everything in
     it; the output folder is untouched.
+
+    Args:
+        outdir: the output folder (it exists).
+        say: called with one line for each leftover of a dead run that a
+            commit finds and cleans (:func:`recover`); None: silently.
     """
 
-    def __init__(self, outdir: str | os.PathLike[str]) -> None:
+    def __init__(
+        self, outdir: str | os.PathLike[str], say: Callable[[str], None] | None = None
+    ) -> None:
         self.outdir = Path(outdir)
         self.committed = False
+        #: Files of the sets that the commit removed and nothing replaced.
+        self.removed: list[Path] = []
+        self._say = say
         self._keep = False
         try:
-            init = Path(tempfile.mkdtemp(prefix=_PREFIX, suffix=_INIT, dir=self.outdir))
+            init = Path(tempfile.mkdtemp(prefix=PREFIX, suffix=INIT, dir=self.outdir))
         except OSError as exc:
             raise ExportError(
                 f"cannot write into {str(self.outdir)!r}: {exc.strerror or exc}"
             ) from exc
         try:
-            self._lock = os.open(init / _LOCK, os.O_RDWR | os.O_CREAT, 0o600)
+            self._lock = os.open(init / LOCK, os.O_RDWR | os.O_CREAT, 0o600)
             fcntl.flock(self._lock, fcntl.LOCK_EX)
-            self.path = init.with_name(init.name.removesuffix(_INIT) + _PARTIAL)
+            self.path = init.with_name(init.name.removesuffix(INIT) + PARTIAL)
             os.rename(init, self.path)  # only now may others see it (locked)
         except OSError as exc:
             shutil.rmtree(init, ignore_errors=True)
@@ -215,128 +219,71 @@ class Staging:
     def commit(
         self,
         files: Sequence[Path],
-        on_move: Callable[[Path], None] | None = None,
         targets: Sequence[str] | None = None,
+        sets: Sequence[FileSet] = (),
     ) -> list[Path]:
         """Move ``files`` (inside :attr:`path`) into ``outdir`` under their
         own names (or under ``targets``, paths relative to ``outdir`` whose
         folders are made as needed: ``onefold site``'s DIR/NAME/...), all or
-        nothing; return the paths written.
+        nothing, replacing each of ``sets`` whole (the module's phases);
+        return the paths written. :attr:`removed` lists the files of
+        ``sets`` removed and not replaced.
 
         Raises:
-            ExportError: a target is blocked (nothing moved), or a rename
-                failed (the journal stays, and the next build into
-                ``outdir`` finishes the commit once the obstacle is gone);
-                the message names the path.
+            ExportError: a target is blocked (nothing moved), or a step failed
+                (the journal stays, and the next build into ``outdir``
+                finishes the commit once the obstacle is gone); the message
+                names the path.
         """
         names = [Path(f).name for f in files] if targets is None else list(targets)
         moves = [(Path(f), self.outdir / name) for f, name in zip(files, names, strict=True)]
         for src, _ in moves:
             if self.path not in src.parents:
                 raise ValueError(f"{src} is not inside the staging folder {self.path}")
+        retire = list(dict.fromkeys(p for s in sets for p in s.paths()))
+        markers = [s.marker for s in sets]
         mode = _file_mode()
         with _folder_lock(self.outdir), _signals_held():
-            check_targets(self.outdir, names)
+            recover_locked(self.outdir, self._say)  # a dead run's commit goes first
+            check_targets(self.outdir, [*names, *markers])
             try:
                 for src, dst in moves:
                     os.chmod(src, mode)
                     dst.parent.mkdir(parents=True, exist_ok=True)
-                _write_journal(
-                    self.path,
-                    [(s.relative_to(self.path), n) for (s, _), n in zip(moves, names, strict=True)],
-                )
+                journal = {
+                    "version": 2,
+                    "moves": [
+                        [str(s.relative_to(self.path)), n]
+                        for (s, _), n in zip(moves, names, strict=True)
+                    ],
+                    "retire": retire,
+                    "markers": markers,
+                }
+                write_journal(self.path, journal)
             except OSError as exc:
                 raise ExportError(f"cannot write {exc.filename or self.path}: {exc}") from exc
             self._keep = True  # from here on the journal decides
-            done = []
-            for k, (src, dst) in enumerate(moves, 1):
-                try:
-                    os.replace(src, dst)
-                except OSError as exc:
-                    raise ExportError(
-                        f"cannot move {dst.name!r} into {str(self.outdir)!r}: "
-                        f"{exc.strerror or exc}; {k - 1} of {len(moves)} files are in place, the "
-                        f"rest wait in {self.path.name} and the next build into this folder "
-                        "moves them once the obstacle is gone"
-                    ) from exc
-                done.append(dst)
-                if on_move is not None:
-                    on_move(dst)
-                pause_point(f"commit:{k}")
-            _fsync_dir(self.outdir)
+            done, self.removed = apply_journal(self.path, self.outdir, journal, recovery=False)
             self.committed = True
             self._keep = False
         return done
 
 
-def _write_journal(stage: Path, moves: Sequence[tuple[Path, str]]) -> None:
-    """Write ``stage/commit.json`` atomically and durably."""
-    tmp = stage / (_JOURNAL + ".tmp")
-    data = {"version": 1, "moves": [[str(src), dst] for src, dst in moves]}
-    with open(tmp, "w", encoding="utf-8") as fh:
-        json.dump(data, fh)
-        fh.flush()
-        os.fsync(fh.fileno())
-    os.replace(tmp, stage / _JOURNAL)
-    _fsync_dir(stage)
-
-
-def _roll_forward(stage: Path, outdir: Path) -> list[Path]:
-    """Finish the commit journalled in ``stage``: move each staged file that
-    is still there into ``outdir``."""
-    data = json.loads((stage / _JOURNAL).read_text(encoding="utf-8"))
-    moved = []
-    for src, dst in data["moves"]:
-        staged = stage / src
-        if staged.exists():
-            try:
-                (outdir / dst).parent.mkdir(parents=True, exist_ok=True)
-                os.replace(staged, outdir / dst)
-            except OSError as exc:
-                raise ExportError(
-                    f"cannot finish an earlier build's commit: moving {dst!r} into "
-                    f"{str(outdir)!r} failed ({exc.strerror or exc}); remove the obstacle "
-                    "and run again"
-                ) from exc
-            moved.append(outdir / dst)
-    _fsync_dir(outdir)
-    return moved
-
-
-def recover(outdir: str | os.PathLike[str]) -> list[Path]:
+def recover(outdir: str | os.PathLike[str], say: Callable[[str], None] | None = None) -> list[Path]:
     """Finish or remove the staging folders that dead runs left in ``outdir``.
 
     A staging folder whose lock is free belongs to a process that has died:
-    with a journal, its commit is finished (:func:`_roll_forward`); without
+    with a journal, its commit is finished (:func:`apply_journal` again); without
     one, it is removed. Folders of live runs are left alone.
+
+    Args:
+        say: called with one line for each folder finished or removed.
 
     Returns:
         The files moved into place by finished commits.
     """
     out = Path(outdir)
-    moved: list[Path] = []
     if not out.is_dir():
-        return moved
+        return []
     with _folder_lock(out):
-        for stage in sorted(out.glob(f"{_PREFIX}*{_PARTIAL}")):
-            try:
-                fd = os.open(stage / _LOCK, os.O_RDWR)
-            except FileNotFoundError:
-                shutil.rmtree(stage, ignore_errors=True)  # no lock: never a live run's
-                continue
-            try:
-                try:
-                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                except BlockingIOError:
-                    continue  # a live run
-                if (stage / _JOURNAL).exists():
-                    moved += _roll_forward(stage, out)
-                shutil.rmtree(stage, ignore_errors=True)
-            finally:
-                os.close(fd)
-        now = time.time()
-        for init in out.glob(f"{_PREFIX}*{_INIT}"):
-            with contextlib.suppress(OSError):
-                if now - init.stat().st_mtime > _INIT_GRACE_S:
-                    shutil.rmtree(init, ignore_errors=True)
-    return moved
+        return recover_locked(out, say)
