@@ -299,6 +299,10 @@ def _simulate_parser() -> FlagParser:
         "NAME-released.glb, NAME-deviation.png and NAME-stress.png into DIR"
     )  # fmt: skip
     _add_common(o)
+    o.add_argument(
+        "-v", "--verbose", action="store_true",
+        help="also Newton's iterations on stderr (default: one line per stage)",
+    )  # fmt: skip
     add_design_flags(p)
     return p
 

@@ -24,14 +24,18 @@ __all__ = ["cmd_simulate", "simulation_lines"]
 
 
 class _Progress:
-    """``onefold: simulate: STAGE: Newton step I, residual R N`` lines on
-    stderr, at most one every half second per stage (and each stage's first)."""
+    """Progress on stderr: ``onefold: simulate NAME: STAGE done (T s CPU)`` at
+    each stage's end; with ``verbose`` also ``...: STAGE: Newton step I,
+    residual R N`` (at most one every half second per stage, and its first)."""
 
-    def __init__(self, name: str) -> None:
+    def __init__(self, name: str, verbose: bool = False) -> None:
         self.name = name
+        self.verbose = verbose
         self.last: dict[str, float] = {}
 
     def __call__(self, stage: str, iteration: int, residual: float) -> None:
+        if not self.verbose:
+            return
         now = time.monotonic()
         if iteration and now - self.last.get(stage, -1.0) < 0.5:
             return
@@ -40,6 +44,10 @@ class _Progress:
             2,
             f"{self.name}: {stage}: Newton step {iteration}, residual {residual:.3g} N\n".encode(),
         )
+
+    def stage_done(self, stage: str, seconds: float) -> None:
+        """One line: the stage and its CPU time."""
+        os.write(2, f"{self.name}: {stage} done ({seconds:.2f} s CPU)\n".encode())
 
 
 def _length(value: float | None, unit: str) -> str:
@@ -163,7 +171,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
     design = job.design
     folded = build_design(design)
     check = ns.check if ns.check is not None else MeshLevel.parse(ns.mesh).checked
-    progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}")
+    progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}", ns.verbose)
     sim = simulate(
         design,
         folded,
@@ -173,6 +181,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
         level=ns.mesh,
         convergence=check,
         progress=progress,
+        stage_done=None if progress is None else progress.stage_done,
     )
     report = design_report(design, folded, sources=job.sources)
     report["simulation"] = sim.to_data()

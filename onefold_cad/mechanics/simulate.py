@@ -48,6 +48,8 @@ SUPPORTS = tuple(c.value for c in Supports)
 REFERENCES = tuple(c.value for c in Reference)
 
 Progress = Callable[[str, int, float], None]
+#: ``stage_done(stage, cpu_seconds)``: a stage of :func:`run` finished.
+StageDone = Callable[[str, float], None]
 
 
 def _stage_progress(progress: Progress | None, stage: str):
@@ -201,8 +203,11 @@ def run(
     yield_stress_MPa: float | None = None,
     refine: float = 1.0,
     progress: Progress | None = None,
+    stage_done: StageDone | None = None,
 ) -> Simulation:
     """The stages on one mesh (see the module docstring); no convergence check.
+    ``progress`` hears every Newton step, ``stage_done`` every stage's end
+    (``mesh``, ``formed``, ``released``, ``standing``) with its CPU time.
 
     BLAS runs on one thread meanwhile (``threadpoolctl``): the model's dense
     algebra is thousands of tiny products, where OpenBLAS's threads only spin
@@ -218,6 +223,8 @@ def run(
         now = time.process_time()
         times[name] = now - clock
         clock = now
+        if stage_done is not None:
+            stage_done(name, times[name])
 
     model = sheet_model(
         design,
@@ -362,21 +369,35 @@ def simulate(
     level: str = "normal",
     h_max: float | None = None,
     progress: Progress | None = None,
+    stage_done: StageDone | None = None,
     **options: object,
 ) -> Simulation:
     """:func:`run` on the level's mesh and, with ``convergence``, on the next
     finer one: the first's results with the relative change of their largest
-    deviation on the second (``convergence.max_deviation_change``).
+    deviation on the second (``convergence.max_deviation_change``). The
+    second run's stages reach ``progress`` and ``stage_done`` named
+    ``convergence check: STAGE``.
 
     Raises:
         InvalidParameterError: the design cannot be simulated (named value).
         ConvergenceError: a stage did not converge (never an unconverged result).
     """
-    base = run(design, folded, level=level, h_max=h_max, progress=progress, **options)
+    base = run(
+        design, folded, level=level, h_max=h_max, progress=progress, stage_done=stage_done,
+        **options,
+    )  # fmt: skip
     if not convergence:
         return base
+    named = "convergence check: {}".format
     check = run(
-        design, folded, level=level, h_max=h_max, refine=FINER, progress=progress, **options
+        design,
+        folded,
+        level=level,
+        h_max=h_max,
+        refine=FINER,
+        progress=None if progress is None else lambda st, i, r: progress(named(st), i, r),
+        stage_done=None if stage_done is None else lambda st, t: stage_done(named(st), t),
+        **options,
     )
     name, a = _measure(base)
     _, b = _measure(check)

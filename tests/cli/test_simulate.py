@@ -49,9 +49,13 @@ def test_o_writes_the_report_the_forms_and_the_pictures(written):
         assert 1000 * ys.max() == pytest.approx(sim[form]["height"], rel=1e-6)
 
 
-def test_progress_goes_to_stderr_and_the_stages_to_the_report(written):
+def test_progress_is_one_line_per_stage_and_the_stages_go_to_the_report(written):
     _, proc = written
-    assert "released: Newton step" in proc.stderr and "standing: Newton step" in proc.stderr
+    progress = [ln for ln in proc.stderr.splitlines() if ln.startswith(f"onefold: simulate {NAME}")]
+    stages = [ln.split(": ")[2].split(" done (")[0] for ln in progress]
+    assert stages == ["mesh", "formed", "released", "standing"], proc.stderr
+    assert all(ln.endswith(" s CPU)") for ln in progress)
+    assert "Newton step" not in proc.stderr  # only with -v
     sim = json.loads(proc.stdout)["simulation"]
     assert set(sim) >= {"weight_N", "mesh", "formed", "released", "standing"}
     assert sim["standing"]["reactions_total_N"] == pytest.approx(sim["weight_N"], rel=1e-6)
@@ -92,3 +96,11 @@ def test_a_newton_that_cannot_converge_is_an_error_with_its_residual(tmp_path, m
     lines = [ln for ln in err.splitlines() if not ln.startswith("onefold: warning: ")]
     assert len(lines) == 1 and "residual" in lines[0], err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_verbose_adds_newton_s_iterations_and_the_check_is_named():
+    proc = run("simulate", NAME, "--mesh", "coarse", "--check", "-v", "--json")
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert any("released: Newton step 0, residual" in ln for ln in lines)
+    assert any(": convergence check: standing done (" in ln for ln in lines), proc.stderr
