@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 TEMPLATE ?= templates/patkau-one-fold.toml
 OUT ?= out
 
-.PHONY: demo test lint clean browser
+.PHONY: demo test lint clean programs
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -23,19 +23,23 @@ $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
 demo: $(VENV)/.installed
 	$(BIN)/onefold build $(TEMPLATE) -o $(OUT)
 
-test: $(VENV)/.installed-test browser
+test: $(VENV)/.installed-test programs
 	$(BIN)/python -m pytest -n auto
 
-# The explorer's tests drive Debian's Chromium with playwright (tests/explore/).
-# As root, install it when it is missing; otherwise stop with the one command to run.
-CHROMIUM := /usr/bin/chromium
-browser:
-	@if [ ! -x $(CHROMIUM) ]; then \
+# Debian programs the tests drive: Chromium with playwright (tests/explore/) and
+# CalculiX's ccx, which runs the NAME.inp simulate writes (tests/export/).
+# As root, install those missing; otherwise stop with the one command to run.
+PROGRAMS := /usr/bin/chromium:chromium /usr/bin/ccx:calculix-ccx
+programs:
+	@missing=""; for p in $(PROGRAMS); do \
+	  [ -x "$${p%%:*}" ] || missing="$$missing $${p#*:}"; \
+	done; \
+	if [ -n "$$missing" ]; then \
 	  if [ "$$(id -u)" = 0 ]; then \
-	    echo "installing Debian's chromium for the browser tests"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; \
+	    echo "installing Debian's$$missing for the tests"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null; \
 	  else \
-	    echo "make test needs Chromium for the browser tests; run:  sudo apt-get install -y chromium" >&2; \
+	    echo "make test needs$$missing for its tests; run:  sudo apt-get install -y$$missing" >&2; \
 	    exit 1; \
 	  fi; \
 	fi

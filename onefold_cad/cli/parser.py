@@ -296,7 +296,8 @@ def _simulate_parser() -> FlagParser:
                    help="print the JSON report with its simulation section")  # fmt: skip
     o.add_argument(
         "-o", "--outdir", type=Path, metavar="DIR", help="write NAME.json, NAME-standing.glb, "
-        "NAME-released.glb, NAME-deviation.png and NAME-stress.png into DIR"
+        "NAME-released.glb, NAME-deviation.png, NAME-stress.png and NAME.inp (the designed "
+        "form's structural check for CalculiX or Abaqus) into DIR"
     )  # fmt: skip
     _add_common(o)
     o.add_argument(

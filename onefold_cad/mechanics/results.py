@@ -186,6 +186,7 @@ class Simulation:
         weight_N: the sheet's weight.
         nodes, triangles, h_max: the mesh (h_max in the design's unit).
         yield_stress_MPa, youngs_modulus_GPa, poisson, thickness: the values used.
+        density_kg_m3: the sheet's density (kg/m^3).
         formed, released: the forming sequence (reference 'flat'), else None.
         standing: on the ground.
         designed: the structural check (reference 'designed'), else None.
@@ -218,6 +219,7 @@ class Simulation:
     poisson: float
     yield_stress_MPa: float
     thickness: float
+    density_kg_m3: float
     formed: FormedResult | None
     released: Released | None
     standing: Standing

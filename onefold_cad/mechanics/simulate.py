@@ -330,6 +330,7 @@ def run(
         poisson=mat.poisson,
         yield_stress_MPa=mat.yield_stress / 1e6,
         thickness=mat.thickness / s,
+        density_kg_m3=mat.density,
         formed=formed_result,
         released=released,
         standing=standing,
