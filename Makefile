@@ -26,10 +26,11 @@ demo: $(VENV)/.installed
 test: $(VENV)/.installed-test programs
 	$(BIN)/python -m pytest -n auto
 
-# Debian programs the tests drive: Chromium with playwright (tests/explore/) and
-# CalculiX's ccx, which runs the NAME.inp simulate writes (tests/export/).
+# Debian programs the tests drive: Chromium with playwright (tests/explore/),
+# CalculiX's ccx, which runs the NAME.inp simulate writes, and ParaView's
+# pvpython, which reads its NAME.vtu (tests/export/).
 # As root, install those missing; otherwise stop with the one command to run.
-PROGRAMS := /usr/bin/chromium:chromium /usr/bin/ccx:calculix-ccx
+PROGRAMS := /usr/bin/chromium:chromium /usr/bin/ccx:calculix-ccx /usr/bin/pvpython:python3-paraview
 programs:
 	@missing=""; for p in $(PROGRAMS); do \
 	  [ -x "$${p%%:*}" ] || missing="$$missing $${p#*:}"; \

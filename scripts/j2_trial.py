@@ -22,7 +22,7 @@ import numpy as np
 from onefold_cad.design import build_design
 from onefold_cad.mechanics import j2_stages
 from onefold_cad.mechanics.model import sheet_model
-from onefold_cad.mechanics.simulate import _aligned_deviation, run
+from onefold_cad.mechanics.simulate import aligned_deviation, run
 from onefold_cad.mechanics.stages import place
 from onefold_cad.templates import load_template
 
@@ -52,7 +52,7 @@ def main() -> None:
     released = j2_stages.release(model, shell, formed)
     t = time.process_time()
     n = model.mesh.n_nodes
-    dev_max, dev_rms = _aligned_deviation(model, folded, released.q[: 3 * n].reshape(n, 3))
+    dev_max, dev_rms = aligned_deviation(model, folded, released.q[: 3 * n].reshape(n, 3))
     again = released.surface_plastic_strain() > peeq + 1e-12
     print(f"released: deviation max {dev_max:.4g} rms {dev_rms:.4g} {design.units.value}, "
           f"yields again {share(again):.4f}, largest stress "

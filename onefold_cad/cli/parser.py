@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from onefold_cad.cli.help_format import fill, formatter, raw_formatter
+from onefold_cad.cli.hops_parser import HOPS_PORT, hops_parser, parse_port
 from onefold_cad.cli.site_parser import site_parser
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
@@ -29,21 +30,6 @@ __all__ = ["HOPS_PORT", "build_parser", "help_text", "parse_port"]
 
 
 PROG = "onefold"
-#: The Hops server's default port (Hops' own examples use it).
-HOPS_PORT = 5000
-
-
-def parse_port(text: str) -> int:
-    """A TCP port in [0, 65535] (0: any free port)."""
-    try:
-        port = int(text)
-    except ValueError:
-        port = -1
-    if not 0 <= port <= 65535:
-        raise argparse.ArgumentTypeError(
-            f"must be a whole number in [0, 65535] (0: any free port), got {text.strip()!r}"
-        )
-    return port
 
 
 def _template_argument(parser: argparse.ArgumentParser, dest: str, nargs: str) -> None:
@@ -225,36 +211,6 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     )
     fit.add_argument("-q", "--quiet", action="store_true",
                      help="no progress lines on stderr when building (-o)")  # fmt: skip
-    hops = FlagParser(
-        prog=f"{PROG} hops",
-        usage=f"{PROG} hops [--port N] [--host ADDRESS] [--templates DIR] [--allow-host NAME]",
-        description="Serve the Grasshopper Hops components onefold/solve (a design: the folded "
-        "form's Breps, creases, apex, flat pattern, fold angles, height, span, tipping margin, "
-        "warnings) and onefold/fit (alpha, beta, h_c for a target height and span) until "
-        "Ctrl-C. In Grasshopper, a Hops component's Path is http://127.0.0.1:5000/onefold/solve "
-        "(docs/rhino.md). Needs onefold_cad[rhino] (ghhops-server, rhino3dm).",
-        formatter_class=formatter,
-        allow_abbrev=False,
-    )
-    hops.add_argument(
-        "--port", type=parse_port, default=HOPS_PORT, metavar="N",
-        help=f"port, in [0, 65535] (0: any free port; default {HOPS_PORT})",
-    )  # fmt: skip
-    hops.add_argument(
-        "--host", default="127.0.0.1", metavar="ADDRESS",
-        help="address to listen on (default 127.0.0.1: this machine only)",
-    )  # fmt: skip
-    hops.add_argument(
-        "--templates", default=None, metavar="DIR",
-        help="a folder of your own templates: a request may name its .toml files by name "
-        "(requests never name a path; without it, the shipped templates only)",
-    )  # fmt: skip
-    hops.add_argument(
-        "--allow-host", action="append", default=[], metavar="NAME",
-        help="a name or address of this machine that clients may use in the Host header "
-        "(repeatable; the listening address, and the loopback names for a loopback one, "
-        "are always allowed)",
-    )  # fmt: skip
     return {
         "": top,
         "build": build,
@@ -262,7 +218,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "templates": templates,
         "explore": explore,
         "fit": fit,
-        "hops": hops,
+        "hops": hops_parser(PROG),
         "sweep": _sweep_parser(),
         "simulate": _simulate_parser(),
         "site": site_parser(PROG),
@@ -296,8 +252,9 @@ def _simulate_parser() -> FlagParser:
                    help="print the JSON report with its simulation section")  # fmt: skip
     o.add_argument(
         "-o", "--outdir", type=Path, metavar="DIR", help="write NAME.json, NAME-standing.glb, "
-        "NAME-released.glb, NAME-deviation.png, NAME-stress.png and NAME.inp (the designed "
-        "form's structural check for CalculiX or Abaqus) into DIR"
+        "NAME-released.glb, NAME-deviation.png, NAME-stress.png, NAME.inp (the designed "
+        "form's structural check for CalculiX or Abaqus) and NAME.vtu (the stages, for "
+        "ParaView) into DIR"
     )  # fmt: skip
     _add_common(o)
     o.add_argument(

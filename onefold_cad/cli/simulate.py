@@ -125,8 +125,9 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
 def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Path]:
     """Write the simulation's files into ``outdir``, all or nothing.
 
-    NAME.json, NAME-deviation.png, NAME-stress.png and NAME.inp (the
-    structural check for CalculiX or Abaqus) always; NAME-standing.glb
+    NAME.json, NAME-deviation.png, NAME-stress.png, NAME.inp (the
+    structural check for CalculiX or Abaqus) and NAME.vtu (the stages for
+    ParaView) always; NAME-standing.glb
     when the sheet found a standing equilibrium, NAME-released.glb when there
     is a released form (reference 'flat'). A form that does not exist is not
     written, and a warning says which file is missing and why.
@@ -136,6 +137,7 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
     from onefold_cad.export.simulation_glb import write_simulation_glb
     from onefold_cad.export.simulation_inp import write_structural_inp
     from onefold_cad.export.simulation_pictures import render_deviation, render_stress
+    from onefold_cad.export.simulation_vtu import write_simulation_vtu
     from onefold_cad.fabrication.report import report_json
 
     forms = []
@@ -145,19 +147,20 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
         warn(f"no {name}-standing.glb: no standing equilibrium ({sim.standing.reason})")
     if sim.released_positions is not None:
         forms.append("released")
-    names = [f"{name}.json", f"{name}-deviation.png", f"{name}-stress.png", f"{name}.inp"]
+    names = [f"{name}{s}" for s in (".json", "-deviation.png", "-stress.png", ".inp", ".vtu")]
     names += [f"{name}-{form}.glb" for form in forms]
     outdir.mkdir(parents=True, exist_ok=True)
     recover(outdir, say=warn)
     check_targets(outdir, names)
-    every = [*names[:4], *(f"{name}-{form}.glb" for form in ("standing", "released"))]
+    every = [*names[:5], *(f"{name}-{form}.glb" for form in ("standing", "released"))]
     with Staging(outdir, say=warn) as stage:
         paths = [stage.path / n for n in names]
         paths[0].write_text(report_json(report))
         render_deviation(sim, paths[1], title=name)
         render_stress(sim, paths[2], title=name)
         write_structural_inp(sim, paths[3])
-        for form, path in zip(forms, paths[4:], strict=True):
+        write_simulation_vtu(sim, paths[4])
+        for form, path in zip(forms, paths[5:], strict=True):
             write_simulation_glb(sim, path, form)
         done = stage.commit(paths, sets=[FileSet(name, tuple(every))])
     say_removed(stage.removed)

@@ -39,7 +39,15 @@ from onefold_cad.mechanics.shell import director_angles, pack, unpack
 from onefold_cad.mechanics.stages import Placed, form, place, release, stand
 from onefold_cad.mechanics.stress import face_stress
 
-__all__ = ["CONVERGED", "REFERENCES", "SUPPORTS", "formed_only", "run", "simulate"]
+__all__ = [
+    "CONVERGED",
+    "REFERENCES",
+    "SUPPORTS",
+    "aligned_deviation",
+    "formed_only",
+    "run",
+    "simulate",
+]
 
 #: The convergence check's bound: a larger relative change is warned about.
 CONVERGED = 0.02
@@ -92,7 +100,7 @@ def _share(model: SheetModel, faces: np.ndarray) -> float:
     return float(area[faces].sum() / area.sum())
 
 
-def _aligned_deviation(model: SheetModel, folded: FoldedSheet, x: Array) -> tuple[float, float]:
+def aligned_deviation(model: SheetModel, folded: FoldedSheet, x: Array) -> tuple[float, float]:
     """Max and rms distance (design unit) of nodes ``x`` (m) from the designed
     form after the best rigid alignment."""
     mass = model.shell.node_mass
@@ -245,7 +253,7 @@ def run(
         lap("formed")
         rel = release(model, formed, _stage_progress(progress, "released"))
         xr = rel.equilibrium.positions
-        max_dev, rms_dev = _aligned_deviation(model, folded, xr)
+        max_dev, rms_dev = aligned_deviation(model, folded, xr)
         placed = place(model, rel.equilibrium.q)
         xp = unpack(model.mesh, placed.q)[0]
         released_at = xp / s

@@ -28,7 +28,7 @@ def written(tmp_path_factory):
 
 def test_o_writes_the_report_the_forms_and_the_pictures(written):
     out, proc = written
-    names = {f"{NAME}{s}" for s in (".json", "-deviation.png", "-stress.png", ".inp")}
+    names = {f"{NAME}{s}" for s in (".json", "-deviation.png", "-stress.png", ".inp", ".vtu")}
     names |= {f"{NAME}-standing.glb", f"{NAME}-released.glb"}
     assert {p.name for p in out.iterdir()} == names
     report = json.loads((out / f"{NAME}.json").read_text())
