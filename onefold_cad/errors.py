@@ -14,6 +14,7 @@ __all__ = [
     "ExportError",
     "FabricationError",
     "ConvergenceError",
+    "memory_message",
 ]
 
 
@@ -77,3 +78,16 @@ class ConvergenceError(OneFoldError, RuntimeError):
         super().__init__(message)
         self.iterations = iterations
         self.residual = residual
+
+
+def memory_message(exc: MemoryError) -> str:
+    """One line for an allocation that failed (``MemoryError``, numpy's
+    ``_ArrayMemoryError`` among them): the CLI prints it (exit 2), the
+    servers answer it and stay up. The size comes from what the request
+    asked for, so the line says what sets it."""
+    detail = " ".join(str(exc).split()) or "an allocation failed"
+    return (
+        f"out of memory ({detail[:200]}): the request needs more memory than this "
+        "machine gives it; ask for less (the divisions, the polygon's vertices, "
+        "the mesh or the number of sheets set the size)"
+    )

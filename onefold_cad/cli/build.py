@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.cli.summary import material_lines
-from onefold_cad.errors import InvalidParameterError, OneFoldError
+from onefold_cad.errors import InvalidParameterError, OneFoldError, memory_message
 from onefold_cad.export.writers import WRITERS
 from onefold_cad.flags.design_flags import (
     FLAG_OF,
@@ -146,6 +146,8 @@ def _worker(fn: Callable[[Any], Any], task: Any) -> tuple[str, Any]:
         return "error", ("onefold", str(exc))
     except OSError as exc:
         return "error", ("os", os_message(exc))
+    except MemoryError as exc:  # numpy's cannot be unpickled in the parent: send the text
+        return "error", ("memory", memory_message(exc))
 
 
 def run_tasks(tasks: Sequence[Any], jobs: int, fn: Callable[[Any], Any]) -> list[Any]:

@@ -2,8 +2,9 @@
 
 ``main(argv=None) -> int`` is the entry point (``onefold`` and ``python -m
 onefold_cad``), so tests can call it directly. Every error of the package,
-every usage error and every OSError becomes one line ``onefold: error: ...``
-on stderr and exit status 2; warnings are lines ``onefold: warning: ...``.
+every usage error, every OSError and every MemoryError (an allocation that
+failed) becomes one line ``onefold: error: ...`` on stderr and exit status
+2; warnings are lines ``onefold: warning: ...``.
 ``build`` stages every file and commits the whole set at once
 (:mod:`onefold_cad.export.atomic`); Ctrl-C and SIGTERM leave the output
 folder as it was.
@@ -24,7 +25,7 @@ import sys
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING
 
-from onefold_cad.errors import OneFoldError
+from onefold_cad.errors import OneFoldError, memory_message
 
 if TYPE_CHECKING:
     pass
@@ -106,6 +107,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     except OSError as exc:
         _error(os_message(exc))
+        return 2
+    except MemoryError as exc:  # an allocation failed: one line, not a traceback
+        _error(memory_message(exc))
         return 2
     except KeyboardInterrupt:
         _error(f"interrupted; {interrupted_text()}", prefix="")

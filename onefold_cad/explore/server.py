@@ -17,7 +17,9 @@ It listens on 127.0.0.1 and answers GET requests only:
 
 Requests whose ``Host`` is not this server's own address (DNS rebinding),
 that come from another site (``Sec-Fetch-Site`` / ``Origin``), that carry a
-body, or whose target or values are too long are refused.
+body, or whose target or values are too long are refused. A request the
+machine has not the memory for (``MemoryError``) is answered 503 with one
+line saying so, and the server goes on.
 
 It serves at most :data:`MAX_CONNECTIONS` connections at once, each on its
 own thread (one more is answered ``503`` at once and closed, never queued
@@ -47,7 +49,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
-from onefold_cad.errors import InvalidParameterError, OneFoldError
+from onefold_cad.errors import InvalidParameterError, OneFoldError, memory_message
 from onefold_cad.explore.controls import (
     ParameterProblem,
     QueryError,
@@ -94,6 +96,14 @@ STATIC: dict[str, tuple[str, str]] = {
     "/static/three/LICENSE": ("three/LICENSE", _TEXT),
 }
 _IMPORTMAP = re.compile(rb'<script type="importmap">(.*?)</script>', re.S)
+
+
+def _out_of_memory(exc: MemoryError) -> str:
+    """The one line of a request the machine cannot afford (also in the
+    server's log, without a traceback); the server answers 503 and goes on."""
+    text = memory_message(exc)
+    print(f"onefold explore: {text}", file=sys.stderr)
+    return text
 
 
 def _static_files() -> dict[str, bytes]:
@@ -320,6 +330,11 @@ class ExploreHandler(BaseHTTPRequestHandler):
             state = problem_state(exc)
         except QueryError:
             raise
+        except MemoryError as exc:  # a request the machine cannot afford: answered, no crash
+            text = _out_of_memory(exc)
+            state = {"ok": False, "messages": [{"level": "error", "text": text, "controls": []}]}
+            self._json(HTTPStatus.SERVICE_UNAVAILABLE, state)
+            return
         except Exception as exc:  # a bad value must never break the page
             traceback.print_exc(file=sys.stderr)
             state = {
@@ -343,6 +358,10 @@ class ExploreHandler(BaseHTTPRequestHandler):
             state = {"ok": False, "error": " ".join(exc.message.split())}
         except QueryError:
             raise
+        except MemoryError as exc:
+            text = _out_of_memory(exc)
+            self._json(HTTPStatus.SERVICE_UNAVAILABLE, {"ok": False, "error": text})
+            return
         except Exception as exc:  # the page shows this line instead of a result
             traceback.print_exc(file=sys.stderr)
             text = f"internal error ({type(exc).__name__}: {' '.join(str(exc).split())})"
@@ -359,6 +378,10 @@ class ExploreHandler(BaseHTTPRequestHandler):
             return
         except QueryError:
             raise
+        except MemoryError as exc:
+            text = _out_of_memory(exc)
+            self._send(HTTPStatus.SERVICE_UNAVAILABLE, text.encode("utf-8"), _TEXT)
+            return
         except Exception as exc:  # the page shows this line instead of a broken download
             traceback.print_exc(file=sys.stderr)
             text = f"internal error ({type(exc).__name__}: {' '.join(str(exc).split())})"

@@ -17,6 +17,13 @@ and 1 px when the drawing is shown 1000 px tall); a millimetre stroke is
 invisible on a 7 m sheet shown on a screen. A PNG is an image of a given
 width: its CUT lines are 2 pt wide at its dpi (about 3 px at 100 dpi), the
 others one pixel.
+
+Notes. The drawing's NOTES block (the TEXT lines of the NOTES layer written
+left-aligned under the blank: material, bends, the bend table) is drawn up
+to :data:`MAX_NOTE_LINES` lines, then one line saying how many more the DXF
+holds: a paper fan of 10 000 divisions lists its 19 978 ruling folds there,
+and every glyph of them became an SVG path (3.9 GB and 16 minutes for a
+500 MB picture, issue 38). The DXF and the bend sheet keep every line.
 """
 
 from __future__ import annotations
@@ -35,12 +42,16 @@ from ezdxf.document import Drawing
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.export.atomic import atomic_output
 
-__all__ = ["CUT_STROKE", "STROKE", "render_preview"]
+__all__ = ["CUT_STROKE", "MAX_NOTE_LINES", "STROKE", "render_preview"]
 
 #: Stroke width of the CUT layer, relative to the drawing's larger side.
 CUT_STROKE = 0.003
 #: Stroke width of every other line, relative to the drawing's larger side.
 STROKE = 0.001
+#: The most lines of the drawing's NOTES block a preview draws (every shipped
+#: design's block is shorter: 194 lines at most, table1-row1; the rest is
+#: counted in one more line).
+MAX_NOTE_LINES = 200
 #: Blank margin around the drawing, relative to its larger side.
 _MARGIN = 0.02
 #: DXF's largest lineweight (mm); the CUT layer is drawn with it.
@@ -80,15 +91,56 @@ def _png_weights(entity: Any, properties: Any) -> None:
     properties.lineweight = 2.0 if properties.layer.upper() == "CUT" else 0.0
 
 
+def _is_note_line(entity: Any) -> bool:
+    """A line of the NOTES block: left-aligned TEXT on the NOTES layer (the
+    fold halves' labels on that layer are centred)."""
+    return (
+        entity.dxftype() == "TEXT"
+        and entity.dxf.layer.upper() == "NOTES"
+        and entity.dxf.get("halign", 0) == 0
+        and entity.dxf.get("valign", 0) == 0
+    )
+
+
+def _notes_cut(doc: Drawing) -> tuple[set[int], list[Any]]:
+    """The NOTES lines past :data:`MAX_NOTE_LINES` (their ``id``) and the line
+    that counts them (empty when none is cut; a new entity outside ``doc``:
+    the document is the DXF writer's too)."""
+    from ezdxf.entities import Text
+
+    notes = [e for e in doc.modelspace() if _is_note_line(e)]
+    if len(notes) <= MAX_NOTE_LINES:
+        return set(), []
+    last, after = notes[MAX_NOTE_LINES - 1], notes[MAX_NOTE_LINES]
+    more = Text.new(dxfattribs=last.dxfattribs(drop={"handle", "owner"}))
+    more.dxf.insert = after.dxf.insert
+    cut = len(notes) - MAX_NOTE_LINES
+    more.dxf.text = f"... {cut} more lines: the DXF's NOTES layer and the bend sheet hold them all"
+    return {id(e) for e in notes[MAX_NOTE_LINES:]}, [more]
+
+
+def _draw(frontend: Frontend, doc: Drawing) -> list[Any]:
+    """Draw the modelspace with the NOTES block cut (:func:`_notes_cut`);
+    return what was drawn."""
+    skipped, extra = _notes_cut(doc)
+    drawn = [e for e in doc.modelspace() if id(e) not in skipped]
+    frontend.draw_layout(
+        doc.modelspace(), finalize=False, filter_func=lambda e: id(e) not in skipped
+    )
+    frontend.draw_entities(extra)
+    frontend.pipeline.finalize()
+    return drawn + extra
+
+
 def _svg(doc: Drawing, out: Path) -> None:
     from ezdxf.addons.drawing import layout, svg
 
     backend = svg.SVGBackend()
     frontend = Frontend(RenderContext(doc), backend, config=_CONFIG)
     frontend.push_property_override_function(_weights)
-    frontend.draw_layout(doc.modelspace())
+    drawn = _draw(frontend, doc)
     mm = _mm_per_unit(doc)
-    box = bbox.extents(doc.modelspace())
+    box = bbox.extents(drawn)
     side = max(box.size.x, box.size.y) * mm if box.has_data else 0.0
     # a margin for the strokes (centred on the lines) and some air
     page = layout.Page(0, 0, layout.Units.mm, margins=layout.Margins.all(_MARGIN * side))
@@ -125,7 +177,7 @@ def _png(doc: Drawing, out: Path, dpi: int, width_px: int | None) -> None:
             RenderContext(doc), MatplotlibBackend(ax, adjust_figure=False), config=config
         )
         frontend.push_property_override_function(_png_weights)
-        frontend.draw_layout(doc.modelspace(), finalize=True)
+        _draw(frontend, doc)
         (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
         inches = 8.0 if width_px is None else width_px / dpi
         fig.set_size_inches(inches, inches * abs(y1 - y0) / max(abs(x1 - x0), 1e-300))

@@ -54,6 +54,7 @@ from onefold_cad.geometry.bend_model import (
 from onefold_cad.geometry.fan_folds import ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
+from onefold_cad.geometry.nearby import near_any
 from onefold_cad.geometry.numeric import Array, polygon_area
 from onefold_cad.geometry.polygon import boundary_distance, check_simple
 
@@ -337,8 +338,7 @@ def flat_pattern(
     folds = ruling_folds(folded)
     fold_ends = np.array([f.end_flat for f in folds]).reshape(-1, 2)
     if len(folds):  # the rulings that are folds are drawn as bends, not etched
-        gap = np.linalg.norm(ends[:, None, :] - fold_ends[None, :, :], axis=2)
-        ends = ends[~np.any(gap <= 1e-12 * sheet.size, axis=1)]
+        ends = ends[~near_any(ends, fold_ends, 1e-12 * sheet.size)]  # memory O(n), not O(n^2)
     c_max, hole_r = max(c_plus, c_minus), max(hole - kerf, 0.0) / 2.0
     rul, _ = ruling_segments(ends, shift, c_max, hole_r)
     fold_segments, drawn = ruling_segments(fold_ends, shift, c_max, hole_r)

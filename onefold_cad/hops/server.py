@@ -14,6 +14,9 @@ optional input) and answers as compute does (Resthopper's ``Schema``):
 the component's error. MESSAGE is the command's one-line message for the
 same value (``--alpha: must be in (0, 90) deg, got 95``), never a traceback:
 an unexpected failure is one line too, its traceback on the server's stderr.
+A request the machine has not the memory for (``MemoryError``) is answered
+the same way (``out of memory (...)``, one line in the log) and the server
+goes on.
 
 A request's ``template`` is a name (:func:`~onefold_cad.hops.guard.resolve_template`:
 the shipped templates and those of the server's folder, never a path), and
@@ -31,7 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from onefold_cad.errors import OneFoldError
+from onefold_cad.errors import OneFoldError, memory_message
 from onefold_cad.flags.parser import UsageError
 from onefold_cad.hops.components import (
     FIT_OUTPUTS,
@@ -222,6 +225,10 @@ class OneFoldHops(HopsDefault):
             return False, json.dumps({"values": [], "errors": ["Bad inputs", str(exc)]})
         except (OneFoldError, UsageError) as exc:
             return False, error_answer(str(exc))
+        except MemoryError as exc:  # a request the machine cannot afford: its answer, no crash
+            text = memory_message(exc)
+            print(f"onefold hops: {text}", file=sys.stderr)  # one line in the log, no traceback
+            return False, error_answer(text)
         except Exception as exc:  # a bug: one line to Grasshopper, the traceback here
             traceback.print_exc(file=sys.stderr)
             return False, error_answer(
