@@ -24,11 +24,9 @@ line saying so, and the server goes on.
 It serves at most :data:`MAX_CONNECTIONS` connections at once, each on its
 own thread (one more is answered ``503`` at once and closed, never queued
 on a thread), and drops a connection silent for :data:`TIMEOUT` seconds: a
-few hundred half-sent requests cannot hold a thread each. (The Hops server
-bounds its connections the same way, ``onefold_cad.hops.http.HopsServer``;
-this is a copy of its few lines, for the explorer sits below Hops and may not
-import it, and the one lower home both could share would be a new module in
-the package's bottom layer.)
+few hundred half-sent requests cannot hold a thread each
+(:class:`~onefold_cad.explore.bounded.BoundedServer`, which the Hops server
+derives from too).
 """
 
 from __future__ import annotations
@@ -37,19 +35,19 @@ import base64
 import hashlib
 import json
 import re
-import socket
 import sys
 import threading
 import traceback
 import webbrowser
 from http import HTTPStatus
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from http.server import BaseHTTPRequestHandler
 from importlib.resources import files
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
 from onefold_cad.errors import InvalidParameterError, OneFoldError, memory_message
+from onefold_cad.explore.bounded import MAX_CONNECTIONS, BoundedServer
 from onefold_cad.explore.controls import (
     ParameterProblem,
     QueryError,
@@ -75,9 +73,6 @@ __all__ = [
 DEFAULT_PORT = 8765
 #: Longest accepted request target (path and query, characters).
 MAX_TARGET = 8192
-#: Connections served at once (a browser opens six to a server; a simulation
-#: keeps one for seconds); one more is answered 503 and closed.
-MAX_CONNECTIONS = 16
 #: Seconds a connection may stay silent (a slow or half-sent request).
 TIMEOUT = 30.0
 
@@ -148,8 +143,8 @@ def load_templates(ref: str | None) -> tuple[dict[str, dict[str, Any]], str]:
     return templates, path.stem
 
 
-class ExploreServer(ThreadingHTTPServer):
-    """A :class:`ThreadingHTTPServer` on 127.0.0.1 serving one explorer page.
+class ExploreServer(BoundedServer):
+    """A :class:`BoundedServer` on 127.0.0.1 serving one explorer page.
 
     Attributes:
         templates: template key -> template data.
@@ -158,7 +153,6 @@ class ExploreServer(ThreadingHTTPServer):
         verbose: log every request to stderr (default: errors only).
     """
 
-    daemon_threads = True
     allow_reuse_address = True
 
     def __init__(
@@ -168,8 +162,7 @@ class ExploreServer(ThreadingHTTPServer):
         port: int = DEFAULT_PORT,
         max_connections: int = MAX_CONNECTIONS,
     ) -> None:
-        super().__init__(("127.0.0.1", port), ExploreHandler)
-        self.slots = threading.BoundedSemaphore(max_connections)
+        super().__init__(("127.0.0.1", port), ExploreHandler, max_connections)
         self.templates = templates
         self.initial = initial
         self.port = int(self.server_address[1])
@@ -179,39 +172,6 @@ class ExploreServer(ThreadingHTTPServer):
         self.static = _static_files()
         self.csp = _csp(self.static["/"])
         self.verbose = False
-
-    def process_request(self, request: Any, client_address: Any) -> None:
-        """Serve the connection on a thread of its own if a slot is free,
-        else answer 503 at once and close it."""
-        if not self.slots.acquire(blocking=False):
-            _busy(request)
-            self.shutdown_request(request)
-            return
-        try:
-            super().process_request(request, client_address)
-        except BaseException:
-            self.slots.release()
-            raise
-
-    def process_request_thread(self, request: Any, client_address: Any) -> None:
-        try:
-            super().process_request_thread(request, client_address)
-        finally:
-            self.slots.release()
-
-
-def _busy(sock: socket.socket) -> None:
-    """Answer 503 on a connection no thread serves (one line, then close)."""
-    body = b"server busy: too many connections at once, try again\n"
-    head = (
-        f"HTTP/1.1 503 Service Unavailable\r\nContent-Type: {_TEXT}\r\n"
-        f"Content-Length: {len(body)}\r\nConnection: close\r\nRetry-After: 1\r\n\r\n"
-    ).encode("ascii")
-    try:
-        sock.settimeout(1.0)
-        sock.sendall(head + body)
-    except OSError:
-        pass
 
 
 class ExploreHandler(BaseHTTPRequestHandler):

@@ -25,12 +25,11 @@ is the handler class's ``hops``.
 from __future__ import annotations
 
 import json
-import socket
-import threading
 from http import HTTPStatus
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from http.server import BaseHTTPRequestHandler
 from typing import Any
 
+from onefold_cad.explore.bounded import MAX_CONNECTIONS, BoundedServer
 from onefold_cad.hops.ghhops import hlogger
 from onefold_cad.hops.guard import request_problem
 
@@ -49,8 +48,6 @@ __all__ = [
 #: Largest request body read (bytes): a Hops request of a sheet with ten
 #: thousand vertices is under 1 MiB.
 MAX_BODY = 4 * 1024 * 1024
-#: Connections served at once; one more is answered 503 and closed.
-MAX_CONNECTIONS = 16
 #: Seconds a connection may stay silent (a slow or half-sent request).
 TIMEOUT = 10.0
 #: Deepest nesting of brackets read from a body (Hops' own is 5 deep).
@@ -101,13 +98,10 @@ def parse_request(body: bytes) -> dict[str, Any]:
     return data
 
 
-class HopsServer(ThreadingHTTPServer):
-    """A threading HTTP server that serves at most :data:`MAX_CONNECTIONS`
-    connections at once (the next is answered ``503`` and closed) and
-    remembers the ``Host`` values it answers (``hosts``)."""
-
-    daemon_threads = True
-    block_on_close = False
+class HopsServer(BoundedServer):
+    """A :class:`~onefold_cad.explore.bounded.BoundedServer` (at most
+    :data:`MAX_CONNECTIONS` connections at once, the next answered ``503`` and
+    closed) that remembers the ``Host`` values it answers (``hosts``)."""
 
     def __init__(
         self,
@@ -115,41 +109,8 @@ class HopsServer(ThreadingHTTPServer):
         handler: type[BaseHTTPRequestHandler],
         max_connections: int = MAX_CONNECTIONS,
     ) -> None:
-        super().__init__(address, handler)
+        super().__init__(address, handler, max_connections)
         self.hosts: frozenset[str] = frozenset()
-        self.slots = threading.BoundedSemaphore(max_connections)
-
-    def process_request(self, request: Any, client_address: Any) -> None:
-        """Serve the connection on a thread of its own if a slot is free,
-        else answer 503 at once and close it."""
-        if not self.slots.acquire(blocking=False):
-            _busy(request)
-            self.shutdown_request(request)
-            return
-        try:
-            super().process_request(request, client_address)
-        except BaseException:
-            self.slots.release()
-            raise
-
-    def process_request_thread(self, request: Any, client_address: Any) -> None:
-        try:
-            super().process_request_thread(request, client_address)
-        finally:
-            self.slots.release()
-
-
-def _busy(sock: socket.socket) -> None:
-    body = b"the server is busy: too many connections at once, try again\n"
-    head = (
-        f"HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain; charset=utf-8\r\n"
-        f"Content-Length: {len(body)}\r\nConnection: close\r\nRetry-After: 1\r\n\r\n"
-    ).encode("ascii")
-    try:
-        sock.settimeout(1.0)
-        sock.sendall(head + body)
-    except OSError:
-        pass
 
 
 class HopsHandler(BaseHTTPRequestHandler):

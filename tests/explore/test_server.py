@@ -273,7 +273,7 @@ def test_half_sent_requests_are_bounded_and_time_out(monkeypatch):
             else:
                 answers.append(s.recv(400))
         assert peak[0] == bound
-        busy = b"\r\n\r\nserver busy: too many connections at once, try again\n"
+        busy = b"\r\n\r\nthe server is busy: too many connections at once, try again\n"
         for a in answers:
             assert a.startswith(b"HTTP/1.1 503 Service Unavailable\r\n") and a.endswith(busy), a
         wait_for(0)  # every slow one dropped after the timeout
