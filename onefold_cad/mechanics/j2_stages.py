@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike
 
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.energy import evaluate, second_fundamental_form, section_response
-from onefold_cad.mechanics.equilibrium import Equilibrium, Ground, solve_path
+from onefold_cad.mechanics.equilibrium import Equilibrium, solve_path
 from onefold_cad.mechanics.j2 import J2Law, von_mises
 from onefold_cad.mechanics.kinematics import face_metric
 from onefold_cad.mechanics.layered import Plasticity, form_along
@@ -35,14 +35,7 @@ from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.section import SectionResponse, ThicknessRule
 from onefold_cad.mechanics.shell import Shell, director_angles, pack, rigid_dofs, unpack
-from onefold_cad.mechanics.stages import (
-    MAX_MOVE,
-    MIN_LOAD_STEP,
-    RTOL,
-    STEP_ITERATIONS,
-    Placed,
-    in_plane_restraint,
-)
+from onefold_cad.mechanics.stages import RTOL, Placed, standing_path
 
 __all__ = [
     "FORMING_STEPS",
@@ -208,9 +201,6 @@ def stand(
     Raises:
         PathStalled: no equilibrium under the full weight.
     """
-    ground = Ground(supports)  # type: ignore[arg-type]
-    x = unpack(model.mesh, placed.q)[0]
-    fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
     g = np.array([0.0, 0.0, -GRAVITY])
     moved = placed.shell.with_changes(
         rest_curvature=shell.rest_curvature, plasticity=shell.plasticity
@@ -219,15 +209,7 @@ def stand(
         lambda s: moved.with_changes(gravity=s * g),
         placed.q,
         plasticity,
-        fixed=fixed,
-        ground=ground,
-        contacts=placed.contacts,
-        force_scale=model.weight_N,
-        first_step=1.0,
-        min_step=MIN_LOAD_STEP,
-        step_iter=STEP_ITERATIONS,
-        max_move=MAX_MOVE * model.size,
-        rtol=RTOL,
         callback=progress,
+        **standing_path(model, placed, supports),
     )
     return J2Stage(eq.q, eq, p, resp)

@@ -34,7 +34,17 @@ from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.shell import Shell, moved, rigid_dofs, unpack
 
-__all__ = ["Formed", "Placed", "Stage", "form", "in_plane_restraint", "place", "release", "stand"]
+__all__ = [
+    "Formed",
+    "Placed",
+    "Stage",
+    "form",
+    "in_plane_restraint",
+    "place",
+    "release",
+    "stand",
+    "standing_path",
+]
 
 #: Newton's tolerance: the residual force relative to the sheet's weight.
 RTOL = 1e-7
@@ -178,6 +188,25 @@ def in_plane_restraint(x: Array, contacts: np.ndarray) -> list[int]:
     return [3 * i, 3 * i + 1, 3 * j + (1 if abs(d[0]) >= abs(d[1]) else 0)]
 
 
+def standing_path(model: SheetModel, placed: Placed, supports: str) -> dict[str, object]:
+    """``solve_path``'s options for carrying the weight from ``placed`` on
+    ``supports`` ('anchored' or 'frictionless'): the ground, the placed
+    contacts, the in-plane restraint of frictionless feet, the load steps."""
+    x = unpack(model.mesh, placed.q)[0]
+    fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
+    return {
+        "fixed": fixed,
+        "ground": Ground(supports),  # type: ignore[arg-type]
+        "contacts": placed.contacts,
+        "force_scale": model.weight_N,
+        "first_step": 1.0,
+        "min_step": MIN_LOAD_STEP,
+        "step_iter": STEP_ITERATIONS,
+        "max_move": MAX_MOVE * model.size,
+        "rtol": RTOL,
+    }
+
+
 def stand(
     model: SheetModel,
     placed: Placed,
@@ -200,24 +229,13 @@ def stand(
             much of it the sheet carried).
         ConvergenceError: Newton or the contact iteration failed otherwise.
     """
-    ground = Ground(supports)
-    x = unpack(model.mesh, placed.q)[0]
-    fixed = in_plane_restraint(x, placed.contacts) if supports == "frictionless" else []
     base = placed.shell.with_changes(rest_curvature=rest_curvature)
     g = np.array([0.0, 0.0, -GRAVITY])
     eq = solve_path(
         lambda s: base.with_changes(gravity=s * g),
         placed.q,
-        fixed=fixed,
-        ground=ground,
-        contacts=placed.contacts,
-        force_scale=model.weight_N,
-        first_step=1.0,
-        min_step=MIN_LOAD_STEP,
-        step_iter=STEP_ITERATIONS,
-        max_move=MAX_MOVE * model.size,
-        rtol=RTOL,
         callback=progress,
+        **standing_path(model, placed, supports),
     )
     if state is None:
         n = model.mesh.n_faces
