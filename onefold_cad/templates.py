@@ -35,13 +35,13 @@ thickness, bend radius, kerf, relief hole) is in the template's ``units``;
 the density is in kg/m^3 (a material property, the same whatever the length
 unit: 7850 for steel), and the mass is reported in kg for mm designs and in
 lb for inch and foot designs. The shipped templates live in the repository's
-``templates/`` folder, installed to ``<prefix>/share/onefold_cad/templates``.
+``templates/`` folder; a wheel carries them inside the package as
+``onefold_cad/shipped/`` (setup.py), found wherever pip puts the package.
 """
 
 from __future__ import annotations
 
-import sys
-import sysconfig
+import importlib.resources
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -111,16 +111,15 @@ class TemplateInfo:
 def template_dirs() -> list[Path]:
     """Folders that may hold the shipped templates, in search order.
 
-    The repository's ``templates/`` (source checkouts and editable installs)
-    and ``<prefix>/share/onefold_cad/templates`` (where ``pip install .``
-    puts them).
+    The package's own ``shipped/`` (package data: where a wheel puts them,
+    whatever the install scheme: venv, ``--user``, ``--prefix``, ``--target``)
+    and the repository's ``templates/`` (source checkouts and editable
+    installs, whose package folder is the repository's).
     """
-    here = Path(__file__).resolve().parent
-    candidates = [
-        here.parent / "templates",
-        Path(sysconfig.get_path("data")) / "share" / "onefold_cad" / "templates",
-        Path(sys.prefix) / "share" / "onefold_cad" / "templates",
-    ]
+    shipped = importlib.resources.files("onefold_cad") / "shipped"
+    candidates = [Path(__file__).resolve().parent.parent / "templates"]
+    if isinstance(shipped, Path):  # an installed package (not a zip)
+        candidates.insert(0, shipped)
     seen: list[Path] = []
     for c in candidates:
         if c.is_dir() and c not in seen:
