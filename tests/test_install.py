@@ -61,7 +61,9 @@ def test_an_installed_wheel_lists_and_builds_the_templates_from_another_folder(
     # --prefix: the layout of --user and of a venv (lib/pythonX.Y/site-packages
     # under a base that is not sys.prefix); --target: a bare folder on PYTHONPATH
     base = tmp_path / "install"
-    _pip("install", "--no-deps", "--no-index", scheme, str(base), str(wheel), cwd=tmp_path)
+    # --ignore-installed: without it pip --prefix uninstalls the venv's own onefold_cad
+    _pip("install", "--no-deps", "--no-index", "--ignore-installed", scheme, str(base),
+         str(wheel), cwd=tmp_path)  # fmt: skip
     if scheme == "--prefix":
         py = f"python{sys.version_info.major}.{sys.version_info.minor}"
         site = base / "lib" / py / "site-packages"
