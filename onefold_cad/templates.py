@@ -59,7 +59,9 @@ __all__ = [
     "design_from_data",
     "design_to_data",
     "SITE_PREFIX",
+    "check_design_file",
     "find_site_file",
+    "is_site_data",
     "find_template",
     "list_templates",
     "load_template",
@@ -150,6 +152,10 @@ def find_site_file(ref: str | Path) -> Path:
     key = p.name.removesuffix(".toml")
     if str(ref) == key and key in shipped:
         return shipped[key]
+    if str(ref) == key and key in _shipped():
+        raise InvalidParameterError(
+            str(ref), f"a shipped design template, not a site: build it with onefold build {key}"
+        )
     names = ", ".join(sorted(shipped)) or "none found"
     raise InvalidParameterError(
         "SITE", f"no such file or shipped site: {str(ref)!r} (shipped sites: {names})"
@@ -174,6 +180,10 @@ def find_template(ref: str | Path) -> Path:
     key = p.name.removesuffix(".toml")
     if str(ref) == key and key in shipped:
         return shipped[key]
+    if str(ref) == key and key in _shipped(sites=True):
+        raise InvalidParameterError(
+            str(ref), f"a shipped site, not a design template: build it with onefold site {key}"
+        )
     names = ", ".join(sorted(shipped)) or "none found"
     raise InvalidParameterError(
         "template",
@@ -182,6 +192,26 @@ def find_template(ref: str | Path) -> Path:
 
 
 # -- reading -------------------------------------------------------------------
+def is_site_data(data: Mapping[str, Any]) -> bool:
+    """Whether TOML data is a site file's (``[[sheet]]`` tables: a list),
+    not a design template's (one ``[sheet]`` table)."""
+    return isinstance(data.get("sheet"), list)
+
+
+def check_design_file(data: Mapping[str, Any], path: str | Path) -> None:
+    """Refuse a site file given where a design template is read.
+
+    Raises:
+        InvalidParameterError: ``data`` is a site file's, named by its path
+            and the command that builds it.
+    """
+    if is_site_data(data):
+        raise InvalidParameterError(
+            str(path), "a site file (it has [[sheet]] tables), not a design template: "
+            f"build it with onefold site {path}"
+        )  # fmt: skip
+
+
 def read_template(path: str | Path) -> dict[str, Any]:
     """The raw TOML data of a template file (not yet validated)."""
     p = Path(path)
@@ -198,6 +228,7 @@ def load_template(path: str | Path) -> Design:
     """Read and validate the template at ``path`` (a file or a shipped name)."""
     p = find_template(path)
     data = read_template(p)
+    check_design_file(data, p)
     template_units(data, p)
     return design_from_data(data)
 
