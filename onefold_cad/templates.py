@@ -61,7 +61,6 @@ __all__ = [
     "SITE_PREFIX",
     "check_design_file",
     "find_site_file",
-    "is_site_data",
     "find_template",
     "list_templates",
     "load_template",
@@ -192,20 +191,15 @@ def find_template(ref: str | Path) -> Path:
 
 
 # -- reading -------------------------------------------------------------------
-def is_site_data(data: Mapping[str, Any]) -> bool:
-    """Whether TOML data is a site file's (``[[sheet]]`` tables: a list),
-    not a design template's (one ``[sheet]`` table)."""
-    return isinstance(data.get("sheet"), list)
-
-
 def check_design_file(data: Mapping[str, Any], path: str | Path) -> None:
-    """Refuse a site file given where a design template is read.
+    """Refuse a site file (``[[sheet]]`` tables: a list, where a design has
+    one ``[sheet]`` table) given where a design template is read.
 
     Raises:
         InvalidParameterError: ``data`` is a site file's, named by its path
             and the command that builds it.
     """
-    if is_site_data(data):
+    if isinstance(data.get("sheet"), list):
         raise InvalidParameterError(
             str(path), "a site file (it has [[sheet]] tables), not a design template: "
             f"build it with onefold site {path}"
