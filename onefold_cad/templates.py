@@ -41,7 +41,6 @@ lb for inch and foot designs. The shipped templates live in the repository's
 
 from __future__ import annotations
 
-import importlib.resources
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -115,12 +114,12 @@ def template_dirs() -> list[Path]:
     The package's own ``shipped/`` (package data: where a wheel puts them,
     whatever the install scheme: venv, ``--user``, ``--prefix``, ``--target``)
     and the repository's ``templates/`` (source checkouts and editable
-    installs, whose package folder is the repository's).
+    installs, whose package folder is the repository's). The package's
+    folder is what ``importlib.resources.files`` gives for an unzipped
+    install; importing that would load tempfile and shutil into every solve.
     """
-    shipped = importlib.resources.files("onefold_cad") / "shipped"
-    candidates = [Path(__file__).resolve().parent.parent / "templates"]
-    if isinstance(shipped, Path):  # an installed package (not a zip)
-        candidates.insert(0, shipped)
+    here = Path(__file__).resolve().parent
+    candidates = [here / "shipped", here.parent / "templates"]
     seen: list[Path] = []
     for c in candidates:
         if c.is_dir() and c not in seen:
