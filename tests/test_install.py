@@ -12,6 +12,7 @@ import sys
 import zipfile
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tests.shipped import DESIGN_TEMPLATES, REPO_TEMPLATES
@@ -21,10 +22,10 @@ REPO = Path(__file__).resolve().parents[1]
 SOURCES = ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md", "onefold_cad", "templates")
 
 
-def _pip(*args: str, cwd: Path) -> None:
+def _pip(*args: str, cwd: Path, python: str = sys.executable, env: dict | None = None) -> None:
     done = subprocess.run(
-        [sys.executable, "-m", "pip", "--disable-pip-version-check", "-q", *args],
-        cwd=cwd, capture_output=True, text=True, timeout=300,
+        [python, "-m", "pip", "--disable-pip-version-check", "-q", *args],
+        cwd=cwd, capture_output=True, text=True, timeout=300, env=env,
     )  # fmt: skip
     assert done.returncode == 0, done.stderr[-2000:]
 
@@ -54,33 +55,41 @@ def test_the_wheel_carries_every_shipped_template_as_package_data(wheel):
     assert shipped == sorted(p.name for p in REPO_TEMPLATES.glob("*.toml"))
 
 
-@pytest.mark.parametrize("scheme", ["--prefix", "--target"])
+@pytest.mark.parametrize("scheme", ["--user", "--prefix", "--target"])
 def test_an_installed_wheel_lists_and_builds_the_templates_from_another_folder(
     wheel, tmp_path, scheme
 ):
-    # --prefix: the layout of --user and of a venv (lib/pythonX.Y/site-packages
-    # under a base that is not sys.prefix); --target: a bare folder on PYTHONPATH
     base = tmp_path / "install"
-    # --ignore-installed: without it pip --prefix uninstalls the venv's own onefold_cad
-    _pip("install", "--no-deps", "--no-index", "--ignore-installed", scheme, str(base),
-         str(wheel), cwd=tmp_path)  # fmt: skip
-    if scheme == "--prefix":
-        py = f"python{sys.version_info.major}.{sys.version_info.minor}"
-        site = base / "lib" / py / "site-packages"
+    site = base / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}"
+    site = site / "site-packages"
+    python = sys.executable
+    if scheme == "--user":
+        # pip --user into PYTHONUSERBASE, with the interpreter the venv is made
+        # of (a venv refuses --user); the dependencies come from this venv's
+        # site-packages on PYTHONPATH, which holds no onefold_cad (editable)
+        python = getattr(sys, "_base_executable", sys.executable)
+        env = {**os.environ, "PYTHONUSERBASE": str(base)}
+        _pip("install", "--no-deps", "--no-index", "--user", "--no-warn-script-location",
+             str(wheel), cwd=tmp_path, python=python, env=env)  # fmt: skip
+        env["PYTHONPATH"] = str(Path(np.__file__).resolve().parents[1])
     else:
-        site = base
+        # --prefix: a base that is not sys.prefix; --target: a bare folder.
+        # --ignore-installed: without it pip --prefix uninstalls the venv's own onefold_cad
+        _pip("install", "--no-deps", "--no-index", "--ignore-installed", scheme, str(base),
+             str(wheel), cwd=tmp_path)  # fmt: skip
+        site = site if scheme == "--prefix" else base
+        env = {**os.environ, "PYTHONPATH": str(site)}
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
-    env = {**os.environ, "PYTHONPATH": str(site)}
 
     def onefold(*args: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
-            [sys.executable, "-m", "onefold_cad", *args],
+            [python, "-m", "onefold_cad", *args],
             cwd=elsewhere, env=env, capture_output=True, text=True, timeout=120,
         )  # fmt: skip
 
     where = subprocess.run(
-        [sys.executable, "-c", "import onefold_cad; print(onefold_cad.__file__)"],
+        [python, "-c", "import onefold_cad; print(onefold_cad.__file__)"],
         cwd=elsewhere, env=env, capture_output=True, text=True, timeout=60,
     )  # fmt: skip
     assert Path(where.stdout.strip()).is_relative_to(site)  # the installed copy, not the checkout
