@@ -15,7 +15,23 @@ __all__ = [
     "FabricationError",
     "ConvergenceError",
     "memory_message",
+    "not_installed",
 ]
+
+
+def not_installed(what: str, modules: list[str] | tuple[str, ...], extra: str) -> str:
+    """The one sentence for optional packages that are missing: ``what`` needs
+    ``modules``, which are not installed, and the ``pip install`` of the
+    package's optional ``extra`` (rhino, bim, cluster) that brings them.
+
+    ``not_installed("onefold hops", ["ghhops_server", "rhino3dm"], "rhino")``:
+    "onefold hops needs ghhops_server and rhino3dm, which are not installed:
+    pip install 'onefold_cad[rhino]'" (one line).
+    """
+    names = list(modules)
+    listed = names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+    verb = "is" if len(names) == 1 else "are"
+    return f"{what} needs {listed}, which {verb} not installed: pip install 'onefold_cad[{extra}]'"
 
 
 class OneFoldError(Exception):

@@ -35,13 +35,12 @@ thickness, bend radius, kerf, relief hole) is in the template's ``units``;
 the density is in kg/m^3 (a material property, the same whatever the length
 unit: 7850 for steel), and the mass is reported in kg for mm designs and in
 lb for inch and foot designs. The shipped templates live in the repository's
-``templates/`` folder, installed to ``<prefix>/share/onefold_cad/templates``.
+``templates/`` folder; a wheel carries them inside the package as
+``onefold_cad/shipped/`` (setup.py), found wherever pip puts the package.
 """
 
 from __future__ import annotations
 
-import sys
-import sysconfig
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -59,6 +58,7 @@ __all__ = [
     "design_from_data",
     "design_to_data",
     "SITE_PREFIX",
+    "check_design_file",
     "find_site_file",
     "find_template",
     "list_templates",
@@ -111,16 +111,15 @@ class TemplateInfo:
 def template_dirs() -> list[Path]:
     """Folders that may hold the shipped templates, in search order.
 
-    The repository's ``templates/`` (source checkouts and editable installs)
-    and ``<prefix>/share/onefold_cad/templates`` (where ``pip install .``
-    puts them).
+    The package's own ``shipped/`` (package data: where a wheel puts them,
+    whatever the install scheme: venv, ``--user``, ``--prefix``, ``--target``)
+    and the repository's ``templates/`` (source checkouts and editable
+    installs, whose package folder is the repository's). The package's
+    folder is what ``importlib.resources.files`` gives for an unzipped
+    install; importing that would load tempfile and shutil into every solve.
     """
     here = Path(__file__).resolve().parent
-    candidates = [
-        here.parent / "templates",
-        Path(sysconfig.get_path("data")) / "share" / "onefold_cad" / "templates",
-        Path(sys.prefix) / "share" / "onefold_cad" / "templates",
-    ]
+    candidates = [here / "shipped", here.parent / "templates"]
     seen: list[Path] = []
     for c in candidates:
         if c.is_dir() and c not in seen:
@@ -151,6 +150,10 @@ def find_site_file(ref: str | Path) -> Path:
     key = p.name.removesuffix(".toml")
     if str(ref) == key and key in shipped:
         return shipped[key]
+    if str(ref) == key and key in _shipped():
+        raise InvalidParameterError(
+            str(ref), f"a shipped design template, not a site: build it with onefold build {key}"
+        )
     names = ", ".join(sorted(shipped)) or "none found"
     raise InvalidParameterError(
         "SITE", f"no such file or shipped site: {str(ref)!r} (shipped sites: {names})"
@@ -175,6 +178,10 @@ def find_template(ref: str | Path) -> Path:
     key = p.name.removesuffix(".toml")
     if str(ref) == key and key in shipped:
         return shipped[key]
+    if str(ref) == key and key in _shipped(sites=True):
+        raise InvalidParameterError(
+            str(ref), f"a shipped site, not a design template: build it with onefold site {key}"
+        )
     names = ", ".join(sorted(shipped)) or "none found"
     raise InvalidParameterError(
         "template",
@@ -183,6 +190,21 @@ def find_template(ref: str | Path) -> Path:
 
 
 # -- reading -------------------------------------------------------------------
+def check_design_file(data: Mapping[str, Any], path: str | Path) -> None:
+    """Refuse a site file (``[[sheet]]`` tables: a list, where a design has
+    one ``[sheet]`` table) given where a design template is read.
+
+    Raises:
+        InvalidParameterError: ``data`` is a site file's, named by its path
+            and the command that builds it.
+    """
+    if isinstance(data.get("sheet"), list):
+        raise InvalidParameterError(
+            str(path), "a site file (it has [[sheet]] tables), not a design template: "
+            f"build it with onefold site {path}"
+        )  # fmt: skip
+
+
 def read_template(path: str | Path) -> dict[str, Any]:
     """The raw TOML data of a template file (not yet validated)."""
     p = Path(path)
@@ -199,6 +221,7 @@ def load_template(path: str | Path) -> Design:
     """Read and validate the template at ``path`` (a file or a shipped name)."""
     p = find_template(path)
     data = read_template(p)
+    check_design_file(data, p)
     template_units(data, p)
     return design_from_data(data)
 

@@ -169,3 +169,15 @@ def test_readme_python_examples_run(tmp_path):
     assert proc.stdout.splitlines()[1].startswith("True ")  # the solid is valid
     for name in ("demo.stl", "demo.glb", "demo.brep", "demo.step"):
         assert (tmp_path / name).stat().st_size > 0
+
+
+def test_a_time_per_design_in_the_sweep_docs_states_its_command_and_load():
+    """A time a design (``N s a design``) is stated with the command that
+    measured it and the machine's load (timings depend on both)."""
+    page = (DOCS / "sweep.md").read_text(encoding="utf-8")
+    paragraphs = [
+        " ".join(p.split()) for p in page.split("\n\n") if re.search(r"\d\s+s a design", p)
+    ]
+    assert paragraphs
+    for p in paragraphs:
+        assert "`onefold sweep" in p and "load average" in p, p

@@ -124,3 +124,17 @@ def test_outdir_builds_the_found_design(capfd, tmp_path):
     report = json.loads((tmp_path / "table1-row1-fit.json").read_text())
     assert abs(report["resting"]["height"] - height) <= FIT_TOLERANCE * height
     assert (tmp_path / "table1-row1-fit.step").is_file()
+
+
+def test_the_out_of_reach_example_of_docs_design_space_md_is_what_the_command_prints(capfd):
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "design-space.md").read_text()
+    after = page.split("A target the sheet cannot reach", 1)[1]
+    command = after.split("```sh\n", 1)[1].split("\n```", 1)[0].strip()
+    shown = after.split("```text\n", 1)[1].split("\n```", 1)[0].strip()
+    argv = command.split()
+    assert argv[:2] == ["onefold", "fit"]
+    code, out, err = _cli(capfd, *argv[1:])
+    assert code == 2 and out == ""
+    assert err.strip() == shown

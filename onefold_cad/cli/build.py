@@ -290,7 +290,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
     formats = parse_formats(ns.formats)
     body = None if ns.body == "auto" else ns.body
-    jobs = load_jobs(refs, design_flag_values(ns), ns.name)
+    jobs = load_jobs(refs, design_flag_values(ns), ns.name, skip_site=warn)
     stems = [j.design.name for j in jobs]
     dup = sorted({s for s in stems if stems.count(s) > 1})
     if dup:

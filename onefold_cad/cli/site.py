@@ -27,7 +27,7 @@ from onefold_cad.cli.build import (
     write_task,
 )
 from onefold_cad.cli.output import one_line, warn
-from onefold_cad.errors import InvalidParameterError
+from onefold_cad.errors import InvalidParameterError, not_installed
 
 if TYPE_CHECKING:
     from onefold_cad.export.site_context import SiteContext
@@ -157,6 +157,11 @@ def cmd_site(ns: argparse.Namespace) -> int:
             for p in staging.commit(files, targets=[*targets, *site_names], sets=sets):
                 print(p, flush=True)
             say_removed(staging.removed)
+    if ns.formats is None or ns.formats.strip().lower() == "all":
+        for w in SITE_WRITERS.values():  # what a missing optional package left out
+            if not w.available:
+                why = not_installed(f"the {w.name} file", [w.requires], w.extra)
+                warn(f"{spec.name}{w.suffix} not written: {why}")
     return 0
 
 

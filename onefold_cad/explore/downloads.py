@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from onefold_cad.design import Design, build_design
-from onefold_cad.errors import ExportError
+from onefold_cad.errors import ExportError, not_installed
 
 __all__ = ["KINDS", "Download", "make_download"]
 
@@ -71,7 +71,7 @@ def make_download(kind: str, design: Design) -> Download:
             from onefold_cad.export.writers import WRITERS
 
             if not WRITERS["3dm"].available:
-                raise ExportError("the .3dm needs rhino3dm, which is not installed")
+                raise ExportError(not_installed("the .3dm", ["rhino3dm"], "rhino"))
             from onefold_cad.export.rhino3dm_file import write_3dm
 
             write_3dm(design, folded, path)

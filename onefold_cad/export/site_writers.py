@@ -32,6 +32,8 @@ class SiteWriter:
         write: ``write(context, path)`` writes the file at ``path``.
         what: what the file is for, one line.
         requires: the module it needs from an optional extra ('' for none).
+        extra: the optional extra that brings it (``pip install
+            'onefold_cad[EXTRA]'``).
     """
 
     name: str
@@ -40,6 +42,7 @@ class SiteWriter:
     write: Callable[[SiteContext, Path], Any]
     what: str = ""
     requires: str = ""
+    extra: str = ""
 
     @property
     def available(self) -> bool:
@@ -156,7 +159,7 @@ SITE_WRITERS: dict[str, SiteWriter] = {
                    "one glTF scene, a node per sheet (metres, y up)"),
         SiteWriter("ifc", ".ifc", "site IFC", _ifc,
                    "IFC4 for BIM: project, site, each sheet an IfcPlate with its material",
-                   requires="ifcopenshell"),
+                   requires="ifcopenshell", extra="bim"),
         SiteWriter("plan", "-plan.dxf", "site plan", _plan,
                    "the plan: footprints, ground contacts, names, distances to neighbours"),
         SiteWriter("order", "-order.csv", "order", _order,

@@ -25,7 +25,7 @@ from importlib.util import find_spec
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from onefold_cad.errors import InvalidParameterError, OneFoldError
+from onefold_cad.errors import InvalidParameterError, OneFoldError, not_installed
 from onefold_cad.export.build_context import BuildContext
 
 if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer runs
@@ -65,6 +65,8 @@ class Writer:
         requires: the module the writer needs from an optional extra ('' for
             none): without it the default (all) leaves the writer out and
             naming it is refused.
+        extra: the package's optional extra that brings ``requires``
+            (``pip install 'onefold_cad[EXTRA]'``).
     """
 
     name: str
@@ -76,6 +78,7 @@ class Writer:
     builds_part: bool = False
     what: str = ""
     requires: str = ""
+    extra: str = ""
 
     @property
     def available(self) -> bool:
@@ -290,6 +293,7 @@ register(
         needs_flat_pattern=True,
         what="the exact folded faces and the flat pattern in layers, for Rhino 8",
         requires="rhino3dm",
+        extra="rhino",
     )
 )
 register(
@@ -361,11 +365,8 @@ def parse_formats(
             if names.count(n) > 1:
                 raise InvalidParameterError(flag, f"{n!r} is named twice")
             if not writers[n].available:
-                raise InvalidParameterError(
-                    flag,
-                    f"{n!r} needs the package {writers[n].requires}, which is not "
-                    f"installed (pip install {writers[n].requires})",
-                )
+                w = writers[n]
+                raise InvalidParameterError(flag, not_installed(repr(n), [w.requires], w.extra))
     order = [n for n in writers if n in names and n != "json"]
     return (*order, "json") if "json" in names else tuple(order)
 

@@ -6,7 +6,7 @@ material value came from.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -67,16 +67,46 @@ def _sources(
     return out
 
 
-def load_jobs(refs: Sequence[str], flags: dict[str, Any], name: str | None = None) -> list[Job]:
+def load_jobs(
+    refs: Sequence[str],
+    flags: dict[str, Any],
+    name: str | None = None,
+    skip_site: Callable[[str], None] | None = None,
+) -> list[Job]:
     """The designs of the templates ``refs`` (the default one if none) with the
-    design flags applied (:func:`template_job` for each template read)."""
-    from onefold_cad.templates import find_template, read_template
+    design flags applied (:func:`template_job` for each template read).
+
+    A site file among ``refs`` is refused, or, with ``skip_site``, left out
+    with that note (``templates/*.toml`` holds both) as long as one design
+    remains.
+
+    Raises:
+        InvalidParameterError: a site file (named by its path and ``onefold
+            site``), or every file given is one with ``skip_site``.
+    """
+    from onefold_cad.templates import check_design_file, find_template, read_template
 
     implicit = not refs
     jobs = []
+    refused: InvalidParameterError | None = None
+    notes = []
     for ref in refs or [DEFAULT_TEMPLATE]:
         path = find_template(ref)
-        jobs.append(template_job(read_template(path), path, flags, name, implicit))
+        raw = read_template(path)
+        try:
+            check_design_file(raw, path)
+        except InvalidParameterError as exc:
+            if skip_site is None:
+                raise
+            refused = refused or exc
+            notes.append(f"skipped {exc}")  # "skipped PATH: a site file ..."
+            continue
+        jobs.append(template_job(raw, path, flags, name, implicit))
+    if not jobs and refused is not None:
+        raise refused
+    if skip_site is not None:
+        for note in notes:
+            skip_site(note)
     return jobs
 
 
@@ -104,10 +134,12 @@ def template_job(
 
     Raises:
         InvalidParameterError: a flag value the design refuses (named by its
-            flag) or a template value (named with the template's path).
+            flag), a template value (named with the template's path), or a
+            site file's data (named as one).
     """
-    from onefold_cad.templates import design_from_data, template_units
+    from onefold_cad.templates import check_design_file, design_from_data, template_units
 
+    check_design_file(raw, path)
     units = template_units(raw, path)
     template = str(raw.get("name", Path(path).stem))
     try:

@@ -10,12 +10,13 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from onefold_cad.errors import not_installed
 from onefold_cad.flags.parser import UsageError
 
 __all__ = ["INSTALL_HOPS", "REQUIRED", "check_installed", "serve"]
 
 #: What to install for ``onefold hops``.
-INSTALL_HOPS = "pip install 'onefold_cad[rhino]' (ghhops-server, werkzeug, rhino3dm)"
+INSTALL_HOPS = "pip install 'onefold_cad[rhino]'"
 #: The modules the server imports from the ``rhino`` extra (ghhops-server
 #: 1.5.5 imports werkzeug without declaring it).
 REQUIRED = ("ghhops_server", "werkzeug", "rhino3dm")
@@ -26,10 +27,7 @@ def check_installed() -> None:
     :data:`REQUIRED` is not installed (found, not imported)."""
     missing = [m for m in REQUIRED if importlib.util.find_spec(m) is None]
     if missing:
-        raise UsageError(
-            f"hops: the Grasshopper Hops server needs {', '.join(missing)}, which is not "
-            f"installed: {INSTALL_HOPS}"
-        )
+        raise UsageError(not_installed("onefold hops", missing, "rhino"))
 
 
 def serve(

@@ -206,6 +206,13 @@ def read_site(ref: str | Path) -> SiteSpec:
         raise _fail("SITE", f"cannot read {str(path)!r}: {exc.strerror}") from None
     except tomllib.TOMLDecodeError as exc:
         raise _fail("SITE", f"{site}: not valid TOML: {exc}") from None
+    sheet = raw.get("sheet")
+    kinds = ("quadrilateral", "polygon", "rectangle")
+    if "frame" in raw or (isinstance(sheet, dict) and any(k in sheet for k in kinds)):
+        raise _fail(
+            str(path), "a design template (it has a [sheet] or [frame] table), not a site "
+            f"file: build it with onefold build {path}"
+        )  # fmt: skip
     _unknown(raw, SITE_KEYS, site)
     name = _file_name(raw.get("name", path.stem), f"{site}: name")
     units = raw.get("units")

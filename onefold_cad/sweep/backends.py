@@ -27,6 +27,7 @@ import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
+from onefold_cad.errors import not_installed
 from onefold_cad.flags.parser import UsageError
 from onefold_cad.sweep.evaluate import Batch, evaluate_batch
 
@@ -45,7 +46,7 @@ NextBatch = Callable[[], Batch | None]
 Rows = list[dict[str, Any]]
 
 #: What to install for ``--scheduler``.
-INSTALL_CLUSTER = "pip install 'onefold_cad[cluster]' (dask[distributed])"
+INSTALL_CLUSTER = "pip install 'onefold_cad[cluster]'"
 
 
 def default_workers() -> int:
@@ -59,7 +60,7 @@ def default_workers() -> int:
 def check_dask() -> None:
     """Raise :class:`UsageError` (one line: what to install) without dask.distributed."""
     if importlib.util.find_spec("distributed") is None:
-        raise UsageError(f"--scheduler: runs on a Dask cluster, which needs {INSTALL_CLUSTER}")
+        raise UsageError(not_installed("--scheduler (a Dask cluster)", ["distributed"], "cluster"))
 
 
 def lost_rows(batch: Batch, why: BaseException) -> Rows:

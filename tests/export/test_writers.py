@@ -60,7 +60,7 @@ def test_a_writer_whose_package_is_missing_is_left_out_of_all_and_refused_by_nam
     real = writers.find_spec
     monkeypatch.setattr(writers, "find_spec", lambda n: None if n == "rhino3dm" else real(n))
     assert "3dm" not in parse_formats(None) and "glb" in parse_formats("all")
-    with pytest.raises(InvalidParameterError, match="'3dm' needs the package rhino3dm") as exc:
+    with pytest.raises(InvalidParameterError, match="'3dm' needs rhino3dm, which is not") as exc:
         parse_formats("step,3dm")
     assert exc.value.parameter == "--formats"
 
