@@ -86,6 +86,7 @@ from onefold_cad.export.step_checks import (
 )
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
 from onefold_cad.fabrication.rules import default_body, resting_placement, solid_bend_problem
+from onefold_cad.geometry.checks import shown
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
@@ -169,7 +170,8 @@ def build_shell(
     limit = 2.0 * sheet_inradius(folded.sheet)
     if not 0.0 <= relief_hole < limit:
         raise InvalidParameterError(
-            "relief_hole", f"diameter must be in [0, {limit:.6g}) (length), got {relief_hole:g}"
+            "relief_hole",
+            f"diameter must be in [0, {limit:.6g}) (length), got {shown(relief_hole)}",
         )
     if 0.0 < relief_hole < MIN_HOLE:
         raise ExportError(
@@ -263,7 +265,7 @@ def build_solid(
     """
     t = material.thickness
     if t <= 0.0:
-        raise InvalidParameterError("thickness", f"must be > 0 for a solid, got {t:g}")
+        raise InvalidParameterError("thickness", f"must be > 0 for a solid, got {shown(t)}")
     if not isinstance(folded.solution.surface, ExactCone):
         raise InvalidParameterError(
             "model", "must be 'exact' for a solid of the sheet's thickness, got 'paper'"
@@ -282,7 +284,7 @@ def build_solid(
         raise InvalidParameterError(
             "relief_hole",
             f"diameter must be in ({need:.6g}, {limit:.6g}) (length) for a solid of thickness "
-            f"{t:g} ({material.sheet_surface.value}), got {hole:g}",
+            f"{t:g} ({material.sheet_surface.value}), got {shown(hole)}",
         )
     check_mitre(folded, material)
     size = folded.sheet.size

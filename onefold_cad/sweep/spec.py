@@ -28,6 +28,7 @@ from typing import Any
 
 from onefold_cad.flags.design_flags import DESIGN_FLAGS, Flag, parse_float, parse_int
 from onefold_cad.flags.parser import UsageError
+from onefold_cad.geometry.checks import shown
 
 __all__ = ["MAX_COUNT", "VarySpec", "flag_named", "is_number_flag", "parse_vary", "unit_kind"]
 
@@ -136,7 +137,7 @@ def _parse_range(flag: Flag, parts: list[str], text: str) -> VarySpec:
         raise UsageError(f"--vary {text}: the range's ends must be finite numbers")
     if not low < high:
         raise UsageError(
-            f"--vary {text}: empty range: LO must be below HI (got {low:g} and {high:g})"
+            f"--vary {text}: empty range: LO must be below HI (got {shown(low)} and {shown(high)})"
         )
     spec = VarySpec(flag, text, (), float(low), float(high))
     if len(parts) == 2:
