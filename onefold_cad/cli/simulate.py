@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from onefold_cad.choices import MeshLevel
+from onefold_cad.cli.build import check_outdir, make_outdir
 from onefold_cad.cli.output import warn
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
@@ -136,7 +137,7 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
         forms.append("released")
     names = [f"{name}.json", f"{name}-deviation.png", f"{name}-stress.png"]
     names += [f"{name}-{form}.glb" for form in forms]
-    outdir.mkdir(parents=True, exist_ok=True)
+    make_outdir(outdir)
     recover(outdir)
     check_targets(outdir, names)
     with Staging(outdir) as stage:
@@ -157,6 +158,8 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
 
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
     design = job.design
+    if ns.outdir is not None:  # before the simulation's minutes, not after
+        check_outdir(ns.outdir)
     folded = build_design(design)
     check = ns.check if ns.check is not None else MeshLevel.parse(ns.mesh).checked
     progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}")
