@@ -57,11 +57,21 @@ from onefold_cad.export.bspline_fit import (
     fit_curve,
 )
 from onefold_cad.export.kernel_budget import KernelBudget
+from onefold_cad.export.step_checks import MIN_RULING
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.slab import Boundary, Patch, Slab
 from onefold_cad.geometry.slab_faces import slab_patches
 
 __all__ = ["Array", "thick_solid"]
+
+
+#: The solid's faces as a refusal names them (:class:`~onefold_cad.geometry.slab.Patch`).
+_FACES = {
+    "s0": "sheet's face",
+    "s1": "sheet's other face",
+    "in": "relief hole's wall",
+    "out": "cut edge's wall",
+}
 
 
 class _Vertices:
@@ -205,6 +215,32 @@ class _Builder:
             out.append((e, float(a), float(z)))
         return out
 
+    def _resolvable(self, p: Patch, ca: Geom_BSplineCurve, cb: Geom_BSplineCurve) -> None:
+        """Refuse a patch the kernel cannot cut out of its curves: one whose
+        curve spans no more than the sewing tolerance from t0 to t1, so that
+        its fit merged the ends into one point and stops short of t1 (a
+        nearly closed fold's mitre on a thin sheet: 4e-10 of the relief
+        hole's edge; Geom_BSplineCurve::Segment then fails in InsertKnots),
+        or whose curves both span no more than the kernel's precision
+        (:data:`~onefold_cad.export.step_checks.MIN_RULING`). Named by the
+        face and where it lies, with its width."""
+        ends = np.array([p.t0, p.t1])
+        spans = [float(np.ptp(curve_values(c, ends), axis=0).max()) for c in (ca, cb)]
+        slack = 1e-12 * max(1.0, abs(p.t1))
+        short = any(c.FirstParameter() > p.t0 + slack or c.LastParameter() < p.t1 - slack
+                    for c in (ca, cb))  # fmt: skip
+        if not short and max(spans) > MIN_RULING:
+            return
+        face = _FACES.get(p.face, p.face)
+        past = p.t1 <= 0.0 or p.t0 >= self.slab.total
+        half = "plus_x" if p.t1 <= 0.0 else "minus_x"
+        where = f"past the {half} crease (its mitre)" if past else "inside the sheet"
+        bound = f"the sewing tolerance {self.sew_tol:.2g}" if short else f"{MIN_RULING:g}"
+        raise ExportError(
+            f"the {face} {where} would be {min(spans):.2g} wide on the {'+-'[p.side]}y side, "
+            f"below what the CAD kernel resolves ({bound})"
+        )
+
     # -- faces ---------------------------------------------------------------
     def ruled(self, p: Patch) -> TopoDS_Face:
         """The ruled face of patch ``p``: its two curves (split where other
@@ -212,6 +248,7 @@ class _Builder:
         curves meet)."""
         ka, ca = self._curve(p.low, p.side, p.t0, p.t1)
         kb, cb = self._curve(p.high, p.side, p.t0, p.t1)
+        self._resolvable(p, ca, cb)
         sa, sb = ca.Copy(), cb.Copy()
         sa.Segment(p.t0, p.t1)
         sb.Segment(p.t0, p.t1)

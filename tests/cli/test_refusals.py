@@ -109,3 +109,30 @@ def test_an_output_folder_that_cannot_be_made_is_refused_first(cli, tmp_path, co
         f"{str(blocker)!r} exists and is not a folder\n"
     )
     assert blocker.read_text() == "mine\n"
+
+
+#: Seed 50070 of the issue-38 probe: a nearly closed fold (179.98 deg) of a
+#: 5.8e-6 thick sheet; its mitre past the minus_x crease spans 4e-10 of the
+#: relief hole's edge.
+SEED_50070 = ("--alpha", "39.61169929231457", "--beta", "89.99", "--hc", "-63.0980065500561",
+              "--divisions", "13", "--polygon", "1.3446821092159662,-1.028991282085049;"
+              "8.040320467370215,-12.900309231023938;-2.100387969952539,-2.750224352235931;"
+              "-0.9803896223029747,3.6213417858764587", "--thickness", "5.822010752690959e-06",
+              "--bend-radius", "0", "--k-factor", "0.5217645712062507", "--sheet-surface",
+              "INSIDE", "--density", "8000")  # fmt: skip
+
+
+def test_a_mitre_below_the_kernel_s_resolution_names_the_relief_hole(cli, tmp_path):
+    """Refused with 'the CAD kernel failed (Geom_BSplineCurve::InsertKnots)';
+    now the face, its width and the parameter (a larger relief hole, which
+    builds: 0.5)."""
+    out = tmp_path / "out"
+    rc, _, err = cli("build", *SEED_50070, "--formats", "step", "-q", "-o", str(out))
+    assert rc == 2 and err.count("\n") == 1, err
+    assert "the relief hole's wall past the minus_x crease (its mitre) would be 4e-10 wide" in err
+    assert "a larger relief_hole than 0.094" in err and "InsertKnots" not in err
+    assert not out.exists()
+    rc, stdout, err = cli("build", *SEED_50070, "--relief-hole", "0.5", "--formats", "step",
+                          "-q", "-o", str(out))  # fmt: skip
+    assert rc == 0, err
+    assert stdout.strip().endswith(".step")
