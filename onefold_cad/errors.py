@@ -6,6 +6,8 @@ so callers' ``except ValueError`` keeps working (as in ezdxf).
 
 from __future__ import annotations
 
+import math
+
 __all__ = [
     "OneFoldError",
     "InvalidParameterError",
@@ -14,6 +16,7 @@ __all__ = [
     "ExportError",
     "FabricationError",
     "ConvergenceError",
+    "shown",
 ]
 
 
@@ -77,3 +80,20 @@ class ConvergenceError(OneFoldError, RuntimeError):
         super().__init__(message)
         self.iterations = iterations
         self.residual = residual
+
+
+def shown(x: float) -> str:
+    """A value as a refusal shows it: ``{x:g}`` when that reads back as ``x``
+    (``1e+308``, ``0.5``, ``100``), else the shortest text that does
+    (``0.999999999999``, which ``:g`` shows as ``1``: "must be below 1, got
+    1"; ``1e-320``, not ``9.99989e-321``). Here, numpy-free, so that the
+    quick commands' parsers can use it."""
+    short = f"{x:g}"
+    try:
+        value = float(x)
+    except (TypeError, ValueError, OverflowError):
+        return short
+    exact = repr(value)
+    if math.isnan(value) or (float(short) == value and len(short) <= len(exact)):
+        return short
+    return exact

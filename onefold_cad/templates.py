@@ -42,13 +42,13 @@ from __future__ import annotations
 
 import sys
 import sysconfig
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError
+from onefold_cad.toml_file import MAX_TOML_DEPTH, read_toml
 
 if TYPE_CHECKING:  # imported where used: listing templates needs no numpy
     from onefold_cad.design import Design
@@ -185,67 +185,6 @@ def find_template(ref: str | Path) -> Path:
 
 
 # -- reading -------------------------------------------------------------------
-def read_toml(path: str | Path, parameter: str) -> dict[str, Any]:
-    """The raw TOML data of a file (a template or a site), whatever its bytes.
-
-    Args:
-        path: the file.
-        parameter: what the file is, as the CLI names it ('template', 'SITE').
-
-    Raises:
-        InvalidParameterError: naming ``parameter`` and the file, in one line,
-            when the file cannot be read, is not UTF-8 (the byte and its
-            offset), is not TOML, or nests arrays or tables more deeply than
-            :data:`MAX_TOML_DEPTH`.
-    """
-    p = Path(path)
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InvalidParameterError(parameter, f"cannot read {str(p)!r}: {exc.strerror}") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        bad = raw[exc.start : exc.start + 1].hex()
-        raise InvalidParameterError(
-            parameter, f"{p}: not UTF-8 text (byte 0x{bad} at offset {exc.start}); save it as UTF-8"
-        ) from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InvalidParameterError(parameter, f"{p}: not valid TOML: {exc}") from None
-    except RecursionError:  # the parser recurses once per level of nesting
-        data = None
-    depth = None if data is None else _depth(data)
-    if depth is None or depth > MAX_TOML_DEPTH:
-        got = "too deeply to read" if depth is None else f"{depth} levels deep"
-        raise InvalidParameterError(
-            parameter,
-            f"{p}: arrays and tables nested {got}; at most {MAX_TOML_DEPTH} levels are allowed",
-        )
-    return data
-
-
-#: The deepest nesting of tables and arrays a TOML file may use (templates and
-#: sites use 4: ``[[sheet]]``, ``[sheet.design]``, ``[sheet.design.sheet]``,
-#: ``polygon = [[x, y], ...]``). Deeper data is refused as it is read, before
-#: anything walks it recursively.
-MAX_TOML_DEPTH = 64
-
-
-def _depth(data: object) -> int:
-    """The nesting depth of parsed TOML data: 1 for a table of scalars
-    (walked without recursion, so any depth is measured)."""
-    deepest = 0
-    stack: list[tuple[object, int]] = [(data, 1)]
-    while stack:
-        value, level = stack.pop()
-        deepest = max(deepest, level)
-        children = value.values() if isinstance(value, dict) else value
-        stack.extend((c, level + 1) for c in children if isinstance(c, dict | list))
-    return deepest
-
-
 def read_template(path: str | Path) -> dict[str, Any]:
     """The raw TOML data of a template file (not yet validated): :func:`read_toml`."""
     return read_toml(path, "template")

@@ -66,12 +66,7 @@ __all__ = ["Array", "thick_solid"]
 
 
 #: The solid's faces as a refusal names them (:class:`~onefold_cad.geometry.slab.Patch`).
-_FACES = {
-    "s0": "sheet's face",
-    "s1": "sheet's other face",
-    "in": "relief hole's wall",
-    "out": "cut edge's wall",
-}
+_FACES = {"s0": "sheet's face", "s1": "sheet's other face", "in": "relief hole's wall"}
 
 
 class _Vertices:
@@ -216,24 +211,21 @@ class _Builder:
         return out
 
     def _resolvable(self, p: Patch, ca: Geom_BSplineCurve, cb: Geom_BSplineCurve) -> None:
-        """Refuse a patch the kernel cannot cut out of its curves: one whose
-        curve spans no more than the sewing tolerance from t0 to t1, so that
-        its fit merged the ends into one point and stops short of t1 (a
-        nearly closed fold's mitre on a thin sheet: 4e-10 of the relief
-        hole's edge; Geom_BSplineCurve::Segment then fails in InsertKnots),
-        or whose curves both span no more than the kernel's precision
-        (:data:`~onefold_cad.export.step_checks.MIN_RULING`). Named by the
-        face and where it lies, with its width."""
+        """Refuse a patch the kernel cannot cut out of its curves (Segment fails
+        in InsertKnots): a curve whose fit merged t0 and t1 (closer than the
+        sewing tolerance: a nearly closed fold's mitre on a thin sheet) and so
+        stops short, or both curves within MIN_RULING; named by face and place."""
         ends = np.array([p.t0, p.t1])
         spans = [float(np.ptp(curve_values(c, ends), axis=0).max()) for c in (ca, cb)]
-        slack = 1e-12 * max(1.0, abs(p.t1))
-        short = any(c.FirstParameter() > p.t0 + slack or c.LastParameter() < p.t1 - slack
-                    for c in (ca, cb))  # fmt: skip
+        eps = 1e-12 * max(1.0, abs(p.t1))
+        short = any(
+            c.FirstParameter() > p.t0 + eps or c.LastParameter() < p.t1 - eps for c in (ca, cb)
+        )
         if not short and max(spans) > MIN_RULING:
             return
-        face = _FACES.get(p.face, p.face)
-        past = p.t1 <= 0.0 or p.t0 >= self.slab.total
+        face = _FACES.get(p.face, "cut edge's wall")
         half = "plus_x" if p.t1 <= 0.0 else "minus_x"
+        past = p.t1 <= 0.0 or p.t0 >= self.slab.total
         where = f"past the {half} crease (its mitre)" if past else "inside the sheet"
         bound = f"the sewing tolerance {self.sew_tol:.2g}" if short else f"{MIN_RULING:g}"
         raise ExportError(

@@ -27,7 +27,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from onefold_cad.errors import InvalidParameterError
+from onefold_cad.errors import InvalidParameterError, shown
 
 __all__ = [
     "MAX_LENGTH",
@@ -45,22 +45,6 @@ __all__ = [
     "positive",
     "sheet_to_radius",
 ]
-
-
-def shown(x: float) -> str:
-    """A value as a refusal shows it: ``{x:g}`` when that reads back as ``x``
-    (``1e+308``, ``0.5``, ``100``), else the shortest text that does
-    (``0.999999999999``, which ``:g`` shows as ``1``: "must be below 1, got
-    1"; ``1e-320``, not ``9.99989e-321``)."""
-    short = f"{x:g}"
-    try:
-        value = float(x)
-    except (TypeError, ValueError, OverflowError):
-        return short
-    exact = repr(value)
-    if math.isnan(value) or (float(short) == value and len(short) <= len(exact)):
-        return short
-    return exact
 
 
 #: Largest length accepted (design units). The core forms products of up to

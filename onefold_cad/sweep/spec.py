@@ -26,9 +26,9 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from onefold_cad.errors import shown
 from onefold_cad.flags.design_flags import DESIGN_FLAGS, Flag, parse_float, parse_int
 from onefold_cad.flags.parser import UsageError
-from onefold_cad.geometry.checks import shown
 
 __all__ = ["MAX_COUNT", "VarySpec", "flag_named", "is_number_flag", "parse_vary", "unit_kind"]
 
