@@ -6,6 +6,8 @@ so callers' ``except ValueError`` keeps working (as in ezdxf).
 
 from __future__ import annotations
 
+import math
+
 __all__ = [
     "OneFoldError",
     "InvalidParameterError",
@@ -16,6 +18,7 @@ __all__ = [
     "ConvergenceError",
     "memory_message",
     "not_installed",
+    "shown",
 ]
 
 
@@ -107,3 +110,20 @@ def memory_message(exc: MemoryError) -> str:
         "machine gives it; ask for less (the divisions, the polygon's vertices, "
         "the mesh or the number of sheets set the size)"
     )
+
+
+def shown(x: float) -> str:
+    """A value as a refusal shows it: ``{x:g}`` when that reads back as ``x``
+    (``1e+308``, ``0.5``, ``100``), else the shortest text that does
+    (``0.999999999999``, which ``:g`` shows as ``1``: "must be below 1, got
+    1"; ``1e-320``, not ``9.99989e-321``). Here, numpy-free, so that the
+    quick commands' parsers can use it."""
+    short = f"{x:g}"
+    try:
+        value = float(x)
+    except (TypeError, ValueError, OverflowError):
+        return short
+    exact = repr(value)
+    if math.isnan(value) or (float(short) == value and len(short) <= len(exact)):
+        return short
+    return exact

@@ -180,11 +180,24 @@ def _residual(
     if rest is None:
         return np.full(n + 2, 10.0)
     got = {"height": rest.height, "span": rest.width, "depth": rest.depth}
-    out = [(got[k] - v) / v for k, v in targets.items() if k in got]
+    out = [_relative_miss(got[k], v) for k, v in targets.items() if k in got]
     need = targets.get("min_tipping_margin_deg")
     short = 0.0 if need is None else max(0.0, need - rest.tipping_margin_deg) / max(need, 1.0)
     pull = 0.0 if "depth" in targets else 1e-4 * (x[2] - x0[2])
     return np.array([*out, short, pull])
+
+
+#: The largest relative miss of a target the residual holds: a form a
+#: million times off is as far from it as any other, and the squares of
+#: the residual stay finite (a span of 1e-300 gave relative errors of 1e303
+#: and numpy's overflow warnings in their squares).
+_FAR = 1e6
+
+
+def _relative_miss(got: float, want: float) -> float:
+    """(got - want) / want, in [-:data:`_FAR`, :data:`_FAR`] (Python floats:
+    the quotient may overflow to inf, then clipped, without a numpy warning)."""
+    return max(-_FAR, min(_FAR, (float(got) - want) / want))
 
 
 def _meets(rest: RestingPlacement | None, targets: dict[str, float], tol: float) -> bool:

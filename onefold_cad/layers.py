@@ -33,6 +33,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("choices", ("onefold_cad.choices",)),
     ("geometry", ("onefold_cad.geometry",)),
     ("design", ("onefold_cad.design",)),
+    ("toml_file", ("onefold_cad.toml_file",)),
     ("templates", ("onefold_cad.templates",)),
     ("fabrication", ("onefold_cad.fabrication",)),
     ("mechanics", ("onefold_cad.mechanics",)),

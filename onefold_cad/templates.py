@@ -41,13 +41,13 @@ lb for inch and foot designs. The shipped templates live in the repository's
 
 from __future__ import annotations
 
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError
+from onefold_cad.toml_file import MAX_TOML_DEPTH, read_toml
 
 if TYPE_CHECKING:  # imported where used: listing templates needs no numpy
     from onefold_cad.design import Design
@@ -64,6 +64,8 @@ __all__ = [
     "list_templates",
     "load_template",
     "read_template",
+    "read_toml",
+    "MAX_TOML_DEPTH",
     "template_dirs",
     "template_units",
 ]
@@ -206,15 +208,8 @@ def check_design_file(data: Mapping[str, Any], path: str | Path) -> None:
 
 
 def read_template(path: str | Path) -> dict[str, Any]:
-    """The raw TOML data of a template file (not yet validated)."""
-    p = Path(path)
-    try:
-        with p.open("rb") as fh:
-            return tomllib.load(fh)
-    except OSError as exc:
-        raise InvalidParameterError("template", f"cannot read {str(p)!r}: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InvalidParameterError("template", f"{p}: not valid TOML: {exc}") from None
+    """The raw TOML data of a template file (not yet validated): :func:`read_toml`."""
+    return read_toml(path, "template")
 
 
 def load_template(path: str | Path) -> Design:

@@ -4,6 +4,7 @@ stands as high and as wide as asked; unreachable targets are a one-line error.""
 from __future__ import annotations
 
 import json
+import warnings
 
 import pytest
 
@@ -93,6 +94,19 @@ def test_unreachable_target_exits_2_with_one_line(capfd):
         fit_design(load_template(find_template("table1-row1")), 3000.0, 300.0)
     low, high = info.value.reachable["height"]
     assert 0.0 < low < high < 3000.0
+
+
+@pytest.mark.parametrize(("height", "span"), [("1e300", "1e-300")])
+def test_targets_at_the_ends_of_the_floats_are_one_line(capfd, height, span):
+    """A span of 1e-300 made relative errors of 1e303 whose squares overflowed:
+    six numpy RuntimeWarnings on stderr before the error. The refusal is its
+    one line, with the ranges reached."""
+    with warnings.catch_warnings(record=True) as caught:  # as a user's stderr would show them
+        warnings.simplefilter("always")
+        code, out, err = _cli(capfd, "fit", "table1-row1", "--height", height, "--span", span)
+    assert [str(w.message) for w in caught] == []
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "out of reach" in err, err
 
 
 def test_bad_targets_are_clear_errors(capfd):

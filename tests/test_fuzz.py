@@ -234,3 +234,59 @@ def test_reproducer_command_gives_the_same_apex(fuzz: ModuleType, capsys) -> Non
     report = json.loads(capsys.readouterr().out)
     solved = build_design(fuzz.make_design(p)).solution
     assert report["direction_surface"]["apex_height"] == solved.apex_height
+
+
+COMMANDS = SCRIPT.parent / "fuzz_commands.py"
+
+
+@pytest.fixture(scope="module")
+def commands() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("onefold_fuzz_commands", COMMANDS)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_a_seeded_slice_of_command_lines_is_clean(commands: ModuleType) -> None:
+    """scripts/fuzz_commands.py's first solves of its default seed: each an
+    answer or one line naming what to change (the full run: 2000 solves and
+    300 builds, docs/reliability.md)."""
+    run = commands.fuzz(seed=38, solves=16, builds=0, workers=2)
+    text = commands.summary(run)
+    assert not commands.findings(run), text
+    assert {r["cls"] for *_, r in run["runs"]} == {"ok", "refused"}, text
+
+
+def test_the_command_line_checks_can_fail(commands: ModuleType) -> None:
+    """A refusal in two lines, a warning issued, a line that names nothing:
+    each is a finding, not a pass (run in this process)."""
+    import warnings
+
+    from onefold_cad.cli import main as cli_main
+
+    real = cli_main.main
+
+    def noisy(args):  # a numpy warning before an answer
+        warnings.warn("overflow encountered in square", RuntimeWarning, stacklevel=1)
+        return real(args)
+
+    try:
+        cli_main.main = noisy
+        assert commands.run_line(["solve", "paper-square"])["cls"] == "crash"
+    finally:
+        cli_main.main = real
+    assert commands.run_line(["solve", "paper-square"])["cls"] == "ok"
+    assert commands.run_line(["solve", "--alpha=91"])["cls"] == "refused"
+    assert commands.draw(38, "build", 7) == commands.draw(38, "build", 7)  # its seed redraws it
+
+
+@pytest.mark.parametrize("index", [165])
+def test_pinned_command_lines_stay_clean(commands: ModuleType, index: int) -> None:
+    """Seeds the full run found (docs/reliability.md): 38:solve:165, a polygon
+    with a vertex 7e-6 from H whose edge points at H: the resting body's edge
+    radius divided by zero at the end of the edge's range (a numpy
+    RuntimeWarning) before the vertex's own radius replaced it."""
+    res = commands.run_line(commands.draw(38, "solve", index))
+    assert res["cls"] in ("ok", "refused"), res

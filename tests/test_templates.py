@@ -20,6 +20,7 @@ from onefold_cad.templates import (
     list_templates,
     load_template,
     read_template,
+    read_toml,
 )
 from tests.shipped import DESIGN_TEMPLATES, REPO_TEMPLATES
 
@@ -227,6 +228,39 @@ def test_read_template_reports_bad_toml(tmp_path):
     p.write_text("name = \n")
     with pytest.raises(InvalidParameterError, match="not valid TOML"):
         read_template(p)
+
+
+def test_a_template_that_is_not_utf8_names_the_byte(tmp_path):
+    p = tmp_path / "latin1.toml"
+    p.write_bytes('name = "t"\ndescription = "caf\u00e9"\n'.encode("latin-1"))
+    offset = p.read_bytes().index(b"\xe9")
+    with pytest.raises(InvalidParameterError) as err:
+        read_template(p)
+    assert err.value.parameter == "template"
+    assert f"not UTF-8 text (byte 0xe9 at offset {offset})" in str(err.value)
+
+
+@pytest.mark.parametrize(
+    ("nesting", "words"),
+    [
+        ("[" * 2000 + "]" * 2000, "nested too deeply to read"),  # the parser's RecursionError
+        ("{b=" * 3000 + "1" + "}" * 3000, "nested too deeply to read"),
+        ("[" * 100 + "]" * 100, "nested 101 levels deep"),  # parsed, then measured
+    ],
+)
+def test_deeply_nested_data_is_refused_as_it_is_read(tmp_path, nesting, words):
+    p = tmp_path / "deep.toml"
+    p.write_text(f"a = {nesting}\n")
+    with pytest.raises(InvalidParameterError, match=words) as err:
+        read_toml(p, "SITE")
+    assert err.value.parameter == "SITE"
+    assert "at most 64" in str(err.value)
+
+
+def test_the_deepest_shipped_nesting_is_read(tmp_path):
+    p = tmp_path / "ok.toml"
+    p.write_text("a = " + "[" * 63 + "]" * 63 + "\n")  # 64 levels with the file's table
+    assert read_toml(p, "template")["a"] is not None
 
 
 def test_a_relief_hole_larger_than_the_sheet_is_a_design_with_a_warning():

@@ -37,6 +37,7 @@ __all__ = [
     "STATE",
     "BuildTask",
     "check_jobs",
+    "check_outdir",
     "cmd_build",
     "interrupted_text",
     "make_outdir",
@@ -244,6 +245,32 @@ def check_jobs(
     return found
 
 
+def check_outdir(outdir: Path) -> None:
+    """Refuse an output folder that cannot be made or written, before any work
+    (a build's checks, a simulation): ``outdir`` or the nearest of its parents
+    that exists must be a folder this process may write into. Nothing is
+    created here.
+
+    Raises:
+        InvalidParameterError: ('--outdir') naming the path and why.
+    """
+    import os
+
+    path = Path(outdir)
+    probe = path
+    while not probe.exists() and not probe.is_symlink() and probe != probe.parent:
+        probe = probe.parent
+    if probe.is_symlink() and not probe.exists():
+        why = f"{str(probe)!r} is a broken symbolic link"
+    elif not probe.is_dir():
+        why = f"{str(probe)!r} exists and is not a folder"
+    elif not os.access(probe, os.W_OK | os.X_OK):
+        why = f"{str(probe)!r} is not writable"
+    else:
+        return
+    raise InvalidParameterError("--outdir", f"cannot write into {str(path)!r}: {why}")
+
+
 def make_outdir(outdir: Path) -> bool:
     """Create ``outdir`` (and its parents); True when it did not exist before.
 
@@ -297,9 +324,10 @@ def cmd_build(ns: argparse.Namespace) -> int:
         raise InvalidParameterError(
             "templates", f"two designs share the name {dup[0]!r}; their files would collide"
         )
+    outdir = Path(ns.outdir)
+    check_outdir(outdir)
     found = check_jobs(jobs, formats, ns)
     n = len(jobs)
-    outdir = Path(ns.outdir)
     with output_folder(outdir):
         recover(outdir, say=warn)
         check_targets(outdir, [f for j in jobs for f in file_names(j.design.name, formats)])

@@ -4,7 +4,8 @@
 onefold_cad``), so tests can call it directly. Every error of the package,
 every usage error, every OSError and every MemoryError (an allocation that
 failed) becomes one line ``onefold: error: ...`` on stderr and exit status
-2; warnings are lines ``onefold: warning: ...``.
+2; warnings are lines ``onefold: warning: ...``, printed when the command
+succeeds (a refused command prints only its error).
 ``build`` stages every file and commits the whole set at once
 (:mod:`onefold_cad.export.atomic`); Ctrl-C and SIGTERM leave the output
 folder as it was.
@@ -31,7 +32,7 @@ if TYPE_CHECKING:
     pass
 from onefold_cad.cli.build import STATE, interrupted_text
 from onefold_cad.cli.commands import COMMANDS
-from onefold_cad.cli.output import one_line, os_message
+from onefold_cad.cli.output import held_warnings, one_line, os_message
 from onefold_cad.cli.parser import build_parser
 from onefold_cad.flags.parser import UsageError
 
@@ -99,7 +100,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                 *first, last = COMMANDS
                 raise UsageError(f"a command is needed: {', '.join(first)} or {last}")
             ns = parsers[args[0]].parse_intermixed_args(args[1:])
-            return COMMANDS[args[0]](ns)
+            with held_warnings():  # printed when the command succeeds
+                return COMMANDS[args[0]](ns)
     except SystemExit as exc:  # --help, --version
         return exc.code if isinstance(exc.code, int) else 0
     except (OneFoldError, UsageError) as exc:

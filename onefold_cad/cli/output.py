@@ -3,13 +3,11 @@ line each (each one ``write``, so lines of parallel workers never mix)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
-from typing import TYPE_CHECKING
+from collections.abc import Iterator
 
-if TYPE_CHECKING:
-    pass
-
-__all__ = ["one_line", "os_message", "Progress", "warn"]
+__all__ = ["held_warnings", "one_line", "os_message", "Progress", "warn"]
 
 
 # -- text output --------------------------------------------------------------------
@@ -27,8 +25,33 @@ class Progress:
 
 
 def warn(text: str) -> None:
-    """One warning line on stderr (printed even with --quiet)."""
-    os.write(2, f"onefold: warning: {one_line(text)}\n".encode())
+    """One warning line on stderr (printed even with --quiet); held while a
+    command runs (:func:`held_warnings`)."""
+    line = f"onefold: warning: {one_line(text)}\n"
+    if _HELD:
+        _HELD[-1].append(line)
+    else:
+        os.write(2, line.encode())
+
+
+_HELD: list[list[str]] = []
+
+
+@contextlib.contextmanager
+def held_warnings() -> Iterator[None]:
+    """Hold the warnings of the block and print them when it ends without an
+    error; drop them when it raises (a refusal is its one line on stderr,
+    whenever in the command it comes: after the checks, at the output folder,
+    in the CAD kernel)."""
+    _HELD.append([])
+    try:
+        yield
+    except BaseException:
+        _HELD.pop()
+        raise
+    lines = _HELD.pop()
+    if lines:
+        os.write(2, "".join(lines).encode())
 
 
 def one_line(text: str) -> str:

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from onefold_cad.choices import MeshLevel
+from onefold_cad.cli.build import check_outdir, make_outdir
 from onefold_cad.cli.output import warn
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
@@ -149,7 +150,7 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
         forms.append("released")
     names = [f"{name}{s}" for s in (".json", "-deviation.png", "-stress.png", ".inp", ".vtu")]
     names += [f"{name}-{form}.glb" for form in forms]
-    outdir.mkdir(parents=True, exist_ok=True)
+    make_outdir(outdir)
     recover(outdir, say=warn)
     check_targets(outdir, names)
     every = [*names[:5], *(f"{name}-{form}.glb" for form in ("standing", "released"))]
@@ -175,6 +176,8 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
 
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
     design = job.design
+    if ns.outdir is not None:  # before the simulation's minutes, not after
+        check_outdir(ns.outdir)
     folded = build_design(design)
     check = ns.check if ns.check is not None else MeshLevel.parse(ns.mesh).checked
     progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}", ns.verbose)

@@ -20,6 +20,7 @@ from onefold_cad.cli.build import (
     STATE,
     BuildTask,
     check_jobs,
+    check_outdir,
     output_folder,
     run_tasks,
     say_removed,
@@ -109,10 +110,11 @@ def cmd_site(ns: argparse.Namespace) -> int:
     formats = parse_formats(ns.formats, SITE_WRITERS)
     sheet_formats = _sheet_formats(ns.sheet_formats)
     spec = read_site(ns.site)
+    outdir = Path(ns.outdir)
+    check_outdir(outdir)
     jobs = site_jobs(spec)
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
-    outdir = Path(ns.outdir)
     n = len(jobs)
     targets = [
         f"{j.design.name}/{f}" for j in jobs for f in file_names(j.design.name, sheet_formats)

@@ -47,10 +47,12 @@ __all__ = [
     "FACET",
     "HOLE",
     "MIN_EDGE",
+    "MAX_STEINER",
     "MIN_FACE_ANGLE_DEG",
     "OUTLINE",
     "QUALITY_CAP_DEG",
     "RAY",
+    "STEINER_PER_VERTEX",
     "FoldMesh",
     "division_rays",
     "face_angles_deg",
@@ -69,6 +71,14 @@ QUALITY_CAP_DEG = 20.0
 #: The shortest edge the mesh may have, relative to the sheet's size
 #: (:attr:`Sheet.size`), where the design allows it; see docs/formats.md.
 MIN_EDGE = 1e-5
+
+#: The most points Triangle may add to the input's (Steiner points), at least
+#: this many and :data:`STEINER_PER_VERTEX` per input vertex: its quality
+#: refinement of a wedge far thinner than it is long (a sliver of a sheet,
+#: 1.4e-6 by 125 mm) would otherwise add points without end (4.9 GB after
+#: two minutes); the shipped templates use 30 to 200.
+MAX_STEINER = 20_000
+STEINER_PER_VERTEX = 20
 
 #: Edge kinds (``FoldMesh.edge_kind``).
 OUTLINE, HOLE, RAY, FACET = "outline", "hole", "ray", "facet"
@@ -235,13 +245,17 @@ def _triangulate(pslg: dict[str, Array], quality_deg: float) -> dict[str, NDArra
     ``quality_deg`` where it reaches that; near a small input angle it may
     leave a smaller one, and then a lower quality (halved, down to
     :data:`MIN_FACE_ANGLE_DEG`) is tried, keeping the mesh whose smallest
-    angle is largest."""
+    angle is largest. Triangle adds at most :data:`MAX_STEINER` points (or
+    :data:`STEINER_PER_VERTEX` per input vertex): where the quality needs
+    more, the mesh falls short of it (``onefold:mesh`` ``within_bounds``
+    false) rather than growing without bound."""
     import triangle  # the meshing library (also the mechanics mesh's)
 
     best: tuple[float, dict[str, NDArray]] | None = None
     q = quality_deg
+    steiner = max(MAX_STEINER, STEINER_PER_VERTEX * len(pslg["vertices"]))
     while True:
-        out = triangle.triangulate(pslg, f"pq{q:.6f}Qe")
+        out = triangle.triangulate(pslg, f"pq{q:.6f}QeS{steiner}")
         worst = float(face_angles_deg(out["vertices"], out["triangles"]).min())
         if best is None or worst > best[0]:
             best = (worst, out)

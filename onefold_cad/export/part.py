@@ -77,15 +77,14 @@ from onefold_cad.export.measure import measure
 from onefold_cad.export.solid import thick_solid
 from onefold_cad.export.step_checks import (
     BOUNDARY_TOLERANCE,
-    MIN_HOLE,
-    check_hole_arcs,
     check_mitre,
-    near_edge_problem,
     near_symmetric_hint,
     scale_hint,
+    shell_problem,
 )
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
 from onefold_cad.fabrication.rules import default_body, resting_placement, solid_bend_problem
+from onefold_cad.geometry.checks import shown
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
@@ -169,19 +168,14 @@ def build_shell(
     limit = 2.0 * sheet_inradius(folded.sheet)
     if not 0.0 <= relief_hole < limit:
         raise InvalidParameterError(
-            "relief_hole", f"diameter must be in [0, {limit:.6g}) (length), got {relief_hole:g}"
+            "relief_hole",
+            f"diameter must be in [0, {limit:.6g}) (length), got {shown(relief_hole)}",
         )
-    if 0.0 < relief_hole < MIN_HOLE:
-        raise ExportError(
-            f"a relief hole of diameter {relief_hole:.3g} is below what the CAD kernel "
-            f"resolves ({MIN_HOLE:g}): use none (--relief-hole 0) or one of at least {MIN_HOLE:g}"
-        )
+    problem = shell_problem(folded, relief_hole)
+    if problem is not None:
+        raise problem
     tol = BOUNDARY_TOLERANCE * folded.sheet.size
     if kind == "ruled":
-        problem = near_edge_problem(folded.sheet)
-        if problem is not None:
-            raise problem
-        check_hole_arcs(folded.sheet, relief_hole)
         clock = KernelBudget(budget, "a sheet with fewer vertices may help")
         try:
             topo, deviation = ruled_shell(folded, 0.5 * relief_hole, tol)
@@ -201,13 +195,6 @@ def build_shell(
             )
         clock.check()
     else:
-        lengths = [
-            folded.sheet.ray_lengths(s * a)
-            for s, a in zip((1.0, -1.0), folded.ruling_angles, strict=True)
-        ]
-        problem = near_edge_problem(folded.sheet, np.concatenate(lengths))
-        if problem is not None:
-            raise problem
         triangles = sum(len(a) - 1 for a in folded.ruling_angles)
         clock = KernelBudget(
             budget, f"fewer divisions may help (this fan has {triangles} triangles)"
@@ -263,7 +250,7 @@ def build_solid(
     """
     t = material.thickness
     if t <= 0.0:
-        raise InvalidParameterError("thickness", f"must be > 0 for a solid, got {t:g}")
+        raise InvalidParameterError("thickness", f"must be > 0 for a solid, got {shown(t)}")
     if not isinstance(folded.solution.surface, ExactCone):
         raise InvalidParameterError(
             "model", "must be 'exact' for a solid of the sheet's thickness, got 'paper'"
@@ -282,7 +269,7 @@ def build_solid(
         raise InvalidParameterError(
             "relief_hole",
             f"diameter must be in ({need:.6g}, {limit:.6g}) (length) for a solid of thickness "
-            f"{t:g} ({material.sheet_surface.value}), got {hole:g}",
+            f"{t:g} ({material.sheet_surface.value}), got {shown(hole)}",
         )
     check_mitre(folded, material)
     size = folded.sheet.size

@@ -57,11 +57,16 @@ from onefold_cad.export.bspline_fit import (
     fit_curve,
 )
 from onefold_cad.export.kernel_budget import KernelBudget
+from onefold_cad.export.step_checks import MIN_RULING
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.slab import Boundary, Patch, Slab
 from onefold_cad.geometry.slab_faces import slab_patches
 
 __all__ = ["Array", "thick_solid"]
+
+
+#: The solid's faces as a refusal names them (:class:`~onefold_cad.geometry.slab.Patch`).
+_FACES = {"s0": "sheet's face", "s1": "sheet's other face", "in": "relief hole's wall"}
 
 
 class _Vertices:
@@ -205,6 +210,29 @@ class _Builder:
             out.append((e, float(a), float(z)))
         return out
 
+    def _resolvable(self, p: Patch, ca: Geom_BSplineCurve, cb: Geom_BSplineCurve) -> None:
+        """Refuse a patch the kernel cannot cut out of its curves (Segment fails
+        in InsertKnots): a curve whose fit merged t0 and t1 (closer than the
+        sewing tolerance: a nearly closed fold's mitre on a thin sheet) and so
+        stops short, or both curves within MIN_RULING; named by face and place."""
+        ends = np.array([p.t0, p.t1])
+        spans = [float(np.ptp(curve_values(c, ends), axis=0).max()) for c in (ca, cb)]
+        eps = 1e-12 * max(1.0, abs(p.t1))
+        short = any(
+            c.FirstParameter() > p.t0 + eps or c.LastParameter() < p.t1 - eps for c in (ca, cb)
+        )
+        if not short and max(spans) > MIN_RULING:
+            return
+        face = _FACES.get(p.face, "cut edge's wall")
+        half = "plus_x" if p.t1 <= 0.0 else "minus_x"
+        past = p.t1 <= 0.0 or p.t0 >= self.slab.total
+        where = f"past the {half} crease (its mitre)" if past else "inside the sheet"
+        bound = f"the sewing tolerance {self.sew_tol:.2g}" if short else f"{MIN_RULING:g}"
+        raise ExportError(
+            f"the {face} {where} would be {min(spans):.2g} wide on the {'+-'[p.side]}y side, "
+            f"below what the CAD kernel resolves ({bound})"
+        )
+
     # -- faces ---------------------------------------------------------------
     def ruled(self, p: Patch) -> TopoDS_Face:
         """The ruled face of patch ``p``: its two curves (split where other
@@ -212,6 +240,7 @@ class _Builder:
         curves meet)."""
         ka, ca = self._curve(p.low, p.side, p.t0, p.t1)
         kb, cb = self._curve(p.high, p.side, p.t0, p.t1)
+        self._resolvable(p, ca, cb)
         sa, sb = ca.Copy(), cb.Copy()
         sa.Segment(p.t0, p.t1)
         sb.Segment(p.t0, p.t1)

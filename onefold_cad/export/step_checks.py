@@ -12,7 +12,8 @@ import math
 
 import numpy as np
 
-from onefold_cad.errors import ExportError
+from onefold_cad.errors import ExportError, OneFoldError
+from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
 from onefold_cad.geometry.sheet import Sheet, sheet_inradius
@@ -33,6 +34,7 @@ __all__ = [
     "quadrilateral_advice",
     "rectangle_advice",
     "scale_hint",
+    "shell_problem",
 ]
 
 #: Deviation allowed for the boundary curves on the cone, relative to sheet.size.
@@ -67,6 +69,34 @@ def check_hole_arcs(sheet: Sheet, diameter: float) -> None:
             f"shortest edge the CAD kernel can make ({MIN_RULING:g}); a relief hole over "
             f"{need:.3g} across or none (parameter relief_hole)"
         )
+
+
+def shell_problem(folded: FoldedSheet, relief_hole: float) -> OneFoldError | None:
+    """What the shell's builder (:func:`onefold_cad.export.part.build_shell`)
+    refuses before any kernel call, or None: a relief hole below
+    :data:`MIN_HOLE`, H too close to the sheet's boundary
+    (:func:`near_edge_problem`: the exact cone's faces, the paper model's
+    ruling lengths) or a relief hole's arc too short (:func:`check_hole_arcs`).
+    ``build`` asks before it writes anything, so such a refusal is its one line."""
+    if 0.0 < relief_hole < MIN_HOLE:
+        return ExportError(
+            f"a relief hole of diameter {relief_hole:.3g} is below what the CAD kernel "
+            f"resolves ({MIN_HOLE:g}): use none (--relief-hole 0) or one of at least {MIN_HOLE:g}"
+        )
+    sheet = folded.sheet
+    if not isinstance(folded.solution.surface, ExactCone):
+        lengths = [
+            sheet.ray_lengths(s * a) for s, a in zip((1.0, -1.0), folded.ruling_angles, strict=True)
+        ]
+        return near_edge_problem(sheet, np.concatenate(lengths))
+    problem = near_edge_problem(sheet)
+    if problem is not None:
+        return problem
+    try:
+        check_hole_arcs(sheet, relief_hole)
+    except ExportError as exc:
+        return exc
+    return None
 
 
 def rectangle_advice(sheet: Sheet, ruling: bool, need: float) -> tuple[str, str]:

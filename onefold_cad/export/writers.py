@@ -380,8 +380,9 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
     """Raise what a writer of ``formats`` would refuse, before any file exists:
     a relief hole that does not fit
     (:func:`~onefold_cad.fabrication.relief_hole.relief_hole_problem`),
-    the flat pattern (FabricationError or InvalidParameterError) and, with
-    ``--compensation sharp``, a STEP solid past the bend model's limits."""
+    the flat pattern (FabricationError or InvalidParameterError), a STEP
+    shell the kernel cannot be given and, with ``--compensation sharp``, a
+    STEP solid past the bend model's limits."""
     part = any(WRITERS[n].builds_part for n in formats)
     if part or any(WRITERS[n].cuts_sheet for n in formats):
         from onefold_cad.fabrication.relief_hole import relief_hole_problem
@@ -392,15 +393,24 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
     if any(WRITERS[n].needs_flat_pattern for n in formats):
         ctx.pattern  # noqa: B018 - computed (and cached) to raise now
     if part:
-        _check_solid_bends(ctx)
+        _check_part(ctx)
 
 
-def _check_solid_bends(ctx: BuildContext) -> None:
-    """The refusal the part's builder gives a solid past the bend model's
-    limits (:func:`onefold_cad.export.part.build_part`, through
-    :func:`~onefold_cad.fabrication.rules.solid_bend_problem`), raised before anything
-    is written; a shell, the designed surface, is always written."""
+def _check_part(ctx: BuildContext) -> None:
+    """The refusals the part's builder gives before any kernel call
+    (:func:`onefold_cad.export.part.build_part`), raised before anything is
+    written: a shell's H too close to the sheet's boundary or a relief hole
+    below the kernel's resolution
+    (:func:`~onefold_cad.export.step_checks.shell_problem`), a solid past
+    the bend model's limits
+    (:func:`~onefold_cad.fabrication.rules.solid_bend_problem`)."""
     if (ctx.body or _default_body(ctx.design)) != "solid":
+        from onefold_cad.export.step_checks import shell_problem
+        from onefold_cad.fabrication.relief_hole import relief_hole_diameter
+
+        shell = shell_problem(ctx.folded, relief_hole_diameter(ctx.design, ctx.folded))
+        if shell is not None:
+            raise shell
         return
     from onefold_cad.fabrication.rules import solid_bend_problem
 

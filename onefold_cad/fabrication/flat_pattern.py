@@ -51,6 +51,7 @@ from onefold_cad.geometry.bend_model import (
     blank_move,
     crease_bends,
 )
+from onefold_cad.geometry.checks import shown
 from onefold_cad.geometry.fan_folds import ruling_folds
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
@@ -300,11 +301,11 @@ def flat_pattern(
         raise InvalidParameterError(
             "kerf",
             f"must be < {2.0 * inner:.6g} {u} (twice the distance from H to the nearest edge "
-            f"of the blank), got {kerf:g} {u}",
+            f"of the blank), got {shown(kerf)} {u}",
         )
     if hole > 0.0 and kerf >= hole:
         raise InvalidParameterError(
-            "kerf", f"must be < the relief hole's diameter {hole:g} {u}, got {kerf:g} {u}"
+            "kerf", f"must be < the relief hole's diameter {hole:g} {u}, got {shown(kerf)} {u}"
         )
     place = sheet.to_sheet
     outline_s = place.apply(outline)

@@ -37,7 +37,7 @@ from enum import StrEnum
 
 from onefold_cad.choices import Compensation, SheetSurface
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.checks import finite
+from onefold_cad.geometry.checks import finite, shown
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
 
@@ -80,7 +80,9 @@ def fold_angle(angle_deg: float, name: str = "angle_deg") -> float:
     psi = finite(name, angle_deg)
     if not bendable(psi):
         lo, hi = FOLD_ANGLE_RANGE_DEG
-        raise InvalidParameterError(name, f"must be in [{lo:g}, {hi:g}) deg, got {angle_deg:g}")
+        raise InvalidParameterError(
+            name, f"must be in [{lo:g}, {hi:g}) deg, got {shown(angle_deg)}"
+        )
     return psi
 
 

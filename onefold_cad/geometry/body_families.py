@@ -84,7 +84,11 @@ class Sectors:
         ex, ey, moment, r_lo, r_hi = self.edge[:, members]
         sin = np.sin(theta)
         sin[self.lower[members]] *= -1.0  # the -y side's polar angle is -theta
-        r = moment / (np.cos(theta) * ey - sin * ex)
+        # at an end of its range a ray may run along its edge (d x e = 0, an
+        # edge pointing at H): there the quotient is inf or NaN, and the
+        # vertex's own distance replaces it just below
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = moment / (np.cos(theta) * ey - sin * ex)
         r = np.where(theta <= self.t_lo[members], r_lo, r)
         return np.where(theta >= self.t_hi[members], r_hi, r)
 

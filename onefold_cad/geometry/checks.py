@@ -27,7 +27,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from onefold_cad.errors import InvalidParameterError
+from onefold_cad.errors import InvalidParameterError, shown
 
 __all__ = [
     "MAX_LENGTH",
@@ -38,12 +38,14 @@ __all__ = [
     "closed_interval",
     "finite",
     "float_errors",
+    "shown",
     "integer_at_least",
     "length",
     "open_interval",
     "positive",
     "sheet_to_radius",
 ]
+
 
 #: Largest length accepted (design units). The core forms products of up to
 #: four lengths (the paper fan's sin^2 of a triangle's apex angle times its two
@@ -97,7 +99,7 @@ def positive(name: str, value: object, unit: str = "") -> float:
     """Return ``value`` if it is finite and > 0."""
     x = finite(name, value)
     if x <= 0.0:
-        raise InvalidParameterError(name, f"must be > 0{unit}, got {x:g}")
+        raise InvalidParameterError(name, f"must be > 0{unit}, got {shown(x)}")
     return x
 
 
@@ -110,14 +112,14 @@ def length(name: str, value: object, *, zero: bool = False) -> float:
     if x <= 0.0:
         rng = ">= 0" if zero else "> 0"
         raise InvalidParameterError(
-            name, f"must be {rng} (a length in [{MIN_LENGTH:g}, {MAX_LENGTH:g}]), got {x:g}"
+            name, f"must be {rng} (a length in [{MIN_LENGTH:g}, {MAX_LENGTH:g}]), got {shown(x)}"
         )
     if not MIN_LENGTH <= x <= MAX_LENGTH:
         low = "0 or " if zero else ""
         raise InvalidParameterError(
             name,
             f"must be {low}in [{MIN_LENGTH:g}, {MAX_LENGTH:g}] (design units; beyond, "
-            f"products of lengths leave double precision), got {x:g}",
+            f"products of lengths leave double precision), got {shown(x)}",
         )
     return x
 
@@ -144,7 +146,7 @@ def sheet_to_radius(size: float, radius: float) -> None:
         "frame.radius",
         f"must be within [{1 / MAX_SHEET_TO_RADIUS:g}, {1 / MIN_SHEET_TO_RADIUS:g}] times the "
         f"sheet's size (its largest distance from H, {size:g}), i.e. in [{lo:g}, {hi:g}], "
-        f"got {radius:g} ({why})",
+        f"got {shown(radius)} ({why})",
     )
 
 
@@ -173,7 +175,7 @@ def check_magnitudes(radius: float, sheet_size: float, material: object) -> None
                 raise InvalidParameterError(
                     f"material.{key}",
                     f"must be in [0, {MAX_LENGTH:g}] (design units; beyond, products of lengths "
-                    f"leave double precision), got {value:g}",
+                    f"leave double precision), got {shown(value)}",
                 )
 
 
@@ -181,7 +183,7 @@ def open_interval(name: str, value: object, lo: float, hi: float, unit: str = ""
     """Return ``value`` if it is finite and lo < value < hi."""
     x = finite(name, value)
     if not lo < x < hi:
-        raise InvalidParameterError(name, f"must be in ({lo:g}, {hi:g}){unit}, got {x:g}")
+        raise InvalidParameterError(name, f"must be in ({lo:g}, {hi:g}){unit}, got {shown(x)}")
     return x
 
 
@@ -189,7 +191,7 @@ def closed_interval(name: str, value: object, lo: float, hi: float, unit: str = 
     """Return ``value`` if it is finite and lo <= value <= hi."""
     x = finite(name, value)
     if not lo <= x <= hi:
-        raise InvalidParameterError(name, f"must be in [{lo:g}, {hi:g}]{unit}, got {x:g}")
+        raise InvalidParameterError(name, f"must be in [{lo:g}, {hi:g}]{unit}, got {shown(x)}")
     return x
 
 

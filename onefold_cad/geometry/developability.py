@@ -56,10 +56,12 @@ class Developability:
         return abs(self.area_3d - self.area_flat) / self.area_flat
 
 
-def _fan_area(apex: Array, ring: Array) -> float:
-    """Area of the fan of triangles (apex, ring_i, ring_i+1) over a closed ring."""
+def _fan_area(ring: Array) -> float:
+    """Area of the fan of triangles (apex, ring_i, ring_i+1) over a closed ring
+    of vectors ``(p, 3)`` from the apex (:meth:`FoldedSheet.map_from_apex`:
+    a sheet far smaller than its apex's height keeps its digits)."""
     a, b = ring, np.roll(ring, -1, axis=0)
-    return float(np.sum(0.5 * np.linalg.norm(cross3(a - apex, b - apex), axis=1)))
+    return float(np.sum(0.5 * np.linalg.norm(cross3(a, b), axis=1)))
 
 
 #: Romberg levels (each halving the chords) before an edge piece that does not
@@ -265,7 +267,7 @@ def developability(folded: FoldedSheet) -> Developability:
         b2, b3 = folded.boundary_flat, folded.boundary_3d
         seg_flat = edge_lengths(b2)
         seg_3d = edge_lengths(b3)
-        area3 = _fan_area(folded.apex, b3)
+        area3 = _fan_area(folded.map_from_apex(b2))
     else:  # the exact cone: integrated along each edge
         v = sheet.vertices
         seg_flat = edge_lengths(v)

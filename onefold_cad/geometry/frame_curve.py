@@ -22,7 +22,7 @@ from functools import cached_property
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.checks import finite, integer_at_least, length, open_interval
+from onefold_cad.geometry.checks import finite, integer_at_least, length, open_interval, shown
 
 __all__ = [
     "ArcGeometry",
@@ -102,7 +102,7 @@ class FrameCurve:
             raise InvalidParameterError(
                 "h_c",
                 f"H must lie strictly inside the f-line: |h_c| < radius*cos(alpha) = "
-                f"{half:.6g}, i.e. h_c in ({-half:.6g}, {half:.6g}), got {self.h_c:g}",
+                f"{half:.6g}, i.e. h_c in ({-half:.6g}, {half:.6g}), got {shown(self.h_c)}",
             )
 
     @cached_property
@@ -157,7 +157,7 @@ def _angle(name: str, value: object) -> float:
         raise InvalidParameterError(
             name,
             f"must be in (0, 90) deg and at least {MIN_ANGLE_DEG:g} deg (its square in radians "
-            f"must not underflow), got {x:g}",
+            f"must not underflow), got {shown(x)}",
         )
     return x
 

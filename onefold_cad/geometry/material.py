@@ -12,7 +12,7 @@ from typing import Any
 
 from onefold_cad.choices import SheetSurface
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.checks import closed_interval, finite
+from onefold_cad.geometry.checks import closed_interval, finite, shown
 
 __all__ = [
     "DENSITY_RANGE",
@@ -84,20 +84,22 @@ class Material:
         for key in ("thickness", "bend_radius", "kerf"):
             v = finite(key, getattr(self, key))
             if v < 0.0:
-                raise InvalidParameterError(key, f"must be >= 0, got {v:g}")
+                raise InvalidParameterError(key, f"must be >= 0, got {shown(v)}")
             set_(self, key, v)
         set_(self, "k_factor", closed_interval("k_factor", self.k_factor, 0.0, 1.0))
         if self.relief_hole is not None:
             v = finite("relief_hole", self.relief_hole)
             if v < 0.0:
-                raise InvalidParameterError("relief_hole", f"must be >= 0 (0 = no hole), got {v:g}")
+                raise InvalidParameterError(
+                    "relief_hole", f"must be >= 0 (0 = no hole), got {shown(v)}"
+                )
             set_(self, "relief_hole", v)
         if self.density is not None:
             v = finite("density", self.density)
             lo, hi = DENSITY_RANGE
             if not lo <= v <= hi:
                 raise InvalidParameterError(
-                    "density", f"must be in [{lo:g}, {hi:g}] kg/m^3, got {v:g}"
+                    "density", f"must be in [{lo:g}, {hi:g}] kg/m^3, got {shown(v)}"
                 )
             set_(self, "density", v)
         set_(self, "sheet_surface", SheetSurface.parse(self.sheet_surface))
@@ -113,13 +115,13 @@ class Material:
             if not MIN_MODULUS_GPA <= e <= MAX_MODULUS_GPA:
                 raise InvalidParameterError(
                     "youngs_modulus",
-                    f"must be in [{MIN_MODULUS_GPA:g}, {MAX_MODULUS_GPA:g}] GPa, got {e:g}",
+                    f"must be in [{MIN_MODULUS_GPA:g}, {MAX_MODULUS_GPA:g}] GPa, got {shown(e)}",
                 )
             set_(self, "youngs_modulus", e)
         if self.poisson is not None:
             nu = finite("poisson", self.poisson)
             if not -1.0 < nu < 0.5:
-                raise InvalidParameterError("poisson", f"must be > -1 and < 0.5, got {nu:g}")
+                raise InvalidParameterError("poisson", f"must be > -1 and < 0.5, got {shown(nu)}")
             set_(self, "poisson", nu)
         if self.yield_stress is not None:
             sy = finite("yield_stress", self.yield_stress)
@@ -128,7 +130,7 @@ class Material:
             if not MIN_YIELD_MPA <= sy <= top:
                 raise InvalidParameterError(
                     "yield_stress",
-                    f"must be in [{MIN_YIELD_MPA:g}, {top:g}] MPa (up to {what}), got {sy:g}",
+                    f"must be in [{MIN_YIELD_MPA:g}, {top:g}] MPa (up to {what}), got {shown(sy)}",
                 )
             set_(self, "yield_stress", sy)
 

@@ -24,6 +24,7 @@ from onefold_cad.geometry.checks import (
     float_errors,
     length,
     positive,
+    shown,
 )
 from onefold_cad.geometry.numeric import cross2, edge_lengths_2d, polygon_area, sorted_unique
 from onefold_cad.geometry.polygon import TOUCH, boundary_distance, check_simple
@@ -224,7 +225,7 @@ class Sheet:
                 name,
                 f"the largest vertex coordinate magnitude must be in [{MIN_LENGTH:g}, "
                 f"{MAX_LENGTH:g}] (design units; beyond, products of lengths leave double "
-                f"precision), got {scale:g}",
+                f"precision), got {shown(scale)}",
             )
         with float_errors():
             p = _validated(p, scale, name)
@@ -256,7 +257,7 @@ class Sheet:
                 raise InvalidParameterError(
                     key,
                     f"must be at least {MIN_FEATURE:g} times the largest of x_plus, x_minus, "
-                    f"y_plus, y_minus ({big:g}), i.e. >= {MIN_FEATURE * big:g}, got {v:g} "
+                    f"y_plus, y_minus ({big:g}), i.e. >= {MIN_FEATURE * big:g}, got {shown(v)} "
                     "(smaller sheet features are lost in the sheet's rounding)",
                 )
         pts = [(xp, 0.0), (0.0, yp), (-xm, 0.0), (0.0, -ym)]
@@ -294,7 +295,7 @@ class Sheet:
             raise InvalidParameterError(
                 "apex_fraction",
                 f"must be in [{MIN_FEATURE:g}, 1 - {MIN_FEATURE:g}] (within (0, 1), H at least "
-                f"{MIN_FEATURE:g} of the diagonal from a corner), got {f:g}",
+                f"{MIN_FEATURE:g} of the diagonal from a corner), got {shown(f)}",
             )
         angle = math.degrees(math.atan2(h, w))
         place = Placement2D(angle, f * w, f * h)

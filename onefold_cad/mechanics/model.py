@@ -25,6 +25,7 @@ from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
 from onefold_cad.fabrication.rules import PLAUSIBLE_DENSITY
+from onefold_cad.geometry.checks import shown
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.placement import RestingPlacement
@@ -147,7 +148,7 @@ def shell_material(design: Design, yield_stress_MPa: float | None = None) -> She
         raise InvalidParameterError(
             "density",
             f"simulate needs a sheet material's density, {lo:g} to {hi:g} kg/m^3 (its force "
-            f"tolerances are relative to the sheet's weight), got {rho:g}",
+            f"tolerances are relative to the sheet's weight), got {shown(rho)}",
         )
     sy = sy if yield_stress_MPa is None else yield_stress_MPa
     metres = design.units.mm / 1000.0
@@ -194,7 +195,7 @@ def _hole_radius(design: Design, folded: FoldedSheet) -> float:
             "relief_hole",
             f"simulate needs a relief hole of at least {need:.4g} {u}, the smallest a sheet "
             f"{design.material.thickness:g} {u} thick takes without overlapping itself around "
-            f"H, got {d:g} {u}",
+            f"H, got {shown(d)} {u}",
         )
     return 0.5 * d
 

@@ -31,13 +31,12 @@ from __future__ import annotations
 
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.templates import find_site_file, find_template, read_template
+from onefold_cad.templates import find_site_file, find_template, read_template, read_toml
 
 __all__ = [
     "MAX_SHEETS",
@@ -191,21 +190,15 @@ def read_site(ref: str | Path) -> SiteSpec:
     """Read and check a site file (a path or a shipped site's name).
 
     Raises:
-        InvalidParameterError: the file cannot be read, is not TOML, lists
-            more than :data:`MAX_SHEETS` sheets, or an entry is malformed
-            (an unknown key, a missing or mistyped value, an unknown
-            template, two sheets of one name), named by the file, the entry
-            and the key.
+        InvalidParameterError: the file cannot be read, is not UTF-8 TOML,
+            nests too deeply (:func:`onefold_cad.templates.read_toml`), lists
+            more than :data:`MAX_SHEETS` sheets, or an entry is malformed (an
+            unknown key, a missing or mistyped value, an unknown template,
+            two sheets of one name), named by the file, the entry and the key.
     """
     path = find_site(ref)
     site = path.name
-    try:
-        with path.open("rb") as fh:
-            raw = tomllib.load(fh)
-    except OSError as exc:
-        raise _fail("SITE", f"cannot read {str(path)!r}: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise _fail("SITE", f"{site}: not valid TOML: {exc}") from None
+    raw = read_toml(path, "SITE")
     sheet = raw.get("sheet")
     kinds = ("quadrilateral", "polygon", "rectangle")
     if "frame" in raw or (isinstance(sheet, dict) and any(k in sheet for k in kinds)):

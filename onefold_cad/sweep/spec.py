@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from onefold_cad.errors import shown
 from onefold_cad.flags.design_flags import DESIGN_FLAGS, Flag, parse_float, parse_int
 from onefold_cad.flags.parser import UsageError
 
@@ -136,7 +137,7 @@ def _parse_range(flag: Flag, parts: list[str], text: str) -> VarySpec:
         raise UsageError(f"--vary {text}: the range's ends must be finite numbers")
     if not low < high:
         raise UsageError(
-            f"--vary {text}: empty range: LO must be below HI (got {low:g} and {high:g})"
+            f"--vary {text}: empty range: LO must be below HI (got {shown(low)} and {shown(high)})"
         )
     spec = VarySpec(flag, text, (), float(low), float(high))
     if len(parts) == 2:

@@ -735,7 +735,7 @@ def test_an_unwritable_output_folder_is_one_line_naming_it(tmp_path, monkeypatch
     assert list(out.iterdir()) == []
     (tmp_path / "file").write_text("")
     assert main(["build", "table1-row1", "-o", str(tmp_path / "file"), "-q"]) == 2
-    assert "--outdir: cannot create" in capfd.readouterr().err
+    assert "--outdir: cannot write into" in capfd.readouterr().err
 
 
 def test_a_failed_move_is_finished_by_the_next_build(tmp_path, monkeypatch, capfd):

@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from onefold_cad import Design, FrameCurve, NoSolutionError, Sheet, build_design
 from onefold_cad.export.fold_file import fold_data, fold_fan
 from onefold_cad.export.fold_mesh import (
+    MAX_STEINER,
     MIN_EDGE,
     MIN_FACE_ANGLE_DEG,
     QUALITY_CAP_DEG,
@@ -183,3 +184,19 @@ def test_the_docs_table_of_the_templates_meshes_is_the_files():
         mesh = fold_data(design, build_design(design))["onefold:mesh"]
         assert mesh["min_face_angle_deg"] == pytest.approx(angle, abs=0.005)
         assert float(f"{mesh['min_edge_relative']:.1e}") == edge
+
+
+def test_a_sliver_s_mesh_stops_at_the_point_budget():
+    """A sheet 1.4e-6 wide and 125 long (issue 38's sliver): a 1 deg face angle
+    needs about length / width / tan(1 deg) = 5e9 triangles, which Triangle
+    tried to make (4.9 GB after two minutes). It stops at MAX_STEINER added
+    points, and the file says that the bounds are not kept."""
+    sliver = Sheet.polygon([[99.375, 0.0], [0.0, 6.87e-7], [-25.67, 0.0], [0.0, -6.87e-7]])
+    design = Design("sliver", FrameCurve(66, 49, 0.0, 0.0363, 90), sliver)
+    fan = fold_fan(design, build_design(design))
+    mesh = fold_mesh(fan)
+    given = len(fan.boundary_flat) + 1  # the outline's points and H
+    assert given < len(mesh.flat) <= given + MAX_STEINER
+    quality = fold_data(design, build_design(design))["onefold:mesh"]
+    assert quality["within_bounds"] is False
+    assert quality["min_face_angle_deg"] < MIN_FACE_ANGLE_DEG

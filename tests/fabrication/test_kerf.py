@@ -5,10 +5,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from ezdxf.math import offset_vertices_2d
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.fabrication.kerf import offset_outline
 
 
@@ -55,3 +57,28 @@ def test_every_edge_moves_exactly_the_offset() -> None:
     # both ends of offset edge i lie at distance 0.01 outside edge i's line
     for end in (got, np.roll(got, -1, 0)):
         assert np.allclose(np.einsum("ij,ij->i", end - outline, n), 0.01, atol=1e-14)
+
+
+def test_a_needle_corner_s_mitre_is_finite_and_exact() -> None:
+    """The tip of a sliver (issue 38: 6.87e-7 wide, 99.375 long) turns by all
+    but 2 phi, phi = atan(6.87e-7 / 99.375) = 6.9e-9 rad: 1 + m.n is then
+    below the rounding of the 1 (it gave inf and NaN). The mitred tip moves
+    along the axis by distance / sin(phi) (the corner of two lines offset by
+    distance, meeting at angle 2 phi), worked by hand."""
+    w, a, b = 6.87e-7, 99.375, 25.67
+    outline = np.array([[a, 0.0], [0.0, w], [-b, 0.0], [0.0, -w]])
+    got = offset_outline(outline, 5e-12)
+    phi = math.atan2(w, a)
+    assert np.all(np.isfinite(got))
+    assert math.isclose(got[0, 0] - a, 5e-12 / math.sin(phi), rel_tol=1e-6)
+    assert abs(got[0, 1]) <= 1e-12 * a
+    psi = math.atan2(w, b)  # the other tip
+    assert math.isclose(-b - got[2, 0], 5e-12 / math.sin(psi), rel_tol=1e-6)
+
+
+def test_a_corner_that_turns_back_on_itself_is_refused() -> None:
+    """Two edges along one line in opposite directions (a spike of angle 0):
+    the offset lines never meet; a named error, not inf."""
+    outline = np.array([[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+    with pytest.raises(InvalidParameterError, match="kerf: the blank's corner at \\(2, 0\\)"):
+        offset_outline(outline, 0.1)
