@@ -290,3 +290,19 @@ def test_pinned_command_lines_stay_clean(commands: ModuleType, index: int) -> No
     RuntimeWarning) before the vertex's own radius replaced it."""
     res = commands.run_line(commands.draw(38, "solve", index))
     assert res["cls"] in ("ok", "refused"), res
+
+
+@pytest.mark.parametrize("index", [41, 285])
+def test_pinned_builds_whose_step_the_kernel_refuses_name_the_fan(
+    commands: ModuleType, index: int
+) -> None:
+    """38:build:41 and 38:build:285 (paper fans the CAD kernel refuses a face
+    of: alpha 89.99 with beta 90, and beta 8e-6 with H by a corner) were one
+    line naming nothing ('the shell of the folded surface is not valid'); the
+    line now names the faces refused, their width at the apex, the frame,
+    the divisions and --formats."""
+    res = commands.run_line(commands.draw(38, "build", index))
+    assert res["cls"] == "refused", res
+    line = res["line"]
+    assert "faces" in line and "deg wide at the apex" in line
+    assert "divisions" in line and "--formats" in line

@@ -204,12 +204,40 @@ def build_shell(
     shell = bd.Shell(topo)
     if not shell.is_valid:
         raise ExportError(
-            "the shell of the folded surface is not valid" + scale_hint(folded.sheet.size)
+            "the shell of the folded surface is not valid"
+            + _invalid_faces(shell, folded)
+            + scale_hint(folded.sheet.size)
         )
     clock.check()
     shell.fit_deviation = deviation
     shell.fit_tolerance = tol if kind == "ruled" else 0.0
     return shell
+
+
+def _invalid_faces(shell: bd.Shell, folded: FoldedSheet) -> str:
+    """What the CAD kernel refused, as the design's property: how many of the
+    shell's faces, the narrowest angle of theirs at the apex, and the frame
+    angles that shape them ('' when no single face is invalid)."""
+    faces = shell.faces()
+    bad = [f for f in faces if not f.is_valid]
+    if not bad:
+        return ""
+    apex = np.asarray(folded.apex, dtype=float)
+    narrowest = np.inf
+    for f in bad:
+        rays = np.array([tuple(v) for v in f.vertices()], dtype=float) - apex
+        lengths = np.linalg.norm(rays, axis=1)
+        rays = rays[lengths > 0] / lengths[lengths > 0, None]
+        for i in range(len(rays)):
+            cos = np.clip(rays[i + 1 :] @ rays[i], -1.0, 1.0)
+            if cos.size:
+                narrowest = min(narrowest, float(np.degrees(np.arccos(cos)).min()))
+    fr = folded.solution.frame
+    return (
+        f": the CAD kernel refuses {len(bad)} of its {len(faces)} faces, the narrowest "
+        f"{narrowest:.3g} deg wide at the apex, of the fan of alpha {fr.alpha:g}, beta "
+        f"{fr.beta:g} deg; fewer divisions may help, and --formats without step writes the rest"
+    )
 
 
 def build_solid(
