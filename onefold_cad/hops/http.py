@@ -101,16 +101,10 @@ def parse_request(body: bytes) -> dict[str, Any]:
 class HopsServer(BoundedServer):
     """A :class:`~onefold_cad.explore.bounded.BoundedServer` (at most
     :data:`MAX_CONNECTIONS` connections at once, the next answered ``503`` and
-    closed) that remembers the ``Host`` values it answers (``hosts``)."""
+    closed) that answers the ``Host`` values in ``hosts`` (set by
+    ``make_server``; none until then)."""
 
-    def __init__(
-        self,
-        address: tuple[str, int],
-        handler: type[BaseHTTPRequestHandler],
-        max_connections: int = MAX_CONNECTIONS,
-    ) -> None:
-        super().__init__(address, handler, max_connections)
-        self.hosts: frozenset[str] = frozenset()
+    hosts: frozenset[str] = frozenset()
 
 
 class HopsHandler(BaseHTTPRequestHandler):

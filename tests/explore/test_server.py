@@ -16,6 +16,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.explore.server import MAX_TARGET, STATIC, make_server
 from tests.explore.conftest import get
 from tests.processes import interruptible
+from tests.served import Served
 
 
 def test_it_listens_on_loopback_only(server):
@@ -231,32 +232,14 @@ def test_half_sent_requests_are_bounded_and_time_out(monkeypatch):
     for opening them all on a busy machine), and then it answers. Loopback
     only, 26 connections, at most a minute."""
     import threading
-    import time
 
     from onefold_cad.explore import server as explore_server
 
-    handler = explore_server.ExploreHandler
-    monkeypatch.setattr(handler, "timeout", 5.0)
-    lock, now, peak = threading.Lock(), [0], [0]
-    handle = handler.handle
-
-    def counted(self):
-        with lock:
-            now[0] += 1
-            peak[0] = max(peak[0], now[0])
-        try:
-            handle(self)
-        finally:
-            with lock:
-                now[0] -= 1
+    served = Served(monkeypatch, explore_server.ExploreHandler, 5.0)
 
     def wait_for(count: int) -> None:
-        deadline = time.monotonic() + 30
-        while now[0] != count and time.monotonic() < deadline:
-            time.sleep(0.01)
-        assert now[0] == count
+        assert served.wait_for(count)
 
-    monkeypatch.setattr(handler, "handle", counted)
     srv = make_server("paper-square", port=0)
     thread = threading.Thread(target=srv.serve_forever, daemon=True)
     thread.start()
@@ -272,7 +255,7 @@ def test_half_sent_requests_are_bounded_and_time_out(monkeypatch):
                 wait_for(i + 1)  # served on a thread of its own, waiting for the rest
             else:
                 answers.append(s.recv(400))
-        assert peak[0] == bound
+        assert served.peak == bound
         busy = b"\r\n\r\nthe server is busy: too many connections at once, try again\n"
         for a in answers:
             assert a.startswith(b"HTTP/1.1 503 Service Unavailable\r\n") and a.endswith(busy), a

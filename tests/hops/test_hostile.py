@@ -19,6 +19,7 @@ from onefold_cad.hops.inputs import SOLVE_INPUTS, hops_request
 from onefold_cad.hops.server import make_server
 from onefold_cad.templates import find_template
 from tests.hops.client import post
+from tests.served import Served
 
 SECRET = "the-secret-words-4711"
 
@@ -217,21 +218,7 @@ def test_half_sent_requests_are_bounded_and_time_out(monkeypatch, folder):
     """More slow clients than the server has slots: no more than its slots
     are served at once, the extra ones get a 503 at once, the slow ones are
     dropped after the timeout, and then it answers."""
-    monkeypatch.setattr(hops_http.HopsHandler, "timeout", 4.0)
-    lock, now, peak = threading.Lock(), [0], [0]
-    handle = hops_http.HopsHandler.handle
-
-    def counted(self):
-        with lock:
-            now[0] += 1
-            peak[0] = max(peak[0], now[0])
-        try:
-            handle(self)
-        finally:
-            with lock:
-                now[0] -= 1
-
-    monkeypatch.setattr(hops_http.HopsHandler, "handle", counted)
+    served = Served(monkeypatch, hops_http.HopsHandler, 4.0)
     srv = make_server("127.0.0.1", 0, template_dir=folder)
     thread = threading.Thread(target=srv.serve_forever, daemon=True)
     thread.start()
@@ -248,11 +235,11 @@ def test_half_sent_requests_are_bounded_and_time_out(monkeypatch, folder):
             if s.recv(200).startswith(b"HTTP/1.1 503"):
                 busy += 1
         assert busy >= 1
-        assert peak[0] <= hops_http.MAX_CONNECTIONS
+        assert served.peak <= hops_http.MAX_CONNECTIONS
         deadline = time.monotonic() + 30
-        while now[0] > 0 and time.monotonic() < deadline:
+        while served.now > 0 and time.monotonic() < deadline:
             time.sleep(0.1)
-        assert now[0] == 0  # every slow one dropped
+        assert served.now == 0  # every slow one dropped
         alive(address)
     finally:
         for s in slow:
