@@ -65,6 +65,7 @@ __all__ = [
     "load_template",
     "read_template",
     "read_toml",
+    "shipped_files",
     "MAX_TOML_DEPTH",
     "template_dirs",
     "template_units",
@@ -133,7 +134,9 @@ def template_dirs() -> list[Path]:
 SITE_PREFIX = "site-"
 
 
-def _shipped(sites: bool = False) -> dict[str, Path]:
+def shipped_files(sites: bool = False) -> dict[str, Path]:
+    """The shipped design templates (or, with ``sites``, site files) by name:
+    their files, not read."""
     found: dict[str, Path] = {}
     for d in template_dirs():
         for p in sorted(d.glob("*.toml")):
@@ -148,11 +151,11 @@ def find_site_file(ref: str | Path) -> Path:
     p = Path(ref)
     if p.is_file():
         return p
-    shipped = _shipped(sites=True)
+    shipped = shipped_files(sites=True)
     key = p.name.removesuffix(".toml")
     if str(ref) == key and key in shipped:
         return shipped[key]
-    if str(ref) == key and key in _shipped():
+    if str(ref) == key and key in shipped_files():
         raise InvalidParameterError(
             str(ref), f"a shipped design template, not a site: build it with onefold build {key}"
         )
@@ -165,7 +168,7 @@ def find_site_file(ref: str | Path) -> Path:
 def list_templates() -> list[TemplateInfo]:
     """The shipped templates, sorted by name."""
     out = []
-    for name, path in sorted(_shipped().items()):
+    for name, path in sorted(shipped_files().items()):
         data = read_template(path)
         out.append(TemplateInfo(name, path, str(data.get("description", "")).strip()))
     return out
@@ -176,11 +179,11 @@ def find_template(ref: str | Path) -> Path:
     p = Path(ref)
     if p.is_file():
         return p
-    shipped = _shipped()
+    shipped = shipped_files()
     key = p.name.removesuffix(".toml")
     if str(ref) == key and key in shipped:
         return shipped[key]
-    if str(ref) == key and key in _shipped(sites=True):
+    if str(ref) == key and key in shipped_files(sites=True):
         raise InvalidParameterError(
             str(ref), f"a shipped site, not a design template: build it with onefold site {key}"
         )

@@ -23,7 +23,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.templates import SITE_PREFIX, list_templates
+from onefold_cad.templates import SITE_PREFIX, shipped_files
 
 __all__ = [
     "LOOPBACK_NAMES",
@@ -107,7 +107,7 @@ def resolve_template(ref: object, folder: Path | None) -> str:
     own = folder_templates(folder)
     if key in own:
         return str(own[key])
-    shipped = {t.name: t.path for t in list_templates()}
+    shipped = shipped_files()
     if key in shipped:
         return str(shipped[key])
     names = ", ".join(sorted({*own, *shipped})) or "none"

@@ -181,14 +181,6 @@ class OneFoldHops(HopsDefault):
         except LookupError as exc:
             return False, error_answer(str(exc.args[0]) if exc.args else "no such component")
 
-    def _process_solve_request(self, comp: HopsComponent, payload: Any) -> tuple[bool, str]:
-        """ghhops' own reading of a request, never used: :meth:`solve` reads it."""
-        raw = payload if isinstance(payload, bytes) else str(payload).encode("utf-8")
-        try:
-            return self._process_request(comp, parse_request(raw))
-        except RequestError as exc:
-            return False, error_answer(f"the request is not Hops' JSON: {exc}")
-
     def solve_request(self, uri: str, request: Mapping[str, Any]) -> tuple[bool, str]:
         """Solve the component of ``uri`` (``/onefold/solve``; ``/solve``: the
         one ``request``'s ``pointer`` names) for ``request`` (its JSON,
