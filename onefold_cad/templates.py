@@ -97,6 +97,8 @@ _MATERIAL: dict[str, str] = {
     "youngs_modulus": _NUMBER,
     "poisson": _NUMBER,
     "yield_stress": _NUMBER,
+    "hardening_modulus": _NUMBER,
+    "kinematic_hardening": _NUMBER,
 }
 _SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
 
@@ -425,7 +427,9 @@ def design_to_data(design: Design) -> dict[str, Any]:
         material["relief_hole"] = m.relief_hole
     if m.density is not None:
         material["density"] = m.density
-    for key in ("youngs_modulus", "poisson", "yield_stress"):
+    for key in (
+        "youngs_modulus", "poisson", "yield_stress", "hardening_modulus", "kinematic_hardening"
+    ):  # fmt: skip
         if getattr(m, key) is not None:
             material[key] = getattr(m, key)
     return {

@@ -279,6 +279,10 @@ def simulation_options(g: Any, *, defaults: bool) -> None:
          "default) or the designed form (a structural check)"),
         ("crease", "the crease keeps its set angle (default), or bends with its bend zone's "
          "own stiffness"),
+        ("law", "how the steel yields: the 1D moment law of a rectangular section (default; "
+         "elastic membrane and unloading, its stresses past yield are estimates), or J2 "
+         "(von Mises) plasticity through the thickness, membrane and bending together "
+         "(unloading and reverse yield follow the law; 5 to 10 times the CPU)"),
         ("mesh", "mesh fineness (default normal; coarse: a quick preview without the "
          "convergence check)"),
     ):  # fmt: skip

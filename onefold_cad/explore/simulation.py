@@ -59,6 +59,7 @@ def simulation_numbers(sim: Simulation) -> dict[str, Any]:
     s = sim.standing
     return {
         "stands": bool(s.stands),
+        "uncertain": s.uncertain,
         "reason": s.reason,
         "max_deviation": s.max_deviation,
         "rms_deviation": s.rms_deviation,

@@ -133,6 +133,10 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
          "stainless; for `simulate`)", _MAT, "NU"),
     Flag("yield_stress", "--yield-stress", parse_float, "yield stress in MPa, at least 0.001 "
          "and at most the modulus (215 for 304 stainless; for `simulate`)", _MAT, "MPA"),
+    Flag("hardening_modulus", "--hardening-modulus", parse_float, "linear hardening modulus in "
+         "MPa, >= 0 and below the modulus (0: perfectly plastic; for `simulate`)", _MAT, "MPA"),
+    Flag("kinematic_hardening", "--kinematic-hardening", parse_float, "the share of the "
+         "hardening that is kinematic (Bauschinger), in [0, 1] (for `simulate`)", _MAT, "SHARE"),
     Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
          "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
 )  # fmt: skip

@@ -33,6 +33,8 @@ MATERIAL_KEYS = (
     "youngs_modulus",
     "poisson",
     "yield_stress",
+    "hardening_modulus",
+    "kinematic_hardening",
 )
 
 

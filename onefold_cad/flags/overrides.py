@@ -34,6 +34,8 @@ class Overrides:
         "material.youngs_modulus": "--youngs-modulus",
         "material.poisson": "--poisson",
         "material.yield_stress": "--yield-stress",
+        "material.hardening_modulus": "--hardening-modulus",
+        "material.kinematic_hardening": "--kinematic-hardening",
     }
     _QUAD = {
         "x_plus": "--x-plus",
@@ -152,7 +154,8 @@ def parse_rectangle(text: str) -> tuple[float, float]:
 _SHORT = {"hc": "hc", "radius": "r", "divisions": "div", "apex_fraction": "af", "k_factor": "k",
           "bend_radius": "br", "relief_hole": "hole", "x_plus": "xp", "x_minus": "xm",
           "y_plus": "yp", "y_minus": "ym", "thickness": "t", "density": "rho",
-          "youngs_modulus": "E", "poisson": "nu", "yield_stress": "sy"}  # fmt: skip
+          "youngs_modulus": "E", "poisson": "nu", "yield_stress": "sy", "hardening_modulus": "H",
+          "kinematic_hardening": "kin"}  # fmt: skip
 
 
 def derived_name(base: str, flags: dict[str, Any]) -> str:

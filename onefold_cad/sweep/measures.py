@@ -244,6 +244,7 @@ def _simulate(
         supports=settings["supports"],
         reference=settings["reference"],
         crease=settings["crease"],
+        law=settings["law"],
         level=settings["mesh"],
         convergence=settings["check"],
     ).to_data()

@@ -44,7 +44,7 @@ IMAGES_UP_TO = 1000
 #: The most designs one sweep may have.
 MAX_DESIGNS = 10_000_000
 #: The settings of ``--measure simulate``: ``onefold simulate``'s options.
-SIMULATION_SETTINGS = ("supports", "reference", "crease", "mesh", "check")
+SIMULATION_SETTINGS = ("supports", "reference", "crease", "law", "mesh", "check")
 #: The columns every row has besides its inputs and measures.
 ROW_COLUMNS = (
     Column("key", "str", "", "stable hash of the design's inputs (template data and flags)"),
