@@ -78,15 +78,14 @@ class Actions:
         return von_mises_faces(self.shell, e, k), var, load, react
 
 
-def _ballast(case: CaseResult, feet_react: Array, mu: float, k: int) -> Array:
-    """``(k,)`` the ballast (kg) each foot needs in an EQU case: its pull, then
-    what friction still lacks shared equally (ballast is a favourable
-    permanent action: it counts 0.9 times, EN 1990 Table A1.2(A))."""
+def _ballast(feet_react: Array, mu: float) -> Array:
+    """``(k,)`` the ballast (kg) each foot needs in an EQU case: enough that the
+    ground pushes on it by at least its horizontal force over ``mu`` (so it
+    neither lifts nor slips; ballast is a favourable permanent action: it
+    counts 0.9 times, EN 1990 Table A1.2(A))."""
     favourable = GAMMA["EQU"]["G_inf"] * GRAVITY
-    pull = np.maximum(-feet_react[:, 2], 0.0)
-    v = float(np.maximum(feet_react[:, 2], 0.0).sum())
-    lack = max(case.horizontal_N / mu - v, 0.0)
-    return (pull + lack / k) / favourable
+    h = np.hypot(feet_react[:, 0], feet_react[:, 1])
+    return np.maximum(h / mu - feet_react[:, 2], 0.0) / favourable
 
 
 def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
@@ -117,6 +116,13 @@ def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
         elif rigid.slides:
             reason = (f"it slides: {rigid.horizontal_N / 1e3:.3g} kN sideways against "
                       f"mu V = {act.friction * rigid.vertical_N / 1e3:.3g} kN")  # fmt: skip
+        else:
+            h = np.hypot(feet_r[:, 0], feet_r[:, 1])
+            slip = [i for i in range(len(h)) if h[i] > act.friction * feet_r[i, 2]]
+            if slip:
+                i = max(slip, key=lambda j: h[j] / max(feet_r[j, 2], 1e-300))
+                reason = (f"foot {i + 1} slips (the feet spread): {h[i] / 1e3:.3g} kN sideways "
+                          f"against mu N = {act.friction * feet_r[i, 2] / 1e3:.3g} kN")  # fmt: skip
     res = CaseResult(
         name=case.name,
         kind=case.kind,
@@ -132,5 +138,5 @@ def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
         ballast_kg=np.zeros(len(act.feet)),
     )
     if case.kind == "EQU":
-        res = replace(res, ballast_kg=_ballast(res, feet_r, act.friction, len(act.feet)))
+        res = replace(res, ballast_kg=_ballast(feet_r, act.friction))
     return res, moved, util

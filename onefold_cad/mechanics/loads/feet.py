@@ -12,7 +12,10 @@ and moment ``M`` about the origin (N, N m). The ground's vertical reaction
 - on friction feet it *slides* when ``|F_h| > mu V`` (Coulomb, the same
   coefficient at every foot);
 - a foot *lifts* when the elastic model's anchor there pulls (a free foot
-  cannot: the check the elastic reactions rest on fails).
+  cannot: the check the elastic reactions rest on fails), and *slips* when
+  its own horizontal force passes ``mu`` times its vertical one (the feet
+  spread under the sheet's thrust even where the whole does not slide;
+  ``cases``).
 """
 
 from __future__ import annotations
