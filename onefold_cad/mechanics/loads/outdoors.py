@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import asdict
 from typing import Any
 
 import numpy as np
@@ -20,7 +21,7 @@ import numpy as np
 from onefold_cad.design import Design
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.mechanics.loads.cases import Actions, evaluate_case
-from onefold_cad.mechanics.loads.combinations import combinations
+from onefold_cad.mechanics.loads.combinations import GAMMA, Case, combinations
 from onefold_cad.mechanics.loads.feet import feet_of
 from onefold_cad.mechanics.loads.linear_stress import first_order, strains
 from onefold_cad.mechanics.loads.nonlinear import NonlinearCheck, solve_case
@@ -178,7 +179,7 @@ def outdoors(
         stands=all(r.stands for r in results),
         person_at=None if person_at is None else person_at[1],
         nonlinear=checks,
-        warnings=tuple(_warnings(results, model, act, checks)),
+        warnings=tuple(_warnings(act, checks, design.units.value)),
         faces=tri,
         positions=x,
         moves=evaluated[g_index][1],
@@ -188,8 +189,6 @@ def outdoors(
 
 def _worst_person(act: Actions, person: dict[str, np.ndarray], points: np.ndarray):
     """The candidate whose STR case (1.35 G + 1.5 P) stresses the sheet most."""
-    from onefold_cad.mechanics.loads.combinations import GAMMA, Case
-
     g = GAMMA["STR"]
     best, worst = None, -math.inf
     for i, name in enumerate(person):
@@ -227,30 +226,16 @@ def _feet(act: Actions, results: tuple[CaseResult, ...]) -> tuple[Foot, ...]:
 
 
 def _inputs(spec: LoadSpec) -> dict[str, Any]:
-    from dataclasses import asdict
-
     data = asdict(spec)
     data["terrain"] = terrain(spec.terrain).name
     data["person_at"] = None if spec.person_at is None else list(spec.person_at)
     return data
 
 
-def spec_unit(model: SheetModel) -> str:
-    """The design's unit name from the model's scale."""
-    return {0.001: "mm", 0.0254: "in", 0.3048: "ft"}.get(round(model.scale, 6), "unit")
-
-
-def _warnings(
-    results: tuple[CaseResult, ...],
-    model: SheetModel,
-    act: Actions,
-    checks: tuple[NonlinearCheck, ...],
-) -> list[str]:
+def _warnings(act: Actions, checks: tuple[NonlinearCheck, ...], u: str) -> list[str]:
+    """The full model's disagreements with the linear cases, and too few feet."""
     out = []
-    u = spec_unit(model)
-    by_name = {r.name: r for r in results}
     for c in checks:
-        lin = by_name[c.case]
         if c.reached < 1.0:
             out.append(
                 f"{c.case}: the full model's load path stalls at {100 * c.reached:.3g} % of its "
@@ -265,8 +250,7 @@ def _warnings(
                     f"{c.case}: the full model moves the sheet by {c.max_deflection:.4g} {u} "
                     f"from its standing form, {100 * change:+.3g} % on the linear "
                     f"{c.linear_deflection:.4g} {u} "
-                    f"(utilisation {c.utilisation:.3g} against {lin.utilisation:.3g}): the "
-                    "linear cases are an estimate"
+                    f"(utilisation {c.utilisation:.3g}): the linear cases are an estimate"
                 )
     if len(act.feet) < 3:
         out.append(f"it stands on {len(act.feet)} feet: no support polygon to resist tipping")

@@ -98,6 +98,12 @@ class LoadSpec:
                 "1991-1-4 and its national annex), or its peak velocity pressure "
                 "(--velocity-pressure KPA)",
             )
+        if self.wind_speed is not None and self.velocity_pressure_kPa is not None:
+            raise InvalidParameterError(
+                "velocity_pressure_kPa",
+                "give the basic wind velocity (--wind-speed) or the peak velocity pressure "
+                "(--velocity-pressure), not both",
+            )
         _range("wind_speed", self.wind_speed, 0.0, 100.0, " m/s")
         _range("velocity_pressure_kPa", self.velocity_pressure_kPa, 0.0, 20.0, " kPa")
         _range("height", self.height, 0.1, 200.0, " m")

@@ -135,6 +135,7 @@ def test_combinations_follow_en_1990():
         ({"supports": "glued"}, "supports"),
         ({"directions": 0}, "directions"),
         ({"person_kN": float("nan")}, "person_kN"),
+        ({"velocity_pressure_kPa": 0.5}, "velocity_pressure_kPa"),
     ],
 )
 def test_spec_refuses_bad_values(changes, name):

@@ -116,3 +116,16 @@ def test_full_model_agrees_with_the_linear_cases_under_a_light_wind(patkau):
         assert check.reached == 1.0
         assert np.allclose(check.reactions_N[:, 2], lin.reactions_N[:, 2], atol=0.01 * o.weight_N)
         assert abs(check.max_deflection / check.linear_deflection - 1) < 0.25
+
+
+def test_a_velocity_pressure_given_directly_scales_the_wind(patkau, anchored):
+    """q_p given directly is used as given, and the wind's share of a case's
+    reactions scales with it (the responses are linear in the loads)."""
+    q = anchored.peak_velocity_pressure_kPa
+    spec = LoadSpec(velocity_pressure_kPa=2 * q, snow_kPa=1.0, directions=4)
+    double = outdoors(*patkau, spec, level="coarse")
+    assert double.peak_velocity_pressure_kPa == 2 * q
+    name, weight = "SLS G + W-90", "SLS G"
+    wind = anchored.case(name).reactions_N - anchored.case(weight).reactions_N
+    wind2 = double.case(name).reactions_N - double.case(weight).reactions_N
+    assert np.allclose(wind2, 2 * wind, rtol=1e-9, atol=1e-9 * anchored.weight_N)
