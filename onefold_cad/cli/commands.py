@@ -12,6 +12,7 @@ import sys
 from collections.abc import Callable
 
 from onefold_cad.cli.build import STATE, cmd_build
+from onefold_cad.cli.loads import cmd_loads
 from onefold_cad.cli.output import warn
 from onefold_cad.cli.parser import build_parser
 from onefold_cad.cli.simulate import cmd_simulate
@@ -153,4 +154,5 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "sweep": cmd_sweep,
     "simulate": cmd_simulate,
     "site": cmd_site,
+    "loads": cmd_loads,
 }

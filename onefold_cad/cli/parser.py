@@ -12,6 +12,7 @@ from typing import Any
 
 from onefold_cad.cli.help_format import fill, formatter, raw_formatter
 from onefold_cad.cli.hops_parser import HOPS_PORT, hops_parser, parse_port
+from onefold_cad.cli.loads_parser import loads_parser
 from onefold_cad.cli.site_parser import site_parser
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
@@ -72,7 +73,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n"
         "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n"
         "  hops       a Grasshopper Hops server: onefold/solve and onefold/fit in Grasshopper\n"
-        "  site       a site of several sheets: their files, STEP/IFC/GLB, plan, order\n\n"
+        "  site       a site of several sheets: their files, STEP/IFC/GLB, plan, order\n"
+        "  loads      outdoors: wind, snow, a person; anchors or ballast per foot\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
@@ -222,6 +224,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "sweep": _sweep_parser(),
         "simulate": _simulate_parser(),
         "site": site_parser(PROG),
+        "loads": loads_parser(PROG),
     }
 
 

@@ -132,6 +132,8 @@ def cmd_site(ns: argparse.Namespace) -> int:
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
             built: list[SheetBuilt] = run_tasks(tasks, ns.jobs, _build_sheet)
+            if spec.loads is not None:
+                _outdoors(spec.loads, jobs, built, ns.quiet)
             ctx = _site_context(spec, jobs, built)
             t0 = time.perf_counter()
             ctx.clearance = measure_clearance(ctx.sheets)
@@ -165,6 +167,29 @@ def cmd_site(ns: argparse.Namespace) -> int:
                 why = not_installed(f"the {w.name} file", [w.requires], w.extra)
                 warn(f"{spec.name}{w.suffix} not written: {why}")
     return 0
+
+
+def _outdoors(loads: dict[str, Any], jobs: list[Any], built: list[SheetBuilt], quiet: bool) -> None:
+    """``onefold loads`` on every sheet: its report's ``outdoors`` section
+    (SITE-order.csv's anchor columns read it)."""
+    from onefold_cad.design import build_design
+    from onefold_cad.mechanics.loads.outdoors import outdoors
+    from onefold_cad.mechanics.loads.spec import LoadSpec
+
+    fields = dict(loads)
+    mesh = fields.pop("mesh")
+    spec = LoadSpec(**fields)
+    for job, b in zip(jobs, built, strict=True):
+        t0 = time.perf_counter()
+        result = outdoors(job.design, build_design(job.design), spec, level=mesh)
+        b.report["outdoors"] = result.to_data()
+        for w in result.warnings:
+            warn(f"{job.design.name}: {w}")
+        t = b.report["outdoors"]["totals"]
+        _say(quiet, job.design.name,
+             f"outdoors ({spec.supports} feet): {t['feet']} feet, {t['anchored_feet']} pulled "
+             f"up ({t['tension_N'] / 1e3:.3g} kN), ballast {t['ballast_kg']:.4g} kg; governing "
+             f"{result.governing} ({time.perf_counter() - t0:.1f} s)")  # fmt: skip
 
 
 def _report_clearance(ctx: SiteContext, ns: argparse.Namespace, seconds: float) -> None:

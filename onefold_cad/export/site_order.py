@@ -6,7 +6,12 @@ NAME.json holds), never recomputed.
 Columns: the sheet, its design's description, material and gauge (thickness), the stock
 sheet (the designed sheet's size in its own frame), the blank (the cut
 part: size, net area), the mass (with its unit), the cut length (outline
-and relief hole), the number of bends and each one's angle and direction.
+and relief hole), the number of bends and each one's angle and direction;
+with the site's ``[loads]`` (``onefold loads`` on every sheet: the report's
+``outdoors`` section) its feet, how many of them an anchor must hold down,
+the anchors' pull and shear added over its feet (each foot's largest over
+the cases, N), the ballast that would replace them (kg) and the case that
+governs (empty without loads).
 Lengths in the site's unit, areas in unit^2.
 """
 
@@ -41,7 +46,23 @@ ORDER_COLUMNS = (
     "bend_angles_deg",
     "bend_directions",
     "units",
+    "feet",
+    "anchors",
+    "anchor_pull_N",
+    "anchor_shear_N",
+    "ballast_kg",
+    "governing_case",
 )
+
+
+def _anchors(rep: Mapping[str, Any]) -> list[Any]:
+    """The outdoors columns of one report (blank without its section)."""
+    o = rep.get("outdoors")
+    if o is None:
+        return [""] * 6
+    t = o["totals"]
+    return [t["feet"], t["anchored_feet"], t["tension_N"], t["shear_N"], t["ballast_kg"],
+            o["governing"]]  # fmt: skip
 
 
 def _number(value: Any) -> Any:
@@ -87,19 +108,25 @@ def order_rows(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> list[list[An
                 ";".join(f"{crease[k]['fold_angle_deg']:.3f}" for k in halves),
                 ";".join(f"{k}:{crease[k]['bend']}" for k in halves),
                 rep["units"],
+                *_anchors(rep),
             ]
         )
-    units = {r[-1] for r in rows}
+    units = {r[15] for r in rows}
     mass_units = {r[10] for r in rows}
 
     def total(values: list[Any]) -> Any:
         return "" if any(v is None for v in values) else sum(values)
 
+    loads = [r[-6:] for r in rows]
+    sums = [
+        "" if any(v == "" for v in col) else sum(col) for col in list(zip(*loads, strict=True))[:5]
+    ]
     rows.append(
         [
             "TOTAL", f"{len(rows)} sheets", "", "", "", "", "", "", total(areas),
             total(masses) if len(mass_units) == 1 else "", mass_units.pop() if len(mass_units) == 1
             else "", total(cuts), bends, "", "", units.pop() if len(units) == 1 else "",
+            *sums, "",
         ]
     )  # fmt: skip
     return rows

@@ -57,3 +57,30 @@ def test_no_total_mass_without_every_mass_or_across_units():
     assert total["mass"] == ""
     (_, _, total) = rows(order_csv([("a", report("a", 1.0)), ("b", report("b", 1.0, "lb"))]))
     assert total["mass"] == "" and total["mass_unit"] == ""
+
+
+def outdoors(pull: float, shear: float, ballast: float, feet: int = 3) -> dict:
+    return {
+        "governing": "EQU 0.9G + 1.5W-0",
+        "totals": {"feet": feet, "anchored_feet": 2, "tension_N": pull, "shear_N": shear,
+                   "ballast_kg": ballast},
+    }  # fmt: skip
+
+
+def test_the_anchors_of_each_sheet_and_their_total():
+    """With the site's loads, each sheet's feet, anchors, pull, shear and
+    ballast from its report's outdoors section, and their sums in the total."""
+    a, b = report("a", 1.0), report("b", 1.0)
+    a["outdoors"], b["outdoors"] = outdoors(4500.5, 20000.0, 1200.0), outdoors(100.0, 5.0, 3.0, 4)
+    ra, rb, total = rows(order_csv([("a", a), ("b", b)]))
+    assert (ra["feet"], ra["anchors"], ra["anchor_pull_N"]) == ("3", "2", "4500.5")
+    assert ra["governing_case"] == "EQU 0.9G + 1.5W-0"
+    assert total["feet"] == "7" and total["anchors"] == "4"
+    assert float(total["anchor_pull_N"]) == pytest.approx(4600.5)
+    assert float(total["anchor_shear_N"]) == pytest.approx(20005.0)
+    assert float(total["ballast_kg"]) == pytest.approx(1203.0)
+
+
+def test_no_anchor_columns_without_loads():
+    (a, total) = rows(order_csv([("a", report("a", 1.0))]))
+    assert a["feet"] == "" and total["anchor_pull_N"] == ""
