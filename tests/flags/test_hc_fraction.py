@@ -101,3 +101,14 @@ def test_the_readmes_sweep_example_runs_clean(tmp_path):
     rows = [json.loads(r) for r in (tmp_path / "sweep" / "journal.jsonl").read_text().splitlines()]
     assert len(rows) == 45
     assert [r["error"] for r in rows if r["status"] != "ok"] == []
+
+
+def test_hops_solve_takes_the_fraction_as_its_last_input():
+    """Grasshopper's onefold/solve: ``hc_fraction`` (as --hc-fraction) after
+    every input it had, so a definition made before keeps its wiring."""
+    from onefold_cad.hops.inputs import SOLVE_INPUTS
+
+    last = SOLVE_INPUTS[-1]
+    assert (last.name, last.kind, last.flag) == ("hc_fraction", "number", "--hc-fraction")
+    assert "R cos(alpha)" in last.description and "(-1, 1)" in last.description
+    assert [i.name for i in SOLVE_INPUTS].count("hc") == 1
