@@ -233,14 +233,13 @@ def check_jobs(
             for text in bend_table(ctx.pattern, rulings=False).splitlines():
                 progress.line(i, n, d.name, text)
         notes = tuple(design_warnings(d, folded, ns.compensation, body))
-        if "fold" in formats:  # the file's, not the design's: on stderr, not in the report
+        for w in notes:
+            warn(f"{d.name}: {w}")
+        if "fold" in formats:  # the file's: in the file and the report, not on stderr
             from onefold_cad.export.fold_file import fold_note
 
             note = fold_note(d, folded)
-            if note is not None:
-                warn(f"{d.name}: {note}")
-        for w in notes:
-            warn(f"{d.name}: {w}")
+            notes += () if note is None else (note,)
         found.append(notes)
     return found
 

@@ -327,7 +327,8 @@ def _sweep_parser() -> FlagParser:
             "NAME is a design flag without its dashes (alpha, hc, apex-fraction, rectangle, ...).\n"
             "SPEC: LO:HI:N (N values from LO to HI), LO:HI (a range for --sampler lhs|sobol,\n"
             "or --samples values on a grid), V,V,... (a list; a polygon's list uses |), V.\n"
-            "e.g. onefold sweep patkau-one-fold --vary alpha=10:80:15 --vary hc=-50,0,50 -o out\n\n"
+            "e.g. onefold sweep patkau-one-fold --vary alpha=10:80:15 "
+            "--vary hc-fraction=-0.5,0,0.5 -o out\n\n"
             f"measures (--measure NAME,...):\n{measure_help()}"
         ),
         formatter_class=raw_formatter,

@@ -100,7 +100,11 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
     Flag("alpha", "--alpha", parse_float, "arc opening alpha, deg in (0, 90)", _FRAME, "DEG"),
     Flag("beta", "--beta", parse_float, "tilt beta of the arc's plane, deg in (0, 90)", _FRAME,
          "DEG"),
-    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint", _FRAME, "LENGTH"),
+    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint (the paper's "
+         "tables: R = 100); |h_c| < R cos(alpha)", _FRAME, "LENGTH"),
+    Flag("hc_fraction", "--hc-fraction", parse_float, "where H sits on the f-line, whatever R "
+         "and alpha: h_c as a fraction of the half f-line R cos(alpha), in (-1, 1) (0: the "
+         "midpoint, -1 / 1: the -x / +x end; instead of --hc)", _FRAME, "F"),
     Flag("radius", "--radius", parse_float, "frame-curve radius R > 0, from 1e-6 to 1e6 times "
          "the sheet's size", _FRAME, "LENGTH"),
     Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, in "

@@ -132,6 +132,7 @@ SOLVE_INPUTS: tuple[HopsInput, ...] = (
         "resting numbers) or frame (the fold frame: H at the origin, the fold line on x)",
         "--placement",
     ),
+    _flag_input("hc_fraction"),  # last: a definition made before it keeps its wiring
 )
 
 #: The inputs of ``onefold/fit`` (``onefold fit``'s options).

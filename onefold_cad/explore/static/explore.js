@@ -12,7 +12,7 @@ const $ = (id) => document.getElementById(id);
 
 // Controls with a range slider and a number box (id and id-num); the number box
 // holds the value sent (it may hold a bad value: the server says what is wrong).
-const SLIDERS = ['alpha', 'beta', 'hc', 'width', 'height', 'apex_fraction',
+const SLIDERS = ['alpha', 'beta', 'hc_fraction', 'width', 'height', 'apex_fraction',
   'x_plus', 'x_minus', 'y_plus', 'y_minus', 'thickness', 'bend_radius'];
 const PLAIN = ['model', 'divisions', 'radius', 'polygon'];
 const SHEET_FIELDS = {
@@ -20,7 +20,7 @@ const SHEET_FIELDS = {
   quadrilateral: ['x_plus', 'x_minus', 'y_plus', 'y_minus'],
   polygon: ['polygon'],
 };
-const COMMON = ['model', 'alpha', 'beta', 'hc', 'radius', 'divisions', 'thickness', 'bend_radius'];
+const COMMON = ['model', 'alpha', 'beta', 'hc_fraction', 'radius', 'divisions', 'thickness', 'bend_radius'];
 
 let templateKey = null;
 let sheetKind = 'rectangle';
@@ -70,10 +70,6 @@ function fitRanges(page) {
   setRange('bend_radius', 0, Math.max(4 * num('bend_radius'), 4 * num('thickness'), size / 200));
 }
 
-function fitHcRange(page) {
-  if (page.hc_limit) setRange('hc', -0.98 * page.hc_limit, 0.98 * page.hc_limit);
-}
-
 function fillControls(page) {
   sheetKind = page.sheet_kind;
   units = page.units;
@@ -81,7 +77,6 @@ function fillControls(page) {
   for (const fs of document.querySelectorAll('fieldset[data-kind]')) fs.hidden = fs.dataset.kind !== sheetKind;
   for (const u of document.querySelectorAll('.unit')) u.textContent = units;
   fitRanges(page);
-  fitHcRange(page);
 }
 
 // -- 3D view --------------------------------------------------------------
@@ -410,7 +405,6 @@ async function run() {
 function apply(state, job, q) {
   if (state.page) {
     if (job.templateOnly) fillControls(state.page);
-    else fitHcRange(state.page);
   }
   showMessages(state.messages || []);
   document.body.classList.toggle('has-error', !state.ok);
