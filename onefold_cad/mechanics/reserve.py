@@ -7,7 +7,8 @@ at t = 3.57 mm the coarse 2.375 (the moment law; :func:`carried` on each
 level's model, tests/mechanics/test_reserve.py): the coarse mesh overstates
 the load a sheet carries by about two. So a coarse "stands" is
 a yes only when the coarse sheet carries :data:`COARSE_RESERVE` times its
-weight; below that the answer is "uncertain: run --mesh normal".
+weight; below that, or where the check cannot show it, the answer is
+"uncertain: run --mesh normal".
 """
 
 from __future__ import annotations
@@ -35,19 +36,23 @@ def carried(
     supports: str,
     up_to: float = COARSE_RESERVE,
 ) -> float:
-    """The multiple of its weight the standing sheet carries, its gravity
-    ramped on from 1 to ``up_to`` (``up_to`` when it carries all of it; the
-    moment law's shell, contacts and load steps of the standing stage)."""
+    """A multiple of its weight the standing sheet is shown to carry: ``up_to``
+    when it does, else 1 (its weight, carried already). Its gravity goes from
+    1 to ``up_to`` in one Newton solve of the standing stage's iterations: a
+    check, not the load path, so a sheet it cannot show to carry ``up_to``
+    may carry more (the answer is then "uncertain", which asks for the
+    normal mesh, never a wrong yes).
+    The moment law's shell, contacts and step limits of the standing stage."""
     base = placed.shell.with_changes(rest_curvature=rest_curvature)
     g = np.array([0.0, 0.0, -GRAVITY])
     options = standing_path(model, placed, supports)
-    options["contacts"] = standing.contacts
+    options.update(contacts=standing.contacts, first_step=1.0, max_solves=1)
     try:
         solve_path(
             lambda s: base.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
             standing.q,
             **options,  # type: ignore[arg-type]
         )
-    except PathStalled as err:
-        return 1.0 + err.reached * (up_to - 1.0)
+    except PathStalled:
+        return 1.0
     return up_to

@@ -30,7 +30,7 @@ def anchored(patkau):
 
 def test_every_case_is_in_equilibrium(anchored):
     """The feet's reactions balance each case's loads: the weight times its
-    factor plus the variable loads (their sum to 1e-9), and on three feet
+    factor plus the variable loads (their sum to 1e-9 of the feet's forces), and on three feet
     their vertical parts are the statics' (the moments about the ground's
     axes, within 2 % of the weight: the linear response balances moments on
     the standing form, the statics on the form it moves to)."""
@@ -39,7 +39,11 @@ def test_every_case_is_in_equilibrium(anchored):
     g = o.case("STR 1.35G")
     assert math.isclose(g.reactions_N[:, 2].sum(), 1.35 * o.weight_N, rel_tol=1e-9)
     for c in o.cases:
-        assert math.isclose(c.reactions_N[:, 2].sum(), c.vertical_N, rel_tol=1e-9, abs_tol=1e-6)
+        # to 1e-9 of the forces the feet carry (a sum of +-5 kN feet can be -0.4 kN)
+        scale = float(np.abs(c.reactions_N).sum())
+        assert math.isclose(
+            c.reactions_N[:, 2].sum(), c.vertical_N, rel_tol=0, abs_tol=1e-9 * scale
+        )
     at = np.array([f.at for f in o.feet]) * 1e-3
     up = o.case("EQU 0.9G + 1.5W-0")
     assert up.reactions_N[:, 2].min() < 0.0  # an anchor pulls
