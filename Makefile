@@ -45,11 +45,13 @@ programs:
 	  fi; \
 	fi
 
-# ruff, then the layer contract of pyproject.toml ([tool.importlinter]).
+# ruff, the layer contract of pyproject.toml ([tool.importlinter]), then the
+# types (mypy, configured in pyproject.toml's [tool.mypy]: zero errors).
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
 	$(BIN)/lint-imports
+	$(BIN)/mypy onefold_cad
 
 clean:
 	rm -rf $(OUT) build *.egg-info .pytest_cache .ruff_cache

@@ -111,12 +111,12 @@ def _scaled_sheet(sheet: Sheet, f: float) -> Sheet:
     inputs = sheet.inputs
     if sheet.kind == "rectangle":
         return Sheet.rectangle(
-            float(inputs["width"]) * f,  # type: ignore[arg-type]
-            float(inputs["height"]) * f,  # type: ignore[arg-type]
-            float(inputs["apex_fraction"]),  # type: ignore[arg-type]
+            float(inputs["width"]) * f,
+            float(inputs["height"]) * f,
+            float(inputs["apex_fraction"]),
         )
     if sheet.kind == "quadrilateral":
-        return Sheet.quadrilateral(**{k: float(v) * f for k, v in inputs.items()})  # type: ignore[arg-type]
+        return Sheet.quadrilateral(**{k: float(v) * f for k, v in inputs.items()})
     points = np.asarray(inputs.get("polygon", sheet.vertices), dtype=float) * f
     return Sheet.polygon(points, name="polygon")
 

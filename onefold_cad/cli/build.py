@@ -165,9 +165,11 @@ def run_tasks(tasks: Sequence[Any], jobs: int, fn: Callable[[Any], Any]) -> list
         return [fn(t) for t in tasks]
     import multiprocessing
 
+    ctx: multiprocessing.context.BaseContext
     if "forkserver" in multiprocessing.get_all_start_methods():
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["onefold_cad.export.writers", fn.__module__])
+        server = multiprocessing.get_context("forkserver")
+        server.set_forkserver_preload(["onefold_cad.export.writers", fn.__module__])
+        ctx = server
     else:
         ctx = multiprocessing.get_context("spawn")
     pool = ctx.Pool(min(jobs, len(tasks)), initializer=_worker_init)
@@ -384,14 +386,14 @@ def _flag_named(exc: OneFoldError, ns: argparse.Namespace) -> OneFoldError:
     prefix = f"{param}: "
     if flag is None or getattr(ns, str(param), None) is None or not str(exc).startswith(prefix):
         return exc
-    return type(exc)(flag, str(exc)[len(prefix) :])  # type: ignore[call-arg]
+    return type(exc)(flag, str(exc)[len(prefix) :])
 
 
 def _prefixed(exc: OneFoldError, name: str) -> OneFoldError:
     """``exc`` with the design's name in front (several designs in one call)."""
     param = getattr(exc, "parameter", None)  # InvalidParameterError, FabricationError
     if isinstance(param, str) and str(exc).startswith(f"{param}: "):
-        return type(exc)(f"{name}: {param}", str(exc)[len(param) + 2 :])  # type: ignore[call-arg]
+        return type(exc)(f"{name}: {param}", str(exc)[len(param) + 2 :])
     return OneFoldError(f"{name}: {exc}")
 
 

@@ -43,7 +43,7 @@ def _template_argument(parser: argparse.ArgumentParser, dest: str, nargs: str) -
     )
 
 
-def _add_common(p: argparse.ArgumentParser) -> None:
+def _add_common(p: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
     p.add_argument(
         "--name", help="the design's name (file stem); default: the template's, with the "
         "flags given appended; without a template, made from the flags"

@@ -84,6 +84,8 @@ def _mesh(sim: Simulation) -> dict[str, Any]:
         kind, shown = "released", sim.released_positions
     else:
         kind, shown = None, None
+    if sim.faces is None or sim.designed_positions is None:
+        raise OneFoldError("the simulation carries no mesh to show")
     faces = np.asarray(sim.faces)
     small = len(sim.designed_positions) < 2**16
     out: dict[str, Any] = {

@@ -213,7 +213,8 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
     quality |= {"divisions": n, "design_divisions": design.frame.divisions}
     surface = fan.solution.surface
     spacing = surface.spacing if isinstance(surface, PaperFan) else None
-    if spacing is not None:  # the graded fan's wedges (fold_fan)
+    if isinstance(surface, PaperFan) and spacing is not None:  # fold_fan's graded wedges
+        assert surface.gammas is not None  # a solved fan has its apex angles
         steps = np.asarray(spacing.steps)
         widths = np.abs(np.diff(steps)) / spacing.per_span
         quality |= {

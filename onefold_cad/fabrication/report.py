@@ -212,9 +212,9 @@ def design_warnings(
     elif closed:  # whatever the compensation
         bends.append(f"{error}; build refuses the DXF, cut DXF, bend sheet and flat preview")
     elif error is not None:
-        solid = solid_bend_problem(design, folded) is not None  # the writers' own check
+        solid_refused = solid_bend_problem(design, folded) is not None  # the writers' check
         refused = "the DXF, cut DXF, bend sheet and flat preview" + (
-            " and a STEP solid and its GLB" if solid else ""
+            " and a STEP solid and its GLB" if solid_refused else ""
         )
         bends.append(
             f"{error}; build refuses {refused} (--compensation none writes the uncompensated blank)"

@@ -137,10 +137,10 @@ def section_kinks(body: Body, section: Section, breaks: list[Array]) -> list[Arr
     t = np.linspace(0.0, 1.0, _LOOKS + 1)
     grid = a[:, None] + (b - a)[:, None] * t  # (c, _LOOKS + 1)
     k = np.arange(len(a))
-    inner = _corners(body, section, grid[:, 1:-1].ravel(), np.repeat(side_of, _LOOKS - 1))
+    between = _corners(body, section, grid[:, 1:-1].ravel(), np.repeat(side_of, _LOOKS - 1))
     f = np.empty_like(grid)
     f[:, 0], f[:, -1] = values[fun, left], values[fun, left + 1]
-    f[:, 1:-1] = inner[np.repeat(fun, _LOOKS - 1), np.arange(inner.shape[1])].reshape(
+    f[:, 1:-1] = between[np.repeat(fun, _LOOKS - 1), np.arange(between.shape[1])].reshape(
         len(a), _LOOKS - 1
     )
     change = np.argmax(np.signbit(f[:, 1:]) != np.signbit(f[:, :-1]), axis=1)

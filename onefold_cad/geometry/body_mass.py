@@ -111,16 +111,16 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> t
         phi, weights = _sector_rule(breaks, _EXACT_POINTS, _EXACT_PANELS)
         rules.append((phi, weights, graded))
     phi = np.concatenate([r[0] for r in rules])
-    lower = np.repeat([False, True], [len(r[0]) for r in rules])
+    on_lower = np.repeat([False, True], [len(r[0]) for r in rules])
     theta = cone.theta_near(phi)
     for side, (_, _, graded) in enumerate(rules):
-        np.clip(theta, graded[0], graded[-1], out=theta, where=lower == bool(side))
+        np.clip(theta, graded[0], graded[-1], out=theta, where=on_lower == bool(side))
     u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(phi, curvature=True)
-    slab = _slab_moments(body, theta, lower, u, n, k) * speed[:, None]
+    slab = _slab_moments(body, theta, on_lower, u, n, k) * speed[:, None]
     total, moment = 0.0, np.zeros(3)
     blocks = _block_moments(body) if body.thickness > 0.0 else []
     for side, (_, weights, _) in enumerate(rules):
-        vals = weights @ slab[lower == bool(side)]
+        vals = weights @ slab[on_lower == bool(side)]
         total += vals[0]
         moment += vals[1:] * (MIRROR if side else np.ones(3))
         for vol, mom in blocks[2 * side : 2 * side + 2]:

@@ -28,6 +28,7 @@ unit.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from itertools import combinations
 
@@ -155,6 +156,7 @@ def _plane_through(pts: Array, com: Array, g: Array, tol: float) -> Array | None
         common = _common_plane(pts, g, tol)
         if common is not None:
             return common
+    triples: Iterable[tuple[int, int, int]]
     if len(pts) > _ALL_TRIPLES_MAX:
         triples = _lower_facets(pts, g)
     else:

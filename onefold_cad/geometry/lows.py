@@ -40,7 +40,9 @@ __all__ = ["bound_directions", "exact_bounds", "exact_lows"]
 Low = tuple[int, float, Array]
 
 
-def _window(rows: Rows, row: Array, h: Array, d: Array) -> tuple[Array, Array]:
+def _window(
+    rows: Rows, row: NDArray[np.intp], h: Array, d: NDArray[np.intp]
+) -> tuple[Array, Array]:
     """Heights ``h`` ``(M, D)`` and parameters at the five rows about each
     candidate (``row``, direction ``d``; ``(c,)``): ``(c, 5)`` each, NaN past
     the ends of the candidate's piece."""
@@ -152,7 +154,8 @@ def exact_lows(
     for dd, (k, _, _, _), (t, p) in zip(whose, asks, found, strict=True):
         out[dd].append((k, t, p))
     for dd in range(nd):
-        out[dd].sort(key=lambda item, g=dirs[dd]: float(item[2] @ g))
+        g = dirs[dd]
+        out[dd].sort(key=lambda item: float(item[2] @ g))  # noqa: B023 (sorted at once)
     return out
 
 

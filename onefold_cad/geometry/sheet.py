@@ -12,6 +12,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -166,13 +167,15 @@ class Sheet:
             (identity for polygons and quadrilaterals; for a rectangle, a corner
             at the origin and its sides on the axes).
         kind: 'polygon', 'quadrilateral' or 'rectangle'.
-        inputs: the values the sheet was made from (for reports).
+        inputs: the values the sheet was made from (for reports): lengths
+            (floats) for a quadrilateral or rectangle, the vertices
+            ``[[x, y], ...]`` under 'polygon' for a polygon.
     """
 
     vertices: NDArray[np.float64]
     to_sheet: Placement2D = field(default_factory=Placement2D)
     kind: str = "polygon"
-    inputs: dict[str, object] = field(default_factory=dict)
+    inputs: dict[str, Any] = field(default_factory=dict)
 
     # -- constructors -------------------------------------------------------
     @classmethod
@@ -183,7 +186,7 @@ class Sheet:
         name: str = "polygon",
         to_sheet: Placement2D | None = None,
         kind: str = "polygon",
-        inputs: dict[str, object] | None = None,
+        inputs: dict[str, Any] | None = None,
     ) -> Sheet:
         """Validate a polygon given in the fold frame and return the sheet.
 

@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.hops.inputs import FIT_INPUTS, SOLVE_INPUTS, flag_args, parse_solve_args
 
 __all__ = [
@@ -210,6 +211,8 @@ def fit_answer(values: Mapping[str, Any]) -> Answer:
 
     names = [inp.name for inp in FIT_INPUTS]
     template, height, span, depth, margin = (values.get(n) for n in names)
+    if height is None or span is None:  # read_values refuses a request without them
+        raise InvalidParameterError("height" if height is None else "span", "is required")
     (job,) = load_jobs([DEFAULT_TEMPLATE if template is None else template], {})
     result = fit_design(job.design, height, span, depth, margin)
     data = result.to_data()
