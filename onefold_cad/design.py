@@ -26,7 +26,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from onefold_cad.choices import Model, Units
+from onefold_cad.choices import Body, Model, Units
 from onefold_cad.errors import InvalidParameterError, OneFoldError
 from onefold_cad.geometry.checks import check_magnitudes
 from onefold_cad.geometry.folding import FoldedSheet, fold
@@ -170,7 +170,7 @@ def build_design(design: Design) -> FoldedSheet:
 
 
 def rest_once(
-    folded: FoldedSheet, material: Material | None = None, body: str = "shell"
+    folded: FoldedSheet, material: Material | None = None, body: Body = Body.SHELL
 ) -> RestingPlacement:
     """:func:`~onefold_cad.geometry.placement.rest_form` of ``folded``,
     ``material`` (None: a zero-thickness sheet without a hole) and ``body``,

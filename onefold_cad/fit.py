@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.choices import Model
+from onefold_cad.choices import Body, Model
 from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
@@ -76,7 +76,7 @@ class FitResult:
     """
 
     design: Design
-    body: str
+    body: Body
     height: float
     span: float
     depth: float

@@ -18,12 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from onefold_cad.choices import Body, Compensation, Placement
 from onefold_cad.cli.summary import material_lines
 from onefold_cad.errors import InvalidParameterError, OneFoldError, memory_message
 from onefold_cad.export.writers import WRITERS
 from onefold_cad.flags.design_flags import (
     FLAG_OF,
-    PLACEMENTS,
 )
 from onefold_cad.flags.jobs import Job, load_jobs
 
@@ -57,12 +57,12 @@ class BuildTask:
     total: int
     job: Job
     formats: tuple[str, ...]
-    body: str | None
-    compensation: str
+    body: Body | None
+    compensation: Compensation
     folder: str
     quiet: bool
     warnings: tuple[str, ...] = ()
-    placement: str = PLACEMENTS[0]
+    placement: Placement = Placement.REST
     freeze: bool = False  # the command runs as its own process (see _freeze_imports)
 
 
@@ -205,7 +205,8 @@ def check_jobs(
     from onefold_cad.export.writers import BuildContext, check_before_writing
     from onefold_cad.fabrication.report import design_warnings
 
-    body = None if ns.body == "auto" else ns.body
+    body = None if ns.body == "auto" else Body.parse(ns.body)
+    compensation = Compensation.parse(ns.compensation)
     n = len(jobs)
     progress = Progress(ns.quiet)
     found: list[tuple[str, ...]] = []
@@ -217,7 +218,9 @@ def check_jobs(
         t0 = time.perf_counter()
         folded = build_design(d)
         lines += [*_material_text(d, folded, job), f"solve {time.perf_counter() - t0:.2f} s"]
-        ctx = BuildContext(d, folded, body, ns.compensation, job.sources, placement=ns.placement)
+        ctx = BuildContext(
+            d, folded, body, compensation, job.sources, placement=Placement.parse(ns.placement)
+        )
         t0 = time.perf_counter()
         try:
             check_before_writing(ctx, formats)
@@ -234,7 +237,7 @@ def check_jobs(
 
             for text in bend_table(ctx.pattern, rulings=False).splitlines():
                 progress.line(i, n, d.name, text)
-        notes = tuple(design_warnings(d, folded, ns.compensation, body))
+        notes = tuple(design_warnings(d, folded, compensation, body))
         if "fold" in formats:  # the file's, not the design's: on stderr, not in the report
             from onefold_cad.export.fold_file import fold_note
 
@@ -318,7 +321,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     if ns.jobs < 1:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
     formats = parse_formats(ns.formats)
-    body = None if ns.body == "auto" else ns.body
+    body = None if ns.body == "auto" else Body.parse(ns.body)
     jobs = load_jobs(refs, design_flag_values(ns), ns.name, skip_site=warn)
     stems = [j.design.name for j in jobs]
     dup = sorted({s for s in stems if stems.count(s) > 1})
@@ -336,8 +339,9 @@ def cmd_build(ns: argparse.Namespace) -> int:
         with Staging(outdir, say=warn) as staging:
             STATE["staging"] = staging
             tasks = [
-                BuildTask(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
-                      ns.quiet, found[i - 1], ns.placement, bool(STATE.get("process")))
+                BuildTask(i, n, job, formats, body, Compensation.parse(ns.compensation),
+                          str(staging.path / str(i)), ns.quiet, found[i - 1],
+                          Placement.parse(ns.placement), bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
             files = [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from onefold_cad.choices import Compensation, Placement
 from onefold_cad.cli.build import (
     STATE,
     BuildTask,
@@ -126,9 +127,9 @@ def cmd_site(ns: argparse.Namespace) -> int:
         with Staging(outdir, say=warn) as staging:
             STATE["staging"] = staging
             tasks = [
-                BuildTask(i, n, job, sheet_formats, None, ns.compensation,
-                          str(staging.path / job.design.name), ns.quiet, found[i - 1], "rest",
-                          bool(STATE.get("process")))
+                BuildTask(i, n, job, sheet_formats, None, Compensation.parse(ns.compensation),
+                          str(staging.path / job.design.name), ns.quiet, found[i - 1],
+                          Placement.REST, bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
             built: list[SheetBuilt] = run_tasks(tasks, ns.jobs, _build_sheet)

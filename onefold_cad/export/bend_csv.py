@@ -10,6 +10,7 @@ import os
 from dataclasses import astuple, fields
 from pathlib import Path
 
+from onefold_cad.choices import Compensation
 from onefold_cad.design import Design, build_design
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.fabrication.bend_table import BendRow, bend_rows
@@ -34,7 +35,7 @@ def write_bend_csv(
     path: str | os.PathLike[str],
     folded: FoldedSheet | None = None,
     *,
-    compensation: str = "sharp",
+    compensation: Compensation = Compensation.SHARP,
 ) -> Path:
     """Write ``NAME-bends.csv`` (atomically: nothing is written if anything fails).
 

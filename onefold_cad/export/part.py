@@ -331,7 +331,7 @@ def build_solid(
     return solid
 
 
-def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: str) -> None:
+def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: Compensation) -> None:
     """Refuse a solid past the bend model's limits (FabricationError: a bend
     zone reaching a sheet corner, a large set-back beside the flanges, a fold
     near 180 deg) unless ``compensation`` is 'none':
@@ -374,9 +374,9 @@ def build_part(
     design: Design,
     folded: FoldedSheet | None = None,
     *,
-    body: str | None = None,
-    placement: str = "rest",
-    compensation: str = "sharp",
+    body: Body | None = None,
+    placement: Placement = Placement.REST,
+    compensation: Compensation = Compensation.SHARP,
     budget: float | None = KERNEL_BUDGET,
 ) -> bd.Shape:
     """The design's part, labelled with its name.

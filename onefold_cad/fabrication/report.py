@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.choices import Compensation
+from onefold_cad.choices import Body, Compensation
 from onefold_cad.design import Design, derived
 from onefold_cad.errors import (
     ExportError,
@@ -77,7 +77,9 @@ def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None) -> dict[str, Any]:
+def resting_numbers(
+    design: Design, folded: FoldedSheet, body: Body | None = None
+) -> dict[str, Any]:
     """The report's ``resting`` section: how the body the STEP holds (``body``,
     default :func:`~onefold_cad.fabrication.rules.default_body`) stands on the ground
     (:func:`~onefold_cad.fabrication.rules.resting_placement`): its exact
@@ -187,7 +189,7 @@ def design_warnings(
     design: Design,
     folded: FoldedSheet,
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
 ) -> list[str]:
     """What ``solve`` and ``build`` warn about before any writer runs, one
     line each: the solver's own warnings (when it gives any),
@@ -245,7 +247,7 @@ def report_warnings(
     *,
     warnings: Iterable[str] = (),
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
 ) -> tuple[list[str], FlatPattern | None, float | None]:
     """The report's ``warnings`` (``warnings`` given, then
     :func:`design_warnings`, the flat pattern's refusal and the solid's relief
@@ -271,7 +273,7 @@ def design_report(
     timings: Mapping[str, float] | None = None,
     warnings: Iterable[str] = (),
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
     step: Mapping[str, Any] | None = None,
     rhino: Mapping[str, Any] | None = None,
 ) -> dict[str, Any]:

@@ -1,5 +1,5 @@
 """A body's samples and its evaluation: the side of
-:class:`~onefold_cad.geometry.body.Body` that lays out its pieces' grids,
+:class:`~onefold_cad.geometry.body.FoldedBody` that lays out its pieces' grids,
 evaluates them a family at a time (:mod:`.body_families`), and finds the
 lowest points of many brackets at once (:mod:`.zoom`). Points relative to the
 apex; lengths in the design unit.
@@ -46,7 +46,7 @@ class Rows:
 
 class Sampled:
     """The sampling and evaluation of a body's pieces (a mixin of
-    :class:`~onefold_cad.geometry.body.Body`, which sets the attributes)."""
+    :class:`~onefold_cad.geometry.body.FoldedBody`, which sets the attributes)."""
 
     pieces: list[Piece]
     fixed: Array

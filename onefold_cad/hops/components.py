@@ -19,6 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from onefold_cad.choices import Placement
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.hops.inputs import FIT_INPUTS, SOLVE_INPUTS, flag_args, parse_solve_args
 
@@ -155,7 +156,8 @@ def solve_answer(values: Mapping[str, Any], model_units: object = None) -> Answe
     given = dict(values)
     if given.get("sheet") is not None:
         given["sheet"] = _sheet_text(given["sheet"])
-    flags, placement = parse_solve_args(flag_args(SOLVE_INPUTS, given))
+    flags, placed = parse_solve_args(flag_args(SOLVE_INPUTS, given))
+    placement = Placement.parse(placed)
     template = given.get("template")
     (job,) = load_jobs([template] if template is not None else [], flags)
     design = job.design

@@ -21,7 +21,7 @@ from onefold_cad import (
     solve,
 )
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.placement import (
@@ -435,7 +435,7 @@ def _step_resting(design: Design, body: str):
             p = curve.Value(float(u))
             if p.Z() <= 1e-6 * size:
                 touching.append((p.X(), p.Y()))
-    body_measure, _ = mass_properties(Body(folded, material, body))
+    body_measure, _ = mass_properties(FoldedBody(folded, material, body))
     assert abs(body_measure - measure) <= 1e-5 * measure  # volume (solid) or area (shell)
     return rest, lowest, com, np.array(touching)
 
