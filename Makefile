@@ -1,6 +1,6 @@
 # Two commands on a fresh clone (needs only Python 3.11 and make):
 #   make demo   create .venv, install the package, build the default template into out/
-#   make test   install the test extras into .venv and run the whole test suite
+#   make test   install the test extras into .venv, run the lint and the whole test suite
 PYTHON ?= $(shell command -v python3.11 2>/dev/null || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
@@ -23,7 +23,8 @@ $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
 demo: $(VENV)/.installed
 	$(BIN)/onefold build $(TEMPLATE) -o $(OUT)
 
-test: $(VENV)/.installed-test programs
+# The README's test command: the lint first (ruff, layers, mypy), then every test.
+test: $(VENV)/.installed-test programs lint
 	$(BIN)/python -m pytest -n auto
 
 # Debian programs the tests drive: Chromium with playwright (tests/explore/),

@@ -20,7 +20,7 @@ from onefold_cad.version import __version__
 #: public name -> the module that defines it
 _EXPORTS: dict[str, str] = {
     "Design": "onefold_cad.design",
-    "build_design": "onefold_cad.design",
+    "fold_design": "onefold_cad.design",
     "ExportError": "onefold_cad.errors",
     "FabricationError": "onefold_cad.errors",
     "InvalidParameterError": "onefold_cad.errors",
@@ -64,7 +64,7 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
     # ruff: noqa: F401
     from onefold_cad.choices import Model, SheetSurface, Units
-    from onefold_cad.design import Design, build_design
+    from onefold_cad.design import Design, fold_design
     from onefold_cad.errors import (
         ExportError,
         FabricationError,

@@ -93,12 +93,12 @@ def test_generated_blocks_are_current(reference, name):
 
 def test_bend_example_numbers_match_bend_values(reference):
     """The worked example's BA/OSSB/BD are those of bend_values at the template's angle."""
-    from onefold_cad import bend_values, build_design
+    from onefold_cad import bend_values, fold_design
 
     name, design = reference.bend_template()
     assert design.material.thickness > 0.0
     text = reference.read_block((DOCS / "fabrication.md").read_text(), "bend-example")
-    for c in build_design(design).crease:
+    for c in fold_design(design).crease:
         bv = bend_values(c.fold_angle_deg, design.material)
         row = next(r for r in text.splitlines() if r.startswith(f"| {c.name} |"))
         cells = [x.strip() for x in row.strip("|").split("|")]

@@ -40,3 +40,62 @@ def test_missing_stubs_are_ignored_module_by_module_not_for_all():
 def test_only_the_mechanics_family_is_held_back_from_the_check():
     held = [o["module"] for o in PYPROJECT["tool"]["mypy"]["overrides"] if o.get("ignore_errors")]
     assert held == [["onefold_cad.mechanics.*"]]
+
+
+def test_the_version_is_pyproject_s_read_back_from_the_package_metadata():
+    import importlib.metadata
+
+    from onefold_cad import __version__
+
+    assert PYPROJECT["project"]["version"] == importlib.metadata.version("onefold_cad")
+    assert __version__ == PYPROJECT["project"]["version"]
+    version_py = (ROOT / "onefold_cad" / "version.py").read_text(encoding="utf-8")
+    assert PYPROJECT["project"]["version"] not in version_py  # written once
+
+
+def test_onefold_version_prints_it(capsys):
+    from onefold_cad.cli.main import main
+
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"onefold {PYPROJECT['project']['version']}"
+
+
+def test_the_readme_s_test_command_runs_the_lint_and_ci_runs_that_command():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert "make test" in readme
+    recipe = _make_target("test")
+    assert any("lint" in line for line in recipe) or "lint" in _prerequisites("test")
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    assert [line for line in ci.splitlines() if line and not line.startswith("#")][-1] == (
+        "exec make test"
+    )
+
+
+def _prerequisites(name: str) -> list[str]:
+    text = (ROOT / "Makefile").read_text(encoding="utf-8")
+    line = re.search(rf"^{name}:([^\n]*)$", text, re.M)
+    assert line is not None
+    return line.group(1).split()
+
+
+def test_the_pre_commit_hooks_run_ruff_and_the_layer_contract():
+    text = (ROOT / ".pre-commit-config.yaml").read_text(encoding="utf-8")
+    entries = re.findall(r"entry: (\S+)", text)
+    assert {".venv/bin/ruff", ".venv/bin/lint-imports"} <= set(entries)
+    assert "repo: local" in text
+
+
+def test_the_changelog_keeps_a_changelog_s_form():
+    text = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert "[Keep a Changelog]" in text
+    versions = re.findall(r"^## \[([^\]]+)\]", text, re.M)
+    assert versions[0] == "Unreleased"
+    assert PYPROJECT["project"]["version"] in versions
+    for section in re.findall(r"^### (\w+)", text, re.M):
+        assert section in {"Added", "Changed", "Deprecated", "Removed", "Fixed", "Security"}
+
+
+def test_contributing_says_how_to_set_up_test_and_commit():
+    text = (ROOT / "CONTRIBUTING.md").read_text(encoding="utf-8")
+    for needed in ("make test", '-m "not browser"', "layers", "72 characters"):
+        assert needed in text

@@ -92,13 +92,13 @@ def _freeze_imports(frozen: set[str]) -> None:
 def task_context(task: BuildTask) -> BuildContext:
     """The build context of one task's design (solved here, or taken from the
     fold cache when the parent solved it before the fork)."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.writers import BuildContext
 
     d = task.job.design
     return BuildContext(
         d,
-        build_design(d),
+        fold_design(d),
         task.body,
         task.compensation,
         task.job.sources,
@@ -201,7 +201,7 @@ def check_jobs(
         OneFoldError: what a design or a writer refuses (named by the design
             when there are several).
     """
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.writers import BuildContext, check_before_writing
     from onefold_cad.fabrication.report import design_warnings
 
@@ -216,7 +216,7 @@ def check_jobs(
         # a design's lines wait for its checks: a refusal is the one line on stderr
         lines = [f"started: {_describe(d)}"]
         t0 = time.perf_counter()
-        folded = build_design(d)
+        folded = fold_design(d)
         lines += [*_material_text(d, folded, job), f"solve {time.perf_counter() - t0:.2f} s"]
         ctx = BuildContext(
             d, folded, body, compensation, job.sources, placement=Placement.parse(ns.placement)

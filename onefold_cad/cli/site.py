@@ -78,7 +78,7 @@ def _sheet_formats(text: str | None) -> tuple[str, ...]:
 
 
 def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteContext:
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.site_context import SiteContext, SiteSheet
     from onefold_cad.site.placement import SitePlacement
 
@@ -86,7 +86,7 @@ def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteCo
         SiteSheet(
             s.name,
             job.design,
-            build_design(job.design),
+            fold_design(job.design),
             b.part,
             b.resting,
             b.report,

@@ -35,7 +35,7 @@ class BuildContext:
 
     Attributes:
         design: the design.
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         body: the STEP body ('solid', 'shell') or None for the default.
         compensation: 'sharp' (bend compensation) or 'none'.
         sources: where each input came from (for the report).

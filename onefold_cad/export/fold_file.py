@@ -170,7 +170,7 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
 
     Args:
         design: the design (name, units, frame, sheet, material).
-        folded: its fold (:func:`onefold_cad.build_design`).
+        folded: its fold (:func:`onefold_cad.fold_design`).
         divisions: the file's fan's divisions per side (None:
             :func:`fold_divisions`).
 

@@ -257,7 +257,7 @@ def build_3dm(
 
     Args:
         design: the design (its unit, material and parameters).
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         pattern: its flat pattern if already made (else made here with
             ``compensation``).
         placement: 'rest' (standing on the ground z = 0) or 'frame' (the

@@ -210,7 +210,7 @@ def side_breps(
 
     Args:
         design: the design.
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         placement: 'rest' (standing on the ground z = 0, as the STEP's) or
             'frame' (the fold frame).
         body: the body whose resting placement stands the form ('solid',

@@ -285,7 +285,7 @@ def design_report(
 
     Args:
         design: the design.
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         files: the files written for the design (listed by name).
         pattern: ``flat_pattern(design, folded)`` if already computed.
         sources: where each input came from, keyed like the template

@@ -3,8 +3,7 @@
 Fold frame: the fold line is the x axis and H is the origin. Vertices are kept
 counter-clockwise, start at the boundary's crossing of the +x axis, and every
 crossing of the x axis is a vertex, so the upper (y >= 0) and lower (y <= 0)
-boundaries are vertex runs of their own.
-"""
+boundaries are vertex runs of their own."""
 
 from __future__ import annotations
 
@@ -167,9 +166,7 @@ class Sheet:
             (identity for polygons and quadrilaterals; for a rectangle, a corner
             at the origin and its sides on the axes).
         kind: 'polygon', 'quadrilateral' or 'rectangle'.
-        inputs: the values the sheet was made from (for reports): lengths
-            (floats) for a quadrilateral or rectangle, the vertices
-            ``[[x, y], ...]`` under 'polygon' for a polygon.
+        inputs: the values it was made from (for reports; 'polygon': [[x, y], ...]).
     """
 
     vertices: NDArray[np.float64]

@@ -137,7 +137,7 @@ def solve_answer(values: Mapping[str, Any], model_units: object = None) -> Answe
     Raises:
         UsageError, OneFoldError: a value the command refuses (its message).
     """
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.hops_geometry import (
         crease_lines,
         flat_curves,
@@ -161,7 +161,7 @@ def solve_answer(values: Mapping[str, Any], model_units: object = None) -> Answe
     template = given.get("template")
     (job,) = load_jobs([template] if template is not None else [], flags)
     design = job.design
-    folded = build_design(design)
+    folded = fold_design(design)
     report = design_report(design, folded, sources=job.sources)
     check_finite(report)
     notes = list(report["warnings"])

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from onefold_cad import Design, NoSolutionError, build_design, solve
+from onefold_cad import Design, NoSolutionError, fold_design, solve
 from onefold_cad.export.fold_fan import (
     CREASE_TOLERANCE_DEG,
     CREASE_WEDGE_DEG,
@@ -61,7 +61,7 @@ def _paper_crease_deg(surface, apex: np.ndarray) -> np.ndarray:
 
 
 def _errors(design: Design):
-    folded = build_design(design)
+    folded = fold_design(design)
     fan = fold_fan(design, folded)
     err = np.array(
         [
@@ -98,13 +98,13 @@ def test_a_paper_design_keeps_its_own_first_arc_step_and_a_holed_one_equal_steps
     divisions, to the bit the one solved without a spacing; star-polygon
     (exact, no hole): graded, its crease wedges CREASE_WEDGE_DEG wide."""
     design = load_template("table1-row1")
-    fan = fold_fan(design, build_design(design))
+    fan = fold_fan(design, fold_design(design))
     sp = fan.solution.surface.spacing
     assert sp.divisions == FOLD_DIVISIONS
     assert sp.steps[1] / sp.per_span == pytest.approx(1.0 / 90.0, rel=1e-12)
     assert sp.steps[-2] / sp.per_span == pytest.approx(1.0 / 90.0, rel=1e-12)
     design = load_template("patkau-one-fold")
-    folded = build_design(design)
+    folded = fold_design(design)
     assert relief_hole_diameter(design, folded) > 0.0
     surface = fold_fan(design, folded).solution.surface
     assert surface.spacing is None
@@ -115,7 +115,7 @@ def test_a_paper_design_keeps_its_own_first_arc_step_and_a_holed_one_equal_steps
     assert "equal divisions" in record["onefold:surface"]
     assert "grading_ratio" not in record["onefold:mesh"]
     design = load_template("star-polygon")
-    folded = build_design(design)
+    folded = fold_design(design)
     assert relief_hole_diameter(design, folded) == 0.0
     ends = np.degrees(fold_fan(design, folded).solution.surface.gammas[[0, -1]])
     np.testing.assert_allclose(ends, CREASE_WEDGE_DEG, rtol=2e-3)
@@ -136,9 +136,9 @@ def test_the_build_notes_a_crease_beyond_the_tolerance_with_both_angles():
     for half in (*fan.crease, *folded.crease):
         assert f"{half.fold_angle_deg:.2f}" in note
     design = load_template("table1-row1")
-    assert fold_note(design, build_design(design)) is None
+    assert fold_note(design, fold_design(design)) is None
     design = design.with_changes(frame=design.frame.with_changes(divisions=8))
-    folded = build_design(design)
+    folded = fold_design(design)
     assert fold_fan(design, folded) is folded and fold_note(design, folded) is None
 
 
@@ -193,7 +193,7 @@ def test_the_docs_crease_table_is_the_files():
     assert sorted(rows) == TEMPLATES
     for name, cells in rows.items():
         design = load_template(name)
-        folded = build_design(design)
+        folded = fold_design(design)
         doc = fold_data(design, folded)
         design_deg = [float(x) for x in cells[1].split(" / ")]
         file_deg = [float(x.split(" (")[0]) for x in cells[3].split(" / ")]

@@ -1,4 +1,4 @@
-"""The fast lowest-point search of issue 24 against slow, independent ones:
+"""The fast lowest-point search against slow, independent ones:
 the cone's angle from its node table, the batched zoom, the ends its samples
 certify, the pruned search over a body, and the numpy QuickHull."""
 

@@ -1,4 +1,4 @@
-"""The resting placement against the one issue 24 replaced, which it must
+"""The resting placement against the slower one it replaced, which it must
 reproduce: the same contacts and margins, to rounding.
 
 ``data/rest_main.json`` holds the placements of commit 9567d0a (written by
