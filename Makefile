@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 TEMPLATE ?= templates/patkau-one-fold.toml
 OUT ?= out
 
-.PHONY: demo test lint clean programs
+.PHONY: demo test lint api clean programs
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -53,6 +53,10 @@ lint: $(VENV)/.installed-test
 	$(BIN)/ruff format --check .
 	$(BIN)/lint-imports
 	$(BIN)/mypy onefold_cad
+
+# The API reference (pdoc, from the docstrings) into docs/api/, a build folder.
+api: $(VENV)/.installed-test
+	$(BIN)/python docs/make_reference.py --api docs/api
 
 clean:
 	rm -rf $(OUT) build *.egg-info .pytest_cache .ruff_cache

@@ -167,7 +167,7 @@ def test_readme_python_examples_run(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.splitlines()[1].startswith("True ")  # the solid is valid
-    for name in ("demo.stl", "demo.glb", "demo.brep", "demo.step"):
+    for name in ("demo.stl", "demo.glb", "demo.brep", "demo.step", "patkau.step", "patkau.dxf"):
         assert (tmp_path / name).stat().st_size > 0
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import functools
 import gc
 import signal
 import sys
@@ -312,8 +313,9 @@ def output_folder(outdir: Path) -> Iterator[Path]:
 
 def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
-    from onefold_cad.export.atomic import FileSet, Staging, check_targets, pause_point, recover
-    from onefold_cad.export.writers import file_names, parse_formats
+    from onefold_cad.export.atomic import Staging
+    from onefold_cad.export.files import stage_files
+    from onefold_cad.export.writers import parse_formats
 
     refs = list(ns.templates)
     if ns.name is not None and len(refs) > 1:
@@ -334,22 +336,22 @@ def cmd_build(ns: argparse.Namespace) -> int:
     found = check_jobs(jobs, formats, ns)
     n = len(jobs)
     with output_folder(outdir):
-        recover(outdir, say=warn)
-        check_targets(outdir, [f for j in jobs for f in file_names(j.design.name, formats)])
-        with Staging(outdir, say=warn) as staging:
-            STATE["staging"] = staging
+
+        def write(staging: Staging) -> list[Path]:
             tasks = [
                 BuildTask(i, n, job, formats, body, Compensation.parse(ns.compensation),
                           str(staging.path / str(i)), ns.quiet, found[i - 1],
                           Placement.parse(ns.placement), bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
-            files = [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]
-            pause_point("staged")
-            sets = [FileSet(s, tuple(file_names(s, list(WRITERS)))) for s in stems]
-            for p in staging.commit(files, sets=sets):
-                print(p, flush=True)
-            say_removed(staging.removed)
+            return [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]
+
+        # the one path of a build's files (onefold_cad.write_files takes it too)
+        keep = functools.partial(STATE.__setitem__, "staging")  # what Ctrl-C left: main asks
+        written, removed = stage_files(outdir, stems, formats, write, warn, keep)
+        for p in written:
+            print(p, flush=True)
+        say_removed(removed)
     return 0
 
 

@@ -24,7 +24,6 @@ from onefold_cad.flags.design_flags import (
 )
 from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
-from onefold_cad.version import __version__
 
 __all__ = ["HOPS_PORT", "build_parser", "help_text", "parse_port"]
 
@@ -54,6 +53,16 @@ def _add_common(p: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
     )  # fmt: skip
 
 
+class _VersionAction(argparse._VersionAction):
+    """``--version``: the version read when asked (:mod:`onefold_cad.version`)."""
+
+    def __call__(self, parser: Any, namespace: Any, values: Any, option: Any = None) -> None:
+        from onefold_cad.version import __version__
+
+        self.version = f"{PROG} {__version__}"
+        super().__call__(parser, namespace, values, option)
+
+
 def build_parser() -> dict[str, argparse.ArgumentParser]:
     """The parsers of the commands, by name (``""`` is ``onefold`` itself)."""
     top = FlagParser(
@@ -77,7 +86,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
     )
-    top.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    top.add_argument("--version", action=_VersionAction)
 
     build = FlagParser(
         prog=f"{PROG} build",
