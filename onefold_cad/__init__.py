@@ -147,6 +147,12 @@ def load_template(template: str | os.PathLike[str]) -> Design:
     return load(os.fspath(template))
 
 
+def _number(value: float) -> str:
+    """``value`` as a user types it on the command line: 1200, 0.4, 1e-05."""
+    text = repr(float(value))
+    return text.removesuffix(".0")
+
+
 def make_design(template: str | None = None, *, name: str | None = None, **values: Any) -> Design:
     """A design from values, as ``onefold solve TEMPLATE --FLAG VALUE ...`` makes it.
 
@@ -183,11 +189,11 @@ def make_design(template: str | None = None, *, name: str | None = None, **value
             allowed = ", ".join(flags)
             raise InvalidParameterError(key, f"is not a design value (allowed: {allowed})")
         if key == "rectangle" and not isinstance(value, str):
-            value = "x".join(repr(float(v)) for v in value)
+            value = "x".join(_number(v) for v in value)
         elif key == "polygon" and not isinstance(value, str):
-            value = ";".join(f"{float(x)!r},{float(y)!r}" for x, y in value)
-        elif isinstance(value, float):
-            value = repr(value)
+            value = ";".join(f"{_number(x)},{_number(y)}" for x, y in value)
+        elif isinstance(value, int | float) and not isinstance(value, bool):
+            value = _number(value)
         args.append(f"{flags[key]}={value}")
     try:
         parsed = parse_design_flags(args)

@@ -66,9 +66,10 @@ def test_write_files_refuses_before_writing_anything(tmp_path):
 
 def test_make_design_is_the_command_s_design_from_the_same_values():
     ours = of.make_design("table1-row1", alpha=40.0, rectangle=(1200, 2400), apex_fraction=0.4)
-    flags = {"alpha": 40.0, "rectangle": "1200.0x2400.0", "apex_fraction": 0.4}
+    flags = {"alpha": 40.0, "rectangle": "1200x2400", "apex_fraction": 0.4}  # as typed
     (job,) = load_jobs(["table1-row1"], flags)
     assert ours.name == job.design.name
+    assert ours.description == job.design.description
     assert ours.frame == job.design.frame
     assert (ours.sheet.vertices == job.design.sheet.vertices).all()
 
