@@ -208,9 +208,9 @@ def export(
     design: Design,
     path: str | os.PathLike[str],
     *,
-    body: str | None = None,
-    compensation: str = "sharp",
-    placement: str = "rest",
+    body: Body | str | None = None,
+    compensation: Compensation | str = "sharp",
+    placement: Placement | str = "rest",
 ) -> Path:
     """Write one file of ``design``, the writer chosen by the suffix of ``path``.
 
@@ -241,7 +241,7 @@ def export(
     return export_file(design, path, body=body, compensation=compensation, placement=placement)
 
 
-def design_report(design: Design, *, compensation: str = "sharp") -> dict[str, Any]:
+def design_report(design: Design, *, compensation: Compensation | str = "sharp") -> dict[str, Any]:
     """The report of ``design`` as ``onefold solve --json`` prints it.
 
     Args:
@@ -294,10 +294,10 @@ def fit(
 def simulate(
     design: Design,
     *,
-    supports: str = "anchored",
-    reference: str = "flat",
-    crease: str = "held",
-    mesh: str = "normal",
+    supports: Supports | str = "anchored",
+    reference: Reference | str = "flat",
+    crease: Crease | str = "held",
+    mesh: MeshLevel | str = "normal",
     check: bool | None = None,
 ) -> Simulation:
     """The sheet of ``design`` as steel, as ``onefold simulate`` computes it.
@@ -386,7 +386,18 @@ def site(
 
 if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
     # ruff: noqa: F401
-    from onefold_cad.choices import Body, Compensation, Model, Placement, SheetSurface, Units
+    from onefold_cad.choices import (
+        Body,
+        Compensation,
+        Crease,
+        MeshLevel,
+        Model,
+        Placement,
+        Reference,
+        SheetSurface,
+        Supports,
+        Units,
+    )
     from onefold_cad.design import Design, fold_design
     from onefold_cad.errors import (
         ExportError,
