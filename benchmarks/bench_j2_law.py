@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from git_baseline import load  # noqa: E402
 
 from onefold_cad.choices import MeshLevel  # noqa: E402
-from onefold_cad.design import build_design  # noqa: E402
+from onefold_cad.design import fold_design  # noqa: E402
 from onefold_cad.mechanics.simulate import simulate  # noqa: E402
 from onefold_cad.templates import find_template, load_template  # noqa: E402
 
@@ -80,13 +80,13 @@ def main(argv: list[str] | None = None) -> int:
                 tmp = Path(tempfile.mkdtemp()) / f"{args.template}.toml"
                 tmp.write_text("\n".join(keep) + "\n", encoding="utf-8")
                 od = otpl.load_template(str(tmp))
-                cache["pair"] = (od, odes.build_design(od))
+                cache["pair"] = (od, odes.fold_design(od))
             od, of = cache["pair"]  # type: ignore[misc]
             return osim.simulate(od, of, level=lvl, convergence=chk)
 
         runs[f"moment ({args.baseline})"] = baseline
     design = load_template(args.template)
-    folded = build_design(design)
+    folded = fold_design(design)
     print(f"{args.template}: CPU s of simulate (median of {args.rounds}), interleaved")
     heads = ["plastic share", "springback max", "standing max", "largest stress MPa", "iterations"]
     print("| level | law | CPU s | x baseline | " + " | ".join(heads) + " |")

@@ -544,14 +544,14 @@ def template_run(
     resume: bool = False,
 ) -> dict[str, Any]:
     """Form and release ``template`` meshed at edge length ``h`` (m)."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.relief_hole import relief_hole_diameter
     from onefold_cad.mechanics.deviation import best_fit, surface_distance
     from onefold_cad.templates import find_template, load_template
 
     design = load_template(find_template(template))
     scale = {"mm": 1e-3, "in": 0.0254, "m": 1.0}[design.units.value]
-    folded = build_design(design)
+    folded = fold_design(design)
     hole = relief_hole_diameter(design, folded)
     polygon = np.asarray(design.sheet.vertices, dtype=float)
     pts, tris, info = mesh_sheet(polygon, hole, h / scale)
@@ -561,7 +561,7 @@ def template_run(
     forms = []
     for sk in s:
         frame = dataclasses.replace(design.frame, beta=sk * design.frame.beta)
-        forms.append(build_design(dataclasses.replace(design, frame=frame)).map_points(flat))
+        forms.append(fold_design(dataclasses.replace(design, frame=frame)).map_points(flat))
     forms_m = np.array(forms) * scale
     x0 = np.column_stack([flat * scale, np.zeros(n)])
     u = forms_m - x0[None]

@@ -28,7 +28,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.export.simulation_inp import inp_text
 from onefold_cad.mechanics.loads.response import linear_response, node_dofs
 from onefold_cad.mechanics.loads.surface import face_vectors, pressure_load
@@ -119,7 +119,7 @@ def main() -> None:
     if ccx is None:
         raise SystemExit("needs CalculiX: apt-get install calculix-ccx")
     design = load_template(args.template)
-    folded = build_design(design)
+    folded = fold_design(design)
     print(f"{args.template}: designed form, anchored feet, uniform normal pressure "
           f"{args.pressure:g} Pa on its upper side, linear")  # fmt: skip
     print("| mesh | nodes | foot | onefold (kN) | CalculiX S6 (kN) | largest movement onefold "

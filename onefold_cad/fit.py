@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.choices import Model
+from onefold_cad.choices import Body, Model
 from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
@@ -76,7 +76,7 @@ class FitResult:
     """
 
     design: Design
-    body: str
+    body: Body
     height: float
     span: float
     depth: float
@@ -303,8 +303,8 @@ def fit_design(
                 # the fan meets the targets where the body does not: the body
                 # rests otherwise there (it rocks on a curved edge): on the body
                 x = _least_squares(stand, "body", best[1], targets, x0, fixed, 8)
-                rest = stand(x, "body")
-                keep([] if rest is None else [(x, rest)])
+                on_body = stand(x, "body")
+                keep([] if on_body is None else [(x, on_body)])
         if best is not None and _meets(best[2], targets, tolerance):
             break
     result = None

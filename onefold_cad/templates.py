@@ -411,10 +411,10 @@ def design_to_data(design: Design) -> dict[str, Any]:
     """
     f, m, s = design.frame, design.material, design.sheet
     if s.kind in ("quadrilateral", "rectangle"):
-        sheet: dict[str, Any] = {s.kind: {k: _num(v) for k, v in s.inputs.items()}}  # type: ignore[arg-type]
+        sheet: dict[str, Any] = {s.kind: {k: _num(v) for k, v in s.inputs.items()}}
     else:
         pts = s.inputs.get("polygon", s.vertices.tolist())
-        sheet = {"polygon": [[float(x), float(y)] for x, y in pts]}  # type: ignore[union-attr]
+        sheet = {"polygon": [[float(x), float(y)] for x, y in pts]}
     material: dict[str, Any] = {
         "name": m.name,
         "thickness": m.thickness,

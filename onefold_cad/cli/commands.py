@@ -37,11 +37,11 @@ def cmd_templates(ns: argparse.Namespace) -> int:
 
 def cmd_solve(ns: argparse.Namespace) -> int:
     """Solve one design and print it (text or JSON); warnings on stderr."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
 
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
-    report = design_report(job.design, build_design(job.design), sources=job.sources)
+    report = design_report(job.design, fold_design(job.design), sources=job.sources)
     check_finite(report)  # a NaN is an error naming its key, in the text as in the JSON
     text = report_json(report) if ns.json else summary(report) + "\n"
     for w in report["warnings"]:
@@ -93,7 +93,7 @@ def cmd_fit(ns: argparse.Namespace) -> int:
 
 def cmd_hops(ns: argparse.Namespace) -> int:
     """Serve the Grasshopper Hops components until Ctrl-C (``onefold_cad.hops``)."""
-    from onefold_cad.hops.serve import serve
+    from onefold_cad.hops.launch import serve
 
     serve(ns.host, ns.port, ns.templates, ns.allow_host)
     return 0

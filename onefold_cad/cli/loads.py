@@ -102,7 +102,7 @@ def _write(outdir: Path, name: str, report: dict[str, Any], result: Any) -> list
 
 def cmd_loads(ns: argparse.Namespace) -> int:
     """Check one design outdoors; print it; with ``-o`` write its files."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
     from onefold_cad.mechanics.loads.outdoors import outdoors
     from onefold_cad.mechanics.loads.spec import LoadSpec
@@ -112,7 +112,7 @@ def cmd_loads(ns: argparse.Namespace) -> int:
     design = job.design
     if ns.outdir is not None:
         check_outdir(ns.outdir)
-    folded = build_design(design)
+    folded = fold_design(design)
     result = outdoors(design, folded, spec, level=ns.mesh, nonlinear=ns.nonlinear_check)
     report = design_report(design, folded, sources=job.sources)
     report["outdoors"] = result.to_data()

@@ -25,7 +25,6 @@ from onefold_cad.flags.design_flags import (
 )
 from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
-from onefold_cad.version import __version__
 
 __all__ = ["HOPS_PORT", "build_parser", "help_text", "parse_port"]
 
@@ -44,7 +43,7 @@ def _template_argument(parser: argparse.ArgumentParser, dest: str, nargs: str) -
     )
 
 
-def _add_common(p: argparse.ArgumentParser) -> None:
+def _add_common(p: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
     p.add_argument(
         "--name", help="the design's name (file stem); default: the template's, with the "
         "flags given appended; without a template, made from the flags"
@@ -53,6 +52,16 @@ def _add_common(p: argparse.ArgumentParser) -> None:
         "-q", "--quiet", action="store_true", help="no progress or material lines on stderr "
         "(warnings and errors are still printed)"
     )  # fmt: skip
+
+
+class _VersionAction(argparse._VersionAction):
+    """``--version``: the version read when asked (:mod:`onefold_cad.version`)."""
+
+    def __call__(self, parser: Any, namespace: Any, values: Any, option: Any = None) -> None:
+        from onefold_cad.version import __version__
+
+        self.version = f"{PROG} {__version__}"
+        super().__call__(parser, namespace, values, option)
 
 
 def build_parser() -> dict[str, argparse.ArgumentParser]:
@@ -79,7 +88,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
     )
-    top.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    top.add_argument("--version", action=_VersionAction)
 
     build = FlagParser(
         prog=f"{PROG} build",

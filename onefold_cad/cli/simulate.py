@@ -200,7 +200,7 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
 
 def cmd_simulate(ns: argparse.Namespace) -> int:
     """Simulate one design; print it; with ``-o`` write its files."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
     from onefold_cad.mechanics.simulate import simulate
 
@@ -208,7 +208,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
     design = job.design
     if ns.outdir is not None:  # before the simulation's minutes, not after
         check_outdir(ns.outdir)
-    folded = build_design(design)
+    folded = fold_design(design)
     check = ns.check if ns.check is not None else MeshLevel.parse(ns.mesh).checked
     progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}", ns.verbose)
     sim = simulate(

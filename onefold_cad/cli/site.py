@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from onefold_cad.choices import Compensation, Placement
 from onefold_cad.cli.build import (
     STATE,
     BuildTask,
@@ -77,7 +78,7 @@ def _sheet_formats(text: str | None) -> tuple[str, ...]:
 
 
 def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteContext:
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.site_context import SiteContext, SiteSheet
     from onefold_cad.site.placement import SitePlacement
 
@@ -85,7 +86,7 @@ def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteCo
         SiteSheet(
             s.name,
             job.design,
-            build_design(job.design),
+            fold_design(job.design),
             b.part,
             b.resting,
             b.report,
@@ -126,9 +127,9 @@ def cmd_site(ns: argparse.Namespace) -> int:
         with Staging(outdir, say=warn) as staging:
             STATE["staging"] = staging
             tasks = [
-                BuildTask(i, n, job, sheet_formats, None, ns.compensation,
-                          str(staging.path / job.design.name), ns.quiet, found[i - 1], "rest",
-                          bool(STATE.get("process")))
+                BuildTask(i, n, job, sheet_formats, None, Compensation.parse(ns.compensation),
+                          str(staging.path / job.design.name), ns.quiet, found[i - 1],
+                          Placement.REST, bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
             built: list[SheetBuilt] = run_tasks(tasks, ns.jobs, _build_sheet)
@@ -172,7 +173,7 @@ def cmd_site(ns: argparse.Namespace) -> int:
 def _outdoors(loads: dict[str, Any], jobs: list[Any], built: list[SheetBuilt], quiet: bool) -> None:
     """``onefold loads`` on every sheet: its report's ``outdoors`` section
     (SITE-order.csv's anchor columns read it)."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.mechanics.loads.outdoors import outdoors
     from onefold_cad.mechanics.loads.spec import LoadSpec
 
@@ -181,7 +182,7 @@ def _outdoors(loads: dict[str, Any], jobs: list[Any], built: list[SheetBuilt], q
     spec = LoadSpec(**fields)
     for job, b in zip(jobs, built, strict=True):
         t0 = time.perf_counter()
-        result = outdoors(job.design, build_design(job.design), spec, level=mesh)
+        result = outdoors(job.design, fold_design(job.design), spec, level=mesh)
         b.report["outdoors"] = result.to_data()
         for w in result.warnings:
             warn(f"{job.design.name}: {w}")

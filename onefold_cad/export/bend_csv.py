@@ -10,7 +10,8 @@ import os
 from dataclasses import astuple, fields
 from pathlib import Path
 
-from onefold_cad.design import Design, build_design
+from onefold_cad.choices import Compensation
+from onefold_cad.design import Design, fold_design
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.fabrication.bend_table import BendRow, bend_rows
 from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern_once
@@ -34,13 +35,13 @@ def write_bend_csv(
     path: str | os.PathLike[str],
     folded: FoldedSheet | None = None,
     *,
-    compensation: str = "sharp",
+    compensation: Compensation = Compensation.SHARP,
 ) -> Path:
     """Write ``NAME-bends.csv`` (atomically: nothing is written if anything fails).
 
     Args:
         source: a flat pattern, or a design (its pattern is computed with
-            ``compensation``; ``folded`` is ``build_design(design)`` if given).
+            ``compensation``; ``folded`` is ``fold_design(design)`` if given).
         path: the output file.
         folded: for a design: its fold, if already computed.
         compensation: for a design: 'sharp' or 'none'.
@@ -49,7 +50,7 @@ def write_bend_csv(
         The path written.
     """
     if isinstance(source, Design):
-        folded = build_design(source) if folded is None else folded
+        folded = fold_design(source) if folded is None else folded
         source = flat_pattern_once(source, folded, compensation)
     text = bend_csv(source)
     with atomic_output(path) as tmp:

@@ -48,7 +48,7 @@ from ezdxf import units as dxf_units
 from ezdxf.document import Drawing
 
 from onefold_cad.choices import Compensation, Units
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ExportError, InvalidParameterError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.dxf_notes import flat_pattern_notes
@@ -304,7 +304,7 @@ def export_design_dxf(
     Args:
         design: the design.
         path: the output file; nothing is written if anything fails.
-        folded: ``build_design(design)`` if already computed.
+        folded: ``fold_design(design)`` if already computed.
         dxfversion: 'R2000' (default) or 'R12' (or a later version).
         rulings: include the RULINGS layer.
         compensation: 'sharp' (default) or 'none', see
@@ -316,7 +316,7 @@ def export_design_dxf(
     Raises:
         FabricationError: the sharp-crease compensation's limits are passed.
     """
-    folded = build_design(design) if folded is None else folded
+    folded = fold_design(design) if folded is None else folded
     pattern = flat_pattern_once(design, folded, compensation)
     doc = draw_flat_pattern(pattern, dxfversion=dxfversion, rulings=rulings)
     return write_dxf_atomic(doc, path, seed=design_seed(design, compensation, "annotated"))

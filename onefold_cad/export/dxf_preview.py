@@ -75,7 +75,11 @@ def _units(doc: Drawing) -> int:
 def _mm_per_unit(doc: Drawing) -> float:
     """Millimetres per drawing unit (1 when the DXF states none)."""
     code = _units(doc)
-    return dxf_units.conversion_factor(code, dxf_units.MM) if code else 1.0
+    if not code:
+        return 1.0
+    return dxf_units.conversion_factor(
+        dxf_units.InsertUnits(code), dxf_units.InsertUnits.Millimeters
+    )
 
 
 def _weights(entity: Any, properties: Any) -> None:

@@ -142,8 +142,9 @@ def fold_spacing(design: Design, folded: FoldedSheet, n: int) -> ArcSpacing:
     paper = isinstance(surface, PaperFan)
     for _ in range(_FIT_ROUNDS):
         spacing = ArcSpacing.graded(n, (float(first[0]), float(first[1])), GRADING_RATIO)
-        gammas = _file_fan(frame, spacing, folded.solution).surface.gammas
-        assert gammas is not None
+        graded = _file_fan(frame, spacing, folded.solution).surface
+        assert isinstance(graded, PaperFan) and graded.gammas is not None
+        gammas = graded.gammas
         ends = gammas[[0, -1]]
         wide = ends >= target
         if np.all(wide) and (paper or np.all(ends <= 1.002 * target)):

@@ -173,7 +173,7 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
 
     Args:
         design: the design (name, units, frame, sheet, material).
-        folded: its fold (:func:`onefold_cad.build_design`).
+        folded: its fold (:func:`onefold_cad.fold_design`).
         divisions: the file's fan's divisions per side (None:
             :func:`fold_divisions`).
 
@@ -216,7 +216,8 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
     quality |= {"divisions": n, "design_divisions": design.frame.divisions}
     surface = fan.solution.surface
     spacing = surface.spacing if isinstance(surface, PaperFan) else None
-    if spacing is not None:  # the graded fan's wedges (fold_fan)
+    if isinstance(surface, PaperFan) and spacing is not None:  # fold_fan's graded wedges
+        assert surface.gammas is not None  # a solved fan has its apex angles
         steps = np.asarray(spacing.steps)
         widths = np.abs(np.diff(steps)) / spacing.per_span
         quality |= {

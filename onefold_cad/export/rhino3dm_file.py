@@ -47,7 +47,7 @@ import numpy as np
 import rhino3dm
 from ezdxf.colors import aci2rgb
 
-from onefold_cad.choices import Compensation, Units
+from onefold_cad.choices import Body, Compensation, Placement, Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
@@ -249,15 +249,15 @@ def build_3dm(
     folded: FoldedSheet,
     *,
     pattern: FlatPattern | None = None,
-    placement: str = "rest",
-    body: str | None = None,
+    placement: Placement = Placement.REST,
+    body: Body | None = None,
     compensation: Compensation | str = Compensation.SHARP,
 ) -> RhinoModel:
     """The .3dm document of ``design`` (see the module docstring).
 
     Args:
         design: the design (its unit, material and parameters).
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         pattern: its flat pattern if already made (else made here with
             ``compensation``).
         placement: 'rest' (standing on the ground z = 0) or 'frame' (the

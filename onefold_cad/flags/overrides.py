@@ -122,7 +122,8 @@ class Overrides:
         ]
         if len(given) > 1:
             raise InvalidParameterError(given[1], f"cannot be combined with {given[0]}")
-        sheet = out.get("sheet") if isinstance(out.get("sheet"), dict) else {}
+        current = out.get("sheet")
+        sheet = current if isinstance(current, dict) else {}
         if "polygon" in v:
             out["sheet"] = {"polygon": parse_polygon(v["polygon"])}
             names["sheet.polygon"] = "--polygon"

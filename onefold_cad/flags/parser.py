@@ -56,7 +56,7 @@ class FlagParser(argparse.ArgumentParser):
 def add_design_flags(p: argparse.ArgumentParser) -> None:
     # A value may start with a minus sign ('--polygon -1,0;...', '--hc -5'):
     # argparse reads '-<digit>...' as a value, not as an option.
-    p._negative_number_matcher = re.compile(r"^-\.?\d")  # type: ignore[attr-defined]
+    p._negative_number_matcher = re.compile(r"^-\.?\d")
     groups: dict[str, Any] = {}
     for f in DESIGN_FLAGS:
         g = groups.get(f.group) or groups.setdefault(f.group, p.add_argument_group(f.group))

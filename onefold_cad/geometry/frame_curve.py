@@ -153,7 +153,8 @@ def _over_cap(value: object) -> bool:
     """Whether ``value`` is a number above MAX_DIVISIONS (to explain the cap)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         return False
-    return math.isfinite(value) and value > MAX_DIVISIONS
+    number = float(value)
+    return math.isfinite(number) and number > MAX_DIVISIONS
 
 
 def _angle(name: str, value: object) -> float:

@@ -263,7 +263,7 @@ def sheet_model(
 
     Args:
         design: the design (exact model, thickness, elastic data).
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         h_max: the mesh's largest edge (m); None: ``level``'s.
         level: 'coarse', 'normal' or 'fine' (:data:`MESH_LEVELS`).
         crease: 'held' or 'elastic' (:data:`CREASES`).

@@ -213,8 +213,10 @@ def _points(
     n = count_of(specs, sampler, samples)
     if n > MAX_DESIGNS:
         raise UsageError(f"--vary: {n} designs; a sweep has at most {MAX_DESIGNS}")
-    pts = grid_points(specs) if sampler == "grid" else sample_points(specs, sampler, samples, seed)
-    return specs, pts
+    if sampler == "grid":
+        return specs, grid_points(specs)
+    assert samples is not None  # refused above without --samples
+    return specs, sample_points(specs, sampler, samples, seed)
 
 
 def _measures(names: Sequence[str]) -> tuple[str, ...]:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from onefold_cad import ExportError, build_design
+from onefold_cad import ExportError, fold_design
 from onefold_cad.cli.main import main
 from onefold_cad.fabrication.report import design_report
 from onefold_cad.templates import list_templates, load_template
@@ -195,7 +195,7 @@ def test_solve_json_matches_the_library(tmp_path):
     assert proc.returncode == 0, proc.stderr
     rep = json.loads(proc.stdout)
     design = load_template("table1-row4")
-    lib = design_report(design, build_design(design))
+    lib = design_report(design, fold_design(design))
     for key in ("direction_surface", "fold_angles_deg", "bend", "flat_size", "resting"):
         assert rep[key] == lib[key], key
     assert rep["name"] == "table1-row4" and rep["warnings"] == []
@@ -317,7 +317,7 @@ def test_a_blank_left_uncompensated_on_request_says_so():
     from onefold_cad.fabrication.flat_pattern import flat_pattern
 
     design = load_template("paper-square")  # t = 0.1 mm, within the bend model's limits
-    folded = build_design(design)
+    folded = fold_design(design)
     report = design_report(design, folded, pattern=flat_pattern(design, folded, "none"))
     assert report["flat_pattern"]["bend_problems"] == [] and report["warnings"] == []
     (line,) = [ln for ln in summary(report).splitlines() if "flat pattern size" in ln]
@@ -467,7 +467,7 @@ def test_placement_frame_writes_the_part_in_the_fold_frame_and_rest_stands_it(tm
     import numpy as np
 
     design = load_template("star-polygon")  # zero thickness: the shell, no relief hole
-    corners = build_design(design).map_points(design.sheet.vertices)
+    corners = fold_design(design).map_points(design.sheet.vertices)
     size = design.sheet.size
     gaps = {}
     for placement in ("frame", "rest"):

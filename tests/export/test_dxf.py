@@ -24,7 +24,7 @@ from onefold_cad import (
     Model,
     Sheet,
     Units,
-    build_design,
+    fold_design,
 )
 from onefold_cad.export.dxf import LAYERS, draw_flat_pattern, export_design_dxf
 from onefold_cad.export.dxf_notes import flat_pattern_notes
@@ -62,7 +62,7 @@ def _design(shape: str, mat: str, model: str = "exact") -> tuple[Design, object]
     frame, sheet = SHAPES[shape]
     design = Design(f"{shape}_{mat}", FrameCurve(*frame), sheet(), model=model,
                     material=MATERIALS[mat])  # fmt: skip
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def write_read(tmp_path: Path, design: Design, folded=None, **kw) -> ezdxf.document.Drawing:
@@ -473,7 +473,7 @@ def test_down_half_by_hand_layer_width_refusal_and_uncompensated_blank(tmp_path)
     mat = Material(thickness=1.0, bend_radius=1.0, k_factor=0.44, sheet_surface="INSIDE")
     design = Design("down", frame, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     assert folded.solution.apex_height == pytest.approx(h, rel=1e-9)
     plus = folded.crease[0]
     assert plus.bend == "DOWN" and plus.fold_angle_deg == pytest.approx(psi, abs=1e-9)
@@ -638,7 +638,7 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
     pts = np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array(radii)[:, None]
     mat = Material(thickness=t, bend_radius=r, kerf=kerf, relief_hole=0)
     design = Design("rnd", FrameCurve(40, 40, 10, 100, 90), Sheet.polygon(pts), material=mat)
-    folded = build_design(design)
+    folded = fold_design(design)
     try:
         pattern = flat_pattern(design, folded)
     except FabricationError as exc:  # the bend model's limits, and only those

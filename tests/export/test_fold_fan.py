@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from onefold_cad import Design, NoSolutionError, build_design, solve
+from onefold_cad import Design, NoSolutionError, fold_design, solve
 from onefold_cad.export.fold_fan import (
     CREASE_TOLERANCE_DEG,
     CREASE_WEDGE_DEG,
@@ -63,7 +63,7 @@ def _paper_crease_deg(surface, apex: np.ndarray) -> np.ndarray:
 
 
 def _errors(design: Design):
-    folded = build_design(design)
+    folded = fold_design(design)
     fan = fold_fan(design, folded)
     err = np.array(
         [
@@ -101,13 +101,13 @@ def test_a_paper_design_keeps_its_own_first_arc_step_and_a_holed_one_gentle_step
     HOLE_FIRST_WIDTH of the span, tangent-ended; star-polygon (exact, no
     hole): graded, its crease wedges CREASE_WEDGE_DEG wide."""
     design = load_template("table1-row1")
-    fan = fold_fan(design, build_design(design))
+    fan = fold_fan(design, fold_design(design))
     sp = fan.solution.surface.spacing
     assert sp.divisions == FOLD_DIVISIONS
     assert sp.steps[1] / sp.per_span == pytest.approx(1.0 / 90.0, rel=1e-12)
     assert sp.steps[-2] / sp.per_span == pytest.approx(1.0 / 90.0, rel=1e-12)
     design = load_template("patkau-one-fold")
-    folded = build_design(design)
+    folded = fold_design(design)
     assert relief_hole_diameter(design, folded) > 0.0
     surface = fold_fan(design, folded).solution.surface
     sp = surface.spacing
@@ -118,7 +118,7 @@ def test_a_paper_design_keeps_its_own_first_arc_step_and_a_holed_one_gentle_step
     assert "tangent-ended" in record["onefold:surface"]
     assert record["onefold:mesh"]["grading_ratio"] == HOLE_GRADING_RATIO
     design = load_template("star-polygon")
-    folded = build_design(design)
+    folded = fold_design(design)
     assert relief_hole_diameter(design, folded) == 0.0
     ends = np.degrees(fold_fan(design, folded).solution.surface.gammas[[0, -1]])
     np.testing.assert_allclose(ends, CREASE_WEDGE_DEG, rtol=2e-3)
@@ -134,7 +134,7 @@ def test_a_crease_beyond_the_tolerance_is_noted_in_the_file_with_both_angles():
     default file (tangent-ended) and table1-row1's have no note; a paper
     design at its own few divisions is its own fan: no note."""
     design = load_template("paper-square")
-    folded = build_design(design)
+    folded = fold_design(design)
     fan = fold_fan(design, folded, 3)
     err = [
         a.fold_angle_deg - b.fold_angle_deg for a, b in zip(fan.crease, folded.crease, strict=True)
@@ -147,9 +147,9 @@ def test_a_crease_beyond_the_tolerance_is_noted_in_the_file_with_both_angles():
     assert fold_note(design, folded) is None
     assert fold_data(design, folded)["onefold:notes"] == []
     design = load_template("table1-row1")
-    assert fold_note(design, build_design(design)) is None
+    assert fold_note(design, fold_design(design)) is None
     design = design.with_changes(frame=design.frame.with_changes(divisions=8))
-    folded = build_design(design)
+    folded = fold_design(design)
     assert fold_fan(design, folded) is folded and fold_note(design, folded) is None
 
 
@@ -205,7 +205,7 @@ def test_the_docs_crease_table_is_the_files():
     assert sorted(rows) == TEMPLATES
     for name, cells in rows.items():
         design = load_template(name)
-        folded = build_design(design)
+        folded = fold_design(design)
         doc = fold_data(design, folded)
         design_deg = [float(x) for x in cells[1].split(" / ")]
         file_deg = [float(x.split(" (")[0]) for x in cells[3].split(" / ")]

@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from onefold_cad import Design, ExportError, FrameCurve, Sheet, build_design
+from onefold_cad import Design, ExportError, FrameCurve, Sheet, fold_design
 from onefold_cad.export.preview import (
     render_folded_preview,
     resting_mesh,
@@ -21,7 +21,7 @@ from onefold_cad.geometry.placement import rest_form
 
 @pytest.fixture(scope="module")
 def folded():
-    return build_design(Design("p", FrameCurve(40, 40), Sheet.rectangle(300, 200, 0.5)))
+    return fold_design(Design("p", FrameCurve(40, 40), Sheet.rectangle(300, 200, 0.5)))
 
 
 def _png_size(data: bytes) -> tuple[int, int]:
@@ -209,7 +209,7 @@ def _flat_svg(tmp_path, units: str, size: tuple[float, float]):
     design = Design(
         "f", FrameCurve(40, 40), Sheet.rectangle(*size), units=Units(units), description=""
     )
-    f = build_design(design)
+    f = fold_design(design)
     dxf = export_design_dxf(design, tmp_path / "f.dxf", folded=f)
     return design, render_preview(dxf, tmp_path / "f-flat.svg")
 

@@ -8,7 +8,7 @@ import meshio
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.export.simulation_vtu import write_simulation_vtu
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
@@ -17,7 +17,7 @@ from onefold_cad.templates import load_template
 @pytest.fixture(scope="module")
 def sim():
     design = load_template("patkau-one-fold")
-    return simulate(design, build_design(design), level="coarse", convergence=False, law="j2")
+    return simulate(design, fold_design(design), level="coarse", convergence=False, law="j2")
 
 
 def test_read_back_it_is_the_simulation_in_metres(sim, tmp_path):

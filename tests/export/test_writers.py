@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.export import writers
 from onefold_cad.export.writers import (
@@ -25,7 +25,7 @@ def context(**material) -> BuildContext:
     d = Design(
         "w", FrameCurve(40, 40), Sheet.rectangle(300, 200, 0.5), material=Material(**material)
     )
-    return BuildContext(d, build_design(d))
+    return BuildContext(d, fold_design(d))
 
 
 def test_default_is_every_writer_with_the_report_last():
@@ -79,7 +79,7 @@ def test_a_flat_pattern_that_cannot_be_made_is_refused_before_writing():
         "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
         material=Material(thickness=3.57, bend_radius=6.0),
     )  # fmt: skip
-    ctx = BuildContext(d, build_design(d))
+    ctx = BuildContext(d, fold_design(d))
     with pytest.raises(FabricationError, match="^bend_radius: "):
         check_before_writing(ctx, ("dxf", "json"))
     with pytest.raises(FabricationError, match="^bend_radius: "):
@@ -119,7 +119,7 @@ def test_a_solid_past_the_bend_limits_is_refused_for_the_step_and_the_glb_alike(
         "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
         material=Material(thickness=3.57, bend_radius=6.0),
     )  # fmt: skip
-    ctx = BuildContext(d, build_design(d))
+    ctx = BuildContext(d, fold_design(d))
     expected = str(solid_bend_problem(d, ctx.folded))
     for fmt in ("step", "glb"):
         with pytest.raises(FabricationError) as exc:
@@ -241,7 +241,7 @@ def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
         "asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
         material=Material(thickness=10.0, bend_radius=10.0),
     )  # fmt: skip
-    ctx = BuildContext(d, build_design(d), body="solid")
+    ctx = BuildContext(d, fold_design(d), body="solid")
     for fmt in ("dxf", "cut", "bends", "svg"):
         with pytest.raises(FabricationError, match="^hc: plus_x .* too wide across it"):
             check_before_writing(ctx, (fmt,))

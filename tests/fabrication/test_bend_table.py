@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from onefold_cad import Design, ExportError, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, ExportError, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.export.bend_csv import write_bend_csv
 from onefold_cad.export.dxf_notes import flat_pattern_notes
 from onefold_cad.fabrication.bend_table import BendRow, bend_rows, bend_table
@@ -25,7 +25,7 @@ def asym():
     """H off the f-line's middle: the halves fold differently."""
     design = Design("asym", FrameCurve(32, 34, 20, 100, 90), Sheet.rectangle(600, 400, 0.4),
                     material=MAT)  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     return design, folded, flat_pattern(design, folded)
 
 
@@ -103,7 +103,7 @@ def test_the_paper_fans_ruling_folds_are_rows_too():
     mat = Material(thickness=1.0, bend_radius=0.0, k_factor=0.33, name="paper")
     design = Design("fan", frame, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     pattern = flat_pattern(design, folded)
     a = math.radians(frame.alpha)
     pts = [arc_point(frame.alpha, frame.beta, frame.h_c, frame.radius, p)

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.mechanics import j2_stages
 from onefold_cad.mechanics.model import sheet_model
 from onefold_cad.templates import load_template
@@ -20,7 +20,7 @@ from tests.mechanics.test_simulate import _cone_integrals
 @pytest.fixture(scope="module")
 def formed():
     design = load_template("patkau-one-fold")
-    folded = build_design(design)
+    folded = fold_design(design)
     model = sheet_model(design, folded, h_max=0.3)
     shell = j2_stages.j2_shell(model)
     return design, folded, shell, j2_stages.form(model, shell)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.mechanics.reserve import COARSE_RESERVE
 from onefold_cad.mechanics.simulate import run
 from onefold_cad.templates import load_template
@@ -18,7 +18,7 @@ from onefold_cad.templates import load_template
 def _patkau(thickness: float):
     design = load_template("patkau-one-fold")
     design = replace(design, material=design.material.with_changes(thickness=thickness))
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def test_a_coarse_stand_near_its_limit_is_uncertain_not_yes():

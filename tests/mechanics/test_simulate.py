@@ -21,7 +21,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.mechanics import equilibrium
@@ -37,7 +37,7 @@ KRATOS_LARGEST_MOVEMENT_MM = 55.46
 @pytest.fixture(scope="module")
 def patkau():
     design = load_template("patkau-one-fold")
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def _cone_integrals(design, folded, k_scale: float = 1.0):
@@ -155,9 +155,9 @@ def test_hardening_raises_the_flow_stress_it_reports(patkau):
         material=design.material.with_changes(hardening_modulus=2000.0, kinematic_hardening=0.5),
     )
     soft = replace(design, material=design.material.with_changes(hardening_modulus=0.0))
-    plain = formed_only(soft, build_design(soft), level="coarse", law="j2")
+    plain = formed_only(soft, fold_design(soft), level="coarse", law="j2")
     assert plain.max_stress_MPa == pytest.approx(design.material.yield_stress, rel=1e-9)
-    model_sim = formed_only(hard, build_design(hard), level="coarse", law="j2")
+    model_sim = formed_only(hard, fold_design(hard), level="coarse", law="j2")
     assert model_sim.bending_energy_J > plain.bending_energy_J
     assert model_sim.max_stress_MPa > design.material.yield_stress
     # on a proportional path the back stress grows along the stress, so the von
@@ -209,7 +209,7 @@ def test_what_cannot_be_simulated_names_the_value(template, changes, name):
     design = load_template(template)
     design = replace(design, material=design.material.with_changes(**changes))
     with pytest.raises(InvalidParameterError) as info:
-        run(design, build_design(design), level="coarse")
+        run(design, fold_design(design), level="coarse")
     assert info.value.parameter == name
 
 

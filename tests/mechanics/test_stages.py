@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.mechanics import evaluate, stages
 from onefold_cad.mechanics.model import sheet_model
@@ -56,7 +56,7 @@ REFUSED = {
 
 def _design(template: str | None, flags: dict):
     (job,) = load_jobs([template] if template else [], flags)
-    return job.design, build_design(job.design)
+    return job.design, fold_design(job.design)
 
 
 def _edge_cosines(shell, q) -> np.ndarray:

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.mechanics.loads.feet import three_feet_reactions
 from onefold_cad.mechanics.loads.outdoors import outdoors
@@ -20,7 +20,7 @@ from onefold_cad.templates import load_template
 @pytest.fixture(scope="module")
 def patkau():
     design = load_template("patkau-one-fold")
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 @pytest.fixture(scope="module")
