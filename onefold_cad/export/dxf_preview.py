@@ -23,7 +23,7 @@ left-aligned under the blank: material, bends, the bend table) is drawn up
 to :data:`MAX_NOTE_LINES` lines, then one line saying how many more the DXF
 holds: a paper fan of 10 000 divisions lists its 19 978 ruling folds there,
 and every glyph of them became an SVG path (3.9 GB and 16 minutes for a
-500 MB picture, issue 38). The DXF and the bend sheet keep every line.
+500 MB picture). The DXF and the bend sheet keep every line.
 """
 
 from __future__ import annotations

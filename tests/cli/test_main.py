@@ -923,7 +923,7 @@ def test_the_fold_files_crease_is_the_designs_and_nothing_is_said(tmp_path):
     design (its onefold:crease against the report's, to 1e-9 deg; before, its
     10 equal divisions folded it 16 deg shallower and the build said so on
     stderr): no line about the file on stderr, no note in the file or the
-    report (issue 37, item 3)."""
+    report (the first build of a new user printed it on every run)."""
     out = tmp_path / "out"
     proc = run("build", "patkau-one-fold", "--formats", "fold,json", "-o", str(out))
     assert proc.returncode == 0, proc.stderr

@@ -1,4 +1,4 @@
-"""Outdoor loads on the standing sheet and what holds it to the ground (issue 40).
+"""Outdoor loads on the standing sheet and what holds it to the ground.
 
 - ``surface``: the faces' areas and outward normals, a face pressure or a
   load on the projected area lumped to the nodes;
