@@ -52,12 +52,16 @@ def _converged(shape, what: str) -> float:
     return props.Mass()
 
 
-@pytest.fixture(scope="module")
-def patkau_step(tmp_path_factory):
-    design = load_template(REPO_TEMPLATES / "patkau-one-fold.toml")
-    path = tmp_path_factory.mktemp("takeoff") / "patkau.step"
+def _shipped_step(name: str, tmp_path_factory):
+    design = load_template(REPO_TEMPLATES / f"{name}.toml")
+    path = tmp_path_factory.mktemp("takeoff") / f"{name}.step"
     export_design_step(design, path, placement="frame")
     return path
+
+
+@pytest.fixture(scope="module")
+def patkau_step(tmp_path_factory):
+    return _shipped_step("patkau-one-fold", tmp_path_factory)
 
 
 @pytest.mark.parametrize("what", ["volume", "area"])
@@ -67,6 +71,15 @@ def test_default_properties_of_the_shipped_solid_agree_with_the_converged(patkau
     converged = measure(shape, what)
     assert _converged(shape.wrapped, what) == pytest.approx(converged, rel=1e-6)
     assert _default(shape.wrapped, what) == pytest.approx(converged, rel=TAKE_OFF)
+
+
+def test_default_properties_of_the_shipped_inch_solid_agree(tmp_path_factory):
+    """broken-vault (inches): its default volume was 60.7 % light."""
+    shape = bd.import_step(_shipped_step("broken-vault", tmp_path_factory))
+    assert len(shape.solids()) == 1
+    for what in ("volume", "area"):
+        converged = _converged(shape.wrapped, what)
+        assert _default(shape.wrapped, what) == pytest.approx(converged, rel=TAKE_OFF)
 
 
 #: A face's own agreement: a planar sliver t wide and metres long integrates
