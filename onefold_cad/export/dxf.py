@@ -117,8 +117,10 @@ def _setup(doc: Drawing, pattern: FlatPattern) -> None:
 
 
 def _literal(text: str) -> str:
-    """Escape DXF caret codes ('^J' etc.) so the text reads as written."""
-    return text.replace("^", "^ ")
+    """``text`` as DXF text that reads as written: powers of units as
+    superscripts ('kg/m^3' as 'kg/m\u00b3', in every DXF code page), any other
+    caret escaped ('^ ', the DXF form of a literal '^': LibreCAD shows it as is)."""
+    return text.replace("^3", "\u00b3").replace("^2", "\u00b2").replace("^", "^ ")
 
 
 def _text_height(pattern: FlatPattern) -> float:

@@ -329,8 +329,9 @@ def test_notes_content_and_mass(tmp_path):
     for half in folded.crease:
         assert f"{half.bend} {half.fold_angle_deg:.2f} deg" in text
     area = shoelace(outline_of(doc)) - math.pi * m.relief_hole_diameter**2 / 4
-    # ("^ " is how DXF text writes a caret)
-    mass = float(re.search(r"mass: ([-0-9.eE+]+) kg \(density 7900 kg/m\^ 3\)", text).group(1))
+    # the unit's power as a superscript, not DXF's caret escape "^ 3" (LibreCAD shows it)
+    assert "^" not in text
+    mass = float(re.search(r"mass: ([-0-9.eE+]+) kg \(density 7900 kg/m\u00b3\)", text).group(1))
     # 7900 kg/m^3 x t (mm) x area (mm^2), with 1 mm^3 = 1e-9 m^3
     assert mass == pytest.approx(area * m.thickness * 7900.0 * 1e-9, rel=1e-5)
     w, h = np.ptp(outline_of(doc), axis=0)
