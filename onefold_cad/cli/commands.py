@@ -53,6 +53,7 @@ def cmd_explore(ns: argparse.Namespace) -> int:
     """Serve the explorer page until Ctrl-C."""
     from onefold_cad.explore.server import serve
 
+    STATE["interrupted"] = "the explorer has stopped (it writes no files)"
     serve(ns.template, port=ns.port, open_browser=not ns.no_browser)
     return 0
 
@@ -94,6 +95,7 @@ def cmd_hops(ns: argparse.Namespace) -> int:
     """Serve the Grasshopper Hops components until Ctrl-C (``onefold_cad.hops``)."""
     from onefold_cad.hops.serve import serve
 
+    STATE["interrupted"] = "the Hops server has stopped (it writes no files)"
     serve(ns.host, ns.port, ns.templates, ns.allow_host)
     return 0
 
