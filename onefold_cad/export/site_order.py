@@ -7,7 +7,9 @@ Columns: the sheet, its design's description, material and gauge (thickness), th
 sheet (the designed sheet's size in its own frame), the blank (the cut
 part: size, net area), the mass (with its unit), the cut length (outline
 and relief hole), the number of bends and each one's angle and direction.
-Lengths in the site's unit, areas in unit^2.
+Lengths in the site's unit; the blank's area in ``area_unit``: m^2 for mm
+sites, ft^2 for inch and foot sites (as one orders sheet metal; a 22 m^2
+blank, not 22274271.6 mm^2).
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ ORDER_COLUMNS = (
     "blank_width",
     "blank_height",
     "blank_area",
+    "area_unit",
     "mass",
     "mass_unit",
     "cut_length",
@@ -54,6 +57,15 @@ def _or_blank(value: Any) -> Any:
     return "" if value is None else value
 
 
+#: The unit a blank's area is ordered in, and unit^2 per it, by the length unit.
+AREA_UNITS = {"mm": ("m^2", 1e6), "in": ("ft^2", 144.0), "ft": ("ft^2", 1.0)}
+
+
+def _area(value: Any, units: str) -> Any:
+    """An area in the design's unit^2 as ordered (m^2 or ft^2), or None."""
+    return None if value is None else value / AREA_UNITS[units][1]
+
+
 def order_rows(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> list[list[Any]]:
     """One row per ``(sheet name, report)`` then a ``TOTAL`` row (the masses
     added up when every sheet has one, the blank areas and cut lengths)."""
@@ -67,7 +79,8 @@ def order_rows(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> list[list[An
         halves = [k for k, v in crease.items() if abs(v["fold_angle_deg"]) > 0.0]
         mass = rep.get("mass")
         masses.append(None if mass is None else mass["value"])
-        areas.append(rep.get("flat_area"))
+        area = _area(rep.get("flat_area"), rep["units"])
+        areas.append(area)
         cuts.append(fp.get("cut_length"))
         bends += len(halves)
         rows.append(
@@ -79,7 +92,8 @@ def order_rows(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> list[list[An
                 *rep["sheet"]["size"],
                 _or_blank(blank[0]),
                 _or_blank(blank[1]),
-                _or_blank(rep.get("flat_area")),
+                _or_blank(area),
+                AREA_UNITS[rep["units"]][0],
                 "" if mass is None else mass["value"],
                 "" if mass is None else mass["unit"],
                 _or_blank(fp.get("cut_length")),
@@ -90,14 +104,17 @@ def order_rows(reports: Sequence[tuple[str, Mapping[str, Any]]]) -> list[list[An
             ]
         )
     units = {r[-1] for r in rows}
-    mass_units = {r[10] for r in rows}
+    mass_units = {r[11] for r in rows}
+    area_units = {r[9] for r in rows}
 
     def total(values: list[Any]) -> Any:
         return "" if any(v is None for v in values) else sum(values)
 
     rows.append(
         [
-            "TOTAL", f"{len(rows)} sheets", "", "", "", "", "", "", total(areas),
+            "TOTAL", f"{len(rows)} sheets", "", "", "", "", "", "",
+            total(areas) if len(area_units) == 1 else "",
+            area_units.pop() if len(area_units) == 1 else "",
             total(masses) if len(mass_units) == 1 else "", mass_units.pop() if len(mass_units) == 1
             else "", total(cuts), bends, "", "", units.pop() if len(units) == 1 else "",
         ]

@@ -134,7 +134,9 @@ def test_the_order_s_rows_are_the_reports_and_its_masses_add_up(built):
         rep = json.loads((built / r["sheet"] / f"{r['sheet']}.json").read_text())
         masses.append(rep["mass"]["value"])
         assert float(r["mass"]) == pytest.approx(rep["mass"]["value"], rel=1e-9)
-        assert float(r["blank_area"]) == pytest.approx(rep["flat_area"], rel=1e-9)
+        # ordered in m^2 (the site is in mm; 1 m^2 = 1e6 mm^2)
+        assert r["area_unit"] == "m^2"
+        assert float(r["blank_area"]) == pytest.approx(rep["flat_area"] / 1e6, rel=1e-9)
         assert float(r["thickness"]) == rep["inputs"]["material"]["thickness"]
         w, h = (
             rep["inputs"]["sheet"]["rectangle"]["width"],

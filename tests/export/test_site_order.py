@@ -41,7 +41,9 @@ def test_a_row_per_sheet_from_its_report_and_the_total():
     assert a["bends"] == "2" and a["bend_angles_deg"] == "82.800;70.250"
     assert a["bend_directions"] == "plus_x:UP;minus_x:DOWN"
     assert total["sheet"] == "TOTAL" and float(total["mass"]) == pytest.approx(610.75)
-    assert float(total["blank_area"]) == pytest.approx(4.0e7)
+    # ordered in m^2: 2.0e7 mm^2 a sheet is 20 m^2 (1 m^2 = 1e6 mm^2)
+    assert (a["blank_area"], a["area_unit"]) == ("20", "m^2")
+    assert float(total["blank_area"]) == pytest.approx(40.0) and total["area_unit"] == "m^2"
     assert float(total["cut_length"]) == pytest.approx(40001.0) and total["bends"] == "4"
 
 
@@ -57,3 +59,12 @@ def test_no_total_mass_without_every_mass_or_across_units():
     assert total["mass"] == ""
     (_, _, total) = rows(order_csv([("a", report("a", 1.0)), ("b", report("b", 1.0, "lb"))]))
     assert total["mass"] == "" and total["mass_unit"] == ""
+
+
+def test_an_inch_site_orders_its_blanks_in_square_feet():
+    r = report("a", 1.0, "lb")
+    r["units"] = "in"
+    r["flat_area"] = 288.0  # in^2: 2 ft^2 (144 in^2 a square foot)
+    (a, total) = rows(order_csv([("a", r)]))
+    assert (a["blank_area"], a["area_unit"]) == ("2", "ft^2")
+    assert (total["blank_area"], total["area_unit"]) == ("2", "ft^2")
