@@ -61,6 +61,7 @@ __all__ = [
     "check_design_file",
     "find_site_file",
     "find_template",
+    "list_sites",
     "list_templates",
     "load_template",
     "read_template",
@@ -169,6 +170,15 @@ def list_templates() -> list[TemplateInfo]:
     """The shipped templates, sorted by name."""
     out = []
     for name, path in sorted(shipped_files().items()):
+        data = read_template(path)
+        out.append(TemplateInfo(name, path, str(data.get("description", "")).strip()))
+    return out
+
+
+def list_sites() -> list[TemplateInfo]:
+    """The shipped site files (``onefold site NAME``), sorted by name."""
+    out = []
+    for name, path in sorted(shipped_files(sites=True).items()):
         data = read_template(path)
         out.append(TemplateInfo(name, path, str(data.get("description", "")).strip()))
     return out

@@ -24,14 +24,22 @@ __all__ = ["COMMANDS"]
 
 
 def cmd_templates(ns: argparse.Namespace) -> int:
-    """List the shipped templates, one line each."""
-    from onefold_cad.templates import list_templates
+    """List the shipped templates, one line each, then the shipped site files."""
+    from onefold_cad.templates import list_sites, list_templates
 
-    infos = list_templates()
-    width = max((len(t.name) for t in infos), default=0)
+    infos, sites = list_templates(), list_sites()
+    width = max((len(t.name) for t in [*infos, *sites]), default=0)
     for t in infos:
         print(f"{t.name:<{width}}  {t.description}")
+    if sites:
+        print(f"\n{SITES_HEADING}")
+        for t in sites:
+            print(f"{t.name:<{width}}  {t.description}")
     return 0
+
+
+#: The line before the shipped site files in ``onefold templates``.
+SITES_HEADING = "sites (several sheets on one site: onefold site NAME):"
 
 
 def cmd_solve(ns: argparse.Namespace) -> int:

@@ -141,7 +141,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     templates = FlagParser(
         prog=f"{PROG} templates",
         usage=f"{PROG} templates",
-        description="List the shipped templates, one line each: name and description.",
+        description="List the shipped templates, one line each: name and description; then, "
+        "after a blank line and a heading, the shipped site files (onefold site NAME).",
         formatter_class=formatter,
         allow_abbrev=False,
     )
