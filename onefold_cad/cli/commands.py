@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import os
 import sys
 from collections.abc import Callable
 
@@ -70,17 +71,28 @@ def cmd_fit(ns: argparse.Namespace) -> int:
     """Inverse design: the frame whose resting form has the target size."""
     import json
 
+    from onefold_cad.cli.output import one_line
     from onefold_cad.fit import fit_design
+    from onefold_cad.templates import DEFAULT_TEMPLATE
 
-    (job,) = load_jobs([ns.template], {})
+    template = ns.template or DEFAULT_TEMPLATE  # as solve and build: the default template
+    (job,) = load_jobs([template], {})
     design = job.design
-    result = fit_design(design, ns.height, ns.span, ns.depth, ns.min_tipping_margin)
+
+    def progress(text: str) -> None:
+        if not ns.quiet:
+            os.write(2, f"[fit] {design.name}: {one_line(text)}\n".encode())
+
+    result = fit_design(
+        design, ns.height, ns.span, ns.depth, ns.min_tipping_margin, progress=progress
+    )
     f = result.design.frame
+    progress(f"found after {result.evaluations} solved frames")
     if ns.outdir is not None:  # the build's list of files goes to stderr under --json
         frame = ["--alpha", repr(f.alpha), "--beta", repr(f.beta), "--hc", repr(f.h_c)]
         # named after the template and the fit, not after the flags' values
         name = ["--name", f"{design.name}-fit"]
-        argv = [ns.template, "-o", str(ns.outdir), *frame, *name, *(["-q"] if ns.quiet else [])]
+        argv = [template, "-o", str(ns.outdir), *frame, *name, *(["-q"] if ns.quiet else [])]
         with contextlib.redirect_stdout(sys.stderr) if ns.json else contextlib.nullcontext():
             status = cmd_build(build_parser()["build"].parse_intermixed_args(argv))
         if status:

@@ -1,7 +1,9 @@
-"""The commands' stop messages: a server stopped by a signal says it stopped."""
+"""The commands: a server stopped by a signal says it stopped; fit's default
+template and progress."""
 
 from __future__ import annotations
 
+import json
 import signal
 import subprocess
 
@@ -39,3 +41,28 @@ def test_sigterm_stops_a_server_saying_it_stopped_not_that_nothing_was_written(a
     assert err.decode().splitlines() == [
         f"onefold: stopped by SIGTERM; {what} has stopped (it writes no files)"
     ]
+
+
+@pytest.mark.parametrize("quiet", [False, True])
+def test_fit_starts_from_the_default_template_and_shows_its_progress(capfd, quiet):
+    """`onefold fit --height H --span S` (no template) fits the default
+    template, as solve and build default to it, and says each step of its
+    search on stderr (-q: nothing), one line each, before the result."""
+    from onefold_cad.cli.main import main
+
+    capfd.readouterr()
+    assert main(["solve", "--json"]) == 0
+    rest = json.loads(capfd.readouterr().out)["resting"]
+    height, span = rest["height"], rest["span"]
+    argv = ["fit", "--height", f"{height:.6g}", "--span", f"{span:.6g}"]
+    assert main(argv + (["-q"] if quiet else [])) == 0
+    out, err = capfd.readouterr()
+    assert out.startswith("patkau-one-fold: alpha ")
+    if quiet:
+        assert err == ""
+        return
+    lines = err.splitlines()
+    assert all(line.startswith("[fit] patkau-one-fold: ") for line in lines), lines
+    assert "grid (h_c kept)" in lines[0] and "frames stand" in lines[0]
+    assert any("refining seed 1/" in line for line in lines)
+    assert lines[-1].startswith("[fit] patkau-one-fold: found after ")
