@@ -4,7 +4,7 @@ A template names every input of a :class:`~onefold_cad.design.Design`::
 
     name = "table1-row1"            # file-safe design name
     description = "..."             # one line, shown by `onefold templates`
-    units = "mm"                    # mm, in or ft
+    units = "mm"                    # mm, m, in or ft
     model = "exact"                 # exact or paper
 
     [frame]                         # the frame curve (degrees, design unit)
@@ -244,7 +244,7 @@ def template_units(data: Mapping[str, Any], path: str | Path) -> str:
     if units is None:
         raise InvalidParameterError(
             f"{path}: units", 'missing: a template states its units, e.g. units = "mm" '
-            "(mm, in or ft)"
+            "(mm, m, in or ft)"
         )  # fmt: skip
     return str(units)
 

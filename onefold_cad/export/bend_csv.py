@@ -3,7 +3,7 @@
 
 Numbers are rounded to what a press brake and a tape can use, and each
 header cell names its step: angles to 0.01 deg (``fold_angle_deg [0.01
-deg]``), lengths to 0.01 mm, 0.001 in or 0.0001 ft (``length [0.01 mm]``).
+deg]``), lengths to 0.01 mm (0.00001 m), 0.001 in or 0.0001 ft (``length [0.01 mm]``).
 The material's own values (r, t, K) are written as given.
 """
 
@@ -25,7 +25,7 @@ __all__ = ["bend_csv", "write_bend_csv"]
 
 
 #: Decimals of a rounded length, by the design's unit (0.01 mm, 0.001 in, 0.0001 ft).
-LENGTH_DECIMALS = {"mm": 2, "in": 3, "ft": 4}
+LENGTH_DECIMALS = {"mm": 2, "m": 5, "in": 3, "ft": 4}
 #: Decimals of a rounded angle (0.01 deg).
 ANGLE_DECIMALS = 2
 #: The columns written as given (the material's values).

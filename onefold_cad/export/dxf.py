@@ -78,7 +78,12 @@ LAYERS: dict[str, tuple[int, str]] = {
     "NOTES": (7, "Continuous"),
 }
 _VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
-_INSUNITS = {Units.MM: dxf_units.MM, Units.IN: dxf_units.IN, Units.FT: dxf_units.FT}
+_INSUNITS = {
+    Units.MM: dxf_units.MM,
+    Units.M: dxf_units.M,
+    Units.IN: dxf_units.IN,
+    Units.FT: dxf_units.FT,
+}
 _APPID = "ONEFOLD"
 #: the fixed date of every time stamp in the files (2000-01-01, as ezdxf's own tests)
 _FIXED_DATE = datetime(2000, 1, 1)
@@ -98,7 +103,7 @@ def set_units(doc: Drawing, units: Units) -> None:
     """$INSUNITS (not in R12) and $MEASUREMENT for the design's unit."""
     if doc.dxfversion > "AC1009":  # R12 has no $INSUNITS
         doc.units = _INSUNITS[units]
-    doc.header["$MEASUREMENT"] = 1 if units is Units.MM else 0
+    doc.header["$MEASUREMENT"] = 1 if units in (Units.MM, Units.M) else 0
 
 
 def _setup(doc: Drawing, pattern: FlatPattern) -> None:

@@ -58,7 +58,7 @@ def _or_blank(value: Any) -> Any:
 
 
 #: The unit a blank's area is ordered in, and unit^2 per it, by the length unit.
-AREA_UNITS = {"mm": ("m^2", 1e6), "in": ("ft^2", 144.0), "ft": ("ft^2", 1.0)}
+AREA_UNITS = {"mm": ("m^2", 1e6), "m": ("m^2", 1.0), "in": ("ft^2", 144.0), "ft": ("ft^2", 1.0)}
 
 
 def _area(value: Any, units: str) -> Any:

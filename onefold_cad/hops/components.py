@@ -93,7 +93,7 @@ FIT_OUTPUTS: tuple[HopsOutput, ...] = (
 )
 
 #: Rhino's unit systems (a Hops request's ``modelunits``) by the design's unit.
-RHINO_UNITS = {"mm": "Millimeters", "in": "Inches", "ft": "Feet"}
+RHINO_UNITS = {"mm": "Millimeters", "m": "Meters", "in": "Inches", "ft": "Feet"}
 
 
 def units_warning(design_units: str, model_units: object) -> str | None:
@@ -111,7 +111,7 @@ def units_warning(design_units: str, model_units: object) -> str | None:
 
 
 #: The design units' names in a sentence.
-_UNIT_NAMES = {"mm": "millimetres", "in": "inches", "ft": "feet"}
+_UNIT_NAMES = {"mm": "millimetres", "m": "metres", "in": "inches", "ft": "feet"}
 
 
 def _sheet_text(curve: Mapping[str, Any]) -> str:

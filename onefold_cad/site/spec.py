@@ -51,7 +51,7 @@ __all__ = [
 #: The keys of the site file's top level and of one ``[[sheet]]`` entry.
 SITE_KEYS = ("name", "description", "units", "sheet")
 SHEET_KEYS = ("name", "template", "design", "flags", "x", "y", "rotation")
-_UNITS = ("mm", "in", "ft")
+_UNITS = ("mm", "m", "in", "ft")
 #: The most sheets a site takes, refused up front (:func:`read_site`), before
 #: any is built. Every sheet's part stays in memory until the site's STEP,
 #: GLB, IFC and clearance are written (about 11 MB more per default sheet

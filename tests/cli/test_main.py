@@ -588,7 +588,7 @@ BAD = [
     (["--poisson", "-1"], "poisson", "> -1 and < 0.5"),
     (["--yield-stress", "0"], "yield-stress", "in [0.001, 193000] MPa"),
     (["--yield-stress", "1e-320"], "yield-stress", "in [0.001, 193000] MPa"),
-    (["--units", "furlong"], "units", "mm, in, ft"),
+    (["--units", "furlong"], "units", "mm, m, in, ft"),
     (["--sheet-surface", "TOP"], "sheet-surface", "INSIDE"),
     (["--model", "fan"], "model", "exact"),
     (["--alpah", "3"], "no such option", "--alpah"),

@@ -246,7 +246,7 @@ def refused(result, *words: str) -> None:
          ("sheet 2 'right': flags.thicknes", "unknown design flag")),
         ("thickness = 1.0 }\nx = 40.0", "thickness = -1.0 }\nx = 40.0",
          ("sheet 2 'right': flags.thickness",)),
-        ('units = "mm"', 'units = "furlong"', ("site.toml: units", "mm, in, ft")),
+        ('units = "mm"', 'units = "furlong"', ("site.toml: units", "mm, m, in, ft")),
     ],
 )  # fmt: skip
 def test_a_malformed_site_names_the_entry_and_the_key(site_cli, old, new, words):

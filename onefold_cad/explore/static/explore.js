@@ -315,7 +315,7 @@ function len(x) {
 }
 // an area in the design's unit² as one orders sheet metal: m² for mm designs,
 // ft² for inch and foot designs (a 22 m² blank, not 22274271 mm²)
-const AREA_UNITS = { mm: ['m²', 1e6], in: ['ft²', 144], ft: ['ft²', 1] };
+const AREA_UNITS = { mm: ['m²', 1e6], m: ['m²', 1], in: ['ft²', 144], ft: ['ft²', 1] };
 function area(x) {
   const [name, per] = AREA_UNITS[units] || [`${units}²`, 1];
   return x === null || x === undefined ? '–' : `${fmt(x / per)} ${name}`;
