@@ -29,9 +29,11 @@ test: $(VENV)/.installed-test programs lint
 
 # Debian programs the tests drive: Chromium with playwright (tests/explore/),
 # CalculiX's ccx, which runs the NAME.inp simulate writes, and ParaView's
-# pvpython, which reads its NAME.vtu (tests/export/).
+# pvpython, which reads its NAME.vtu (tests/export/), and FreeCAD's freecadcmd,
+# which weighs the STEP solid (tests/export/test_aligned_plane.py).
 # As root, install those missing; otherwise stop with the one command to run.
-PROGRAMS := /usr/bin/chromium:chromium /usr/bin/ccx:calculix-ccx /usr/bin/pvpython:python3-paraview
+PROGRAMS := /usr/bin/chromium:chromium /usr/bin/ccx:calculix-ccx /usr/bin/pvpython:python3-paraview \
+  /usr/bin/freecadcmd:freecad-python3
 programs:
 	@missing=""; for p in $(PROGRAMS); do \
 	  [ -x "$${p%%:*}" ] || missing="$$missing $${p#*:}"; \

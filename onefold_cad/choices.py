@@ -85,13 +85,14 @@ class Units(Choice):
     """Length unit of a design."""
 
     MM = "mm"
+    M = "m"
     IN = "in"
     FT = "ft"
 
     @property
     def mm(self) -> float:
-        """Millimetres per unit (exact: 1 in = 25.4 mm, 1 ft = 304.8 mm)."""
-        return {"mm": 1.0, "in": 25.4, "ft": 304.8}[self.value]
+        """Millimetres per unit (exact: 1 m = 1000 mm, 1 in = 25.4 mm, 1 ft = 304.8 mm)."""
+        return {"mm": 1.0, "m": 1000.0, "in": 25.4, "ft": 304.8}[self.value]
 
     def factor_to(self, other: Units | str) -> float:
         """The factor that turns a length in this unit into one in ``other``."""
@@ -99,9 +100,9 @@ class Units(Choice):
 
     @property
     def mass_unit(self) -> str:
-        """The unit masses are reported in: 'kg' for mm designs, 'lb' for inch
-        and foot designs."""
-        return "kg" if self is Units.MM else "lb"
+        """The unit masses are reported in: 'kg' for mm and metre designs, 'lb'
+        for inch and foot designs."""
+        return "kg" if self in (Units.MM, Units.M) else "lb"
 
 
 class Compensation(Choice):

@@ -222,6 +222,7 @@ def fit_design(
     min_tipping_margin: float | None = None,
     *,
     tolerance: float = FIT_TOLERANCE,
+    progress: Callable[[str], None] | None = None,
 ) -> FitResult:
     """Find alpha, beta and h_c for ``design``'s sheet and material whose
     resting form is ``height`` high and ``span`` wide (and ``depth`` deep).
@@ -232,6 +233,8 @@ def fit_design(
         height, span, depth: the targets (length, > 0).
         min_tipping_margin: the smallest tipping margin allowed (deg), or None.
         tolerance: relative error allowed on each length (default 0.5 %).
+        progress: called with one line at each step of the search (the grid
+            searched, each seed refined), or None.
 
     Returns:
         The fitted design and what its resting form measures.
@@ -271,13 +274,16 @@ def fit_design(
                 best = (cost, x, rest)
         return best is not None and _meets(best[2], targets, tolerance / 10.0)
 
+    say = progress or (lambda text: None)
     for fixed in stages:
+        which = "h_c kept" if fixed else "h_c free"
         if fixed:
             stage_grid = _grid(stand, targets, _FINE_ANGLES, [float(x0[2])], x0)
         else:
             fracs = sorted({*_GRID_HC, float(x0[2])})
             stage_grid = _grid(stand, targets, _GRID_ANGLES, fracs, x0)
         grid += stage_grid
+        say(f"grid ({which}): {len(stage_grid)} frames stand ({stand.evaluations} solved so far)")
         # seeds within 25 % of every target on the grid (the rest cannot get
         # there): the best by the lengths, and the best with the margin too
         lengths = {k: v for k, v in targets.items() if k != "min_tipping_margin_deg"}
@@ -290,7 +296,11 @@ def fit_design(
             near = float(np.sum(_residual(rest, lengths, x, x0) ** 2)) <= 3 * 0.25**2
             if near and not any(np.array_equal(x, y) for y in seeds):
                 seeds.append(x)
-        for seed in seeds:
+        for i, seed in enumerate(seeds, 1):
+            say(
+                f"refining seed {i}/{len(seeds)} ({which}): alpha {seed[0]:.4g}, "
+                f"beta {seed[1]:.4g} deg, h_c {seed[2]:.3g} of R cos(alpha)"
+            )
             # the fan's margins are not the body's (it rests on ruling ends,
             # the body may rock on a curved edge): the fan is fitted to the
             # lengths only, and the body's margin decides among the seeds

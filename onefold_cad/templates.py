@@ -4,7 +4,7 @@ A template names every input of a :class:`~onefold_cad.design.Design`::
 
     name = "table1-row1"            # file-safe design name
     description = "..."             # one line, shown by `onefold templates`
-    units = "mm"                    # mm, in or ft
+    units = "mm"                    # mm, m, in or ft
     model = "exact"                 # exact or paper
 
     [frame]                         # the frame curve (degrees, design unit)
@@ -61,6 +61,7 @@ __all__ = [
     "check_design_file",
     "find_site_file",
     "find_template",
+    "list_sites",
     "list_templates",
     "load_template",
     "read_template",
@@ -176,6 +177,15 @@ def list_templates() -> list[TemplateInfo]:
     return out
 
 
+def list_sites() -> list[TemplateInfo]:
+    """The shipped site files (``onefold site NAME``), sorted by name."""
+    out = []
+    for name, path in sorted(shipped_files(sites=True).items()):
+        data = read_template(path)
+        out.append(TemplateInfo(name, path, str(data.get("description", "")).strip()))
+    return out
+
+
 def find_template(ref: str | Path) -> Path:
     """The file of a template given as a path or as a shipped template's name."""
     p = Path(ref)
@@ -236,7 +246,7 @@ def template_units(data: Mapping[str, Any], path: str | Path) -> str:
     if units is None:
         raise InvalidParameterError(
             f"{path}: units", 'missing: a template states its units, e.g. units = "mm" '
-            "(mm, in or ft)"
+            "(mm, m, in or ft)"
         )  # fmt: skip
     return str(units)
 

@@ -10,7 +10,7 @@ from onefold_cad.errors import InvalidParameterError
 
 CHOICES = [
     (Model, "model", ["paper", "exact"]),
-    (Units, "units", ["mm", "in", "ft"]),
+    (Units, "units", ["mm", "m", "in", "ft"]),
     (SheetSurface, "sheet_surface", ["INSIDE", "OUTSIDE", "MID"]),
     (Compensation, "compensation", ["sharp", "none"]),
 ]

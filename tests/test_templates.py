@@ -187,7 +187,7 @@ def _error(data: dict) -> InvalidParameterError:
         ),
         (lambda d: d.update(material={"k_factor": 2}), "material.k_factor", "[0, 1]"),
         (lambda d: d.update(material={"relief_hole": -1}), "material.relief_hole", ">= 0"),
-        (lambda d: d.update(units="furlong"), "units", "mm, in, ft"),
+        (lambda d: d.update(units="furlong"), "units", "mm, m, in, ft"),
         (lambda d: d.update(model="fan"), "model", "paper, exact"),
         (lambda d: d.update(name="no spaces"), "name", "letters"),
     ],

@@ -152,7 +152,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     templates = FlagParser(
         prog=f"{PROG} templates",
         usage=f"{PROG} templates",
-        description="List the shipped templates, one line each: name and description.",
+        description="List the shipped templates, one line each: name and description; then, "
+        "after a blank line and a heading, the shipped site files (onefold site NAME).",
         formatter_class=formatter,
         allow_abbrev=False,
     )
@@ -172,8 +173,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
                          help="only print the address; do not open a browser")  # fmt: skip
     fit = FlagParser(
         prog=f"{PROG} fit",
-        usage=f"{PROG} fit TEMPLATE --height H --span S [--depth D]\n"
-        "         [--min-tipping-margin DEG] [--json] [-o DIR]",
+        usage=f"{PROG} fit [TEMPLATE] --height H --span S [--depth D]\n"
+        "         [--min-tipping-margin DEG] [--json] [-o DIR] [-q]",
         description="Find alpha, beta and h_c whose resting form has the target height and "
         "span (footprint width), and depth if given, each within 0.5 %. The template's sheet, "
         "material and model are kept; lengths are in its unit. A target out of reach is an "
@@ -183,8 +184,10 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     )
     fit.add_argument(
         "template",
+        nargs="?",
         metavar="TEMPLATE",
-        help="template file or shipped template name: sheet and material",
+        help="template file or shipped template name: sheet and material "
+        f"(default: {DEFAULT_TEMPLATE})",
     )
     fit.add_argument(
         "--height",
@@ -221,7 +224,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         help="also build the found design into this folder (as NAME-fit)",
     )
     fit.add_argument("-q", "--quiet", action="store_true",
-                     help="no progress lines on stderr when building (-o)")  # fmt: skip
+                     help="no progress lines on stderr (the search's, the build's)")  # fmt: skip
     return {
         "": top,
         "build": build,

@@ -116,6 +116,15 @@ def cmd_site(ns: argparse.Namespace) -> int:
     jobs = site_jobs(spec)
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
+    if not ns.allow_touching:  # sheets whose surfaces cross: refused before building them
+        from onefold_cad.site.overlap import check_plan
+        from onefold_cad.site.placement import SitePlacement
+
+        check_plan(
+            [(s.name, j.design, SitePlacement(s.x, s.y, s.rotation_deg))
+             for s, j in zip(spec.sheets, jobs, strict=True)],
+            spec.units,
+        )  # fmt: skip
     n = len(jobs)
     targets = [
         f"{j.design.name}/{f}" for j in jobs for f in file_names(j.design.name, sheet_formats)

@@ -62,6 +62,7 @@ _CONFIG = Configuration(
 #: The SVG length unit and how many of it make a millimetre, per DXF unit.
 _SVG_UNIT = {
     dxf_units.MM: ("mm", 1.0),
+    dxf_units.M: ("mm", 1.0),
     dxf_units.IN: ("in", 1 / 25.4),
     dxf_units.FT: ("in", 1 / 25.4),
 }

@@ -52,7 +52,7 @@ ANGULAR_DEFLECTION = 0.05
 #: The material's base colour (sRGB), a light steel grey.
 COLOUR = STEEL_GREY
 
-_UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
+_UNIT = {Units.MM: bd.Unit.MM, Units.M: bd.Unit.M, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
 
 
 def write_glb(

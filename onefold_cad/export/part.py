@@ -328,6 +328,7 @@ def build_solid(
     clock.check()
     solid.fit_deviation = deviation
     solid.fit_tolerance = tol
+    solid.solid_volume = volume
     return solid
 
 
@@ -364,7 +365,7 @@ def place(part: bd.Shape, placement: RestingPlacement) -> bd.Shape:
     lift.SetTranslation(gp_Vec(0.0, 0.0, -box.CornerMin().Z()))
     out = bd.Shape.cast(BRepBuilderAPI_Transform(moved, lift, True).Shape())
     out.label = part.label
-    for name in ("fit_deviation", "fit_tolerance"):
+    for name in ("fit_deviation", "fit_tolerance", "solid_volume"):
         if hasattr(part, name):
             setattr(out, name, getattr(part, name))
     return out

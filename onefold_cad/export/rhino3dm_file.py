@@ -1,6 +1,6 @@
 """NAME.3dm: the folded form and its flat pattern for Rhino (a rhino3dm adapter).
 
-One Rhino 8 file, model units from the design (mm, in, ft), holding:
+One Rhino 8 file, model units from the design (mm, m, in, ft), holding:
 
 - ``Folded::Sheet``: the folded form as one Brep per side (``upper side``,
   ``lower side``), each a single NURBS face on the exact cone whose natural
@@ -75,6 +75,7 @@ __all__ = [
 VERSION = 8
 _UNITS = {
     Units.MM: rhino3dm.UnitSystem.Millimeters,
+    Units.M: rhino3dm.UnitSystem.Meters,
     Units.IN: rhino3dm.UnitSystem.Inches,
     Units.FT: rhino3dm.UnitSystem.Feet,
 }

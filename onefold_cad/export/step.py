@@ -30,8 +30,8 @@ __all__ = ["STEP_TIMESTAMP", "export_design_step", "export_site_step", "read_ste
 #: The header timestamp of every STEP file written here (reproducible bytes).
 STEP_TIMESTAMP = "2000-01-01T00:00:00"
 
-_UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
-_STEP_UNIT_NAME = {Units.MM: "MM", Units.IN: "INCH", Units.FT: "FT"}
+_UNIT = {Units.MM: bd.Unit.MM, Units.M: bd.Unit.M, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
+_STEP_UNIT_NAME = {Units.MM: "MM", Units.M: "M", Units.IN: "INCH", Units.FT: "FT"}
 
 
 def export_design_step(

@@ -95,7 +95,7 @@ FIT_OUTPUTS: tuple[HopsOutput, ...] = (
 )
 
 #: Rhino's unit systems (a Hops request's ``modelunits``) by the design's unit.
-RHINO_UNITS = {"mm": "Millimeters", "in": "Inches", "ft": "Feet"}
+RHINO_UNITS = {"mm": "Millimeters", "m": "Meters", "in": "Inches", "ft": "Feet"}
 
 
 def units_warning(design_units: str, model_units: object) -> str | None:
@@ -104,11 +104,16 @@ def units_warning(design_units: str, model_units: object) -> str | None:
     want = RHINO_UNITS.get(design_units)
     if not isinstance(model_units, str) or not model_units or model_units == want:
         return None
+    name = _UNIT_NAMES.get(design_units, design_units)
     return (
-        f"the design is in {design_units} and the Rhino document in {model_units}: "
-        f"lengths are the design's, not converted (give units {design_units!r} a document "
-        f"in {want}, or set the units input)"
+        f"the design's lengths are in {name} (units {design_units!r}) and the Rhino "
+        f"document's in {model_units}: they are not converted (open a document in {want}, "
+        "or set the units input to the document's)"
     )
+
+
+#: The design units' names in a sentence.
+_UNIT_NAMES = {"mm": "millimetres", "m": "metres", "in": "inches", "ft": "feet"}
 
 
 def _sheet_text(curve: Mapping[str, Any]) -> str:

@@ -65,7 +65,7 @@ LOADS_KEYS = {
     "person_grid": "person_grid", "supports": "supports", "friction": "friction", "mesh": "mesh",
 }  # fmt: skip
 SHEET_KEYS = ("name", "template", "design", "flags", "x", "y", "rotation")
-_UNITS = ("mm", "in", "ft")
+_UNITS = ("mm", "m", "in", "ft")
 #: The most sheets a site takes, refused up front (:func:`read_site`), before
 #: any is built. Every sheet's part stays in memory until the site's STEP,
 #: GLB, IFC and clearance are written (about 11 MB more per default sheet

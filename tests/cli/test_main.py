@@ -12,6 +12,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -21,6 +22,7 @@ from onefold_cad.cli.main import main
 from onefold_cad.fabrication.report import design_report
 from onefold_cad.templates import list_templates, load_template
 from tests.processes import interruptible
+from tests.shipped import REPO_TEMPLATES
 
 REPO = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent / "onefold"
@@ -181,12 +183,22 @@ def test_python_dash_m_is_the_same_command():
 def test_templates_lists_one_line_each():
     proc = run("templates")
     assert proc.returncode == 0
-    lines = proc.stdout.splitlines()
+    designs, sites = proc.stdout.split("\n\n")
+    lines = designs.splitlines()
     infos = list_templates()
     assert len(lines) == len(infos) >= 8
     for line, info in zip(lines, infos, strict=True):
         name, desc = line.split(maxsplit=1)
         assert name == info.name and desc == info.description
+    # then the shipped site files, under a heading saying how to build them
+    heading, *site_lines = sites.splitlines()
+    assert heading == "sites (several sheets on one site: onefold site NAME):"
+    shipped = sorted(p.stem for p in REPO_TEMPLATES.glob("site-*.toml"))
+    assert [line.split()[0] for line in site_lines] == shipped and shipped
+    for line in site_lines:
+        name, desc = line.split(maxsplit=1)
+        data = tomllib.loads((REPO_TEMPLATES / f"{name}.toml").read_text())
+        assert desc == data["description"]
 
 
 # -- solve -------------------------------------------------------------------------------
@@ -576,7 +588,7 @@ BAD = [
     (["--poisson", "-1"], "poisson", "> -1 and < 0.5"),
     (["--yield-stress", "0"], "yield-stress", "in [0.001, 193000] MPa"),
     (["--yield-stress", "1e-320"], "yield-stress", "in [0.001, 193000] MPa"),
-    (["--units", "furlong"], "units", "mm, in, ft"),
+    (["--units", "furlong"], "units", "mm, m, in, ft"),
     (["--sheet-surface", "TOP"], "sheet-surface", "INSIDE"),
     (["--model", "fan"], "model", "exact"),
     (["--alpah", "3"], "no such option", "--alpah"),

@@ -41,7 +41,9 @@ def test_a_row_per_sheet_from_its_report_and_the_total():
     assert a["bends"] == "2" and a["bend_angles_deg"] == "82.800;70.250"
     assert a["bend_directions"] == "plus_x:UP;minus_x:DOWN"
     assert total["sheet"] == "TOTAL" and float(total["mass"]) == pytest.approx(610.75)
-    assert float(total["blank_area"]) == pytest.approx(4.0e7)
+    # ordered in m^2: 2.0e7 mm^2 a sheet is 20 m^2 (1 m^2 = 1e6 mm^2)
+    assert (a["blank_area"], a["area_unit"]) == ("20", "m^2")
+    assert float(total["blank_area"]) == pytest.approx(40.0) and total["area_unit"] == "m^2"
     assert float(total["cut_length"]) == pytest.approx(40001.0) and total["bends"] == "4"
 
 
@@ -84,3 +86,12 @@ def test_the_anchors_of_each_sheet_and_their_total():
 def test_no_anchor_columns_without_loads():
     (a, total) = rows(order_csv([("a", report("a", 1.0))]))
     assert a["feet"] == "" and total["anchor_pull_N"] == ""
+
+
+def test_an_inch_site_orders_its_blanks_in_square_feet():
+    r = report("a", 1.0, "lb")
+    r["units"] = "in"
+    r["flat_area"] = 288.0  # in^2: 2 ft^2 (144 in^2 a square foot)
+    (a, total) = rows(order_csv([("a", r)]))
+    assert (a["blank_area"], a["area_unit"]) == ("2", "ft^2")
+    assert (total["blank_area"], total["area_unit"]) == ("2", "ft^2")

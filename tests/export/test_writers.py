@@ -178,8 +178,28 @@ def test_the_step_and_the_glb_are_one_part_built_once_and_the_report_gives_its_f
         "placement": placement,
         "fit_deviation": part.fit_deviation,
         "fit_tolerance": part.fit_tolerance,
+        "volume": None,  # a shell
+        "volume_over_blank": None,
     }
     assert 0.0 < rep["step"]["fit_deviation"] <= rep["step"]["fit_tolerance"]
+
+
+def test_the_report_gives_the_solid_s_volume_against_the_blank_s(tmp_path):
+    """The mass weighs the blank (flat_area x t); the STEP solid holds the
+    mitre at the crease as well: the report gives both, measured apart."""
+    import build123d as bd
+
+    from onefold_cad.export.measure import measure
+
+    ctx = context(thickness=2.0)
+    write_design(ctx, tmp_path / "1", parse_formats("step,json"))
+    rep = json.loads((tmp_path / "1" / "w.json").read_text())
+    volume = measure(bd.import_step(tmp_path / "1" / "w.step"), "volume")
+    assert rep["step"]["body"] == "solid"
+    assert rep["step"]["volume"] == pytest.approx(volume, rel=1e-6)
+    blank = rep["flat_area"] * 2.0
+    assert rep["step"]["volume_over_blank"] == pytest.approx(volume / blank - 1.0, abs=1e-6)
+    assert 0.0 < rep["step"]["volume_over_blank"] < 0.05  # the mitre adds a little
 
 
 @pytest.mark.parametrize("placement", ["rest", "frame"])

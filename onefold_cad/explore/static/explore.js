@@ -308,6 +308,13 @@ function fmt(x, digits = 5) {
 function len(x) {
   return x === null || x === undefined ? '–' : `${fmt(x, 6)} ${units}`;
 }
+// an area in the design's unit² as one orders sheet metal: m² for mm designs,
+// ft² for inch and foot designs (a 22 m² blank, not 22274271 mm²)
+const AREA_UNITS = { mm: ['m²', 1e6], m: ['m²', 1], in: ['ft²', 144], ft: ['ft²', 1] };
+function area(x) {
+  const [name, per] = AREA_UNITS[units] || [`${units}²`, 1];
+  return x === null || x === undefined ? '–' : `${fmt(x / per)} ${name}`;
+}
 
 function showNumbers(n) {
   const halves = { plus_x: '+x half', minus_x: '−x half' };
@@ -318,7 +325,7 @@ function showNumbers(n) {
   $('form-span').textContent = len(n.span);
   // the footprint as `onefold solve` prints it: width x depth (x, y), 6 significant digits
   $('form-footprint').textContent = n.width === null ? '–'
-    : `${fmt(n.width, 6)} × ${fmt(n.depth, 6)} ${units}, hull area ${fmt(n.footprint_area)} ${units}²`
+    : `${fmt(n.width, 6)} × ${fmt(n.depth, 6)} ${units}, hull area ${area(n.footprint_area)}`
       + (n.stable === false ? ' (no stable resting face)' : '');
   $('flat-size').textContent = n.flat_size ? `${fmt(n.flat_size[0])} × ${fmt(n.flat_size[1])} ${units}` : '–';
   $('relief-hole').textContent = n.relief_hole ? `Ø ${len(n.relief_hole)}` : (n.relief_hole === 0 ? 'none' : '–');
