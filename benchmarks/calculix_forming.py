@@ -175,17 +175,20 @@ def template_run(
     s_max: float,
     workdir: Path,
     drive: str = "corners",
+    release: bool = True,
+    reuse: bool = False,
 ) -> dict[str, Any]:
-    """Form (to ``s_max``) and, when the forming is complete, release
-    ``template`` meshed at edge length ``h`` (m); the measures."""
+    """Form (to ``s_max``) and, when the forming is complete and ``release``,
+    release ``template`` meshed at edge length ``h`` (m); the measures.
+    ``reuse``: a finished forming run in ``workdir`` is read, not rerun."""
     from onefold_cad.mechanics.deviation import best_fit, surface_distance
 
     st = template_setup(template, h, bound=bound, start=start, s_max=s_max, drive=drive)
     deck: Deck = dataclasses.replace(st["deck"], layers=layers)
     scale, path = st["scale"], st["path"]
-    full = s_max == 1.0
-    name = f"{template}_h{h:g}_{drive}" + ("" if full else f"_s{s_max:g}")
-    res = form_and_release(deck, workdir, name, release=full)
+    full = s_max == 1.0 and release
+    name = f"{template}_h{h:g}_{drive}" + ("" if s_max == 1.0 else f"_s{s_max:g}")
+    res = form_and_release(deck, workdir, name, release=full, reuse=reuse)
     n, ne = len(deck.x0), len(deck.tri6)
     end = round(float(deck.s[-1]), 6)
     formed = surface_state(res["form"], end, layers, deck.t, deck.sy, ne)
@@ -301,7 +304,8 @@ def _print_template(r: dict[str, Any]) -> None:
             f"; springback max {r['springback_max']:.4g} {r['unit']} (rms "
             f"{r['springback_rms']:.4g}), yields again {r['yields_again_share']:.4f}"
         )
-    line += f"; ccx forming {r['wall_form_s']:.0f} s wall, {r['cpu_form_s']:.0f} s CPU"
+    if r["wall_form_s"] is not None:
+        line += f"; ccx forming {r['wall_form_s']:.0f} s wall, {r['cpu_form_s']:.0f} s CPU"
     if r["wall_release_s"] is not None:
         line += f", forming + release {r['wall_release_s']:.0f} s wall {r['cpu_release_s']:.0f} CPU"
     print(line, flush=True)
@@ -323,6 +327,8 @@ def main(argv: list[str] | None = None) -> int:
         default="corners",
         help="drive the S6 corners (the midpoints follow) or every node",
     )
+    ap.add_argument("--no-release", action="store_true", help="form only")
+    ap.add_argument("--reuse", action="store_true", help="read a finished forming in --keep DIR")
     ap.add_argument("--path-only", action="store_true", help="the driven path's check, no ccx")
     ap.add_argument("--onefold", action="store_true", help="onefold's side, timed in this run")
     ap.add_argument("--onefold-mesh", nargs="+", default=["coarse", "normal"])
@@ -371,6 +377,8 @@ def main(argv: list[str] | None = None) -> int:
                 s_max=args.s_max,
                 workdir=workdir,
                 drive=args.drive,
+                release=not args.no_release,
+                reuse=args.reuse,
             )
             out["runs"].append(r)
             if not args.json:

@@ -392,16 +392,24 @@ def displacements(blocks: dict, when: float, n: int) -> Array:
     return out
 
 
-def form_and_release(deck: Deck, workdir: Path, name: str, release: bool) -> dict[str, Any]:
+def form_and_release(
+    deck: Deck, workdir: Path, name: str, release: bool, reuse: bool = False
+) -> dict[str, Any]:
     """The forming alone (its reactions printed), then with ``release`` the
     forming and release in one run, the first run's reactions ramped down:
-    the ``.dat`` blocks of each and their wall times (s)."""
+    the ``.dat`` blocks of each and their wall and CPU times (s). ``reuse``:
+    read a forming run that finished in ``workdir`` instead (its times None)."""
     form = dataclasses.replace(deck, loads=None)
-    b1, wall1, cpu1 = run_ccx(form, workdir, name + "_form")
+    end = round(float(deck.s[-1]), 6)
+    dat = workdir / f"{name}_form.dat"
+    b1 = read_dat(dat) if reuse and dat.exists() else {}
+    if ("displacements", end) in b1:
+        wall1 = cpu1 = None
+    else:
+        b1, wall1, cpu1 = run_ccx(form, workdir, name + "_form")
     out: dict[str, Any] = {"form": b1, "wall_form_s": wall1, "cpu_form_s": cpu1}
     out.update(wall_release_s=None, cpu_release_s=None)
     if release:
-        end = round(float(deck.s[-1]), 6)
         loads = driver_loads(deck, b1[("forces", end)])
         b2, wall2, cpu2 = run_ccx(dataclasses.replace(deck, loads=loads), workdir, name)
         out.update(release=b2, wall_release_s=wall2, cpu_release_s=cpu2, loads=loads)

@@ -226,3 +226,21 @@ def test_s6_nodes_on_a_cylinder_strain_the_element_by_kappa_h_squared():
     small = cp.s6_membrane_strain(*(lambda f, t: (f, rolled(f), t))(*_one_s6(0.2)))[0]
     assert big > 1e-3  # above a stainless steel's yield strain at kappa h = 0.4
     assert big / small == pytest.approx(4.0, rel=0.02)
+
+
+def test_reuse_reads_a_finished_forming_and_runs_no_ccx(tmp_path, monkeypatch):
+    deck, n1, n, _ = _deck_of_split_square()
+
+    def no_ccx(*args, **kwargs):
+        raise AssertionError("ccx must not run")
+
+    monkeypatch.setattr(cd, "run_ccx", no_ccx)
+    rows = "\n".join(f"{i} 0.0 0.0 {0.1 * i:.6E}" for i in range(1, n + 1))
+    (tmp_path / "job_form.dat").write_text(
+        f"\n displacements (vx,vy,vz) for set SH and time  0.1000000E+01\n\n{rows}\n"
+    )
+    res = cd.form_and_release(deck, tmp_path, "job", release=False, reuse=True)
+    assert res["wall_form_s"] is None
+    np.testing.assert_allclose(
+        cd.displacements(res["form"], 1.0, n)[:, 2], 0.1 * np.arange(1, n + 1)
+    )
