@@ -82,6 +82,7 @@ from ccx_deck import (  # noqa: E402
     support_321,
     surface_state,
 )
+from ccx_mesh import graded_sheet  # noqa: E402
 from ccx_onefold import onefold_side  # noqa: E402
 from ccx_path import corner_edges, graded_steps, half_edges, s6_membrane_strain  # noqa: E402
 from ccx_strip import strip  # noqa: E402
@@ -100,10 +101,13 @@ def template_setup(
     s_max: float,
     align: bool = True,
     drive: str = "corners",
+    growth: float | None = None,
 ) -> dict[str, Any]:
     """The pure-numpy part of a template's run at edge length ``h`` (m): the
     mesh (crease split), the graded driven path, the material, the 3-2-1
-    support; ``bound`` None: a tenth of the yield strain sigma_y / E."""
+    support; ``bound`` None: a tenth of the yield strain sigma_y / E;
+    ``growth``: the mesh graded toward H (``ccx_mesh.graded_sheet``), None:
+    Triangle's uniform mesh of ``kratos_shell``."""
     from onefold_cad.design import build_design
     from onefold_cad.fabrication.relief_hole import relief_hole_diameter
     from onefold_cad.templates import find_template, load_template
@@ -113,7 +117,10 @@ def template_setup(
     folded = fold_design(design)
     hole = relief_hole_diameter(design, folded)
     polygon = np.asarray(design.sheet.vertices, dtype=float)
-    pts, tris, info = mesh_sheet(polygon, hole, h / scale)
+    if growth is None:
+        pts, tris, info = mesh_sheet(polygon, hole, h / scale)
+    else:
+        pts, tris, info = graded_sheet(polygon, hole, h / scale, growth)
     flat1, tri1 = quadratic(pts, tris)
     flat, tri6, partner = split_crease(flat1, tri1, 0.5 * hole)
     n1, n = len(flat1), len(flat)
@@ -177,17 +184,21 @@ def template_run(
     drive: str = "corners",
     release: bool = True,
     reuse: bool = False,
+    growth: float | None = None,
 ) -> dict[str, Any]:
     """Form (to ``s_max``) and, when the forming is complete and ``release``,
     release ``template`` meshed at edge length ``h`` (m); the measures.
     ``reuse``: a finished forming run in ``workdir`` is read, not rerun."""
     from onefold_cad.mechanics.deviation import best_fit, surface_distance
 
-    st = template_setup(template, h, bound=bound, start=start, s_max=s_max, drive=drive)
+    st = template_setup(
+        template, h, bound=bound, start=start, s_max=s_max, drive=drive, growth=growth
+    )
     deck: Deck = dataclasses.replace(st["deck"], layers=layers)
     scale, path = st["scale"], st["path"]
     full = s_max == 1.0 and release
-    name = f"{template}_h{h:g}_{drive}" + ("" if s_max == 1.0 else f"_s{s_max:g}")
+    name = f"{template}_h{h:g}_{drive}" + ("" if growth is None else f"_g{growth:g}")
+    name += "" if s_max == 1.0 else f"_s{s_max:g}"
     res = form_and_release(deck, workdir, name, release=full, reuse=reuse)
     n, ne = len(deck.x0), len(deck.tri6)
     end = round(float(deck.s[-1]), 6)
@@ -265,6 +276,7 @@ def _path_only(args: argparse.Namespace) -> dict[str, Any]:
                 s_max=args.s_max,
                 align=align,
                 drive=args.drive,
+                growth=args.growth,
             )
             p = st["path"]
             mem = s6_membrane_strain(st["deck"].x0[:, :2], p.forms[-1], st["deck"].tri6)
@@ -327,6 +339,7 @@ def main(argv: list[str] | None = None) -> int:
         default="corners",
         help="drive the S6 corners (the midpoints follow) or every node",
     )
+    ap.add_argument("--growth", type=float, help="grade the mesh toward H: size = growth * r")
     ap.add_argument("--no-release", action="store_true", help="form only")
     ap.add_argument("--reuse", action="store_true", help="read a finished forming in --keep DIR")
     ap.add_argument("--path-only", action="store_true", help="the driven path's check, no ccx")
@@ -379,6 +392,7 @@ def main(argv: list[str] | None = None) -> int:
                 drive=args.drive,
                 release=not args.no_release,
                 reuse=args.reuse,
+                growth=args.growth,
             )
             out["runs"].append(r)
             if not args.json:

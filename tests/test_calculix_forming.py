@@ -244,3 +244,24 @@ def test_reuse_reads_a_finished_forming_and_runs_no_ccx(tmp_path, monkeypatch):
     np.testing.assert_allclose(
         cd.displacements(res["form"], 1.0, n)[:, 2], 0.1 * np.arange(1, n + 1)
     )
+
+
+def test_graded_sheet_grows_its_elements_with_the_distance_from_h():
+    """A 2 x 2 square with a hole of radius 0.05 graded at 0.5 r (capped at
+    0.3): the crease meets the outline at x = +-1 (nodes there), the elements
+    near the hole follow 0.5 r, those far from it the cap, and the crease is
+    kept as edges (nodes on y = 0 from the hole to the outline)."""
+    import ccx_mesh as cm
+
+    square = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])
+    assert cm.axis_crossings(square) == (1.0, -1.0)
+    pts, tris, info = cm.graded_sheet(square, 0.1, 0.3, 0.5)
+    np.testing.assert_allclose(pts[info["crease_ends"]], [[1.0, 0.0], [-1.0, 0.0]], atol=1e-12)
+    np.testing.assert_allclose(pts[info["vertices"]], square, atol=1e-12)
+    edge = np.linalg.norm(pts[tris] - pts[np.roll(tris, -1, axis=1)], axis=2).max(axis=1)
+    r = np.hypot(*pts[tris].mean(axis=1).T)
+    # the target 0.5 r is at most 0.05 within r < 0.1; beyond r = 0.6 it is capped at 0.3
+    assert np.median(edge[r < 0.1]) < 0.05
+    assert 0.15 < np.median(edge[r > 0.8]) < 0.45
+    on = np.abs(pts[:, 1]) < 1e-12
+    assert np.sum(on & (pts[:, 0] > 0.5)) >= 2  # the crease's nodes, not only its ends
