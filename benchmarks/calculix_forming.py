@@ -346,6 +346,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--onefold", action="store_true", help="onefold's side, timed in this run")
     ap.add_argument("--onefold-mesh", nargs="+", default=["coarse", "normal"])
     ap.add_argument("--onefold-crease", nargs="+", default=["held", "elastic"])
+    ap.add_argument("--onefold-law", nargs="+", default=["moment", "j2"])
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--keep", type=Path, help="keep the ccx files in this directory")
     args = ap.parse_args(argv)
@@ -372,7 +373,9 @@ def main(argv: list[str] | None = None) -> int:
     else:
         out = {"runs": [], "onefold": []}
         if args.onefold:
-            out["onefold"] = onefold_side(args.case, args.onefold_mesh, args.onefold_crease)
+            out["onefold"] = onefold_side(
+                args.case, args.onefold_mesh, args.onefold_crease, tuple(args.onefold_law)
+            )
             for r in out["onefold"] if not args.json else []:
                 print(
                     f"{r['what']}: plastic share {r['plastic_share']}, springback max "

@@ -29,27 +29,29 @@ def _child(cmd: list[str]) -> tuple[str, float, float]:
     return proc.stdout, wall, cpu
 
 
-def onefold_side(template: str, meshes: list[str], creases: list[str]) -> list[dict[str, Any]]:
-    """``onefold simulate TEMPLATE --json`` for each mesh and crease model, and
+def onefold_side(
+    template: str, meshes: list[str], creases: list[str], laws: tuple[str, ...] = ("moment",)
+) -> list[dict[str, Any]]:
+    """``onefold simulate TEMPLATE --json`` for each mesh, crease model and
+    ``--law`` (``moment`` or ``j2``: the laws of ``onefold simulate``), and
     ``scripts/j2_trial.py`` on the coarse mesh: the formed plastic share, the
     springback's max deviation after the best fit, wall and CPU time."""
     rows: list[dict[str, Any]] = []
-    for mesh in meshes:
-        for crease in creases:
-            cmd = [sys.executable, "-m", "onefold_cad", "simulate", template, "--json", "-q"]
-            cmd += ["--mesh", mesh, "--crease", crease]
-            out, wall, cpu = _child(cmd)
-            sim = json.loads(out)["simulation"]
-            rows.append(
-                {
-                    "what": f"onefold simulate --mesh {mesh} --crease {crease}",
-                    "plastic_share": sim["formed"]["plastic_area_share"],
-                    "springback_max": sim["released"]["max_deviation"],
-                    "yields_again_share": sim["released"].get("reloaded_area_share"),
-                    "wall_s": wall,
-                    "cpu_s": cpu,
-                }
-            )
+    for mesh, crease, law in ((m, c, w) for m in meshes for c in creases for w in laws):
+        cmd = [sys.executable, "-m", "onefold_cad", "simulate", template, "--json", "-q"]
+        cmd += ["--mesh", mesh, "--crease", crease, "--law", law]
+        out, wall, cpu = _child(cmd)
+        sim = json.loads(out)["simulation"]
+        rows.append(
+            {
+                "what": f"onefold simulate --mesh {mesh} --crease {crease} --law {law}",
+                "plastic_share": sim["formed"]["plastic_area_share"],
+                "springback_max": sim["released"]["max_deviation"],
+                "yields_again_share": sim["released"].get("reloaded_area_share"),
+                "wall_s": wall,
+                "cpu_s": cpu,
+            }
+        )
     trial = ROOT / "scripts" / "j2_trial.py"
     if trial.exists():
         out, wall, cpu = _child([sys.executable, str(trial), template, "--mesh", "coarse"])
