@@ -1,8 +1,7 @@
-"""The independent CalculiX benchmark of the forming and springback (issue 35,
-"Against CalculiX"): a template's flat sheet formed in CalculiX into its
-designed form, released on a statically determinate support, and measured the
-way ``onefold simulate`` measures itself; onefold's numbers beside it, timed in
-the same run.
+"""The independent CalculiX benchmark of the forming and springback: a
+template's flat sheet formed in CalculiX into its designed form, released on
+a statically determinate support, and measured the way ``onefold simulate``
+measures itself; onefold's numbers beside it, timed in the same run.
 
 The model (SI units; the deck in ``ccx_deck.py``, the driven path in
 ``ccx_path.py``):
@@ -108,7 +107,7 @@ def template_setup(
     support; ``bound`` None: a tenth of the yield strain sigma_y / E;
     ``growth``: the mesh graded toward H (``ccx_mesh.graded_sheet``), None:
     Triangle's uniform mesh of ``kratos_shell``."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.relief_hole import relief_hole_diameter
     from onefold_cad.templates import find_template, load_template
 
@@ -131,7 +130,7 @@ def template_setup(
 
     def form(sigma: float) -> Array:
         frame = dataclasses.replace(design.frame, beta=sigma * s_max * design.frame.beta)
-        return build_design(dataclasses.replace(design, frame=frame)).map_points(flat) * scale
+        return fold_design(dataclasses.replace(design, frame=frame)).map_points(flat) * scale
 
     x0 = np.column_stack([flat * scale, np.zeros(n)])
     edges = corner_edges(tri6) if drive == "corners" else half_edges(tri6)
