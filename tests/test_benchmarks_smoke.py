@@ -106,7 +106,7 @@ def test_bench_solver_measure_one_repetition():
     assert set(row.ours) == {"paper", "exact"}
     text = bench_solver.render([row] * 4, row, [], 1)
     assert "Table 1" in text and row.label in text
-    # targets as measured ratios, not a scoreboard (issue 37): the docs state
+    # targets as measured ratios, not a scoreboard: the docs state
     # where we are, e.g. "0.62 of the 10x target"
     assert not re.search(r"\b(PASS|FAIL|OVERALL)\b", text)
     assert f"of the {bench_solver.SPEEDUP_REQUIRED:g}x target" in text

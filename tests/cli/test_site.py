@@ -264,7 +264,7 @@ def test_overlapping_sheets_are_refused_naming_both_and_their_overlap(site_cli):
     result = site_cli(TWO, "--formats", "order", "--sheet-formats", "none")
     refused(result, "'left' and 'right' touch or overlap", "distance 0 mm")
     # found from the folded surfaces before any sheet is built or measured
-    # (issue 37: the exact clearance of built sheets came first, 78 s here)
+    # (the exact clearance of built sheets came first before: 78 s here)
     assert "found before building them" in result[2][-1]
     assert not any(" done in " in x or "clearance" in x for x in result[2][:-1])
     # the overlap said: their footprints' shared area, measured here on the reports
