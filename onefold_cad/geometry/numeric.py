@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "Array",
+    "Index",
     "Mask",
     "cross2",
     "cross3",
@@ -32,6 +33,8 @@ __all__ = [
 Array = NDArray[np.float64]
 #: The boolean arrays (masks) of the package.
 Mask = NDArray[np.bool_]
+#: The integer arrays (indices: node, face, unknown ids) of the package.
+Index = NDArray[np.int64]
 
 
 def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 import scipy.sparse as sp
@@ -76,7 +77,10 @@ class Pattern:
         self, face_values: NDArray[np.float64], crease_values: NDArray[np.float64]
     ) -> NDArray[np.float64]:
         """Assemble (m, 12) and (kc, 2) element vectors into an (n,) vector."""
-        out = np.bincount(self.face_stencil.ravel(), face_values.ravel(), minlength=self.n)
+        out = cast(
+            "NDArray[np.float64]",
+            np.bincount(self.face_stencil.ravel(), face_values.ravel(), minlength=self.n),
+        )
         if len(crease_values):
             out += np.bincount(self.crease_stencil.ravel(), crease_values.ravel(), minlength=self.n)
         return out

@@ -125,6 +125,7 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     e_mem, e_bend, g_eps, g_r, h_blocks = law
     if order == 0:
         return e_mem, e_bend, None, None
+    assert du_z is not None
     # u_i in the face's own variables y = (9 coordinates, 3 angles), via z = (9, d_i).
     maps = shell.edge_maps[faces]
     dd_y = dd_all[fd] @ maps  # (c, 3, 3, 12): d d_i / d y
@@ -134,6 +135,7 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     g_face[:, :9] += np.einsum("mi,mij->mj", g_eps / 2, da)  # d eps = da / 2
     if order == 1:
         return e_mem, e_bend, g_face, None
+    assert d2u_z is not None
     jz = np.zeros((c, 3, 12, 12))  # dz/dy
     jz[:, :, :9, :9] = np.eye(9)
     jz[:, :, 9:, :] = dd_y
@@ -253,6 +255,7 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
     total = e_mem + e_bend + e_crease + e_grav + e_load
     if order == 0:
         return Evaluation(total, parts)
+    assert g_face is not None
     pattern = pattern_of(mesh)
     g_crease = np.zeros((kc, 2))
     g_crease[:, 0], g_crease[:, 1] = ck * delta, -ck * delta
@@ -262,5 +265,6 @@ def evaluate(shell: Shell, q: F, order: int = 2) -> Evaluation:
         gradient -= shell.load
     if order == 1:
         return Evaluation(total, parts, gradient)
+    assert h_face is not None
     h_crease = ck[:, None, None] * np.array([[1.0, -1.0], [-1.0, 1.0]])
     return Evaluation(total, parts, gradient, pattern.matrix(h_face, h_crease))

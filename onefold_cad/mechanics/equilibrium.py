@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -215,6 +215,7 @@ def solve(
             residual=result.residual if result else float("nan"),
         )
     ev = evaluate(shell, q, 1)
+    assert ev.gradient is not None
     fixed_final = base.copy()
     if ground is not None:
         fixed_final[3 * np.flatnonzero(active) + 2] = True
@@ -296,12 +297,12 @@ def solve_path(
     last: Equilibrium | None = None
     for _ in range(max_solves):
         target = min(1.0, s + ds)
-        opts = dict(options)
+        opts: dict[str, Any] = dict(options)
         # every solve, the last one too, gets at most step_iter iterations: a step
         # Newton cannot finish quickly is halved, never ground through
-        opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
+        opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)
         try:
-            eq = solve(shell_at(target), q, callback=callback, **opts)  # type: ignore[arg-type]
+            eq = solve(shell_at(target), q, callback=callback, **opts)
             n = shell_at(target).mesh.n_nodes
             moved = float(np.max(np.linalg.norm((eq.q - q)[: 3 * n].reshape(n, 3), axis=1)))
             if max_move is not None and moved > max_move:

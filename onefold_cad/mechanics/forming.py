@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -75,11 +76,11 @@ def solve_plastic(
         current = shell_at(target).with_changes(
             rest_curvature=state.rest, accumulated=state.accumulated
         )
-        opts = dict(options)
+        opts: dict[str, Any] = dict(options)
         if target < 1.0:
-            opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)  # type: ignore[arg-type]
+            opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)
         try:
-            eq = solve(current, q, callback=callback, **opts)  # type: ignore[arg-type]
+            eq = solve(current, q, callback=callback, **opts)
         except ConvergenceError as err:
             ds /= 2
             if ds < min_step:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Mask
 from onefold_cad.mechanics.j2 import J2Law, elastic_matrix, von_mises
 from onefold_cad.mechanics.j2_stages import J2Stage
 from onefold_cad.mechanics.layered import Plasticity
@@ -130,7 +130,7 @@ def largest_at(model: SheetModel, values: Array) -> tuple[float, Array | None]:
     return float(values[i]), at
 
 
-def radius_from_h(model: SheetModel, faces: Array) -> float:
+def radius_from_h(model: SheetModel, faces: Mask) -> float:
     """The largest distance from H of the centroids of ``faces`` ((m,) bool),
     design unit (0 when there are none)."""
     if not np.any(faces):

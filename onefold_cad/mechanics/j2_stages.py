@@ -21,6 +21,7 @@ sheet's history from one stage to the next.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TypedDict
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -132,11 +133,19 @@ def _curvatures(shell: Shell, q: Array) -> Array:
     return np.einsum("mij,mj->mi", shell.cartesian, b)
 
 
+class _Held(TypedDict):
+    """:func:`_path`'s internal variables and section responses, moved on at
+    every accepted step."""
+
+    p: Plasticity
+    resp: SectionResponse | None
+
+
 def _path(
     shell_at, q0: Array, plasticity: Plasticity, **options: object
 ) -> tuple[Equilibrium, Plasticity, SectionResponse]:
     """``solve_path`` with the internal variables moved on at every accepted step."""
-    holder = {"p": plasticity, "resp": None}
+    holder: _Held = {"p": plasticity, "resp": None}
 
     def at(s: float) -> Shell:
         return shell_at(s).with_changes(plasticity=holder["p"])

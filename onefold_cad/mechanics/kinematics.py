@@ -357,8 +357,8 @@ def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
         da[:, i, 3 * i : 3 * i + 3] += d[:, i]
         da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
         da[:, i, 9:] = f[:, i]
-        for v in range(3):
-            db[:, i, 3 * v : 3 * v + 3] = np.cross(d[:, i], edge[:, v])
+        for col in range(3):
+            db[:, i, 3 * col : 3 * col + 3] = np.cross(d[:, i], edge[:, col])
         db[:, i, 9:] = normal
     g = norm[:, None] / den  # G = M / B
     dg = dm[:, None, :] / den[:, :, None]

@@ -167,6 +167,7 @@ def minimize(
     free = ~np.asarray(fixed, dtype=bool)
     scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
     energy, grad, hess = fun(q, 2)
+    assert grad is not None and hess is not None
     _, block = restrict(hess, free)
     factors = SymmetricFactor(block(hess))
 
@@ -234,6 +235,7 @@ def minimize(
             grad, hess = ahead
         else:
             energy, grad, hess = fun(q, 2)
+            assert grad is not None and hess is not None
         res = residual(grad)
     raise ConvergenceError(
         f"Newton did not converge in {max_iter} iterations: residual {res:.3g} N "

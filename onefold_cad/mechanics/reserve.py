@@ -46,12 +46,12 @@ def carried(
     base = placed.shell.with_changes(rest_curvature=rest_curvature)
     g = np.array([0.0, 0.0, -GRAVITY])
     options = standing_path(model, placed, supports)
-    options.update(contacts=standing.contacts, first_step=1.0, max_solves=1)
+    options.update({"contacts": standing.contacts, "first_step": 1.0, "max_solves": 1})
     try:
         solve_path(
             lambda s: base.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
             standing.q,
-            **options,  # type: ignore[arg-type]
+            **options,
         )
     except PathStalled:
         return 1.0

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 
 __all__ = ["Designed", "FormedResult", "Released", "Simulation", "Standing"]
 
@@ -273,7 +273,7 @@ class Simulation:
     timings_s: dict[str, float]
     face_stress_MPa: Array | None = field(default=None, repr=False)
     deviation: Array | None = field(default=None, repr=False)
-    faces: Array | None = field(default=None, repr=False)
+    faces: Index | None = field(default=None, repr=False)
     flat: Array | None = field(default=None, repr=False)
     designed_positions: Array | None = field(default=None, repr=False)
     standing_positions: Array | None = field(default=None, repr=False)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import cached_property
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -111,7 +112,7 @@ class Shell:
             gravity=np.asarray(gravity, dtype=float).reshape(3),
         )
 
-    def with_changes(self, **changes: object) -> Shell:
+    def with_changes(self, **changes: Any) -> Shell:
         """A copy with some fields replaced (arrays are taken as given)."""
         return replace(self, **changes)
 
@@ -177,7 +178,9 @@ class Shell:
         """(n,) lumped nodal masses ``rho t (adjacent reference area) / 3`` (kg)."""
         mat = self.material
         w = np.repeat(self.ref_area * mat.density * mat.thickness / 3.0, 3)
-        return np.bincount(self.mesh.triangles.ravel(), weights=w, minlength=self.mesh.n_nodes)
+        return cast(
+            "F", np.bincount(self.mesh.triangles.ravel(), weights=w, minlength=self.mesh.n_nodes)
+        )
 
     @cached_property
     def crease_length(self) -> F:

@@ -19,6 +19,7 @@ the weight it carried).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NotRequired, TypedDict
 
 import numpy as np
 
@@ -36,6 +37,7 @@ from onefold_cad.mechanics.shell import Shell, moved, rigid_dofs, unpack
 
 __all__ = [
     "Formed",
+    "PathOptions",
     "Placed",
     "Stage",
     "form",
@@ -188,7 +190,36 @@ def in_plane_restraint(x: Array, contacts: np.ndarray) -> list[int]:
     return [3 * i, 3 * i + 1, 3 * j + (1 if abs(d[0]) >= abs(d[1]) else 0)]
 
 
-def standing_path(model: SheetModel, placed: Placed, supports: str) -> dict[str, object]:
+class PathOptions(TypedDict):
+    """:func:`standing_path`'s keywords for ``solve_path`` (``**`` into it):
+    its load steps, and the options it passes on to ``solve``.
+
+    Attributes:
+        fixed: unknowns' ids held (the frictionless feet's in-plane restraint).
+        ground: the ground (z = 0) and how the feet hold on it.
+        contacts: ``(n,)`` bool, the placed nodes on the ground.
+        force_scale: the sheet's weight (N), Newton's tolerance scale.
+        first_step, min_step: the first and the smallest load step (share of
+            the weight).
+        step_iter: Newton steps allowed for a step short of the full weight.
+        max_move: the largest movement in a step (m).
+        rtol: Newton's tolerance relative to ``force_scale``.
+        max_solves: the solves allowed (``solve_path``'s default when absent).
+    """
+
+    fixed: list[int]
+    ground: Ground
+    contacts: np.ndarray
+    force_scale: float
+    first_step: float
+    min_step: float
+    step_iter: int
+    max_move: float
+    rtol: float
+    max_solves: NotRequired[int]
+
+
+def standing_path(model: SheetModel, placed: Placed, supports: str) -> PathOptions:
     """``solve_path``'s options for carrying the weight from ``placed`` on
     ``supports`` ('anchored' or 'frictionless'): the ground, the placed
     contacts, the in-plane restraint of frictionless feet, the load steps."""

@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 from onefold_cad.mechanics.loads.combinations import GAMMA, Case
 from onefold_cad.mechanics.loads.feet import resultant, rigid_check
 from onefold_cad.mechanics.loads.linear_stress import von_mises_faces
@@ -51,7 +51,7 @@ class Actions:
     moves: dict[str, Array]
     reactions: dict[str, Array]
     strains: dict[str, tuple[Array, Array]]
-    feet: list[Array]
+    feet: list[Index]
     feet_xy: Array
     yield_Pa: float
     friction: float
@@ -108,6 +108,7 @@ def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
         if rigid.lifts_off:
             reason = f"the wind lifts it off (a net {-rigid.vertical_N / 1e3:.3g} kN up)"
         elif rigid.tips:
+            assert rigid.tip_margin is not None
             reason = (f"it tips: the loads' resultant meets the ground {-rigid.tip_margin:.3g} m "
                       "outside its feet")  # fmt: skip
         elif pulls:

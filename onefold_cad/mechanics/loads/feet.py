@@ -24,9 +24,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 
 __all__ = [
     "RigidCheck",
@@ -39,7 +40,7 @@ __all__ = [
 ]
 
 
-def feet_of(contacts: Array, edges: Array) -> list[Array]:
+def feet_of(contacts: ArrayLike, edges: Index) -> list[Index]:
     """The feet: ``contacts`` (node ids) grouped by ``edges`` ``(e, 2)``
     joining two of them (connected components), ordered by first node."""
     ids = [int(i) for i in np.asarray(contacts).ravel()]

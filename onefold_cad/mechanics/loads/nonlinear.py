@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from onefold_cad.errors import ConvergenceError
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 from onefold_cad.mechanics.equilibrium import PathStalled, solve_path
 from onefold_cad.mechanics.loads.cases import Actions
 from onefold_cad.mechanics.loads.combinations import Case
@@ -60,7 +60,7 @@ class NonlinearCheck:
         }
 
 
-def solve_case(act: Actions, case: Case, fixed: Array, size: float) -> NonlinearCheck:
+def solve_case(act: Actions, case: Case, fixed: Index, size: float) -> NonlinearCheck:
     """``case`` solved from the standing equilibrium with ``fixed`` held;
     ``size`` the sheet's size (m) bounds a step's movement."""
     fac = case.factor

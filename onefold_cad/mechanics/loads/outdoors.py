@@ -111,6 +111,7 @@ def outdoors(
     if spec.velocity_pressure_kPa is not None:
         q_p = spec.velocity_pressure_kPa * 1e3
     else:
+        assert spec.wind_speed is not None
         q_p = peak_velocity_pressure(float(spec.wind_speed), z_e, terrain(spec.terrain))
     loads: dict[str, np.ndarray] = {}
     for d in spec.direction_list:

@@ -12,12 +12,12 @@ from __future__ import annotations
 import numpy as np
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 
 __all__ = ["barycentric", "grid_points", "point_load"]
 
 
-def barycentric(flat: Array, triangles: Array, point: Array) -> tuple[int, Array] | None:
+def barycentric(flat: Array, triangles: Index, point: Array) -> tuple[int, Array] | None:
     """The triangle of the flat mesh ``flat`` ``(n, 2)`` holding ``point``
     ``(2,)`` and its barycentric coordinates, or None when no triangle does."""
     p = flat[triangles]
@@ -35,7 +35,7 @@ def barycentric(flat: Array, triangles: Array, point: Array) -> tuple[int, Array
 
 
 def point_load(
-    flat: Array, triangles: Array, point: Array, force_N: float, name: str = "person_at"
+    flat: Array, triangles: Index, point: Array, force_N: float, name: str = "person_at"
 ) -> Array:
     """``(n, 3)`` nodal forces (N): ``force_N`` downwards at ``point`` of the
     flat sheet (same unit as ``flat``).
@@ -57,7 +57,7 @@ def point_load(
     return out
 
 
-def grid_points(flat: Array, triangles: Array, n: int) -> Array:
+def grid_points(flat: Array, triangles: Index, n: int) -> Array:
     """``(k, 2)`` the points of an ``n`` x ``n`` grid over the flat sheet's
     bounding box (cell centres) that lie on the sheet."""
     lo, hi = flat.min(axis=0), flat.max(axis=0)

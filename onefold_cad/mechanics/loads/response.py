@@ -15,16 +15,17 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike
 
 from onefold_cad.errors import ConvergenceError
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 from onefold_cad.mechanics.energy import evaluate
 from onefold_cad.mechanics.shell import Shell
 
 __all__ = ["LinearResponse", "linear_response", "node_dofs"]
 
 
-def node_dofs(nodes: Array) -> Array:
+def node_dofs(nodes: ArrayLike) -> Index:
     """The x, y, z unknowns of ``nodes`` (ids into ``q``)."""
     n = np.asarray(nodes, dtype=np.int64).ravel()
     return (3 * n[:, None] + np.arange(3)).ravel()
@@ -44,7 +45,7 @@ class LinearResponse:
     reactions: Array
 
 
-def linear_response(shell: Shell, q: Array, fixed: Array, loads: Array) -> LinearResponse:
+def linear_response(shell: Shell, q: Array, fixed: Index, loads: Array) -> LinearResponse:
     """The responses of the state ``q`` (m) with the unknowns ``fixed`` held to
     the nodal loads ``loads`` ``(k, n, 3)`` (N).
 
@@ -54,7 +55,9 @@ def linear_response(shell: Shell, q: Array, fixed: Array, loads: Array) -> Linea
     """
     n = shell.mesh.n_nodes
     big = shell.mesh.n_dofs
-    hess = evaluate(shell, q, 2).hessian.tocsc()
+    hessian = evaluate(shell, q, 2).hessian
+    assert hessian is not None
+    hess = hessian.tocsc()
     held = np.zeros(big, dtype=bool)
     held[np.asarray(fixed, dtype=np.int64)] = True
     free = np.flatnonzero(~held)

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 
 __all__ = ["CaseResult", "Foot", "Outdoors"]
 
@@ -148,7 +148,7 @@ class Outdoors:
     person_at: Array | None
     nonlinear: tuple[Any, ...]
     warnings: tuple[str, ...]
-    faces: Array | None = field(default=None, repr=False)
+    faces: Index | None = field(default=None, repr=False)
     positions: Array | None = field(default=None, repr=False)
     moves: Array | None = field(default=None, repr=False)
     face_utilisation: Array | None = field(default=None, repr=False)

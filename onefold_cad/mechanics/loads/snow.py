@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 from onefold_cad.mechanics.loads.surface import face_vectors, projected_load
 
 __all__ = ["EXPOSURE", "shape_coefficient", "snow_load"]
@@ -27,7 +27,7 @@ def shape_coefficient(alpha_deg: Array) -> Array:
     return np.clip(0.8 * (60.0 - a) / 30.0, 0.0, 0.8)
 
 
-def snow_load(x: Array, triangles: Array, s_k: float, c_e: float = 1.0, c_t: float = 1.0) -> Array:
+def snow_load(x: Array, triangles: Index, s_k: float, c_e: float = 1.0, c_t: float = 1.0) -> Array:
     """``(n, 3)`` the nodal forces (N) of the snow ``s_k`` (Pa, on the ground)
     on the sheet's nodes ``x`` (m)."""
     normal = face_vectors(x, triangles)[1]

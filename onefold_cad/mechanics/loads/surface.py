@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 
 __all__ = ["face_vectors", "lump", "pressure_load", "projected_load"]
 
 
-def face_vectors(x: Array, triangles: Array) -> tuple[Array, Array]:
+def face_vectors(x: Array, triangles: Index) -> tuple[Array, Array]:
     """``(m,)`` the faces' areas (m^2) and ``(m, 3)`` their unit normals on the
     sheet's upper side: the faces' own orientation turned, for the whole
     sheet at once, so that its area-weighted mean normal points up (+z)."""
@@ -27,7 +27,7 @@ def face_vectors(x: Array, triangles: Array) -> tuple[Array, Array]:
     return area, normal
 
 
-def lump(face_forces: Array, triangles: Array, n_nodes: int) -> Array:
+def lump(face_forces: Array, triangles: Index, n_nodes: int) -> Array:
     """``(n, 3)`` the nodal forces (N) of the faces' forces ``(m, 3)`` (N),
     a third to each corner."""
     out = np.zeros((n_nodes, 3))
@@ -36,14 +36,14 @@ def lump(face_forces: Array, triangles: Array, n_nodes: int) -> Array:
     return out
 
 
-def pressure_load(x: Array, triangles: Array, pressure: Array) -> Array:
+def pressure_load(x: Array, triangles: Index, pressure: Array) -> Array:
     """``(n, 3)`` the nodal forces (N) of a pressure ``(m,)`` (Pa) normal to
     each face, positive pushing on the upper side (down into the sheet)."""
     area, normal = face_vectors(x, triangles)
     return lump(-(np.asarray(pressure, dtype=float) * area)[:, None] * normal, triangles, len(x))
 
 
-def projected_load(x: Array, triangles: Array, load: Array) -> Array:
+def projected_load(x: Array, triangles: Index, load: Array) -> Array:
     """``(n, 3)`` the nodal forces (N) of a vertical load ``(m,)`` (Pa, downwards)
     on each face's horizontal projection (snow: per m^2 of plan)."""
     area, normal = face_vectors(x, triangles)

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Index
 from onefold_cad.mechanics.loads.surface import pressure_load
 
 __all__ = [
@@ -105,7 +105,7 @@ def peak_velocity_pressure(v_b: float, z: float, category: Terrain) -> float:
     return (1.0 + 7.0 * i_v) * 0.5 * AIR_DENSITY * v_m**2
 
 
-def windward_weights(x: Array, triangles: Array, direction_deg: float) -> Array:
+def windward_weights(x: Array, triangles: Index, direction_deg: float) -> Array:
     """``(m,)`` each face's pressure relative to the mean, ``3 (1 - s)^2`` with
     ``s`` its centroid's plan position along the wind (0 windward, 1 leeward);
     ``direction_deg``: where the wind blows towards, from +x counter-clockwise."""
@@ -117,7 +117,7 @@ def windward_weights(x: Array, triangles: Array, direction_deg: float) -> Array:
     return 3.0 * (1.0 - s) ** 2
 
 
-def wind_load(x: Array, triangles: Array, q_p: float, c: float, direction_deg: float) -> Array:
+def wind_load(x: Array, triangles: Index, q_p: float, c: float, direction_deg: float) -> Array:
     """``(n, 3)`` the nodal forces (N) of the wind on nodes ``x`` (m):
     ``c q_p`` (Pa; ``c`` > 0 pushes down on the upper side) distributed by
     :func:`windward_weights`."""
