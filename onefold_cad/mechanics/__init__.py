@@ -26,8 +26,8 @@ from onefold_cad.mechanics.equilibrium import (
     Equilibrium,
     Ground,
     PathStalled,
-    solve,
     solve_directors,
+    solve_equilibrium,
     solve_path,
 )
 from onefold_cad.mechanics.forming import PlasticResult, form_sheet, solve_plastic
@@ -70,7 +70,7 @@ __all__ = [
     "pack",
     "rigid_dofs",
     "second_fundamental_form",
-    "solve",
+    "solve_equilibrium",
     "solve_directors",
     "solve_path",
     "solve_plastic",

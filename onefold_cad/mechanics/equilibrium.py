@@ -27,7 +27,7 @@ __all__ = [
     "Equilibrium",
     "Ground",
     "PathStalled",
-    "solve",
+    "solve_equilibrium",
     "solve_directors",
     "solve_path",
 ]
@@ -129,7 +129,7 @@ def _newton(
     )
 
 
-def solve(
+def solve_equilibrium(
     shell: Shell,
     q0: ArrayLike,
     *,
@@ -280,7 +280,7 @@ def solve_path(
     The step in ``s`` halves when a solve fails, or when its equilibrium lies
     more than ``max_move`` (m) from the last one at some node (Newton jumped to
     another branch: the path is followed, so a limit point stalls it instead of
-    snapping through), and grows after quick ones; every solve (``solve``'s
+    snapping through), and grows after quick ones; every solve (``solve_equilibrium``'s
     ``options``) gets at most ``step_iter`` Newton iterations (a step that
     needs more is halved); at most ``max_solves`` solves in all.
     ``accepted(s, equilibrium)`` is called after each step the path keeps
@@ -302,7 +302,7 @@ def solve_path(
         # Newton cannot finish quickly is halved, never ground through
         opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)
         try:
-            eq = solve(shell_at(target), q, callback=callback, **opts)
+            eq = solve_equilibrium(shell_at(target), q, callback=callback, **opts)
             n = shell_at(target).mesh.n_nodes
             moved = float(np.max(np.linalg.norm((eq.q - q)[: 3 * n].reshape(n, 3), axis=1)))
             if max_move is not None and moved > max_move:
@@ -347,4 +347,4 @@ def solve_directors(shell: Shell, q0: ArrayLike, **options: object) -> Equilibri
     """Hold every node where ``q0`` puts it and solve for the director angles (an
     imposed form: the directors' moments balance)."""
     n = shell.mesh.n_nodes
-    return solve(shell, q0, fixed=np.arange(3 * n), **options)  # type: ignore[arg-type]
+    return solve_equilibrium(shell, q0, fixed=np.arange(3 * n), **options)  # type: ignore[arg-type]

@@ -15,7 +15,12 @@ from numpy.typing import ArrayLike, NDArray
 from onefold_cad.errors import ConvergenceError
 from onefold_cad.mechanics import plastic
 from onefold_cad.mechanics.energy import second_fundamental_form
-from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled, solve, solve_directors
+from onefold_cad.mechanics.equilibrium import (
+    Equilibrium,
+    PathStalled,
+    solve_directors,
+    solve_equilibrium,
+)
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.shell import Shell, director_angles
 
@@ -61,7 +66,7 @@ def solve_plastic(
     with its exact tangent); then the states move on (``plastic.update``, the
     return mapping) and the next increment starts. An increment that fails is
     halved, one that converges quickly doubles the next. ``options`` go to
-    ``solve``; ``shell_at(s)``'s rest curvature is replaced by the faces'
+    ``solve_equilibrium``; ``shell_at(s)``'s rest curvature is replaced by the faces'
     plastic rest forms.
 
     Raises:
@@ -80,7 +85,7 @@ def solve_plastic(
         if target < 1.0:
             opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)
         try:
-            eq = solve(current, q, callback=callback, **opts)
+            eq = solve_equilibrium(current, q, callback=callback, **opts)
         except ConvergenceError as err:
             ds /= 2
             if ds < min_step:
@@ -127,7 +132,7 @@ def form_sheet(
         eq = solve_directors(flat, q0, **options)
     else:
         q0 = np.concatenate([p.ravel(), director_angles(shell, p, normals)])
-        eq = solve(shell, q0, fixed=np.arange(mesh.n_dofs), **options)  # type: ignore[arg-type]
+        eq = solve_equilibrium(shell, q0, fixed=np.arange(mesh.n_dofs), **options)  # type: ignore[arg-type]
     b = second_fundamental_form(shell, eq.q)
     state, work = plastic.form(shell.material, shell.form, b, shell.ref_area)
     return eq, state, work

@@ -192,7 +192,7 @@ def in_plane_restraint(x: Array, contacts: np.ndarray) -> list[int]:
 
 class PathOptions(TypedDict):
     """:func:`standing_path`'s keywords for ``solve_path`` (``**`` into it):
-    its load steps, and the options it passes on to ``solve``.
+    its load steps, and the options it passes on to ``solve_equilibrium``.
 
     Attributes:
         fixed: unknowns' ids held (the frictionless feet's in-plane restraint).

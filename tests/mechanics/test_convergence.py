@@ -6,7 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from onefold_cad.mechanics import BOUNDARY, Shell, ShellMaterial, flat_positions, pack, solve
+from onefold_cad.mechanics import (
+    BOUNDARY,
+    Shell,
+    ShellMaterial,
+    flat_positions,
+    pack,
+    solve_equilibrium,
+)
 from tests.mechanics.helpers import rectangle
 from tests.mechanics.reference import clamped_centre, navier_centre
 
@@ -23,7 +30,9 @@ def plate_centre(divisions: int, support: str) -> float:
     shell = Shell.create(mesh, PLATE, gravity=(0, 0, -9.80665))
     if support == "clamped":  # the rim's directors held along the flat normal
         held = np.concatenate([held, 3 * mesh.n_nodes + edges])
-    eq = solve(shell, pack(flat_positions(mesh), np.zeros(mesh.n_directors)), fixed=held, rtol=1e-7)
+    eq = solve_equilibrium(
+        shell, pack(flat_positions(mesh), np.zeros(mesh.n_directors)), fixed=held, rtol=1e-7
+    )
     centre = np.argmin(np.hypot(*(mesh.nodes - 0.5).T))
     assert np.hypot(*(mesh.nodes[centre] - 0.5)) < 1e-12
     return -eq.positions[centre, 2] * PLATE.bending_stiffness / PLATE.areal_weight

@@ -17,7 +17,7 @@ from onefold_cad.mechanics import (
     flat_positions,
     pack,
     second_fundamental_form,
-    solve,
+    solve_equilibrium,
 )
 from onefold_cad.mechanics.assembly import pattern_of
 from onefold_cad.mechanics.energy import _directors
@@ -128,7 +128,9 @@ def test_membrane_patch(plane):
         x0[b] = exact[b]
         fixed += [3 * b, 3 * b + 1]
     shell = Shell.create(mesh, mat)
-    eq = solve(shell, pack(x0, np.zeros(mesh.n_directors)), fixed=np.concatenate(fixed), rtol=1e-13)
+    eq = solve_equilibrium(
+        shell, pack(x0, np.zeros(mesh.n_directors)), fixed=np.concatenate(fixed), rtol=1e-13
+    )
     assert np.abs(eq.positions - exact).max() < 1e-10 * length
     t = mat.thickness
     assert math.isclose(eq.reactions[right, 0].sum(), s11 * lam[0] * t * width, rel_tol=1e-9)

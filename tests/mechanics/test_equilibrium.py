@@ -15,7 +15,7 @@ from onefold_cad.mechanics import (
     flat_positions,
     pack,
     rigid_dofs,
-    solve,
+    solve_equilibrium,
     solve_path,
 )
 from onefold_cad.mechanics.kinematics import dihedral
@@ -52,7 +52,7 @@ def test_cantilever_small_deflection(strip):
     reactions carry the weight."""
     g = _gravity_for(1e-3)
     shell, fixed = cantilever(strip, STEEL0, g)
-    eq = solve(shell, _start(strip), fixed=fixed)
+    eq = solve_equilibrium(shell, _start(strip), fixed=fixed)
     q = STEEL0.density * g * STEEL0.thickness
     expected = q * LENGTH**4 / (8 * STEEL0.bending_stiffness)
     drop, _ = _tip(strip, eq.positions)
@@ -89,7 +89,7 @@ def test_propped_by_the_ground(strip):
         start = _start(strip)
         start[2 : 3 * strip.n_nodes : 3] = h0
         touching = strip.nodes[:, 0] > 0.9 * LENGTH
-        eq = solve(shell, start, fixed=fixed, ground=Ground(mode), contacts=touching)
+        eq = solve_equilibrium(shell, start, fixed=fixed, ground=Ground(mode), contacts=touching)
         at_tip = strip.nodes[:, 0] > LENGTH - 1e-12
         assert np.array_equal(eq.contacts, at_tip)
         ground = eq.reactions[eq.contacts, 2].sum()

@@ -7,7 +7,7 @@ import pytest
 import scipy.sparse as sp
 
 from onefold_cad.errors import ConvergenceError, OneFoldError
-from onefold_cad.mechanics import minimize, solve
+from onefold_cad.mechanics import minimize, solve_equilibrium
 from tests.mechanics.helpers import cantilever, rectangle
 from tests.mechanics.test_equilibrium import STEEL0, _gravity_for, _start
 
@@ -17,7 +17,9 @@ def test_unconverged_newton_raises_with_its_residual():
     shell, fixed = cantilever(mesh, STEEL0, _gravity_for(2.0))
     seen = []
     with pytest.raises(ConvergenceError) as info:
-        solve(shell, _start(mesh), fixed=fixed, max_iter=1, callback=lambda *a: seen.append(a))
+        solve_equilibrium(
+            shell, _start(mesh), fixed=fixed, max_iter=1, callback=lambda *a: seen.append(a)
+        )
     err = info.value
     assert isinstance(err, OneFoldError) and isinstance(err, RuntimeError)
     assert err.iterations == 1 and err.residual > 0

@@ -17,7 +17,7 @@ from onefold_cad.mechanics import (
     pack,
     plastic,
     second_fundamental_form,
-    solve,
+    solve_equilibrium,
     solve_plastic,
 )
 from onefold_cad.mechanics.plastic import skeleton_moment, skeleton_work
@@ -116,7 +116,9 @@ def _springback(mesh, x: float):
     xy = mesh.nodes
     a, b, c = np.argmin(xy.sum(1)), np.argmin(xy[:, 0] - xy[:, 1]), np.argmax(xy[:, 0] - xy[:, 1])
     fixed = [3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 2, 3 * c + 2]  # AB stays on the y axis
-    released = solve(shell.with_changes(rest_curvature=state.rest), formed.q, fixed=fixed)
+    released = solve_equilibrium(
+        shell.with_changes(rest_curvature=state.rest), formed.q, fixed=fixed
+    )
     p = released.positions
     return (
         radius / circle_radius(p[:, 0], p[:, 2]),
