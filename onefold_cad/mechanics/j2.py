@@ -48,6 +48,8 @@ _Q = np.array([[1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 0.0, math.sqrt(2.0)]]) /
 _P_EIGEN = np.array([1.0 / 3.0, 1.0, 2.0])
 #: Tolerance of the consistency condition, relative to the yield stress.
 TOLERANCE = 1e-12
+#: Newton (bisection-guarded) iterations of the return mapping's scalar equation.
+MAX_ITERATIONS = 100
 
 
 @dataclass(frozen=True)
@@ -187,7 +189,7 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
         hi_ = np.where(ghi < 0, hi_, 2.0 * hi_)
     dg, lo = np.zeros(k), np.zeros(k)
     todo = np.arange(k)
-    for _ in range(100):
+    for _ in range(MAX_ITERATIONS):
         val, der = g(dg[todo], xt[todo], alpha[todo])
         lo_t = np.where(val > 0, dg[todo], lo[todo])
         hi_t = np.where(val <= 0, dg[todo], hi_[todo])
@@ -203,8 +205,9 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
         todo = todo[~done]
     worst = float(np.max(np.abs(g(dg, xt, alpha)[0]) / scale))
     raise ConvergenceError(
-        f"the J2 return mapping did not converge (relative residual {worst:.3g})",
-        iterations=100,
+        f"the J2 return mapping did not converge in {MAX_ITERATIONS} iterations "
+        f"(relative residual {worst:.3g} of the yield surface's size)",
+        iterations=MAX_ITERATIONS,
         residual=worst,
     )
 

@@ -12,7 +12,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from onefold_cad.errors import InvalidParameterError
+from onefold_cad.errors import ConvergenceError, InvalidParameterError
+from onefold_cad.mechanics import j2
 from onefold_cad.mechanics.j2 import J2Law, J2State, elastic_matrix, update, von_mises
 
 E, NU, SY = 200e9, 0.29, 215e6
@@ -134,3 +135,27 @@ def test_a_bad_law_is_refused_naming_the_field(field, value):
     with pytest.raises(InvalidParameterError) as info:
         J2Law(**values)
     assert info.value.parameter == field
+
+
+def test_a_return_mapping_that_cannot_converge_says_so_with_its_residual(monkeypatch):
+    """One iteration allowed: a point far outside its yield surface cannot be
+    brought back, and the update raises (naming the return mapping and its
+    residual) instead of answering with a stress off the surface."""
+    monkeypatch.setattr(j2, "MAX_ITERATIONS", 1)
+    law = J2Law(200e9, 0.3, 250e6, 1e9, 0.0)
+    with pytest.raises(ConvergenceError) as info:
+        update(law, np.array([[0.05, -0.01, 0.02]]), J2State.virgin((1,)))
+    assert "return mapping" in str(info.value) and "residual" in str(info.value)
+    assert math.isfinite(info.value.residual) and info.value.residual > 0
+
+
+def test_simulate_says_when_its_return_mapping_fails(monkeypatch, capfd):
+    """The same through ``onefold simulate --law j2``: one line, exit 2."""
+    from onefold_cad.cli.main import main
+
+    monkeypatch.setattr(j2, "MAX_ITERATIONS", 1)
+    rc = main(["simulate", "patkau-one-fold", "--law", "j2", "--mesh", "coarse", "-q"])
+    out, err = capfd.readouterr()
+    assert rc == 2 and out == ""
+    lines = [ln for ln in err.splitlines() if not ln.startswith("onefold: warning: ")]
+    assert len(lines) == 1 and "return mapping" in lines[0] and "residual" in lines[0], err
