@@ -29,7 +29,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from onefold_cad.design import fold_design
-from onefold_cad.export.simulation_inp import inp_text
+from onefold_cad.export.simulation.inp import inp_text
 from onefold_cad.mechanics.loads.response import linear_response, node_dofs
 from onefold_cad.mechanics.loads.surface import face_vectors, pressure_load
 from onefold_cad.mechanics.model import sheet_model

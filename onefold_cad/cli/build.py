@@ -242,7 +242,7 @@ def check_jobs(
         for w in notes:
             warn(f"{d.name}: {w}")
         if "fold" in formats:  # the file's: in the file and the report, not on stderr
-            from onefold_cad.export.fold_file import fold_note
+            from onefold_cad.export.fold.file import fold_note
 
             note = fold_note(d, folded)
             notes += () if note is None else (note,)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from onefold_cad.geometry.arc import arc_range
-from onefold_cad.geometry.cone import ExactCone
+from onefold_cad.geometry.cone.cone import ExactCone
 from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array, cross3, edge_lengths, sorted_unique

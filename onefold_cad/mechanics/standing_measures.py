@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.hull import convex_hull_2d
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.geometry.placement import tipping_margin
+from onefold_cad.geometry.resting.hull import convex_hull_2d
+from onefold_cad.geometry.resting.placement import tipping_margin
 from onefold_cad.mechanics.deviation import best_fit, surface_distance
 from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled
 from onefold_cad.mechanics.model import SheetModel

@@ -1,7 +1,7 @@
 """The site's overlap check from the cheap geometry, before any sheet is built.
 
 Building a site's sheets (their solids, their files) takes most of a minute;
-the exact clearance (:mod:`onefold_cad.export.site_clearance`) needs the
+the exact clearance (:mod:`onefold_cad.export.site.clearance`) needs the
 solids. Sheets whose folded surfaces cross are refused before that: each
 sheet's surface mesh (:meth:`~onefold_cad.geometry.folding.FoldedSheet.mesh`)
 stands where the site puts it (its resting placement, then the site's

@@ -4,7 +4,7 @@ and build123d's ``volume`` report) against the converged integration.
 The default rule takes a fixed number of Gauss points per face: across a
 ruled face's theta as few as 8, and along a planar sliver's edges a small
 difference of large integrals when the sliver lies askew in its plane's
-axes. The solid's faces are shaped for it (:mod:`onefold_cad.export.solid`,
+axes. The solid's faces are shaped for it (:mod:`onefold_cad.export.brep.solid`,
 :func:`onefold_cad.export.aligned_plane.aligned_plane`), so a take-off in
 the user's program agrees with ours within 0.1 %.
 """
@@ -22,8 +22,8 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS
 
-from onefold_cad.export.measure import measure
-from onefold_cad.export.step import export_design_step
+from onefold_cad.export.brep.measure import measure
+from onefold_cad.export.brep.step import export_design_step
 from onefold_cad.templates import load_template
 from tests.shipped import REPO_TEMPLATES
 

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.export.figure3d import (
+from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
     label_axes,

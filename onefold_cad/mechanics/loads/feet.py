@@ -26,8 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
 from onefold_cad.geometry.numeric import Array, Index
+from onefold_cad.geometry.resting.hull import convex_hull_2d, edge_distances
 
 __all__ = [
     "RigidCheck",
