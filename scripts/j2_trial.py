@@ -1,5 +1,5 @@
 """A shipped template formed, released and stood with J2 sections through the
-thickness (``onefold_cad.mechanics.j2_stages``), beside ``onefold simulate``'s
+thickness (``onefold_cad.mechanics.j2.stages``), beside ``onefold simulate``'s
 moment law on the same mesh: the numbers docs/mechanics.md quotes for the J2
 work in progress.
 
@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 from onefold_cad.design import fold_design
-from onefold_cad.mechanics import j2_stages
+from onefold_cad.mechanics.j2 import stages as j2_stages
 from onefold_cad.mechanics.model import sheet_model
 from onefold_cad.mechanics.simulate import aligned_deviation, run
 from onefold_cad.mechanics.stages import place

@@ -10,9 +10,13 @@ The registry, the staging and the one-module formats:
 - :mod:`.build_context`: one design being built: its fold, options and shared parts.
 - :mod:`.atomic`: all-or-nothing file output (a staging folder, then one commit).
 - :mod:`.commit_steps`: the steps of a commit of staged files.
+- :mod:`.files`: a design's files staged and committed (``onefold build``'s
+  and the scripting API's ``write_files``, one path).
 - :mod:`.report_file`: NAME.json, the report written atomically.
 - :mod:`.bend_csv`: NAME-bends.csv, the bend table's rows.
 - :mod:`.glb`: NAME.glb, the folded form as binary glTF 2.0.
+- :mod:`.aligned_plane`: a planar face's plane with its axes along the face
+  (so OCCT's default integration measures it).
 
 The families, one folder each (its ``__init__`` maps it):
 
@@ -23,4 +27,5 @@ The families, one folder each (its ``__init__`` maps it):
 - :mod:`.site`: the files of ``onefold site`` for a site as a whole.
 - :mod:`.simulation`: the files of ``onefold simulate``: form, fields, pictures.
 - :mod:`.pictures`: the 3D preview and a sweep's picture (matplotlib).
+- :mod:`.loads`: the files of ``onefold loads``: the cases' CSV and picture.
 """

@@ -16,6 +16,8 @@ The construction (paper sections 3.2 to 3.4):
 - :mod:`.developability`: the folded form measured against the flat sheet.
 - :mod:`.material`: the sheet's material and fabrication inputs, its faces.
 - :mod:`.bend_model`: the bend model (setback, allowance, deduction).
+- :mod:`.tangent_fan`: a paper fan of few divisions whose crease folds as the
+  design's (the FOLD file's fan).
 
 Helpers shared by all:
 

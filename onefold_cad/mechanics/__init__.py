@@ -10,14 +10,13 @@ never the files' writers or the CLI above it.
   sparse Hessians (``evaluate``);
 - ``plastic``: the 1D moment law (elastic-perfectly-plastic bending) and the
   faces' states;
-- ``j2``, ``section``, ``layered``: J2 plasticity at points, through the
-  thickness, on every face;
+- ``j2/``: J2 plasticity at points, through the thickness, on every face,
+  and ``simulate --law j2``'s stages and measures;
 - ``newton``, ``equilibrium``: Newton's method (QDLDL's LDL^T), supports,
   ground contact, continuation, forming and the plastic re-solve;
-- ``model``, ``stages``, ``j2_stages``, ``j2_simulate``, ``simulate``: a design
-  as a sheet model and ``onefold simulate``'s stages with either law;
-  ``j2_measures``, ``standing_measures``, ``deviation``, ``stress``,
-  ``reserve``, ``results``: what the stages say;
+- ``model``, ``stages``, ``simulate``: a design as a sheet model and
+  ``onefold simulate``'s stages with either law; ``standing_measures``,
+  ``deviation``, ``stress``, ``reserve``, ``results``: what the stages say;
 - ``loads``: outdoor loads on the standing sheet and what anchors it.
 """
 

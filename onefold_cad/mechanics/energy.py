@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.mechanics.assembly import pattern_of
+from onefold_cad.mechanics.j2.section import SectionResponse
 from onefold_cad.mechanics.kinematics import (
     METRIC_HESSIAN,
     director_slopes,
@@ -37,7 +38,6 @@ from onefold_cad.mechanics.kinematics import (
     transported_director,
 )
 from onefold_cad.mechanics.plastic import moment
-from onefold_cad.mechanics.section import SectionResponse
 from onefold_cad.mechanics.shell import Shell, unpack
 
 __all__ = ["Evaluation", "evaluate", "second_fundamental_form", "section_response"]

@@ -35,7 +35,7 @@ class ShellMaterial:
         yield_stress: sigma_y (Pa); ``inf`` for a sheet that never yields.
         hardening_iso, hardening_kin: the linear isotropic and kinematic
             hardening moduli (Pa, >= 0; both 0: perfectly plastic), read by
-            the J2 law (:mod:`onefold_cad.mechanics.j2`).
+            the J2 law (:mod:`onefold_cad.mechanics.j2.law`).
     """
 
     youngs_modulus: float

@@ -246,7 +246,7 @@ class Simulation:
             (design unit; standing in the resting frame, released as the
             standing start placed it), None when there is none.
         fields: per stage (J2 law) the faces' surface stresses, plastic
-            strains and resultants (:class:`~onefold_cad.mechanics.j2_measures.Surfaces`),
+            strains and resultants (:class:`~onefold_cad.mechanics.j2.measures.Surfaces`),
             and ``stage_positions`` its nodes (m), for the VTU file.
     """
 

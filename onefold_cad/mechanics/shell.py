@@ -16,8 +16,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import InvalidParameterError
+from onefold_cad.mechanics.j2.layered import Plasticity, cartesian_map
 from onefold_cad.mechanics.kinematics import face_metric, transported_director
-from onefold_cad.mechanics.layered import Plasticity, cartesian_map
 from onefold_cad.mechanics.material import ShellMaterial, strain_form
 from onefold_cad.mechanics.mesh import SheetMesh
 
@@ -58,7 +58,7 @@ class Shell:
             coordinates, N m on director angles), energy ``-load . q`` (a
             forming machine's grip, say).
         plasticity: None, or J2 plasticity through the thickness
-            (:class:`~onefold_cad.mechanics.layered.Plasticity`): membrane and
+            (:class:`~onefold_cad.mechanics.j2.layered.Plasticity`): membrane and
             bending of every face then follow the section's law from the
             faces' internal variables (``accumulated`` is not used with it).
 

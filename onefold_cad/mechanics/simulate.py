@@ -29,7 +29,7 @@ from onefold_cad.choices import Law, MeshLevel, Reference, Supports
 from onefold_cad.design import Design
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.mechanics.equilibrium import PathStalled
-from onefold_cad.mechanics.j2_simulate import form_j2, run_j2
+from onefold_cad.mechanics.j2.simulate import form_j2, run_j2
 from onefold_cad.mechanics.model import FINER, SheetModel, sheet_model
 from onefold_cad.mechanics.reserve import COARSE_RESERVE, carried
 from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation, Standing

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.mechanics.j2 import J2Law, J2State
-from onefold_cad.mechanics.section import SectionResponse, ThicknessRule, section_update
+from onefold_cad.mechanics.j2.law import J2Law, J2State
+from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule, section_update
 
 #: The generalised strains of a narrow strip left free: transverse, shear, twist.
 NARROW_FREE = (1, 2, 4, 5)

@@ -4,7 +4,7 @@ plastic strain (PEEQ), where each is largest, the area shares that yielded,
 the work of forming and the resultants through the thickness.
 
 The surfaces are integration points of the section rule (composite Simpson
-from ``-t/2`` to ``t/2``, :class:`~onefold_cad.mechanics.section.ThicknessRule`),
+from ``-t/2`` to ``t/2``, :class:`~onefold_cad.mechanics.j2.section.ThicknessRule`),
 so the surface values are the law's own, never extrapolated: the stress there
 is at most the flow stress of the law.
 """
@@ -16,9 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from onefold_cad.geometry.numeric import Array, Mask
-from onefold_cad.mechanics.j2 import J2Law, elastic_matrix, von_mises
-from onefold_cad.mechanics.j2_stages import J2Stage
-from onefold_cad.mechanics.layered import Plasticity
+from onefold_cad.mechanics.j2.law import J2Law, elastic_matrix, von_mises
+from onefold_cad.mechanics.j2.layered import Plasticity
+from onefold_cad.mechanics.j2.stages import J2Stage
 from onefold_cad.mechanics.model import SheetModel
 
 __all__ = [

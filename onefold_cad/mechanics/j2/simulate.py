@@ -1,8 +1,8 @@
 """``onefold simulate``'s forming sequence with J2 plasticity through the
 thickness (the default law): the flat sheet formed into the design, released
 (springback) and stood on the ground, the sections' internal variables carried
-from each stage to the next (:mod:`onefold_cad.mechanics.j2_stages`), and what
-each stage says (:mod:`onefold_cad.mechanics.j2_measures`).
+from each stage to the next (:mod:`onefold_cad.mechanics.j2.stages`), and what
+each stage says (:mod:`onefold_cad.mechanics.j2.measures`).
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ import numpy as np
 
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.mechanics import j2_stages
 from onefold_cad.mechanics.equilibrium import PathStalled
-from onefold_cad.mechanics.j2_measures import (
+from onefold_cad.mechanics.j2 import stages as j2_stages
+from onefold_cad.mechanics.j2.measures import (
     Surfaces,
     forming_work,
     largest_at,
@@ -24,7 +24,7 @@ from onefold_cad.mechanics.j2_measures import (
     surfaces,
     yielded_after,
 )
-from onefold_cad.mechanics.j2_stages import J2Stage
+from onefold_cad.mechanics.j2.stages import J2Stage
 from onefold_cad.mechanics.model import SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.results import FormedResult, Released, Standing
@@ -56,7 +56,7 @@ class J2Run:
         deviation: ``(n,)`` the standing nodes' distance from the design
             (design unit), None when it does not stand.
         fields: per stage (``formed``, ``released``, ``standing``) its
-            :class:`~onefold_cad.mechanics.j2_measures.Surfaces`.
+            :class:`~onefold_cad.mechanics.j2.measures.Surfaces`.
         positions: per stage its nodes (m; formed and released in the fold
             frame, standing in the resting frame).
     """

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 from onefold_cad.mechanics import Shell, ShellMaterial, evaluate, flat_positions, pack
-from onefold_cad.mechanics.j2 import J2Law
-from onefold_cad.mechanics.layered import Plasticity, cartesian_map
+from onefold_cad.mechanics.j2.law import J2Law
+from onefold_cad.mechanics.j2.layered import Plasticity, cartesian_map
+from onefold_cad.mechanics.j2.section import ThicknessRule
 from onefold_cad.mechanics.material import strain_form
-from onefold_cad.mechanics.section import ThicknessRule
 from tests.mechanics.helpers import central_difference, rectangle
 
 RNG = np.random.default_rng(7)
@@ -85,7 +85,7 @@ def _strip_springback(x: float) -> tuple[float, float]:
     makes R_i sigma_y / (E t) = x, released on a 3-2-1 restraint through the
     law: (R_i / R_f, the formed plastic share of the surfaces)."""
     from onefold_cad.mechanics import director_angles
-    from onefold_cad.mechanics.j2_stages import form_to, release_from
+    from onefold_cad.mechanics.j2.stages import form_to, release_from
     from tests.mechanics.helpers import circle_radius, cylinder
 
     mesh = rectangle(0.5, 0.1, 0.02)

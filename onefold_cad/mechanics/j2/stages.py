@@ -1,6 +1,6 @@
 """The forming sequence with J2 plasticity through the thickness: forming,
 springback and standing, each face a section of the J2 law
-(:mod:`onefold_cad.mechanics.layered`) whose internal variables carry the
+(:mod:`onefold_cad.mechanics.j2.layered`) whose internal variables carry the
 sheet's history from one stage to the next.
 
 - :func:`form`: the flat sheet bent into the design along forms isometric to
@@ -29,12 +29,12 @@ from numpy.typing import ArrayLike
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.energy import evaluate, second_fundamental_form, section_response
 from onefold_cad.mechanics.equilibrium import Equilibrium, solve_path
-from onefold_cad.mechanics.j2 import J2Law, von_mises
+from onefold_cad.mechanics.j2.law import J2Law, von_mises
+from onefold_cad.mechanics.j2.layered import Plasticity, form_along
+from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule
 from onefold_cad.mechanics.kinematics import face_metric
-from onefold_cad.mechanics.layered import Plasticity, form_along
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
-from onefold_cad.mechanics.section import SectionResponse, ThicknessRule
 from onefold_cad.mechanics.shell import Shell, director_angles, pack, rigid_dofs, unpack
 from onefold_cad.mechanics.stages import RTOL, Placed, standing_path
 

@@ -13,8 +13,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
-from onefold_cad.mechanics import j2
-from onefold_cad.mechanics.j2 import J2Law, J2State, elastic_matrix, update, von_mises
+from onefold_cad.mechanics.j2 import law as j2
+from onefold_cad.mechanics.j2.law import J2Law, J2State, elastic_matrix, update, von_mises
 
 E, NU, SY = 200e9, 0.29, 215e6
 EY = SY / E  # the uniaxial yield strain

@@ -2,7 +2,7 @@
 
 At height ``z`` from the mid-surface (``-t/2 .. t/2``) the strain is the
 membrane strain plus ``z`` times the curvature (Kirchhoff), each point
-follows the plane-stress J2 law (:mod:`onefold_cad.mechanics.j2`), and the
+follows the plane-stress J2 law (:mod:`onefold_cad.mechanics.j2.law`), and the
 section's resultants are the integrals over the thickness (per unit length
 of the mid-surface)::
 
@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.mechanics.j2 import J2Law, J2State, update
+from onefold_cad.mechanics.j2.law import J2Law, J2State, update
 
 __all__ = ["DEFAULT_POINTS", "SectionResponse", "ThicknessRule", "section_update"]
 

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.mechanics.j2 import J2Law, J2State
-from onefold_cad.mechanics.section import SectionResponse, ThicknessRule, section_update
+from onefold_cad.mechanics.j2.law import J2Law, J2State
+from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule, section_update
 
 __all__ = ["Plasticity", "cartesian_map", "form_along"]
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from onefold_cad.design import fold_design
-from onefold_cad.mechanics import j2_stages
+from onefold_cad.mechanics.j2 import stages as j2_stages
 from onefold_cad.mechanics.model import sheet_model
 from onefold_cad.templates import load_template
 from tests.mechanics.test_simulate import _cone_integrals

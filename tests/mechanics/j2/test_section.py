@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.mechanics.j2 import J2Law
-from onefold_cad.mechanics.section import DEFAULT_POINTS, ThicknessRule, section_update
+from onefold_cad.mechanics.j2.law import J2Law
+from onefold_cad.mechanics.j2.section import DEFAULT_POINTS, ThicknessRule, section_update
 from tests.mechanics.section_paths import NARROW_FREE, WIDE_FREE, Section
 
 E, NU, SY, T = 200e9, 0.29, 215e6, 3.57e-3  # Patkau's stainless sheet
@@ -50,7 +50,7 @@ def test_an_elastic_section_is_the_plate_s_stiffness():
 
 
 def _virgin(m: int):
-    from onefold_cad.mechanics.j2 import J2State
+    from onefold_cad.mechanics.j2.law import J2State
 
     return J2State.virgin((m, DEFAULT_POINTS))
 
