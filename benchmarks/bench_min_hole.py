@@ -3,7 +3,7 @@
 resting placement).
 
 The default relief hole, the flat pattern's relief-hole check and the report
-all need :func:`~onefold_cad.geometry.thick_map.min_relief_hole` (through
+all need :func:`~onefold_cad.geometry.thick.thick_map.min_relief_hole` (through
 ``onefold_cad.fabrication.relief_hole.solid_min_relief_hole``); the cache computes it once per
 fold and material, and the resting placement once per fold, material and body.
 The baseline is the same code with a cache that never keeps anything (each

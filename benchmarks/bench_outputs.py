@@ -24,7 +24,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from interleave import interleave, run_process, stats_of  # noqa: E402
 
-from onefold_cad.geometry.placement import rest_form
+from onefold_cad.geometry.resting.placement import rest_form
 
 _SOLVE = (
     "from onefold_cad import build_design; from onefold_cad.templates import load_template; "
@@ -32,9 +32,9 @@ _SOLVE = (
 )
 _PREVIEWS = (
     "import tempfile, pathlib; o = pathlib.Path(tempfile.mkdtemp()); "
-    "from onefold_cad.export.preview import render_folded_preview; "
-    "from onefold_cad.export.dxf import export_design_dxf; "
-    "from onefold_cad.export.dxf_preview import render_preview; "
+    "from onefold_cad.export.pictures.preview import render_folded_preview; "
+    "from onefold_cad.export.dxf.pattern import export_design_dxf; "
+    "from onefold_cad.export.dxf.preview import render_preview; "
     "render_folded_preview(f, o / 'a.png', title=d.name, units=d.units.value); "
     "render_preview(export_design_dxf(d, o / 'a.dxf', folded=f), o / 'a.svg')"
 )
@@ -76,12 +76,12 @@ def processes(template: str, rounds: int) -> None:
 
 def writers(template: str, rounds: int) -> None:
     from onefold_cad import build_design, fold, solve
-    from onefold_cad.export.dxf import export_design_dxf
-    from onefold_cad.export.dxf_preview import render_preview
-    from onefold_cad.export.fold_file import write_fold
+    from onefold_cad.export.brep.part import build_part
+    from onefold_cad.export.dxf.pattern import export_design_dxf
+    from onefold_cad.export.dxf.preview import render_preview
+    from onefold_cad.export.fold.file import write_fold
     from onefold_cad.export.glb import write_glb
-    from onefold_cad.export.part import build_part
-    from onefold_cad.export.preview import render_folded_preview
+    from onefold_cad.export.pictures.preview import render_folded_preview
     from onefold_cad.templates import load_template
 
     design = load_template(template)

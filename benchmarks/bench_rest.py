@@ -8,7 +8,7 @@ per batch, the order rotated every round):
 
 * ``solve + fold``: ``fold(solve(frame, model), sheet)``, the baseline a
   placement is a multiple of;
-* ``rest``: :func:`onefold_cad.geometry.placement.rest_form` on a fresh fold
+* ``rest``: :func:`onefold_cad.geometry.resting.placement.rest_form` on a fresh fold
   (built beforehand, one per call: the fold's own caches, the cone's node
   table, are part of the placement's cost), with the relief hole the STEP is
   built with;
@@ -44,7 +44,7 @@ from interleave import interleave, paired_ratio  # noqa: E402
 
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter  # noqa: E402
 from onefold_cad.geometry.folding import fold  # noqa: E402
-from onefold_cad.geometry.placement import rest_form  # noqa: E402
+from onefold_cad.geometry.resting.placement import rest_form  # noqa: E402
 from onefold_cad.geometry.solver import solve  # noqa: E402
 from onefold_cad.templates import find_template, list_templates, load_template  # noqa: E402
 

@@ -36,7 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from interleave import interleave, run_process, stats_of  # noqa: E402
 
 from onefold_cad import Design, FrameCurve, Sheet, build_design  # noqa: E402
-from onefold_cad.export.part import build_shell, build_solid
+from onefold_cad.export.brep.part import build_shell, build_solid
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.fabrication.rules import default_body
 from onefold_cad.templates import list_templates, load_template  # noqa: E402

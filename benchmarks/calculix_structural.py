@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from onefold_cad.design import build_design
-from onefold_cad.export.simulation_inp import write_structural_inp
+from onefold_cad.export.simulation.inp import write_structural_inp
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
 

@@ -31,7 +31,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 from onefold_cad import FrameCurve, Model, Sheet, fold, solve  # noqa: E402
 from onefold_cad.geometry.arc import arc_points, arc_range
-from onefold_cad.geometry.placement import rest_form
+from onefold_cad.geometry.resting.placement import rest_form
 from onefold_cad.geometry.solver import make_direction_surface  # noqa: E402
 
 DOCS = Path(__file__).resolve().parent

@@ -212,8 +212,8 @@ def _flat_png(folded: Any, design: Design, path: Path) -> Path:
 def _flat_renderer() -> Callable[[Any, Design, Path], Path]:
     """The package's DXF preview of the real flat pattern if present, else ours."""
     try:
-        from onefold_cad.export.dxf import draw_flat_pattern
-        from onefold_cad.export.dxf_preview import render_preview
+        from onefold_cad.export.dxf.pattern import draw_flat_pattern
+        from onefold_cad.export.dxf.preview import render_preview
         from onefold_cad.fabrication.flat_pattern import flat_pattern
     except ImportError:
         return _flat_png
@@ -233,7 +233,7 @@ def make_template_previews() -> list[Path]:
     for info, design in templates():
         folded = build_design(design)
         try:
-            from onefold_cad.export.preview import render_folded_preview
+            from onefold_cad.export.pictures.preview import render_folded_preview
         except ImportError:  # pragma: no cover - the preview module ships with the package
             render_folded_preview = None
         p3 = out_dir / f"{info.name}.png"

@@ -38,7 +38,7 @@ _EXPORTS: dict[str, str] = {
     "bend_values": "onefold_cad.geometry.bend_model",
     "FrameCurve": "onefold_cad.geometry.frame_curve",
     "Model": "onefold_cad.choices",
-    "RestingPlacement": "onefold_cad.geometry.placement",
+    "RestingPlacement": "onefold_cad.geometry.resting.placement",
     "Placement2D": "onefold_cad.geometry.sheet",
     "Sheet": "onefold_cad.geometry.sheet",
     "Solution": "onefold_cad.geometry.solver",
@@ -78,6 +78,6 @@ if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
     from onefold_cad.geometry.folding import CreaseHalf, FoldedSheet, fold
     from onefold_cad.geometry.frame_curve import FrameCurve
     from onefold_cad.geometry.material import Material
-    from onefold_cad.geometry.placement import RestingPlacement
+    from onefold_cad.geometry.resting.placement import RestingPlacement
     from onefold_cad.geometry.sheet import Placement2D, Sheet
     from onefold_cad.geometry.solver import Solution, solve

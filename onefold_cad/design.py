@@ -32,7 +32,7 @@ from onefold_cad.geometry.checks import check_magnitudes
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.frame_curve import FrameCurve, check_design_divisions
 from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.placement import RestingPlacement, rest_form
+from onefold_cad.geometry.resting.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import solve
 
@@ -172,7 +172,7 @@ def build_design(design: Design) -> FoldedSheet:
 def rest_once(
     folded: FoldedSheet, material: Material | None = None, body: str = "shell"
 ) -> RestingPlacement:
-    """:func:`~onefold_cad.geometry.placement.rest_form` of ``folded``,
+    """:func:`~onefold_cad.geometry.resting.placement.rest_form` of ``folded``,
     ``material`` (None: a zero-thickness sheet without a hole) and ``body``,
     computed once per fold, material and body."""
     return derived(folded, ("rest", material, body), lambda: rest_form(folded, material, body))

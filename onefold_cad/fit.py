@@ -2,7 +2,7 @@
 
 Designers start from the site ("3 m high, 5.6 m wide"). :func:`fit_design`
 keeps a design's sheet and material and looks for alpha, beta and h_c whose
-form, standing as it rests (:func:`~onefold_cad.geometry.placement.rest_form`,
+form, standing as it rests (:func:`~onefold_cad.geometry.resting.placement.rest_form`,
 the body the STEP holds), has the target height and footprint width (span,
 along the resting frame's x axis; the footprint depth along its y axis is an
 optional third target), within a relative tolerance (0.5 %), optionally with
@@ -39,7 +39,7 @@ from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.fabrication.rules import default_body
 from onefold_cad.geometry.folding import FoldedSheet, fold
 from onefold_cad.geometry.frame_curve import FrameCurve
-from onefold_cad.geometry.placement import RestingPlacement, rest_form
+from onefold_cad.geometry.resting.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.solver import solve
 
 __all__ = ["FitResult", "OutOfReachError", "fit_design", "FIT_TOLERANCE"]

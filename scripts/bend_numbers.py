@@ -20,7 +20,7 @@ import ezdxf  # noqa: TID251 (a script: reads the DXF back)
 import numpy as np
 
 from onefold_cad import build_design
-from onefold_cad.export.dxf import export_design_dxf
+from onefold_cad.export.dxf.pattern import export_design_dxf
 from onefold_cad.templates import load_template
 
 S = {("INSIDE", "UP"): 0.0, ("INSIDE", "DOWN"): 1.0, ("OUTSIDE", "UP"): 1.0,

@@ -5,7 +5,7 @@ form as it rests, over alpha and beta (h_c, sheet and material the template's).
 
 Each (alpha, beta) of an n x n grid over (0, 90) x (0, 90) deg (cell
 centres) is solved, folded and stood on the ground as the STEP holds it
-(:func:`onefold_cad.geometry.placement.rest_form`, the default template's
+(:func:`onefold_cad.geometry.resting.placement.rest_form`, the default template's
 thickness and relief hole), and the resting height, footprint width (span,
 along the resting frame's x axis) and tipping margin are drawn as three
 colour maps. White cells have no non-trivial apex. The margin's map marks
@@ -25,7 +25,7 @@ import numpy as np
 from onefold_cad import build_design
 from onefold_cad.errors import OneFoldError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.placement import TIPPING_WARNING_DEG, rest_form
+from onefold_cad.geometry.resting.placement import TIPPING_WARNING_DEG, rest_form
 from onefold_cad.templates import DEFAULT_TEMPLATE, load_template
 
 IMAGES = Path(__file__).resolve().parent.parent / "docs" / "images"

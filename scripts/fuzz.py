@@ -896,7 +896,7 @@ def check_outputs(
 ) -> None:
     """Report (finite), flat pattern (area for an uncompensated sheet), DXF
     (re-read and audited) and, for the STEP slice, STEP (re-read, valid)."""
-    from onefold_cad.export.dxf import export_design_dxf
+    from onefold_cad.export.dxf.pattern import export_design_dxf
     from onefold_cad.fabrication.flat_pattern import flat_pattern
     from onefold_cad.fabrication.report import design_report, report_json
 
@@ -924,7 +924,7 @@ def check_outputs(
         stages.append("step")
         import build123d as bd  # noqa: TID251 (re-reads the STEP)
 
-        from onefold_cad.export.step import export_design_step
+        from onefold_cad.export.brep.step import export_design_step
 
         step = export_design_step(design, tmp / "fuzz.step", folded=folded)
         shape = bd.import_step(step)
@@ -1362,7 +1362,7 @@ def cap_timings(repeat: int = 3) -> str:
     + DXF at the caps: a paper design of MAX_DIVISIONS triangles and, in both
     models, a polygon sheet of MAX_VERTICES vertices."""
     from onefold_cad import Design, FrameCurve, Sheet, build_design
-    from onefold_cad.export.dxf import export_design_dxf
+    from onefold_cad.export.dxf.pattern import export_design_dxf
     from onefold_cad.fabrication.flat_pattern import flat_pattern
     from onefold_cad.geometry.frame_curve import MAX_DIVISIONS
     from onefold_cad.geometry.sheet import MAX_VERTICES

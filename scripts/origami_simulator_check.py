@@ -123,7 +123,7 @@ def serve(checkout: Path) -> http.server.ThreadingHTTPServer:
 def fold_files(names: list[str], out: Path) -> list[Path]:
     """FOLD files: a .fold path as it is, a template name written to ``out``."""
     from onefold_cad import build_design
-    from onefold_cad.export.fold_file import write_fold
+    from onefold_cad.export.fold.file import write_fold
     from onefold_cad.templates import load_template
 
     paths = []

@@ -21,9 +21,9 @@ import textwrap
 from pathlib import Path
 
 from onefold_cad import build_design
-from onefold_cad.export.dxf import draw_flat_pattern
-from onefold_cad.export.dxf_preview import render_preview
-from onefold_cad.export.preview import render_folded_preview
+from onefold_cad.export.dxf.pattern import draw_flat_pattern
+from onefold_cad.export.dxf.preview import render_preview
+from onefold_cad.export.pictures.preview import render_folded_preview
 from onefold_cad.fabrication.flat_pattern import flat_pattern
 from onefold_cad.fabrication.rules import resting_placement
 from onefold_cad.templates import DEFAULT_TEMPLATE, load_template

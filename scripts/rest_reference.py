@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write the resting placements of the placement issue 24 replaced, for the
-test that holds the new one to them (tests/geometry/test_rest_reference.py).
+test that holds the new one to them (tests/geometry/resting/test_rest_reference.py).
 
 The designs: every shipped template as each body it can be written as, the
 default template over a grid of alpha and beta, and seeded rectangles of

@@ -40,12 +40,12 @@ import numpy as np
 
 from onefold_cad import Design, FrameCurve, Material, Sheet, SheetSurface, build_design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError, OneFoldError
-from onefold_cad.export.measure import measure
-from onefold_cad.export.part import build_shell, build_solid
-from onefold_cad.export.step import export_design_step, read_step
+from onefold_cad.export.brep.measure import measure
+from onefold_cad.export.brep.part import build_shell, build_solid
+from onefold_cad.export.brep.step import export_design_step, read_step
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.fabrication.rules import default_body
-from onefold_cad.geometry.slab_volume import slab_volume
+from onefold_cad.geometry.thick.slab_volume import slab_volume
 
 
 def check(design: Design) -> str:

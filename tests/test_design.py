@@ -25,7 +25,7 @@ from onefold_cad.fabrication.flat_pattern import flat_pattern
 from onefold_cad.fabrication.mass import KG_PER_LB, design_mass
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.fabrication.rules import fabrication_warnings
-from onefold_cad.geometry.thick_map import min_relief_hole
+from onefold_cad.geometry.thick.thick_map import min_relief_hole
 from onefold_cad.templates import load_template
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
 

@@ -11,7 +11,7 @@ import pytest
 from onefold_cad import InvalidParameterError, InvalidSheetError, Model, Units, build_design
 from onefold_cad.fabrication.rules import fabrication_warnings
 from onefold_cad.geometry.developability import developability
-from onefold_cad.geometry.placement import rest_form
+from onefold_cad.geometry.resting.placement import rest_form
 from onefold_cad.templates import (
     DEFAULT_TEMPLATE,
     design_from_data,

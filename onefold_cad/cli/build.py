@@ -234,7 +234,7 @@ def check_jobs(
                 progress.line(i, n, d.name, text)
         notes = tuple(design_warnings(d, folded, ns.compensation, body))
         if "fold" in formats:  # the file's, not the design's: on stderr, not in the report
-            from onefold_cad.export.fold_file import fold_note
+            from onefold_cad.export.fold.file import fold_note
 
             note = fold_note(d, folded)
             if note is not None:

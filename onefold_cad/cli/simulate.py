@@ -135,10 +135,10 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
     """
     from onefold_cad.cli.build import say_removed
     from onefold_cad.export.atomic import FileSet, Staging, check_targets, recover
-    from onefold_cad.export.simulation_glb import write_simulation_glb
-    from onefold_cad.export.simulation_inp import write_structural_inp
-    from onefold_cad.export.simulation_pictures import render_deviation, render_stress
-    from onefold_cad.export.simulation_vtu import write_simulation_vtu
+    from onefold_cad.export.simulation.glb import write_simulation_glb
+    from onefold_cad.export.simulation.inp import write_structural_inp
+    from onefold_cad.export.simulation.pictures import render_deviation, render_stress
+    from onefold_cad.export.simulation.vtu import write_simulation_vtu
     from onefold_cad.fabrication.report import report_json
 
     forms = []

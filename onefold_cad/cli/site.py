@@ -1,7 +1,7 @@
 """``onefold site SITE -o DIR``: every sheet of a site file built as ``onefold
 build`` builds it (its files in DIR/NAME/), its part stood where the site
 places it, the clearance between the sheets checked, then the site's files
-(:data:`onefold_cad.export.site_writers.SITE_WRITERS`) written; everything
+(:data:`onefold_cad.export.site.writers.SITE_WRITERS`) written; everything
 staged and committed at once (:mod:`onefold_cad.export.atomic`), nothing
 written when a sheet or the clearance check fails. ``-j N`` builds N sheets
 at a time in worker processes (:func:`onefold_cad.cli.build.run_tasks`).
@@ -31,8 +31,8 @@ from onefold_cad.cli.output import one_line, warn
 from onefold_cad.errors import InvalidParameterError, not_installed
 
 if TYPE_CHECKING:
-    from onefold_cad.export.site_context import SiteContext
-    from onefold_cad.geometry.placement import RestingPlacement
+    from onefold_cad.export.site.context import SiteContext
+    from onefold_cad.geometry.resting.placement import RestingPlacement
 
 __all__ = ["SheetBuilt", "cmd_site"]
 
@@ -78,7 +78,7 @@ def _sheet_formats(text: str | None) -> tuple[str, ...]:
 
 def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteContext:
     from onefold_cad.design import build_design
-    from onefold_cad.export.site_context import SiteContext, SiteSheet
+    from onefold_cad.export.site.context import SiteContext, SiteSheet
     from onefold_cad.site.placement import SitePlacement
 
     sheets = [
@@ -99,8 +99,8 @@ def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteCo
 def cmd_site(ns: argparse.Namespace) -> int:
     """Build a site: its sheets' files and the site's, all or nothing."""
     from onefold_cad.export.atomic import FileSet, Staging, check_targets, pause_point, recover
-    from onefold_cad.export.site_clearance import measure_clearance
-    from onefold_cad.export.site_writers import SITE_WRITERS, site_file_names
+    from onefold_cad.export.site.clearance import measure_clearance
+    from onefold_cad.export.site.writers import SITE_WRITERS, site_file_names
     from onefold_cad.export.writers import WRITERS, file_names, parse_formats
     from onefold_cad.flags.site_jobs import site_jobs
     from onefold_cad.site.spec import read_site

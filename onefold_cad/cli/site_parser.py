@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from onefold_cad.cli.help_format import raw_formatter
-from onefold_cad.export.site_writers import SITE_WRITERS, site_files_help
+from onefold_cad.export.site.writers import SITE_WRITERS, site_files_help
 from onefold_cad.export.writers import WRITERS
 from onefold_cad.flags.design_flags import COMPENSATIONS, parse_choice, parse_int
 from onefold_cad.flags.parser import FlagParser

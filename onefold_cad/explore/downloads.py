@@ -64,7 +64,7 @@ def make_download(kind: str, design: Design) -> Download:
     with tempfile.TemporaryDirectory(prefix="onefold-explore-") as tmp:
         path = Path(tmp) / name
         if kind == "dxf":
-            from onefold_cad.export.dxf import export_design_dxf
+            from onefold_cad.export.dxf.pattern import export_design_dxf
 
             export_design_dxf(design, path, folded)
         elif kind == "3dm":
@@ -72,11 +72,11 @@ def make_download(kind: str, design: Design) -> Download:
 
             if not WRITERS["3dm"].available:
                 raise ExportError(not_installed("the .3dm", ["rhino3dm"], "rhino"))
-            from onefold_cad.export.rhino3dm_file import write_3dm
+            from onefold_cad.export.rhino.file import write_3dm
 
             write_3dm(design, folded, path)
         else:
-            from onefold_cad.export.step import export_design_step
+            from onefold_cad.export.brep.step import export_design_step
 
             with _KERNEL:
                 export_design_step(design, path, folded)

@@ -6,7 +6,7 @@ returns what the page draws: the standing form (or, without a standing
 equilibrium, the released form) and the designed form on the simulation's
 own mesh, both in its resting frame (z up, ground z = 0, design units), each
 vertex's colour on the deviation scale of
-:mod:`onefold_cad.export.colour_scale` (the colours of NAME-deviation.png
+:mod:`onefold_cad.export.simulation.colour_scale` (the colours of NAME-deviation.png
 and the simulation's GLB), the scale's legend, and the numbers. The page
 computes nothing.
 
@@ -28,7 +28,7 @@ import numpy as np
 
 from onefold_cad.design import Design, build_design
 from onefold_cad.errors import OneFoldError
-from onefold_cad.export.colour_scale import (
+from onefold_cad.export.simulation.colour_scale import (
     DEVIATION_STOPS,
     deviation_label,
     deviation_range,

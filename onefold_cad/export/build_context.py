@@ -24,7 +24,7 @@ if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer run
     from onefold_cad.design import Design
     from onefold_cad.fabrication.flat_pattern import FlatPattern
     from onefold_cad.geometry.folding import FoldedSheet
-    from onefold_cad.geometry.placement import RestingPlacement
+    from onefold_cad.geometry.resting.placement import RestingPlacement
 
 __all__ = ["BuildContext"]
 
@@ -76,10 +76,10 @@ class BuildContext:
 
     @cached_property
     def part(self) -> Any:
-        """The STEP's part (build123d shape, :func:`onefold_cad.export.part.build_part`
+        """The STEP's part (build123d shape, :func:`onefold_cad.export.brep.part.build_part`
         with this body, placement and compensation), built once for this
         build: the STEP and the GLB writers write this one part."""
-        from onefold_cad.export.part import build_part
+        from onefold_cad.export.brep.part import build_part
 
         return build_part(
             self.design,
@@ -98,6 +98,6 @@ class BuildContext:
     def drawing(self) -> Any:
         """The flat pattern as an ezdxf document (for the flat preview), drawn once
         for this build."""
-        from onefold_cad.export.dxf import draw_flat_pattern
+        from onefold_cad.export.dxf.pattern import draw_flat_pattern
 
         return draw_flat_pattern(self.pattern)

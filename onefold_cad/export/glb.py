@@ -1,10 +1,10 @@
 """NAME.glb: the folded form as binary glTF 2.0, for web viewers.
 
-The part is the design's STEP part (:func:`onefold_cad.export.part.build_part`:
+The part is the design's STEP part (:func:`onefold_cad.export.brep.part.build_part`:
 the solid when the design has thickness, else the shell), in the STEP's
 placement: by default standing on the ground as it rests
 (:func:`onefold_cad.fabrication.rules.resting_placement`, applied by
-:func:`onefold_cad.export.part.place`), or in the fold frame. ``build``
+:func:`onefold_cad.export.brep.part.place`), or in the fold frame. ``build``
 passes the part it wrote as STEP, so the two files hold the same part in the
 same place. It is tessellated and written by build123d's ``export_gltf``
 (OCCT's RWGltf_CafWriter), which turns OCCT's z-up into glTF's y-up (a -90 deg
@@ -39,8 +39,8 @@ from onefold_cad.choices import Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.export.colour_scale import STEEL_GREY
-from onefold_cad.export.part import build_part
+from onefold_cad.export.brep.part import build_part
+from onefold_cad.export.simulation.colour_scale import STEEL_GREY
 from onefold_cad.geometry.folding import FoldedSheet
 
 __all__ = ["ANGULAR_DEFLECTION", "LINEAR_DEFLECTION", "COLOUR", "write_glb", "write_site_glb"]

@@ -97,19 +97,19 @@ def register(writer: Writer) -> Writer:
 
 
 def _step(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import step
+    from onefold_cad.export.brep import step
 
     return step.export_design_step(ctx.design, path, folded=ctx.folded, part=ctx.part)
 
 
 def _dxf(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import dxf
+    from onefold_cad.export.dxf import pattern as dxf
 
     return dxf.export_design_dxf(ctx.design, path, folded=ctx.folded, compensation=ctx.compensation)
 
 
 def _cut(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import cut_dxf
+    from onefold_cad.export.dxf import cut as cut_dxf
 
     return cut_dxf.export_design_cut_dxf(
         ctx.design, path, folded=ctx.folded, compensation=ctx.compensation
@@ -123,7 +123,7 @@ def _bends(ctx: BuildContext, path: Path) -> Any:
 
 
 def _fold(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import fold_file
+    from onefold_cad.export.fold import file as fold_file
 
     return fold_file.write_fold(ctx.design, ctx.folded, path)
 
@@ -135,7 +135,7 @@ def _glb(ctx: BuildContext, path: Path) -> Any:
 
 
 def _rhino(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import rhino3dm_file
+    from onefold_cad.export.rhino import file as rhino3dm_file
 
     model = rhino3dm_file.write_3dm(
         ctx.design,
@@ -156,7 +156,7 @@ def _rhino(ctx: BuildContext, path: Path) -> Any:
 
 
 def _png(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import preview
+    from onefold_cad.export.pictures import preview
 
     d = ctx.design
     return preview.render_folded_preview(
@@ -170,7 +170,7 @@ def _png(ctx: BuildContext, path: Path) -> Any:
 
 
 def _svg(ctx: BuildContext, path: Path) -> Any:
-    from onefold_cad.export import dxf_preview
+    from onefold_cad.export.dxf import preview as dxf_preview
 
     return dxf_preview.render_preview(ctx.drawing, path)
 
@@ -398,14 +398,14 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
 
 def _check_part(ctx: BuildContext) -> None:
     """The refusals the part's builder gives before any kernel call
-    (:func:`onefold_cad.export.part.build_part`), raised before anything is
+    (:func:`onefold_cad.export.brep.part.build_part`), raised before anything is
     written: a shell's H too close to the sheet's boundary or a relief hole
     below the kernel's resolution
-    (:func:`~onefold_cad.export.step_checks.shell_problem`), a solid past
+    (:func:`~onefold_cad.export.brep.step_checks.shell_problem`), a solid past
     the bend model's limits
     (:func:`~onefold_cad.fabrication.rules.solid_bend_problem`)."""
     if (ctx.body or _default_body(ctx.design)) != "solid":
-        from onefold_cad.export.step_checks import shell_problem
+        from onefold_cad.export.brep.step_checks import shell_problem
         from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 
         shell = shell_problem(ctx.folded, relief_hole_diameter(ctx.design, ctx.folded))

@@ -1,9 +1,9 @@
 """The flat pattern of a design: the 2D geometry a cutting table needs.
 
 Everything here is plain numpy (:func:`~onefold_cad.fabrication.kerf.offset_outline`
-gives the kerf's mitred offset); :mod:`onefold_cad.export.dxf` and
-:mod:`onefold_cad.export.cut_dxf` only draw it (the DXF's NOTES text is
-:mod:`onefold_cad.export.dxf_notes`'s). Lengths are in the design's
+gives the kerf's mitred offset); :mod:`onefold_cad.export.dxf.pattern` and
+:mod:`onefold_cad.export.dxf.cut` only draw it (the DXF's NOTES text is
+:mod:`onefold_cad.export.dxf.notes`'s). Lengths are in the design's
 unit, angles in degrees, points in the sheet's own frame (for a rectangle: a
 corner at the origin, sides on the axes).
 

@@ -18,14 +18,14 @@ from onefold_cad.errors import FabricationError, InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
 from onefold_cad.geometry.polygon import boundary_distance
-from onefold_cad.geometry.thick_map import min_relief_hole
+from onefold_cad.geometry.thick.thick_map import min_relief_hole
 
 __all__ = ["relief_hole_diameter", "relief_hole_problem", "solid_min_relief_hole"]
 
 
 def solid_min_relief_hole(folded: FoldedSheet, material: Material) -> float:
     """The smallest relief hole a STEP solid of ``material`` needs on ``folded``
-    (length): :func:`~onefold_cad.geometry.thick_map.min_relief_hole`,
+    (length): :func:`~onefold_cad.geometry.thick.thick_map.min_relief_hole`,
     computed once per fold and material (the report, the default hole and
     the flat pattern all ask for it).
 

@@ -44,7 +44,7 @@ from onefold_cad.geometry.bend_model import bendable, crease_bends
 from onefold_cad.geometry.developability import developability
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import edge_lengths_2d
-from onefold_cad.geometry.placement import stability_warnings
+from onefold_cad.geometry.resting.placement import stability_warnings
 from onefold_cad.templates import design_to_data
 
 __all__ = [
@@ -193,7 +193,7 @@ def design_warnings(
     line each: the solver's own warnings (when it gives any),
     :func:`~onefold_cad.fabrication.rules.fabrication_warnings`, the resting form's
     stability (a tipping margin below 5 deg,
-    :func:`~onefold_cad.geometry.placement.stability_warnings`, for ``body``
+    :func:`~onefold_cad.geometry.resting.placement.stability_warnings`, for ``body``
     as :func:`resting_numbers` places it) and the bend model's
     limits (:func:`~onefold_cad.fabrication.bend_checks.check_bends`), worded for what
     ``build`` does with ``compensation`` ('sharp': refuses the flat pattern's

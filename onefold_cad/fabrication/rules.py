@@ -14,7 +14,7 @@ from onefold_cad.fabrication.bend_checks import bend_error, check_bends
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, relief_hole_problem
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material
-from onefold_cad.geometry.placement import RestingPlacement
+from onefold_cad.geometry.resting.placement import RestingPlacement
 
 __all__ = [
     "PLAUSIBLE_DENSITY",
@@ -43,7 +43,7 @@ def resting_placement(
     design: Design, folded: FoldedSheet, body: str | None = None
 ) -> RestingPlacement:
     """How the body the STEP holds (``body``, default :func:`default_body`)
-    stands on the ground: :func:`~onefold_cad.geometry.placement.rest_form`
+    stands on the ground: :func:`~onefold_cad.geometry.resting.placement.rest_form`
     with the material's relief hole resolved (:func:`relief_hole_diameter`),
     computed once per fold, material and body. The report, the STEP, the GLB
     and the previews all place the form with it.

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.geometry.arc import arc_range
-from onefold_cad.geometry.cone import ExactCone
+from onefold_cad.geometry.cone.cone import ExactCone
 from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.numeric import Array, cross3, sorted_unique
 from onefold_cad.geometry.sheet import Sheet
@@ -74,7 +74,7 @@ class FoldedSheet:
     fills in the paper model's boundary (the ruling ends) itself. What is
     measured on a fold lives elsewhere: its developability
     (:func:`onefold_cad.geometry.developability.developability`), how it stands
-    (:func:`onefold_cad.geometry.placement.rest_form`).
+    (:func:`onefold_cad.geometry.resting.placement.rest_form`).
     """
 
     solution: Solution

@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from onefold_cad.choices import Model
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.geometry.arc import ArcSpacing
-from onefold_cad.geometry.cone import ExactCone
+from onefold_cad.geometry.cone.cone import ExactCone
 from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.frame_curve import FrameCurve
 from onefold_cad.geometry.root import Search, SearchFailed, find_root

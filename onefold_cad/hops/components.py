@@ -7,7 +7,7 @@ commands do not: a design is made from its template and flags as ``onefold
 solve`` makes it (:func:`~onefold_cad.flags.jobs.load_jobs`), its numbers are
 the report's (:func:`~onefold_cad.fabrication.report.design_report`, as
 ``onefold solve --json`` prints them), its geometry the .3dm writer's and
-the flat pattern's (:mod:`onefold_cad.export.hops_geometry`), the fit
+the flat pattern's (:mod:`onefold_cad.export.rhino.hops_geometry`), the fit
 :func:`~onefold_cad.fit.fit_design`'s (as ``onefold fit --json``).
 Lengths are in the design's unit, angles in degrees.
 """
@@ -112,7 +112,7 @@ def units_warning(design_units: str, model_units: object) -> str | None:
 def _sheet_text(curve: Mapping[str, Any]) -> str:
     """``--polygon``'s text of a Hops curve (a closed polyline)."""
     from onefold_cad.errors import InvalidSheetError
-    from onefold_cad.export.hops_geometry import decode, sheet_polygon
+    from onefold_cad.export.rhino.hops_geometry import decode, sheet_polygon
 
     try:
         obj = decode(dict(curve))
@@ -136,12 +136,12 @@ def solve_answer(values: Mapping[str, Any], model_units: object = None) -> Answe
         UsageError, OneFoldError: a value the command refuses (its message).
     """
     from onefold_cad.design import build_design
-    from onefold_cad.export.hops_geometry import (
+    from onefold_cad.export.rhino.hops_geometry import (
         crease_lines,
         flat_curves,
         point,
     )
-    from onefold_cad.export.rhino_sides import placement_of, side_breps
+    from onefold_cad.export.rhino.sides import placement_of, side_breps
     from onefold_cad.fabrication.relief_hole import relief_hole_problem
     from onefold_cad.fabrication.report import (
         check_finite,

@@ -28,7 +28,7 @@ from onefold_cad.fabrication.rules import PLAUSIBLE_DENSITY
 from onefold_cad.geometry.checks import shown
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.geometry.placement import RestingPlacement
+from onefold_cad.geometry.resting.placement import RestingPlacement
 from onefold_cad.mechanics.energy import second_fundamental_form
 from onefold_cad.mechanics.material import ShellMaterial
 from onefold_cad.mechanics.mesh import SheetMesh, mesh_sheet

@@ -28,9 +28,9 @@ from threadpoolctl import threadpool_limits
 from onefold_cad.choices import MeshLevel, Reference, Supports
 from onefold_cad.design import Design
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.hull import convex_hull_2d
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.geometry.placement import tipping_margin
+from onefold_cad.geometry.resting.hull import convex_hull_2d
+from onefold_cad.geometry.resting.placement import tipping_margin
 from onefold_cad.mechanics.deviation import best_fit, surface_distance
 from onefold_cad.mechanics.equilibrium import PathStalled
 from onefold_cad.mechanics.model import FINER, SheetModel, sheet_model

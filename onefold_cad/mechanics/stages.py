@@ -23,8 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.geometry.placement import rotation_to_up
-from onefold_cad.geometry.topple import roll
+from onefold_cad.geometry.resting.placement import rotation_to_up
+from onefold_cad.geometry.resting.topple import roll
 from onefold_cad.mechanics import plastic
 from onefold_cad.mechanics.deviation import best_fit
 from onefold_cad.mechanics.energy import second_fundamental_form

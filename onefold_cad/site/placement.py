@@ -1,5 +1,5 @@
 """Where a sheet stands on the site: its resting placement (the fold frame to
-the ground, :class:`~onefold_cad.geometry.placement.RestingPlacement`)
+the ground, :class:`~onefold_cad.geometry.resting.placement.RestingPlacement`)
 followed by the site's turn about the vertical and its move on the ground.
 
 ``p_site = Rz(rotation) @ p_rest + (x, y, 0)``; lengths in the site's unit,
@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from onefold_cad.geometry.numeric import Array
-from onefold_cad.geometry.placement import RestingPlacement
+from onefold_cad.geometry.resting.placement import RestingPlacement
 
 __all__ = ["SitePlacement"]
 

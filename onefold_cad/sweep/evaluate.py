@@ -78,7 +78,7 @@ def evaluate_design(
         for m in measures:
             row.update(MEASURES[m].compute(design, folded, rest, settings or {}))
         if images:
-            from onefold_cad.export.preview import thumbnail_png
+            from onefold_cad.export.pictures.preview import thumbnail_png
 
             row["png"] = thumbnail_png(folded, rest)
     except Exception as exc:  # a failing design is a row, never the end of the sweep

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:  # the parser reads this table: no numpy at import
     from onefold_cad.design import Design
     from onefold_cad.geometry.folding import FoldedSheet
-    from onefold_cad.geometry.placement import RestingPlacement
+    from onefold_cad.geometry.resting.placement import RestingPlacement
 
 __all__ = [
     "MEASURES",

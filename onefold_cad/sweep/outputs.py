@@ -64,7 +64,7 @@ def _front(plan: SweepPlan, rows: list[dict[str, Any]]) -> np.ndarray:
 
 
 def _picture(plan: SweepPlan, rows: list[dict[str, Any]], front: np.ndarray, path: Path) -> None:
-    from onefold_cad.export.sweep_plot import draw_parallel_coordinates
+    from onefold_cad.export.pictures.sweep_plot import draw_parallel_coordinates
 
     ok = [r for r in rows if r.get("status") == "ok"]
     on = front[[i for i, r in enumerate(rows) if r.get("status") == "ok"]]

@@ -265,13 +265,13 @@ BUILD_MODULES = [
     "onefold_cad.design",
     "onefold_cad.export.atomic",
     "onefold_cad.export.bend_csv",
-    "onefold_cad.export.dxf",
+    "onefold_cad.export.dxf.pattern",
     "onefold_cad.export.report_file",
     "onefold_cad.export.writers",
     "onefold_cad.fabrication.bend_table",
     "onefold_cad.fabrication.flat_pattern",
     "onefold_cad.fabrication.report",
-    "onefold_cad.geometry.placement",
+    "onefold_cad.geometry.resting.placement",
     "onefold_cad.sweep.measures",
 ]
 
@@ -328,10 +328,10 @@ rotation = 0.0
 SITE_MODULES = [
     *BUILD_MODULES,
     "build123d",
-    "onefold_cad.export.part",
-    "onefold_cad.export.site_clearance",
-    "onefold_cad.export.site_writers",
-    "onefold_cad.export.site_order",
+    "onefold_cad.export.brep.part",
+    "onefold_cad.export.site.clearance",
+    "onefold_cad.export.site.writers",
+    "onefold_cad.export.site.order",
     "onefold_cad.cli.site",
 ]
 

@@ -140,7 +140,7 @@ def test_solve_templates_and_help_import_no_cad_library(argv):
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     rc, modules = json.loads(proc.stdout.splitlines()[-1])
     assert rc == 0, proc.stderr
-    # scipy.spatial still comes with geometry/placement.py's ConvexHull until the
+    # scipy.spatial still comes with geometry/resting/placement.py's ConvexHull until the
     # resting placement's own hull (owner: stand) replaces it; nothing else may load.
     pending = {"scipy.spatial"} if argv[0] == "solve" else set()
     loaded = sorted(
@@ -533,7 +533,7 @@ def test_two_builds_are_byte_identical_but_for_the_timings(tmp_path):
 def test_compensation_none_reaches_the_dxf_writer_or_is_refused(tmp_path):
     import inspect
 
-    from onefold_cad.export.dxf import export_design_dxf
+    from onefold_cad.export.dxf.pattern import export_design_dxf
 
     proc = run("build", "patkau-one-fold", "--compensation", "none", "--formats", "dxf",
                "-q", "-o", str(tmp_path))  # fmt: skip
@@ -669,7 +669,7 @@ def test_unknown_command_and_main_exit_codes(capfd):
 # -- all or nothing, in this process (failures injected) --------------------------------------
 def test_a_failing_export_leaves_no_file_of_that_design(tmp_path, monkeypatch, capfd):
     """STEP succeeds, then the DXF fails: nothing of the design may stay behind."""
-    import onefold_cad.export.dxf as dxf
+    import onefold_cad.export.dxf.pattern as dxf
 
     def boom(*args, **kwargs):
         raise ExportError("disk full (simulated)")
@@ -689,7 +689,7 @@ def test_a_failing_export_leaves_no_file_of_that_design(tmp_path, monkeypatch, c
 
 def test_a_late_failure_leaves_no_file_of_any_design(tmp_path, monkeypatch, capfd):
     """The second design's export fails: the first design's files must not appear either."""
-    import onefold_cad.export.preview as preview
+    import onefold_cad.export.pictures.preview as preview
 
     real = preview.render_folded_preview
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import dataclasses
 
 from onefold_cad.cli.main import main
-from onefold_cad.export import site_writers
+from onefold_cad.export.site import writers as site_writers
 from tests.cli.test_site import TWO
 
 

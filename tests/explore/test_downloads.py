@@ -68,7 +68,7 @@ def test_the_step_is_the_folded_sheet(square, tmp_path):
     """The sheet folds without stretching: the STEP surface's area is the flat 200 x 200 mm."""
     import build123d as bd
 
-    from onefold_cad.export.measure import measure
+    from onefold_cad.export.brep.measure import measure
 
     file = make_download("step", square)
     assert file.filename == "paper-square.step" and file.body.startswith(b"ISO-10303-21;")

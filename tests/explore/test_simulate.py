@@ -10,7 +10,12 @@ import numpy as np
 import pytest
 
 from onefold_cad.explore.controls import PAGE_FLAGS
-from onefold_cad.export.colour_scale import DEVIATION_STOPS, deviation_range, ramp, to_uint8
+from onefold_cad.export.simulation.colour_scale import (
+    DEVIATION_STOPS,
+    deviation_range,
+    ramp,
+    to_uint8,
+)
 from tests.explore.conftest import TIMEOUT_MS, Page, get
 
 

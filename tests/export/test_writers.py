@@ -141,7 +141,7 @@ def test_the_step_and_the_glb_are_one_part_built_once_and_the_report_gives_its_f
     import numpy as np
     import trimesh
 
-    from onefold_cad.export import part as step
+    from onefold_cad.export.brep import part as step
     from onefold_cad.export.glb import LINEAR_DEFLECTION
 
     calls = []
@@ -215,7 +215,7 @@ def test_the_3dm_holds_the_builds_placement_and_flat_pattern(tmp_path, placement
     assert 0.0 < rep["rhino"]["fit_deviation"] <= rep["rhino"]["fit_tolerance"]
     assert rep["rhino"]["fit_tolerance"] == pytest.approx(1e-7 * ctx.design.sheet.size)
     # the file's key numbers are the numbers of the report the build writes
-    from onefold_cad.export.rhino_strings import KEY_NUMBERS
+    from onefold_cad.export.rhino.strings import KEY_NUMBERS
 
     for key in KEY_NUMBERS:
         want = rep

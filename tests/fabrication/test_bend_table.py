@@ -10,7 +10,7 @@ import pytest
 
 from onefold_cad import Design, ExportError, FrameCurve, Material, Sheet, build_design
 from onefold_cad.export.bend_csv import write_bend_csv
-from onefold_cad.export.dxf_notes import flat_pattern_notes
+from onefold_cad.export.dxf.notes import flat_pattern_notes
 from onefold_cad.fabrication.bend_table import BendRow, bend_rows, bend_table
 from onefold_cad.fabrication.flat_pattern import flat_pattern
 from tests.hand_bend import arc_point, fan_folds, hand_bend

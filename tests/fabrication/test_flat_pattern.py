@@ -29,7 +29,7 @@ from onefold_cad import (
     Sheet,
     build_design,
 )
-from onefold_cad.export.dxf import export_design_dxf
+from onefold_cad.export.dxf.pattern import export_design_dxf
 from onefold_cad.fabrication.bend_checks import check_bends
 from onefold_cad.fabrication.flat_pattern import flat_pattern
 from tests.hand_bend import hand_bend, neutral_length, polygon_span_at

@@ -35,7 +35,7 @@ from tests.hand_bend import (
 
 SURFACES = ("INSIDE", "MID", "OUTSIDE")
 #: paper model, alpha 8.3, beta 85, H at 0.8 of the half chord: plus_x DOWN (71.5 deg),
-#: minus_x UP (167.1 deg); derived by hand in tests/export/test_dxf.py
+#: minus_x UP (167.1 deg); derived by hand in tests/export/dxf/test_pattern.py
 DOWN_FRAME = FrameCurve(8.3, 85.0, 0.8 * 100.0 * math.cos(math.radians(8.3)), 100.0, 4)
 
 

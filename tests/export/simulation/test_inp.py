@@ -1,0 +1,111 @@
+"""NAME.inp, the structural check for CalculiX and Abaqus: the mesh, sets,
+material and supports as written, numbers within CalculiX's 20-character
+fields, the same bytes for the same simulation, and CalculiX's own run of the
+file: it finishes, and its feet carry the sheet's weight."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+from onefold_cad.design import build_design
+from onefold_cad.export.simulation.inp import inp_text, structural_model, write_structural_inp
+from onefold_cad.mechanics.simulate import simulate
+from onefold_cad.templates import load_template
+
+
+@pytest.fixture(scope="module")
+def sim():
+    design = load_template("patkau-one-fold")
+    return simulate(
+        design, build_design(design), level="coarse", reference="designed", convergence=False
+    )
+
+
+def _cards(text: str) -> dict[str, list[str]]:
+    """Each keyword card's data lines, by the card's first line."""
+    out: dict[str, list[str]] = {}
+    key = ""
+    for line in text.splitlines():
+        if line.startswith("*"):
+            key = line
+            out.setdefault(key, [])
+        else:
+            out[key].append(line)
+    return out
+
+
+def test_the_mesh_sets_and_material_are_the_simulation_s(sim):
+    cards = _cards(inp_text(sim, "x"))
+    nodes = np.array([[float(v) for v in ln.split(",")[1:]] for ln in cards["*NODE, NSET=EVERY"]])
+    elements = np.array(
+        [[int(v) for v in ln.split(",")[1:]] for ln in cards["*ELEMENT, TYPE=S6, ELSET=SHEET"]]
+    )
+    faces = np.asarray(sim.faces)
+    edges = {tuple(sorted(e)) for f in faces for e in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
+    assert len(nodes) == sim.nodes + len(edges)
+    assert np.array_equal(elements[:, :3] - 1, faces)
+    # corners in metres on the designed form; midside nodes on their edges' chords
+    assert np.allclose(nodes[: sim.nodes], np.asarray(sim.designed_positions) / 1000, atol=1e-11)
+    for k in (0, 1, 2):
+        a, b = elements[:, k] - 1, elements[:, (k + 1) % 3] - 1
+        assert np.allclose(nodes[elements[:, 3 + k] - 1], (nodes[a] + nodes[b]) / 2, atol=1e-11)
+    feet = [int(v) for ln in cards["*NSET, NSET=FEET"] for v in ln.split(",")]
+    z = nodes[np.array(feet) - 1, 2]
+    assert len(feet) == len(sim.standing.contacts) == 3 and np.allclose(z, 0, atol=1e-9)
+    assert cards["*ELASTIC"] == ["193000000000, 0.29"]
+    assert cards["*DENSITY"] == ["8000"] and cards["*PLASTIC"] == ["215000000, 0."]
+    assert cards["*SHELL SECTION, ELSET=SHEET, MATERIAL=SHEET_STEEL"] == ["0.00357"]
+    assert cards["*BOUNDARY"] == ["FEET, 1, 3"]
+
+
+def test_every_number_fits_calculix_s_field(sim):
+    lines = inp_text(sim, "x").splitlines()
+    assert lines[0] == "*HEADING"
+    for line in lines[2:]:  # the heading's text is free
+        if not line.startswith("*") and "," in line:
+            assert max(len(f.strip()) for f in line.split(",")) <= 20, line
+
+
+def test_frictionless_feet_hold_z_and_only_the_rigid_slide(sim):
+    from dataclasses import replace
+
+    text = inp_text(replace(sim, supports="frictionless"), "x")
+    bc = _cards(text)["*BOUNDARY"]
+    model = structural_model(sim)
+    feet = [int(f) + 1 for f in model["feet"]]
+    assert bc[0] == "FEET, 3, 3" and len(bc) == 3
+    assert int(bc[1].split(",")[0]) == feet[0] and bc[1].endswith("1, 2")
+    assert int(bc[2].split(",")[0]) in feet[1:]
+
+
+def test_the_same_simulation_gives_the_same_bytes(sim, tmp_path):
+    a = write_structural_inp(sim, tmp_path / "a.inp").read_bytes()
+    b = write_structural_inp(sim, tmp_path / "b.inp").read_bytes()
+    assert a.replace(b"a: onefold", b"b: onefold") == b
+
+
+def test_calculix_runs_it_and_its_feet_carry_the_weight(sim, tmp_path):
+    """ccx reads the file as written and solves it; its reactions carry the
+    sheet's weight (rho t g over the same facets: to 0.2 %) and nothing
+    sideways. (Debian's calculix-ccx: make test installs it.)"""
+    CCX = shutil.which("ccx")
+    assert CCX is not None, "CalculiX is not installed: make test installs calculix-ccx"
+    write_structural_inp(sim, tmp_path / "check.inp")
+    env = {**os.environ, "OMP_NUM_THREADS": "1"}
+    proc = subprocess.run([CCX, "-i", "check"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=600)  # fmt: skip
+    assert proc.returncode == 0, proc.stdout[-2000:]
+    assert "*ERROR" not in proc.stdout
+    lines = (tmp_path / "check.dat").read_text().splitlines()
+    start = next(i for i, ln in enumerate(lines) if "forces (fx,fy,fz) for set FEET" in ln)
+    rows = [ln.split() for ln in lines[start + 1 :] if ln.strip()][:3]
+    forces = np.array([[float(v) for v in r[1:]] for r in rows])
+    assert forces[:, 2].sum() == pytest.approx(sim.weight_N, rel=2e-3)
+    # (ccx's equilibrium tolerance and its 7-digit print: 1.4e-6 of the weight)
+    assert abs(forces[:, 0].sum()) < 1e-5 * sim.weight_N
+    assert abs(forces[:, 1].sum()) < 1e-5 * sim.weight_N

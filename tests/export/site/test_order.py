@@ -1,0 +1,59 @@
+"""SITE-order.csv: one row per sheet read off its report, and the total."""
+
+from __future__ import annotations
+
+import csv
+import io
+
+import pytest
+
+from onefold_cad.export.site.order import ORDER_COLUMNS, order_csv
+
+
+def report(name: str, mass: float | None, unit: str = "kg") -> dict:
+    return {
+        "name": name,
+        "description": f"{name}'s design",
+        "units": "mm",
+        "inputs": {"material": {"name": "steel, 10 gauge", "thickness": 3.57}},
+        "sheet": {"size": [3048.0, 7315.2]},
+        "flat_size": [3045.5, 7314.1],
+        "flat_area": 2.0e7,
+        "flat_pattern": {"cut_length": 20000.5},
+        "mass": None if mass is None else {"value": mass, "unit": unit, "density": 8000.0},
+        "crease": {
+            "plus_x": {"fold_angle_deg": 82.8, "bend": "UP"},
+            "minus_x": {"fold_angle_deg": 70.25, "bend": "DOWN"},
+        },
+    }
+
+
+def rows(text: str) -> list[dict]:
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+def test_a_row_per_sheet_from_its_report_and_the_total():
+    got = rows(order_csv([("a", report("a", 600.5)), ("b", report("b", 10.25))]))
+    assert list(got[0]) == list(ORDER_COLUMNS)
+    a, b, total = got
+    assert (a["sheet"], a["mass"], a["mass_unit"], a["thickness"]) == ("a", "600.5", "kg", "3.57")
+    assert (a["stock_width"], a["stock_height"]) == ("3048", "7315.2")
+    assert a["bends"] == "2" and a["bend_angles_deg"] == "82.800;70.250"
+    assert a["bend_directions"] == "plus_x:UP;minus_x:DOWN"
+    assert total["sheet"] == "TOTAL" and float(total["mass"]) == pytest.approx(610.75)
+    assert float(total["blank_area"]) == pytest.approx(4.0e7)
+    assert float(total["cut_length"]) == pytest.approx(40001.0) and total["bends"] == "4"
+
+
+def test_a_flat_crease_half_is_no_bend():
+    r = report("a", 1.0)
+    r["crease"]["minus_x"]["fold_angle_deg"] = 0.0
+    (a, total) = rows(order_csv([("a", r)]))
+    assert a["bends"] == "1" and a["bend_angles_deg"] == "82.800"
+
+
+def test_no_total_mass_without_every_mass_or_across_units():
+    (_, _, total) = rows(order_csv([("a", report("a", 1.0)), ("b", report("b", None))]))
+    assert total["mass"] == ""
+    (_, _, total) = rows(order_csv([("a", report("a", 1.0)), ("b", report("b", 1.0, "lb"))]))
+    assert total["mass"] == "" and total["mass_unit"] == ""
