@@ -1,0 +1,26 @@
+"""The adapters that write files: one per format, reading a built design
+(``Design``, its fold, the flat pattern and report of ``fabrication``) and
+never re-deriving geometry. build123d, OCP, ezdxf, matplotlib, rhino3dm,
+ifcopenshell, trimesh and meshio are imported only here, each inside the
+adapter that needs it.
+
+The registry, the staging and the one-module formats:
+
+- :mod:`.writers`: the files ``onefold build`` can write, one ``Writer`` each.
+- :mod:`.build_context`: one design being built: its fold, options and shared parts.
+- :mod:`.atomic`: all-or-nothing file output (a staging folder, then one commit).
+- :mod:`.commit_steps`: the steps of a commit of staged files.
+- :mod:`.report_file`: NAME.json, the report written atomically.
+- :mod:`.bend_csv`: NAME-bends.csv, the bend table's rows.
+- :mod:`.glb`: NAME.glb, the folded form as binary glTF 2.0.
+
+The families, one folder each (its ``__init__`` maps it):
+
+- :mod:`.brep`: the folded form as a B-rep (faces, shell, solid) and NAME.step.
+- :mod:`.dxf`: the flat pattern's drawings: NAME.dxf, the cut DXF, notes, previews.
+- :mod:`.fold`: NAME.fold for origami tools: the file, its fan and its mesh.
+- :mod:`.rhino`: NAME.3dm and the Grasshopper Hops server's geometry (rhino3dm).
+- :mod:`.site`: the files of ``onefold site`` for a site as a whole.
+- :mod:`.simulation`: the files of ``onefold simulate``: form, fields, pictures.
+- :mod:`.pictures`: the 3D preview and a sweep's picture (matplotlib).
+"""
