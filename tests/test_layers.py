@@ -62,3 +62,14 @@ def test_the_lint_contract_is_the_layers():
         for row in reversed(contract["layers"])
     ]
     assert listed == [tuple(sorted(names)) for _, names in LAYERS]
+
+
+def test_fit_sits_directly_above_the_layers_it_imports(graph):
+    # inverse design is a computation on a design (its fold, resting form and
+    # the part's rules), not a command: the CLI, the Hops server and scripts
+    # call it, and nothing keeps a layer below the commands from calling it
+    here = layer_of("onefold_cad.fit")
+    below = [layer_of(t) for t in graph["onefold_cad.fit"]]
+    assert here is not None and None not in below
+    assert here[0] == max(i for i, _ in below) + 1
+    assert LAYERS[here[0]][1] == ("onefold_cad.fit",)  # a row of its own
