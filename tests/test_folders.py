@@ -50,3 +50,37 @@ def test_the_init_docstring_names_every_module_of_its_folder(folder):
     mods, subs = _members(folder)
     assert (mods | subs) - named == set()
     assert named - (mods | subs) == set()  # no module named that is not there
+
+
+def _feature_table() -> list[tuple[str, str]]:
+    text = (PACKAGE.parent / "docs" / "architecture.md").read_text(encoding="utf-8")
+    section = text.split("## Where each feature lives", 1)[1].split("\n## ", 1)[0]
+    rows = [ln.split("|")[1:3] for ln in section.splitlines() if ln.startswith("| ")]
+    return [(f.strip(), cell) for f, cell in rows[1:]]
+
+
+def _paths(cell: str) -> list[str]:
+    """The files and folders a cell names, under onefold_cad/: a bare
+    ``name.py`` is in the last folder named before it in its ``;`` group."""
+    out = []
+    for group in cell.split(";"):
+        folder = ""
+        for token in re.findall(r"`([^`]+)`", group):
+            if token.endswith("/"):
+                folder = token
+                out.append(token)
+            elif token.endswith(".py"):
+                out.append(token if "/" in token else folder + token)
+    return out
+
+
+def test_the_feature_table_names_files_that_exist():
+    table = _feature_table()
+    assert len(table) >= 15 and {"STEP", "site", "fit (inverse design)"} <= {f for f, _ in table}
+    missing = [
+        (feature, path)
+        for feature, cell in table
+        for path in _paths(cell)
+        if not list(PACKAGE.glob(path.rstrip("/")))
+    ]
+    assert missing == []
