@@ -17,7 +17,7 @@ still on the frame curve, are spaced in arc parameter by widths growing by
 :data:`GRADING_RATIO` from each end of the arc up to an even width between.
 The wedge beside each crease half is as narrow as the mesh's bounds let it
 be: a flat angle at H of :data:`CREASE_WEDGE_DEG` (the face-angle bound
-``fold_mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare); a paper-model design
+``fold.mesh.MIN_FACE_ANGLE_DEG`` with 1 % to spare); a paper-model design
 keeps its own first division where that is wider (the same arc step, so
 that the file's crease is the design's to its apex's difference). The
 crease then folds within about k_g x gamma of the design's, k_g the geodesic

@@ -14,8 +14,8 @@ triangulated for simulators: only the division rays fold; each planar wedge
 between two of them, clipped to the outline and to the relief hole
 (:func:`onefold_cad.fabrication.relief_hole.relief_hole_diameter` > 0: the
 polygon of its crossings with the division rays), is triangulated with a
-quality bound, no face angle under ``fold_mesh.MIN_FACE_ANGLE_DEG`` and no
-edge under ``fold_mesh.MIN_EDGE`` of the sheet's size where the design
+quality bound, no face angle under ``fold.mesh.MIN_FACE_ANGLE_DEG`` and no
+edge under ``fold.mesh.MIN_EDGE`` of the sheet's size where the design
 allows it (``onefold:mesh`` records what the file reached). Faces are
 counter-clockwise in the crease pattern, so every face's normal is the
 sheet's top, +z, side. Edges: ``B`` on the outline and the hole; the two
@@ -35,7 +35,7 @@ design's own divisions if fewer: then it is written as it is), graded
 towards the crease (:mod:`onefold_cad.export.fold.fan`: its division points
 on the frame curve, narrow wedges beside the crease halves, so that the
 file's crease folds as the design's to about k_g x the narrowest wedge
-allowed), except with a relief hole (``fold_fan.HOLE_DIVISIONS`` equal
+allowed), except with a relief hole (``fold.fan.HOLE_DIVISIONS`` equal
 divisions: Origami Simulator did not fold the graded holed fans right).
 The fan is solved for its own apex (the angle condition then holds exactly
 for it) and folded by the fan's own code, so each ray's fold
