@@ -74,7 +74,11 @@ def _case(pkg: Any, name: str, body: str) -> tuple[Any, Any]:
         folded = fold_(solve_(design.frame, design.model), design.sheet)
         return folded, design.material.with_changes(relief_hole=hole(design, folded))
 
-    return make, mod("geometry.placement").rest_form
+    try:  # today's layout (geometry/resting/) or the baseline's (geometry/)
+        rest = mod("geometry.resting.placement").rest_form
+    except ModuleNotFoundError:
+        rest = mod("geometry.placement").rest_form
+    return make, rest
 
 
 def _fresh(make: Any, rest: Any, body: str, count: int) -> Any:
