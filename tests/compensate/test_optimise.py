@@ -1,0 +1,58 @@
+"""The compensation loop against a stand-in steel whose answer is known
+(tests/compensate/fake_steel.py: the steel opens alpha and beta by SPRING)."""
+
+from __future__ import annotations
+
+import pytest
+
+from onefold_cad.compensate import parallel
+from onefold_cad.compensate.parallel import Evaluator
+from onefold_cad.compensate.run import compensate
+from onefold_cad.compensate.target import Target, make_target
+from onefold_cad.templates import find_template, load_template
+from tests.compensate.fake_steel import SPRING, fake_standing
+
+
+@pytest.fixture
+def fake(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+
+
+def test_design_target_forms_the_fold_more_by_the_springback(fake: None) -> None:
+    design = load_template(find_template("broken-vault"))
+    lines: list[str] = []
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lines.append)
+    f, f0 = result.compensated.frame, design.frame
+    # the fake steel opens the fold by SPRING: the answer is the design plus SPRING
+    assert f.alpha == pytest.approx(f0.alpha + SPRING[0], abs=0.05)
+    assert f.beta == pytest.approx(f0.beta + SPRING[1], abs=0.05)
+    assert result.reached
+    assert result.after.max_deviation < 0.01 * result.before.max_deviation
+    assert any("ETA" in line for line in lines)
+    assert result.compensated.name == "broken-vault-compensated"
+    # the crease is formed to the compensated fold's angle
+    assert {c["half"] for c in result.crease} == {"plus_x", "minus_x"}
+    data = result.to_data()
+    assert data["simulations"] == len(result.found.candidates) + 2
+    assert set(data["sensitivity"]) == {"alpha", "beta", "h_c"}
+    # opening alpha lowers the fake steel (a flatter vault): height per deg > 0
+    assert data["sensitivity"]["alpha"]["height"] > 0
+
+
+def test_size_target_is_met_by_the_steel(fake: None) -> None:
+    design = load_template(find_template("broken-vault"))
+    f0 = design.frame
+    # the fake steel of the fold (alpha + 1, beta + 1) has this size: the target
+    aim = design.with_changes(frame=f0.with_changes(alpha=f0.alpha + 1.0, beta=f0.beta + 1.0))
+    steel = fake_standing(aim, "coarse")
+    # the loop alone (make_target's reach check is tests/cli/test_compensate.py's)
+    target = Target("size", design, height=steel.height, span=steel.span)
+    with Evaluator(1) as ev:
+        result = compensate(design, target, ev, lambda s: None)
+    assert result.reached, result.verdict
+    assert result.after.height == pytest.approx(steel.height, rel=0.01)
+    assert result.after.span == pytest.approx(steel.span, rel=0.01)
+    assert result.found.knobs == ("alpha", "beta")
+    assert result.compensated.frame.alpha == pytest.approx(f0.alpha + 1.0, abs=0.05)
+    assert result.compensated.frame.beta == pytest.approx(f0.beta + 1.0, abs=0.05)
