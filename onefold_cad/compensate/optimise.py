@@ -1,8 +1,9 @@
 """The compensation loop: which fold to form so that the steel stands as the target.
 
 The knobs are the fold the sheet is formed to: alpha and beta (deg) and h_c
-(as a fraction of its limit R cos(alpha)); for a size target without a depth
-only alpha and beta (h_c stays the fitted fold's). Each evaluation is
+(as a fraction of its limit R cos(alpha)). alpha and beta move the standing
+form along nearly one direction (higher and narrower together); h_c adds
+another, which a height and span together need. Each evaluation is
 ``onefold simulate`` of the candidate (forming, springback, standing).
 
 1. coarse mesh: ``scipy.optimize.least_squares`` (trust-region reflective,
@@ -86,7 +87,10 @@ class Search:
         sensitivity: per knob, the change of the standing height, span and
             rms deviation per unit of the knob (from the last coarse
             Jacobian): ``{knob: {'height': ..., 'span': ..., 'rms_deviation': ...}}``.
-        limits: why the search stopped short, when it did (knobs at bounds).
+        limits: what limits the search: knobs at their bounds, the
+            directions the knobs move the residual in (the last coarse
+            Jacobian's singular values, relative to the largest) and why the
+            least squares stopped.
         cpu_s: CPU seconds of every simulation together.
     """
 
@@ -208,9 +212,7 @@ def search(
     from scipy.optimize import least_squares
 
     found = Search()
-    names = ("alpha", "beta") if target.kind == "size" and target.depth is None else (
-        "alpha", "beta", "h_c"
-    )  # fmt: skip
+    names = ("alpha", "beta", "h_c")
     found.knobs = names
     fixed = knob_values(start)
     spec = {k[0]: k for k in KNOBS}
@@ -267,6 +269,14 @@ def search(
             fun_at(fine), y1, jac=lambda y: jac, bounds=(lower, upper), x_scale=x_scale,
             max_nfev=NORMAL_STEPS, **done,
         )  # fmt: skip
+    if "J" in jac_kept:
+        sv = np.linalg.svd(jac_kept["J"] / x_scale[None, :], compute_uv=False)
+        rel = ", ".join(f"{v / sv[0]:.2g}" for v in sv)
+        found.limits.append(
+            f"the {len(names)} knobs ({', '.join(names)}) move the residual along directions of "
+            f"relative strength {rel} (the last coarse Jacobian's singular values)"
+        )
+    found.limits.append(f"the {fine} least squares stopped: {fit.message.rstrip('.')}")
     for i, n in enumerate(names):
         v = fit.x[i]
         if v <= lower[i] + 1e-6 or v >= upper[i] - 1e-6:

@@ -70,13 +70,14 @@ class Evaluator:
     def __enter__(self) -> Evaluator:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    def __exit__(self, kind: object, *exc: object) -> None:
+        self.close(wait=kind is None)
 
-    def close(self) -> None:
-        """Stop the pool or leave the cluster."""
+    def close(self, wait: bool = True) -> None:
+        """Stop the pool (``wait``: for its workers to leave, so their CPU time
+        is counted as this process's children's) or leave the cluster."""
         if self._pool is not None:
-            self._pool.shutdown(wait=False, cancel_futures=True)
+            self._pool.shutdown(wait=wait, cancel_futures=True)
             self._pool = None
         if self._dask is not None:
             self._dask.close()

@@ -219,7 +219,7 @@ def compensate(
     designed = {"height": rest.height, "span": rest.width, "depth": rest.depth}
     reached, verdict = _verdict(target, designed, before, after, found)
     if not reached and found.limits:
-        verdict += "; limited by " + "; ".join(found.limits)
+        verdict += "; within the family of folds: " + "; ".join(found.limits)
     back = crease_springback(compensated, after_sim)
     crease = tuple(
         {
