@@ -12,7 +12,10 @@ error that refused it).
 from __future__ import annotations
 
 import multiprocessing
+import os
 import signal
+import threading
+import time
 from collections.abc import Sequence
 from typing import Any
 
@@ -32,9 +35,29 @@ def run_one(design: Design, level: str, check: bool = False) -> Standing | str:
         return " ".join(str(exc).split())
 
 
-def _ignore_sigint() -> None:
-    """A pool worker leaves Ctrl-C to the command (which stops the pool)."""
+def _worker_start(parent: int) -> None:
+    """A pool worker leaves Ctrl-C to the command (which stops the pool), and
+    leaves when the command's process is gone (even SIGKILLed: a killed
+    compensation leaves no worker simulating on)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def watch() -> None:
+        while True:
+            time.sleep(0.5)
+            if os.getppid() != parent and not _alive(parent):
+                os._exit(1)
+
+    threading.Thread(target=watch, daemon=True, name="onefold-compensate-watch").start()
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 class Evaluator:
@@ -64,7 +87,7 @@ class Evaluator:
             if "forkserver" in methods:
                 ctx.set_forkserver_preload(["onefold_cad.compensate.parallel"])
             self._pool = ProcessPoolExecutor(
-                self.workers, mp_context=ctx, initializer=_ignore_sigint
+                self.workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),)
             )
 
     def __enter__(self) -> Evaluator:

@@ -141,3 +141,63 @@ def test_an_interrupted_run_leaves_nothing(cli, monkeypatch, tmp_path) -> None:
     rc, _, _ = cli("compensate", NAME, "-j", "1", "-q", "-o", str(out))
     assert rc == 130
     assert not out.exists() or not any(out.iterdir())
+
+
+def _descendants(pid: int) -> set[int]:
+    """The processes below ``pid`` (Linux /proc)."""
+    import os
+
+    parent: dict[int, int] = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as fh:
+                    parent[int(entry)] = int(fh.read().rsplit(")", 1)[1].split()[1])
+            except OSError:
+                continue
+    found, todo = set(), [pid]
+    while todo:
+        p = todo.pop()
+        kids = {c for c, pp in parent.items() if pp == p}
+        found |= kids
+        todo += list(kids)
+    return found
+
+
+def _running(pid: int) -> bool:
+    """``pid`` exists and is no zombie."""
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def test_a_killed_run_leaves_no_file_and_no_worker(tmp_path) -> None:
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "onefold_cad", "compensate", NAME, "-j", "2", "-o", str(out)],
+        stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        line = proc.stderr.readline()  # the first simulation is done: the pool works
+        assert "simulations" in line, line
+        workers = _descendants(proc.pid)
+        assert workers
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert not out.exists() or [p.name for p in out.iterdir() if not p.name.startswith(".")] == []
+    for _ in range(100):  # each worker sees its parent gone within half a second
+        alive = [p for p in workers if _running(p)]
+        if not alive:
+            break
+        time.sleep(0.1)
+    assert alive == []
