@@ -54,3 +54,24 @@ def test_size_target_is_met_by_the_steel(fake: None) -> None:
     assert result.after.height == pytest.approx(steel.height, rel=0.01)
     assert result.after.span == pytest.approx(steel.span, rel=0.01)
     assert result.found.knobs == ("alpha", "beta", "h_c")
+
+
+def test_a_target_out_of_the_family_s_reach_says_what_limits_it(monkeypatch) -> None:
+    # a steel lifted off its feet by 2 in cannot be brought back by any fold
+    # (the measure allows a turn and shift on the ground, no lift)
+    from dataclasses import replace
+
+    def lifted(design, level, check=False):
+        s = fake_standing(design, level, check)
+        return replace(s, positions=s.positions + [0.0, 0.0, 2.0])
+
+    monkeypatch.setattr(parallel, "simulate_standing", lifted)
+    design = load_template(find_template("broken-vault"))
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lambda s: None)
+    assert not result.reached
+    assert result.verdict.startswith("not met: ")
+    assert "within the family of folds" in result.verdict
+    assert "singular values" in result.verdict and "least squares stopped" in result.verdict
+    # no fold removes the lift (a fold can only tilt the surface under it)
+    assert 1.5 < result.after.max_deviation < 3.0
