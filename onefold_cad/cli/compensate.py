@@ -8,8 +8,8 @@ on stderr, and prints the report (text, or the JSON report with its
 ``compensation`` section). With ``-o DIR`` it writes, all or nothing:
 NAME-compensated.toml (the compensated design as a template every command
 takes), the compensated design's build files (as ``onefold build`` writes
-them; the bend sheet with the angle to fold to and the angle after
-springback), NAME-compensated-standing.glb and NAME-compensated-standing.step
+them; the annotated DXF's notes and the bend sheet with the angle to fold
+to and the angle after springback), NAME-compensated-standing.glb and NAME-compensated-standing.step
 (the steel as it stands: the mid-surface), NAME-compensation.png (design,
 uncompensated and compensated steel side by side) and NAME-compensation.json.
 A size target the steel does not meet within 1 % is refused (exit 2, one
@@ -95,7 +95,6 @@ class _Say:
 
 def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[Path]:
     """Write the compensation's files into ``outdir``, all or nothing."""
-    import numpy as np
     import tomli_w
 
     from onefold_cad.cli.build import make_outdir, say_removed
@@ -144,34 +143,35 @@ def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[
         paths[4].write_text(report_json(report))
         ctx = BuildContext(design, build_design(design), None, "sharp", job.sources, ())
         built = write_design(ctx, stage.path / "build", formats)
-        _bend_sheet_springback(built, result.crease)
-        del np
+        _springback_notes(built, stem, result)
         done = stage.commit([*paths, *built], sets=[FileSet(stem, tuple(names))])
     say_removed(stage.removed)
     return done
 
 
-def _bend_sheet_springback(files: list[Path], crease: tuple[dict[str, Any], ...]) -> None:
-    """Add the angle to fold to and the angle after springback to the bend sheet
-    (two columns, by crease half)."""
-    import csv
+def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
+    """The angle to fold to and the angle after springback, in the annotated
+    DXF's notes and as two columns of the bend sheet."""
+    from onefold_cad.export.springback_notes import add_bend_columns, add_dxf_notes
 
-    by_half = {c["half"]: c for c in crease}
-    for path in files:
-        if not path.name.endswith("-bends.csv"):
-            continue
-        rows = list(csv.reader(path.read_text(encoding="utf-8").splitlines()))
-        head = rows[0]
-        key = head.index("half") if "half" in head else 0
-        out = [[*head, "fold_to_deg", "after_springback_deg"]]
-        for r in rows[1:]:
-            c = next((v for k, v in by_half.items() if k in r[key] or r[key] in k), None)
-            extra = ["", ""] if c is None else [
-                f"{c['fold_to_deg']:.4f}", f"{c['after_springback_deg']:.4f}"
-            ]  # fmt: skip
-            out.append([*r, *extra])
-        with path.open("w", encoding="utf-8", newline="") as fh:
-            csv.writer(fh, lineterminator="\n").writerows(out)
+    f0, f1 = result.start.frame, result.compensated.frame
+    u = result.compensated.units.value
+    lines = [
+        f"springback compensated (onefold compensate): formed to alpha {f1.alpha:.4f}, beta "
+        f"{f1.beta:.4f} deg, h_c {f1.h_c:.4g} {u} (design: alpha {f0.alpha:.4g}, beta "
+        f"{f0.beta:.4g} deg, h_c {f0.h_c:.4g} {u})",
+    ]
+    for c in result.crease:
+        lines.append(
+            f"fold half {c['half']} to {c['fold_to_deg']:.2f} deg ({c['bend']}); after "
+            f"springback it stands at {c['after_springback_deg']:.2f} deg"
+        )
+    by_name = {p.name: p for p in files}
+    if f"{stem}.dxf" in by_name:
+        add_dxf_notes(by_name[f"{stem}.dxf"], lines)
+    if f"{stem}-bends.csv" in by_name:
+        angles = {c["half"]: (c["fold_to_deg"], c["after_springback_deg"]) for c in result.crease}
+        add_bend_columns(by_name[f"{stem}-bends.csv"], angles)
 
 
 def cmd_compensate(ns: argparse.Namespace) -> int:

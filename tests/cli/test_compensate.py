@@ -109,6 +109,22 @@ def test_the_bend_sheet_gives_the_angle_to_fold_to_and_after_springback(written)
     assert min(fold_to) > max(after)  # formed past the angle it springs back to
 
 
+def test_the_dxf_notes_give_the_angle_to_fold_to_and_after_springback(written) -> None:
+    import ezdxf
+
+    from onefold_cad.design import build_design
+
+    out, report = written
+    doc = ezdxf.readfile(out / f"{NAME}-compensated.dxf")
+    assert not doc.audit().has_errors
+    notes = [e.dxf.text for e in doc.modelspace().query("TEXT") if e.dxf.layer == "NOTES"]
+    comp = build_design(load_template(out / f"{NAME}-compensated.toml")).crease
+    for c, r in zip(comp, report["compensation"]["crease"], strict=True):
+        line = next(n for n in notes if n.startswith(f"fold half {c.name} to "))
+        assert f"to {c.fold_angle_deg:.2f} deg" in line
+        assert f"stands at {r['after_springback_deg']:.2f} deg" in line
+
+
 def test_the_standing_form_is_written_in_metres_on_the_target(written) -> None:
     # the stand-in steel of the compensated fold is the template's own form: the
     # GLB's vertices (metres, y up), brought back to inches and z up, lie on it
