@@ -97,9 +97,13 @@ class Evaluator:
         self.close(wait=kind is None)
 
     def close(self, wait: bool = True) -> None:
-        """Stop the pool (``wait``: for its workers to leave, so their CPU time
-        is counted as this process's children's) or leave the cluster."""
+        """Stop the pool or leave the cluster. ``wait``: let the workers finish
+        and leave (their CPU time is then this process's children's); else
+        terminate them (a stopped command does not wait for a simulation)."""
         if self._pool is not None:
+            if not wait:  # stopped (Ctrl-C, SIGTERM, an error): no simulation runs on
+                for proc in list(getattr(self._pool, "_processes", {}).values()):
+                    proc.terminate()
             self._pool.shutdown(wait=wait, cancel_futures=True)
             self._pool = None
         if self._dask is not None:
