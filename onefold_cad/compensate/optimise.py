@@ -36,6 +36,7 @@ from onefold_cad.compensate.evaluate import (
 from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.target import Target
 from onefold_cad.design import Design
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.numeric import Array
 
 __all__ = ["KNOBS", "Candidate", "Search", "search"]
@@ -250,6 +251,18 @@ def search(
         _sensitivity(found, names, base, found.candidates[-len(ys) :])
         return jac
 
+    fun_at(coarse)(y0)
+    if problem.size_r == 0 and fine != coarse:
+        say(f"the {coarse} mesh finds the start not standing: the search runs on the {fine} mesh")
+        coarse = fine
+        fun_at(coarse)(y0)
+    if problem.size_r == 0:
+        why = found.candidates[-1].standing
+        why = why if isinstance(why, str) else why.reason
+        raise InvalidParameterError(
+            "target", f"the fold as given does not stand on the {fine} mesh ({why}): there is "
+            "no standing steel to compensate from"
+        )  # fmt: skip
     x_scale = steps / steps[0]
     if target.kind == "size":
         done = {"ftol": 1e-4, "xtol": 1e-4, "gtol": 1e-8}

@@ -75,3 +75,38 @@ def test_a_target_out_of_the_family_s_reach_says_what_limits_it(monkeypatch) -> 
     assert "singular values" in result.verdict and "least squares stopped" in result.verdict
     # no fold removes the lift (a fold can only tilt the surface under it)
     assert 1.5 < result.after.max_deviation < 3.0
+
+
+def _not_standing_on(levels: tuple[str, ...]):
+    from dataclasses import replace
+
+    def steel(design, level, check=False):
+        s = fake_standing(design, level, check)
+        if level in levels:
+            return replace(s, stands=False, reason="no equilibrium", positions=None)
+        return s
+
+    return steel
+
+
+def test_a_start_that_does_not_stand_on_the_coarse_mesh_is_searched_on_the_normal(
+    monkeypatch,
+) -> None:
+    # broken-vault's steel finds no standing equilibrium on the coarse mesh (only)
+    monkeypatch.setattr(parallel, "simulate_standing", _not_standing_on(("coarse",)))
+    design = load_template(find_template("broken-vault"))
+    lines: list[str] = []
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lines.append)
+    assert result.reached
+    assert result.compensated.frame.alpha == pytest.approx(design.frame.alpha + SPRING[0], abs=0.05)
+    assert any("the search runs on the normal mesh" in line for line in lines)
+
+
+def test_a_start_that_stands_on_no_mesh_is_refused_in_one_line(monkeypatch) -> None:
+    from onefold_cad.errors import InvalidParameterError
+
+    monkeypatch.setattr(parallel, "simulate_standing", _not_standing_on(("coarse", "normal")))
+    design = load_template(find_template("broken-vault"))
+    with Evaluator(1) as ev, pytest.raises(InvalidParameterError, match="does not stand on the"):
+        compensate(design, make_target(design, "design"), ev, lambda s: None)
