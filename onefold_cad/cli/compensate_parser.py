@@ -48,7 +48,7 @@ def compensate_parser(prog: str) -> FlagParser:
     r.add_argument(
         "-j", "--jobs", type=parse_int, default=None, metavar="N",
         help="simulations side by side in a local process pool (default: the cores this "
-        "process may use)",
+        "process may use, at most 4)",
     )  # fmt: skip
     r.add_argument(
         "--scheduler", metavar="ADDRESS",
