@@ -217,3 +217,18 @@ def test_a_killed_run_leaves_no_file_and_no_worker(tmp_path) -> None:
             break
         time.sleep(0.1)
     assert alive == []
+
+
+def test_the_text_report_says_before_after_the_fold_and_the_creases(cli, monkeypatch) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    rc, out, err = cli("compensate", NAME, "-j", "1")
+    assert rc == 0, err
+    lines = out.splitlines()
+    assert lines[0].startswith(f"{NAME}  compensated for springback and weight: target its own")
+    assert lines[1].lstrip().startswith("uncompensated  deviation max")
+    assert lines[2].lstrip().startswith("compensated    deviation max")
+    base = load_template(find_template(NAME)).frame
+    assert f"(was {base.alpha:.5g})" in lines[3] and lines[3].lstrip().startswith("fold to")
+    assert sum(line.lstrip().startswith("crease ") for line in lines) == 2
+    assert "ETA" in err  # progress on stderr
+    assert lines[-1].lstrip().startswith("simulations") and "met:" in lines[-1]
