@@ -96,10 +96,9 @@ def _deviation(template: str, points: np.ndarray) -> tuple[float, float]:
         return float(np.sqrt(np.mean(dist(v) ** 2)))
 
     size = design.sheet.size
-    best = minimize(rms, np.zeros(3), method="Nelder-Mead",
-                    options={"initial_simplex": np.diag([0.02, 0.02 * size, 0.02 * size])
-                             * [1, 1, 1] + 0.0, "xatol": 1e-4, "fatol": 1e-4 * size,
-                             "maxfev": 200})  # fmt: skip
+    simplex = np.vstack([np.zeros(3), np.diag([0.02, 0.02 * size, 0.02 * size])])
+    opts = {"initial_simplex": simplex, "xatol": 1e-4, "fatol": 1e-4 * size, "maxfev": 200}
+    best = minimize(rms, np.zeros(3), method="Nelder-Mead", options=opts)
     v = best.x if best.fun < rms(np.zeros(3)) else np.zeros(3)
     d = dist(v)
     return float(d.max()), float(np.sqrt(np.mean(d**2)))
