@@ -118,7 +118,8 @@ def run(template: str, jobs: int, done: Path | None = None) -> dict:
             args = ("compensate", template, "-j", str(jobs), "-q", "-o", str(out))
             comp, own_cpu, wall = _onefold(*args)
         else:
-            out, own_cpu, wall = done, float("nan"), float("nan")
+            # the simulations' CPU only: the command's own process ran elsewhere
+            out, own_cpu, wall = done, 0.0, float("nan")
             comp = json.loads((out / f"{template}-compensation.json").read_text())
         # the command's own process, plus its simulations' CPU as the pool's workers
         # measured it (-j >= 2: they run there, beyond RUSAGE_CHILDREN's reach)
