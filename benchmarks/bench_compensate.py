@@ -75,13 +75,13 @@ def _deviation(template: str, points: np.ndarray) -> tuple[float, float]:
     design as it rests, after the best turn and shift on the ground."""
     from scipy.optimize import minimize
 
-    from onefold_cad.design import build_design, rest_once
+    from onefold_cad.design import fold_design, rest_once
     from onefold_cad.fabrication.relief_hole import relief_hole_diameter
     from onefold_cad.mechanics.deviation import surface_distance
     from onefold_cad.templates import find_template, load_template
 
     design = load_template(find_template(template))
-    folded = build_design(design)
+    folded = fold_design(design)
     rest = rest_once(folded)
     hole = 0.5 * relief_hole_diameter(design, folded)
     c = points.mean(axis=0)

@@ -39,7 +39,7 @@ TEMPLATES = ["patkau-one-fold", "broken-vault", "paper-square"]
 
 
 class _Forgetful(weakref.WeakKeyDictionary):  # type: ignore[type-arg]
-    """A cache that keeps nothing but each design's fold (``build_design``'s):
+    """A cache that keeps nothing but each design's fold (``fold_design``'s):
     every result derived from a fold is computed again."""
 
     def __init__(self, real: Any) -> None:

@@ -27,8 +27,8 @@ from interleave import interleave, run_process, stats_of  # noqa: E402
 from onefold_cad.geometry.placement import rest_form
 
 _SOLVE = (
-    "from onefold_cad import build_design; from onefold_cad.templates import load_template; "
-    "d = load_template({t!r}); f = build_design(d); f.resting; "
+    "from onefold_cad import fold_design; from onefold_cad.templates import load_template; "
+    "d = load_template({t!r}); f = fold_design(d); f.resting; "
 )
 _PREVIEWS = (
     "import tempfile, pathlib; o = pathlib.Path(tempfile.mkdtemp()); "
@@ -75,7 +75,7 @@ def processes(template: str, rounds: int) -> None:
 
 
 def writers(template: str, rounds: int) -> None:
-    from onefold_cad import build_design, fold, solve
+    from onefold_cad import fold, fold_design, solve
     from onefold_cad.export.dxf import export_design_dxf
     from onefold_cad.export.dxf_preview import render_preview
     from onefold_cad.export.fold_file import write_fold
@@ -85,12 +85,12 @@ def writers(template: str, rounds: int) -> None:
     from onefold_cad.templates import load_template
 
     design = load_template(template)
-    folded = build_design(design)
+    folded = fold_design(design)
     part = build_part(design, folded)
     out = Path(tempfile.mkdtemp())
     dxf = export_design_dxf(design, out / "a.dxf", folded=folded)
     cases = {
-        # a fresh fold each call (build_design keeps one per design object)
+        # a fresh fold each call (fold_design keeps one per design object)
         "solve + fold": lambda: rest_form(fold(solve(design.frame, design.model), design.sheet)),
         "3D preview PNG": lambda: render_folded_preview(
             folded, out / "a.png", title=design.name, units=design.units.value

@@ -44,7 +44,7 @@ def stages(design: Design, out: Path) -> dict[str, Callable[[], Any]]:
     from onefold_cad.fabrication.flat_pattern import flat_pattern
 
     def fresh() -> Any:
-        # not design.build_design, which keeps one fold per design object
+        # not design.fold_design, which keeps one fold per design object
         return fold(solve(design.frame, design.model), design.sheet)
 
     folded = fresh()

@@ -207,22 +207,27 @@ def measure(
     )
 
 
-def verdict(r: Row) -> bool:
-    """Issue 14's criterion for one 90-division row."""
-    return r.speedup.median >= SPEEDUP_REQUIRED and r.ours_err_check <= ERROR_REQUIRED_DEG
-
-
 def overall(rows: list[Row]) -> str:
-    """PASS when every 90-division row within the paper's bracket passes."""
+    """The 90-division rows within the paper's bracket against issue 14's
+    targets, as measured ratios (the docs state where we are, not a verdict)."""
     deciding = [r for r in rows if r.divisions == 90 and r.paper_in_bracket]
-    ok = bool(deciding) and all(verdict(r) for r in deciding)
     worst = min((r.speedup.median for r in deciding), default=math.nan)
     floor = min((r.speedup_floor.median for r in deciding), default=math.nan)
+    error = max((r.ours_err_check for r in deciding), default=math.nan)
     return (
-        f"{'PASS' if ok else 'FAIL'}: the slowest 90-division row is {worst:.3g}x the paper's "
-        f"method (required {SPEEDUP_REQUIRED:g}x), worst true error "
-        f"{max((r.ours_err_check for r in deciding), default=math.nan):.1e} deg "
-        f"(required {ERROR_REQUIRED_DEG:g}); the numpy floor's slowest row is {floor:.3g}x"
+        f"Against the targets: the slowest 90-division row is {worst:.3g}x the paper's method, "
+        f"{worst / SPEEDUP_REQUIRED:.2g} of the {SPEEDUP_REQUIRED:g}x target (the numpy floor's "
+        f"slowest row {floor:.3g}x, {floor / SPEEDUP_REQUIRED:.2g} of it); the worst true error "
+        f"is {error:.1e} deg, {error / ERROR_REQUIRED_DEG:.2g} of the {ERROR_REQUIRED_DEG:g} deg "
+        "allowed"
+    )
+
+
+def against_targets(r: Row) -> str:
+    """One 90-division row's speed-up and true error as fractions of the targets."""
+    return (
+        f"{r.speedup.median / SPEEDUP_REQUIRED:.2g} of the speed-up, "
+        f"{r.ours_err_check / ERROR_REQUIRED_DEG:.2g} of the error"
     )
 
 
@@ -290,13 +295,13 @@ def render(
         "",
         "| input | paper's Table 1 (Rhino), total | paper's method, this run | ours, paper "
         "model | ours, exact model | numpy floor | speed-up, paper model | speed-up, exact "
-        f"model | speed-up, numpy floor | >= {SPEEDUP_REQUIRED:g}x and <= "
-        f"{ERROR_REQUIRED_DEG:g} deg |",
+        f"model | speed-up, numpy floor | against the targets ({SPEEDUP_REQUIRED:g}x, "
+        f"{ERROR_REQUIRED_DEG:g} deg) |",
         "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r, (_, pdv, pfs) in zip(rows, PAPER_TABLE1, strict=True):
         t = r.times
-        ok = ("PASS" if verdict(r) else "FAIL") if r.divisions == 90 else "(20 divisions: info)"
+        ok = against_targets(r) if r.divisions == 90 else "(20 divisions: info)"
         paper_t = t["paper's method"]
         lines.append(
             f"| {r.label} | {(pdv + pfs) * us:.3g} | {paper_t.fmt(us)} | "
@@ -304,7 +309,7 @@ def render(
             f"{t['numpy floor'].fmt(us)} | {r.speedup.fmt(digits=3)}x | "
             f"{r.speedup_exact.fmt(digits=3)}x | {r.speedup_floor.fmt(digits=3)}x | {ok} |"
         )
-    lines += ["", f"OVERALL: {overall(rows)}"]
+    lines += ["", overall(rows)]
     lo = (RADIUS + RADIUS * math.sin(math.radians(85))) * math.sin(math.radians(85))
     lines += [
         "",

@@ -30,7 +30,7 @@ from interleave import stats_of  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.explore.controls import design_from_params
     from onefold_cad.explore.flat_svg import flat_pattern_svg
     from onefold_cad.explore.server import load_templates
@@ -60,7 +60,7 @@ def main(argv: list[str] | None = None) -> int:
 
     for i in range(args.moves):
         d = design(i)
-        folded = timed("solve + fold", lambda d=d: build_design(d))
+        folded = timed("solve + fold", lambda d=d: fold_design(d))
         timed("mesh", lambda f=folded: f.mesh(MESH_ANGULAR, MESH_RADIAL))
         timed("resting placement", lambda d=d, f=folded: resting_placement(d, f))
         timed("relief hole check", lambda d=d: relief_hole_problem(d))

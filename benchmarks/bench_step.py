@@ -35,7 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from interleave import interleave, run_process, stats_of  # noqa: E402
 
-from onefold_cad import Design, FrameCurve, Sheet, build_design  # noqa: E402
+from onefold_cad import Design, FrameCurve, Sheet, fold_design  # noqa: E402
 from onefold_cad.export.part import build_shell, build_solid
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.fabrication.rules import default_body
@@ -51,7 +51,7 @@ def templates(rounds: int, names: list[str] | None) -> None:
         if names and info.name not in names:
             continue
         design = load_template(info.path)
-        folded = build_design(design)
+        folded = fold_design(design)
         m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
         cases[f"{info.name} shell"] = partial(
             build_shell, folded, relief_hole=m.relief_hole_diameter
@@ -75,7 +75,7 @@ def shells(rounds: int, divisions: tuple[int, ...]) -> None:
     cases, faces = {}, {}
     for n in divisions:
         design = Design(f"fan{n}", FrameCurve(50, 45, 0, 100, n), square, model="paper")
-        folded = build_design(design)
+        folded = fold_design(design)
         for hole in (0.0, 10.0):
             key = f"{n} {hole:g}"
             cases[key] = partial(build_shell, folded, relief_hole=hole)

@@ -6,7 +6,7 @@ body), without thumbnails (``--no-images``). The cases, interleaved (A B C D,
 B C D A, ...; wall time, a fresh output folder each run):
 
 * ``loop``: the baseline, a plain loop in this process over the same flags:
-  ``template_job``, ``build_design``, ``resting_placement``; nothing written.
+  ``template_job``, ``fold_design``, ``resting_placement``; nothing written.
 * ``loop, COMMIT``: the same loop with the package as commit ``--baseline``
   had it (94a5a33, main before the third pass of issue 24), extracted from
   git beside this one (``git_baseline.py``); left out without git or that
@@ -47,7 +47,7 @@ import git_baseline  # noqa: E402
 from docs_block import machine_line, write_block  # noqa: E402
 from interleave import stats_of  # noqa: E402
 
-from onefold_cad.design import build_design  # noqa: E402
+from onefold_cad.design import fold_design  # noqa: E402
 from onefold_cad.fabrication.rules import resting_placement  # noqa: E402
 from onefold_cad.flags.jobs import template_job  # noqa: E402
 from onefold_cad.sweep.plan import SweepPlan, make_plan  # noqa: E402
@@ -69,7 +69,7 @@ def _loop(plan: SweepPlan) -> None:
     for i in range(len(plan.points)):
         try:
             design = template_job(plan.raw, plan.template, plan.flags_of(i)).design
-            resting_placement(design, build_design(design))
+            resting_placement(design, fold_design(design))
         except Exception:  # a failing design costs its time, as in the sweep
             pass
 
@@ -80,7 +80,7 @@ def _old_loop(pkg: Any, plan: SweepPlan) -> Callable[[], None]:
     def mod(sub: str) -> Any:
         return importlib.import_module(f"{pkg.__name__}.{sub}")
 
-    job, build = mod("flags.jobs").template_job, mod("design").build_design
+    job, build = mod("flags.jobs").template_job, mod("design").fold_design
     rest = mod("fabrication.rules").resting_placement
 
     def run() -> None:

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.export.simulation_inp import write_structural_inp
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
@@ -49,7 +49,7 @@ def main() -> None:
     if ccx is None:
         raise SystemExit("needs CalculiX: apt-get install calculix-ccx")
     design = load_template(args.template)
-    folded = build_design(design)
+    folded = fold_design(design)
     print(f"{args.template}: designed form under its weight, anchored feet, largest movement (mm)")
     print("| mesh | nodes | onefold | s CPU | CalculiX S6 | s | ccx feet / weight |")
     print("|---|---|---|---|---|---|---|")

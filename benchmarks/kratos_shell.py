@@ -226,7 +226,7 @@ def standing_mesh(template: str, h: float, *, hole_segments: int = 16) -> Standi
     """Mesh the template's flat sheet at edge length ``h`` (m) and stand its
     designed form on the ground (:func:`mesh_sheet`, ``folded.map_points``,
     ``rest_once(folded).apply``). The design must be in millimetres."""
-    from onefold_cad.design import build_design, rest_once
+    from onefold_cad.design import fold_design, rest_once
     from onefold_cad.fabrication.relief_hole import relief_hole_diameter
     from onefold_cad.templates import find_template, load_template
 
@@ -234,7 +234,7 @@ def standing_mesh(template: str, h: float, *, hole_segments: int = 16) -> Standi
     design = load_template(find_template(template))
     if design.units.value != "mm":
         raise ValueError(f"{template}: the check expects a millimetre design")
-    folded = build_design(design)
+    folded = fold_design(design)
     rest = rest_once(folded)  # the package's own work: not timed as the mesh's
     hole = relief_hole_diameter(design, folded)
     polygon = np.asarray(design.sheet.vertices, dtype=float)

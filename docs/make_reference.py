@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad import Design, bend_values, build_design
+from onefold_cad import Design, bend_values, fold_design
 
 DOCS = Path(__file__).resolve().parent
 IMAGES = DOCS / "images"
@@ -75,7 +75,7 @@ def bend_template() -> tuple[str, Design]:
 def bend_example_block() -> str:
     """The fabrication guide's worked example, computed by bend_values."""
     name, design = bend_template()
-    folded = build_design(design)
+    folded = fold_design(design)
     m, u = design.material, design.units.value
     lines = [
         f"Template `{name}` (`onefold build {name}`): thickness t = {m.thickness:g} {u}, "
@@ -231,7 +231,7 @@ def make_template_previews() -> list[Path]:
     flat = _flat_renderer()
     out = []
     for info, design in templates():
-        folded = build_design(design)
+        folded = fold_design(design)
         try:
             from onefold_cad.export.preview import render_folded_preview
         except ImportError:  # pragma: no cover - the preview module ships with the package
@@ -250,7 +250,7 @@ def make_fabrication_figure() -> Path:
     """docs/images/fabrication_layers.png: the bend example's flat pattern (its DXF)."""
     name, design = bend_template()
     IMAGES.mkdir(parents=True, exist_ok=True)
-    return _flat_renderer()(build_design(design), design, IMAGES / "fabrication_layers.png")
+    return _flat_renderer()(fold_design(design), design, IMAGES / "fabrication_layers.png")
 
 
 # -- Hops ------------------------------------------------------------------------------

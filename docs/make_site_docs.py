@@ -42,7 +42,7 @@ def site_block(outdir: Path, stem: str = "patkau-three") -> str:
         height = f"{s['height']:.0f}" if s else ""
         angles = r["bend_angles_deg"].replace(";", ", ")
         out.append(
-            f"| {name} | {where} | {turn} | {height} | {float(r['blank_area']) / 1e6:.3f} "
+            f"| {name} | {where} | {turn} | {height} | {float(r['blank_area']):.3f} "
             f"| {float(r['mass']):.1f} | {float(r['cut_length']) / 1e3:.3f} | "
             f"{r['bends']}: {angles} |"
         )

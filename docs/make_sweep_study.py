@@ -1,4 +1,4 @@
-"""The study of docs/sweep.md: which alpha, beta and h_c give Patkau's 10 x 24 ft
+"""The study of docs/sweep.md: which alpha, beta and H give Patkau's 10 x 24 ft
 sheet a 3 m high shelter that stands with at least 5 deg of tipping margin.
 
 Run from the repository root (one command; it resumes if stopped)::
@@ -26,11 +26,13 @@ IMAGES = DOCS / "images"
 OUT = ROOT / "out" / "sweep-patkau"
 #: The study's targets: the height (mm, within HEIGHT_TOLERANCE) and the margin (deg).
 HEIGHT, HEIGHT_TOLERANCE, MARGIN = 3000.0, 0.01, 5.0
+#: The template's frame radius (mm): h_c = hc_fraction R cos(alpha).
+RADIUS = 100.0
 #: The designs that meet them are told apart by beta: below this (deg), or not.
 STEEP = 60.0
 COMMAND = [
     "onefold", "sweep", "patkau-one-fold",
-    "--vary", "alpha=10:80", "--vary", "beta=10:80", "--vary", "hc=-40:40",
+    "--vary", "alpha=10:80", "--vary", "beta=10:80", "--vary", "hc-fraction=-0.4:0.4",
     "--sampler", "sobol", "--samples", "512", "--measure", "mass",
     "--objectives", f"target:height={HEIGHT:g},max:tipping_margin_deg,max:footprint_area",
     "-o", "out/sweep-patkau",
@@ -43,13 +45,14 @@ def _fmt(v: float, digits: int = 4) -> str:
 
 def _table(rows: list[dict], front: set[str]) -> list[str]:
     out = [
-        "| alpha (deg) | beta (deg) | h_c (mm) | height (mm) | span x depth (mm) | "
-        "footprint (m^2) | tipping margin (deg) | Pareto |",
-        "|---|---|---|---|---|---|---|---|",
+        "| alpha (deg) | beta (deg) | H on f-line | h_c (mm) | height (mm) | "
+        "span x depth (mm) | footprint (m^2) | tipping margin (deg) | Pareto |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         out.append(
-            f"| {r['alpha']:.1f} | {r['beta']:.1f} | {r['hc']:.1f} | {r['height']:.0f} | "
+            f"| {r['alpha']:.1f} | {r['beta']:.1f} | {r['hc_fraction']:.2f} | {_hc(r):.1f} | "
+            f"{r['height']:.0f} | "
             f"{r['span']:.0f} x {r['depth']:.0f} | {r['footprint_area'] / 1e6:.2f} | "
             f"{r['tipping_margin_deg']:.1f} | {'yes' if r['key'] in front else ''} |"
         )
@@ -76,9 +79,8 @@ def block(seconds: float | None) -> tuple[str, list[dict]]:
         f"`{' '.join(COMMAND)}`"
         + (f" ({_fmt(seconds, 3)} s on this machine)." if seconds else "."),
         "",
-        f"- {len(rows)} designs: {len(ok)} solved and stood, {len(failed)} refused "
-        f"({', '.join(why) or 'none'}: h_c beyond R cos(alpha), which alpha > "
-        f"{_acos_deg(40 / 100):.1f} deg allows for |h_c| = 40 mm and R = 100 mm).",
+        f"- {len(rows)} designs: {len(ok)} solved and stood, {len(failed)} refused"
+        + (f" ({', '.join(why)})." if why else "."),
         f"- {len(tall)} are 3 m high within {HEIGHT_TOLERANCE:.0%} "
         f"({HEIGHT * (1 - HEIGHT_TOLERANCE):.0f} to {HEIGHT * (1 + HEIGHT_TOLERANCE):.0f} mm); "
         f"{len(good)} of them stand with at least {MARGIN:g} deg of tipping margin.",
@@ -86,10 +88,10 @@ def block(seconds: float | None) -> tuple[str, list[dict]]:
         "",
     ]
     if good:
-        h = [r["hc"] for r in good]
+        h = [r["hc_fraction"] for r in good]
         lines += [
-            "The answer is a band, not a point, with any h_c tried "
-            f"({min(h):.0f} to {max(h):.0f} mm, R = 100 mm):",
+            "The answer is a band, not a point, with H anywhere tried on the f-line "
+            f"({min(h):.2f} to {max(h):.2f} of the half f-line from its midpoint):",
             "",
         ]
         for name, group in (
@@ -129,10 +131,12 @@ def block(seconds: float | None) -> tuple[str, list[dict]]:
     return "\n".join(lines) + "\n", good
 
 
-def _acos_deg(x: float) -> float:
+def _hc(row: dict) -> float:
+    """The row's h_c (mm): its fraction of the half f-line R cos(alpha), R =
+    RADIUS (the template's)."""
     import math
 
-    return math.degrees(math.acos(x))
+    return row["hc_fraction"] * RADIUS * math.cos(math.radians(row["alpha"]))
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -26,7 +26,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from onefold_cad.choices import Model, Units
+from onefold_cad.choices import Body, Model, Units
 from onefold_cad.errors import InvalidParameterError, OneFoldError
 from onefold_cad.geometry.checks import check_magnitudes
 from onefold_cad.geometry.folding import FoldedSheet, fold
@@ -36,7 +36,7 @@ from onefold_cad.geometry.placement import RestingPlacement, rest_form
 from onefold_cad.geometry.sheet import Sheet
 from onefold_cad.geometry.solver import solve
 
-__all__ = ["DERIVED", "Design", "build_design", "derived", "rest_once"]
+__all__ = ["DERIVED", "Design", "derived", "fold_design", "rest_once"]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,63}$")
 
@@ -111,12 +111,12 @@ def _scaled_sheet(sheet: Sheet, f: float) -> Sheet:
     inputs = sheet.inputs
     if sheet.kind == "rectangle":
         return Sheet.rectangle(
-            float(inputs["width"]) * f,  # type: ignore[arg-type]
-            float(inputs["height"]) * f,  # type: ignore[arg-type]
-            float(inputs["apex_fraction"]),  # type: ignore[arg-type]
+            float(inputs["width"]) * f,
+            float(inputs["height"]) * f,
+            float(inputs["apex_fraction"]),
         )
     if sheet.kind == "quadrilateral":
-        return Sheet.quadrilateral(**{k: float(v) * f for k, v in inputs.items()})  # type: ignore[arg-type]
+        return Sheet.quadrilateral(**{k: float(v) * f for k, v in inputs.items()})
     points = np.asarray(inputs.get("polygon", sheet.vertices), dtype=float) * f
     return Sheet.polygon(points, name="polygon")
 
@@ -161,16 +161,27 @@ def derived(
     return known
 
 
-def build_design(design: Design) -> FoldedSheet:
+def fold_design(design: Design) -> FoldedSheet:
     """Solve the direction-surface and fold the sheet of ``design`` (once per
-    design object: the same :class:`FoldedSheet` again afterwards)."""
+    design object: the same :class:`FoldedSheet` again afterwards).
+
+    Args:
+        design: the design.
+
+    Returns:
+        The folded sheet.
+
+    Raises:
+        NoSolutionError: the frame has no non-trivial apex.
+        InvalidSheetError: the sheet does not fold (H outside it, ...).
+    """
     return derived(
         design, "fold", lambda: fold(solve(design.frame, design.model), design.sheet), errors=False
     )
 
 
 def rest_once(
-    folded: FoldedSheet, material: Material | None = None, body: str = "shell"
+    folded: FoldedSheet, material: Material | None = None, body: Body = Body.SHELL
 ) -> RestingPlacement:
     """:func:`~onefold_cad.geometry.placement.rest_form` of ``folded``,
     ``material`` (None: a zero-thickness sheet without a hole) and ``body``,

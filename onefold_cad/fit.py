@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.choices import Model
+from onefold_cad.choices import Body, Model
 from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
@@ -76,7 +76,7 @@ class FitResult:
     """
 
     design: Design
-    body: str
+    body: Body
     height: float
     span: float
     depth: float
@@ -222,6 +222,7 @@ def fit_design(
     min_tipping_margin: float | None = None,
     *,
     tolerance: float = FIT_TOLERANCE,
+    progress: Callable[[str], None] | None = None,
 ) -> FitResult:
     """Find alpha, beta and h_c for ``design``'s sheet and material whose
     resting form is ``height`` high and ``span`` wide (and ``depth`` deep).
@@ -232,6 +233,8 @@ def fit_design(
         height, span, depth: the targets (length, > 0).
         min_tipping_margin: the smallest tipping margin allowed (deg), or None.
         tolerance: relative error allowed on each length (default 0.5 %).
+        progress: called with one line at each step of the search (the grid
+            searched, each seed refined), or None.
 
     Returns:
         The fitted design and what its resting form measures.
@@ -271,13 +274,16 @@ def fit_design(
                 best = (cost, x, rest)
         return best is not None and _meets(best[2], targets, tolerance / 10.0)
 
+    say = progress or (lambda text: None)
     for fixed in stages:
+        which = "h_c kept" if fixed else "h_c free"
         if fixed:
             stage_grid = _grid(stand, targets, _FINE_ANGLES, [float(x0[2])], x0)
         else:
             fracs = sorted({*_GRID_HC, float(x0[2])})
             stage_grid = _grid(stand, targets, _GRID_ANGLES, fracs, x0)
         grid += stage_grid
+        say(f"grid ({which}): {len(stage_grid)} frames stand ({stand.evaluations} solved so far)")
         # seeds within 25 % of every target on the grid (the rest cannot get
         # there): the best by the lengths, and the best with the margin too
         lengths = {k: v for k, v in targets.items() if k != "min_tipping_margin_deg"}
@@ -290,7 +296,11 @@ def fit_design(
             near = float(np.sum(_residual(rest, lengths, x, x0) ** 2)) <= 3 * 0.25**2
             if near and not any(np.array_equal(x, y) for y in seeds):
                 seeds.append(x)
-        for seed in seeds:
+        for i, seed in enumerate(seeds, 1):
+            say(
+                f"refining seed {i}/{len(seeds)} ({which}): alpha {seed[0]:.4g}, "
+                f"beta {seed[1]:.4g} deg, h_c {seed[2]:.3g} of R cos(alpha)"
+            )
             # the fan's margins are not the body's (it rests on ruling ends,
             # the body may rock on a curved edge): the fan is fitted to the
             # lengths only, and the body's margin decides among the seeds
@@ -303,8 +313,8 @@ def fit_design(
                 # the fan meets the targets where the body does not: the body
                 # rests otherwise there (it rocks on a curved edge): on the body
                 x = _least_squares(stand, "body", best[1], targets, x0, fixed, 8)
-                rest = stand(x, "body")
-                keep([] if rest is None else [(x, rest)])
+                on_body = stand(x, "body")
+                keep([] if on_body is None else [(x, on_body)])
         if best is not None and _meets(best[2], targets, tolerance):
             break
     result = None

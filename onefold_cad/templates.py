@@ -4,7 +4,7 @@ A template names every input of a :class:`~onefold_cad.design.Design`::
 
     name = "table1-row1"            # file-safe design name
     description = "..."             # one line, shown by `onefold templates`
-    units = "mm"                    # mm, in or ft
+    units = "mm"                    # mm, m, in or ft
     model = "exact"                 # exact or paper
 
     [frame]                         # the frame curve (degrees, design unit)
@@ -61,6 +61,7 @@ __all__ = [
     "check_design_file",
     "find_site_file",
     "find_template",
+    "list_sites",
     "list_templates",
     "load_template",
     "read_template",
@@ -97,6 +98,8 @@ _MATERIAL: dict[str, str] = {
     "youngs_modulus": _NUMBER,
     "poisson": _NUMBER,
     "yield_stress": _NUMBER,
+    "hardening_modulus": _NUMBER,
+    "kinematic_hardening": _NUMBER,
 }
 _SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
 
@@ -174,6 +177,15 @@ def list_templates() -> list[TemplateInfo]:
     return out
 
 
+def list_sites() -> list[TemplateInfo]:
+    """The shipped site files (``onefold site NAME``), sorted by name."""
+    out = []
+    for name, path in sorted(shipped_files(sites=True).items()):
+        data = read_template(path)
+        out.append(TemplateInfo(name, path, str(data.get("description", "")).strip()))
+    return out
+
+
 def find_template(ref: str | Path) -> Path:
     """The file of a template given as a path or as a shipped template's name."""
     p = Path(ref)
@@ -234,7 +246,7 @@ def template_units(data: Mapping[str, Any], path: str | Path) -> str:
     if units is None:
         raise InvalidParameterError(
             f"{path}: units", 'missing: a template states its units, e.g. units = "mm" '
-            "(mm, in or ft)"
+            "(mm, m, in or ft)"
         )  # fmt: skip
     return str(units)
 
@@ -409,10 +421,10 @@ def design_to_data(design: Design) -> dict[str, Any]:
     """
     f, m, s = design.frame, design.material, design.sheet
     if s.kind in ("quadrilateral", "rectangle"):
-        sheet: dict[str, Any] = {s.kind: {k: _num(v) for k, v in s.inputs.items()}}  # type: ignore[arg-type]
+        sheet: dict[str, Any] = {s.kind: {k: _num(v) for k, v in s.inputs.items()}}
     else:
         pts = s.inputs.get("polygon", s.vertices.tolist())
-        sheet = {"polygon": [[float(x), float(y)] for x, y in pts]}  # type: ignore[union-attr]
+        sheet = {"polygon": [[float(x), float(y)] for x, y in pts]}
     material: dict[str, Any] = {
         "name": m.name,
         "thickness": m.thickness,
@@ -425,7 +437,9 @@ def design_to_data(design: Design) -> dict[str, Any]:
         material["relief_hole"] = m.relief_hole
     if m.density is not None:
         material["density"] = m.density
-    for key in ("youngs_modulus", "poisson", "yield_stress"):
+    for key in (
+        "youngs_modulus", "poisson", "yield_stress", "hardening_modulus", "kinematic_hardening"
+    ):  # fmt: skip
         if getattr(m, key) is not None:
             material[key] = getattr(m, key)
     return {

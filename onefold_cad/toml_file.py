@@ -49,6 +49,8 @@ def _depth(data: object) -> int:
     while stack:
         value, level = stack.pop()
         deepest = max(deepest, level)
+        if not isinstance(value, dict | list):
+            continue
         children = value.values() if isinstance(value, dict) else value
         stack.extend((c, level + 1) for c in children if isinstance(c, dict | list))
     return deepest

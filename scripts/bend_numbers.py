@@ -19,7 +19,7 @@ from pathlib import Path
 import ezdxf  # noqa: TID251 (a script: reads the DXF back)
 import numpy as np
 
-from onefold_cad import build_design
+from onefold_cad import fold_design
 from onefold_cad.export.dxf import export_design_dxf
 from onefold_cad.templates import load_template
 
@@ -33,7 +33,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--surfaces", default="INSIDE,MID,OUTSIDE")
     args = ap.parse_args(argv)
     base = load_template(args.template)
-    folded = build_design(base)
+    folded = fold_design(base)
     m, u = base.material, base.units.value
     t, r, k = m.thickness, m.bend_radius, m.k_factor
     print(f"{args.template}: t = {t:g} {u}, r = {r:g} {u}, K = {k:g}")

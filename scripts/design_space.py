@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from onefold_cad import build_design
+from onefold_cad import fold_design
 from onefold_cad.errors import OneFoldError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.placement import TIPPING_WARNING_DEG, rest_form
@@ -47,7 +47,7 @@ def measure(name: str, n: int) -> tuple[np.ndarray, dict[str, np.ndarray], str]:
                 frame=design.frame.with_changes(alpha=alpha, beta=beta, h_c=h_c)
             )
             try:
-                folded = build_design(d)
+                folded = fold_design(d)
                 m = d.material.with_changes(relief_hole=relief_hole_diameter(d, folded))
                 solid = d.model.value == "exact" and m.thickness > 0 and m.relief_hole_diameter > 0
                 body = "solid" if solid else "shell"

@@ -935,7 +935,7 @@ def check_outputs(
 
 def run_design(p: dict[str, Any], seed: int, mp_sample: bool) -> dict[str, Any]:
     """Every stage of one design; its class, stage and message."""
-    from onefold_cad import NoSolutionError, OneFoldError, build_design
+    from onefold_cad import NoSolutionError, OneFoldError, fold_design
     from onefold_cad.fabrication.rules import resting_placement
 
     stages = ["design"]
@@ -947,7 +947,7 @@ def run_design(p: dict[str, Any], seed: int, mp_sample: bool) -> dict[str, Any]:
         try:
             design = make_design(p)
             stages.append("solve+fold")
-            folded = build_design(design)
+            folded = fold_design(design)
             stages.append("checks")
             out.update(check_solution(p, folded.solution, mp_sample))
             check_fold(p, design, folded, rng)
@@ -1361,7 +1361,7 @@ def cap_timings(repeat: int = 3) -> str:
     """Wall time (median of ``repeat``) of validate + solve + fold + flat pattern
     + DXF at the caps: a paper design of MAX_DIVISIONS triangles and, in both
     models, a polygon sheet of MAX_VERTICES vertices."""
-    from onefold_cad import Design, FrameCurve, Sheet, build_design
+    from onefold_cad import Design, FrameCurve, Sheet, fold_design
     from onefold_cad.export.dxf import export_design_dxf
     from onefold_cad.fabrication.flat_pattern import flat_pattern
     from onefold_cad.geometry.frame_curve import MAX_DIVISIONS
@@ -1391,7 +1391,7 @@ def cap_timings(repeat: int = 3) -> str:
             for _ in range(repeat):
                 t0 = time.perf_counter()
                 design = make()
-                folded = build_design(design)
+                folded = fold_design(design)
                 flat_pattern(design, folded)
                 export_design_dxf(design, Path(td) / "cap.dxf", folded=folded)
                 times.append(time.perf_counter() - t0)

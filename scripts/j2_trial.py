@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.mechanics import j2_stages
 from onefold_cad.mechanics.model import sheet_model
 from onefold_cad.mechanics.simulate import aligned_deviation, run
@@ -34,7 +34,7 @@ def main() -> None:
     ap.add_argument("--points", type=int, default=9)
     args = ap.parse_args()
     design = load_template(args.template)
-    folded = build_design(design)
+    folded = fold_design(design)
     clock = time.process_time()
     model = sheet_model(design, folded, level=args.mesh)
     shell = j2_stages.j2_shell(model, args.points)

@@ -122,7 +122,7 @@ def serve(checkout: Path) -> http.server.ThreadingHTTPServer:
 
 def fold_files(names: list[str], out: Path) -> list[Path]:
     """FOLD files: a .fold path as it is, a template name written to ``out``."""
-    from onefold_cad import build_design
+    from onefold_cad import fold_design
     from onefold_cad.export.fold_file import write_fold
     from onefold_cad.templates import load_template
 
@@ -132,7 +132,7 @@ def fold_files(names: list[str], out: Path) -> list[Path]:
             paths.append(Path(name))
             continue
         design = load_template(name)
-        paths.append(write_fold(design, build_design(design), out / f"{design.name}.fold"))
+        paths.append(write_fold(design, fold_design(design), out / f"{design.name}.fold"))
     return paths
 
 

@@ -20,7 +20,7 @@ import tempfile
 import textwrap
 from pathlib import Path
 
-from onefold_cad import build_design
+from onefold_cad import fold_design
 from onefold_cad.export.dxf import draw_flat_pattern
 from onefold_cad.export.dxf_preview import render_preview
 from onefold_cad.export.preview import render_folded_preview
@@ -83,7 +83,7 @@ def flat_picture(design, folded, path: Path) -> Path:
 
 def main() -> None:
     design = load_template(DEFAULT_TEMPLATE)
-    folded = build_design(design)
+    folded = fold_design(design)
     IMAGES.mkdir(parents=True, exist_ok=True)
     render_folded_preview(  # as `onefold build` draws it: the STEP's body as it rests
         folded,

@@ -38,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-from onefold_cad import Design, FrameCurve, Material, Sheet, SheetSurface, build_design
+from onefold_cad import Design, FrameCurve, Material, Sheet, SheetSurface, fold_design
 from onefold_cad.errors import InvalidParameterError, NoSolutionError, OneFoldError
 from onefold_cad.export.measure import measure
 from onefold_cad.export.part import build_shell, build_solid
@@ -50,7 +50,7 @@ from onefold_cad.geometry.slab_volume import slab_volume
 
 def check(design: Design) -> str:
     """One line of numbers about the solid of ``design`` (Table 1's square)."""
-    folded = build_design(design)
+    folded = fold_design(design)
     hole = relief_hole_diameter(design, folded)
     m = design.material.with_changes(relief_hole=hole)
     t0 = time.process_time()
@@ -125,7 +125,7 @@ def corpus(n: int, seed: int) -> int:
         for i in range(n):
             try:
                 design = random_design(rng, i)
-                folded = build_design(design)
+                folded = fold_design(design)
             except (InvalidParameterError, NoSolutionError) as err:
                 counts["no design"] += 1
                 print(f"{i}: no design ({err.__class__.__name__}: {err})"[:200])

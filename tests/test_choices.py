@@ -10,7 +10,7 @@ from onefold_cad.errors import InvalidParameterError
 
 CHOICES = [
     (Model, "model", ["paper", "exact"]),
-    (Units, "units", ["mm", "in", "ft"]),
+    (Units, "units", ["mm", "m", "in", "ft"]),
     (SheetSurface, "sheet_surface", ["INSIDE", "OUTSIDE", "MID"]),
     (Compensation, "compensation", ["sharp", "none"]),
 ]
@@ -31,3 +31,33 @@ def test_a_bad_name_names_the_parameter_and_the_allowed_names(cls, parameter, na
         cls.parse("bogus")
     assert err.value.parameter == parameter
     assert f"must be one of {', '.join(names)}, got 'bogus'" in str(err.value)
+
+
+#: A parameter or field of one of these names is an option of :mod:`onefold_cad.choices`.
+OPTION_NAMES = {"body", "placement", "compensation", "sheet_surface", "model"}
+
+
+def _string_typed_options(path):
+    """``(line, name)`` of each argument or field named as an option but
+    annotated ``str`` or ``str | None`` in the module at ``path``."""
+    import ast
+
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.arg | ast.AnnAssign) and node.annotation is not None:
+            name = node.arg if isinstance(node, ast.arg) else getattr(node.target, "id", "")
+            if name in OPTION_NAMES and ast.unparse(node.annotation) in ("str", "str | None"):
+                out.append((node.lineno, name))
+    return out
+
+
+def test_options_travel_as_their_enums_not_as_strings():
+    from onefold_cad.layers import ROOT, modules
+
+    found = [
+        f"{path.relative_to(ROOT)}:{line} {name}: str"
+        for module, path in modules().items()
+        if not module.startswith("onefold_cad.mechanics")  # its own work in progress
+        for line, name in _string_typed_options(path)
+    ]
+    assert found == []

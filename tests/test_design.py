@@ -19,7 +19,7 @@ from onefold_cad import (
     NoSolutionError,
     Sheet,
     Units,
-    build_design,
+    fold_design,
 )
 from onefold_cad.fabrication.flat_pattern import flat_pattern
 from onefold_cad.fabrication.mass import KG_PER_LB, design_mass
@@ -140,12 +140,12 @@ def test_the_fold_scales_with_the_unit(src, dst, alpha, beta, model):
     c = d.in_units(dst)
     f = MM_PER[src] / MM_PER[dst]
     try:
-        a = build_design(d)
+        a = fold_design(d)
     except NoSolutionError:
         with pytest.raises(NoSolutionError):
-            build_design(c)
+            fold_design(c)
         return
-    b = build_design(c)
+    b = fold_design(c)
     assert b.solution.apex_height == pytest.approx(a.solution.apex_height * f, rel=1e-9)
     np.testing.assert_allclose(b.rulings_3d, a.rulings_3d * f, rtol=0, atol=1e-9 * d.sheet.size * f)
     for x, y in zip(a.crease, b.crease, strict=True):
@@ -199,12 +199,12 @@ def test_no_mass_without_density_or_thickness():
 # -- fabrication problems are warnings, never refusals -----------------------------------
 def test_a_relief_hole_larger_than_the_sheet_is_a_warning_not_an_error():
     d = plate("mm", relief_hole=1e6)  # the design is made: the geometry is fine
-    (w,) = fabrication_warnings(d, build_design(d))
+    (w,) = fabrication_warnings(d, fold_design(d))
     # H sits 0.4 along the diagonal of 200 x 300: its distance to the nearest edge
     # is 0.4 x 200 = 80 (the short side), so the hole must be < 160.
     assert w.startswith("relief_hole: diameter 1e+06 mm must be < 160 mm")
     assert w.endswith("; build refuses the DXF and STEP")
-    assert build_design(d).solution.apex_height > 0
+    assert fold_design(d).solution.apex_height > 0
 
 
 @pytest.mark.parametrize(
@@ -218,9 +218,9 @@ def test_a_default_hole_too_large_for_the_sheet_names_what_made_it(t, r, param, 
     """The default hole max(3 t, 2 (t + r)) = 180 >= 160 (paper model: no solid raises
     it): named after the term that made it that large."""
     d = plate("mm", thickness=t, bend_radius=r).with_changes(model="paper")
-    (w,) = fabrication_warnings(d, build_design(d))
+    (w,) = fabrication_warnings(d, fold_design(d))
     assert w.startswith(f"{param}: {words}") and "= 180 mm must be < 160 mm" in w
-    assert relief_hole_problem(d, build_design(d)).parameter == param
+    assert relief_hole_problem(d, fold_design(d)).parameter == param
 
 
 def test_the_default_hole_raised_for_the_solid_is_the_one_checked():
@@ -230,7 +230,7 @@ def test_the_default_hole_raised_for_the_solid_is_the_one_checked():
     which does not: one check, on that hole, naming the thickness."""
     d = Design("sq", FrameCurve(45, 85), Sheet.rectangle(150.0, 150.0),
                material=Material(thickness=10.0, bend_radius=0.0))  # fmt: skip
-    folded = build_design(d)
+    folded = fold_design(d)
     need = min_relief_hole(folded, d.material)
     step = 10.0 ** (math.floor(math.log10(1.1 * need)) - 1)
     hole = math.ceil(1.1 * need / step) * step
@@ -258,14 +258,14 @@ def test_the_default_relief_hole_does_not_depend_on_the_unit(unit):
         frame=base.frame.with_changes(alpha=60.0, beta=60.0),
         material=base.material.with_changes(thickness=3.0, bend_radius=0.0),
     )
-    folded = build_design(mm)
+    folded = fold_design(mm)
     need = 1.1 * min_relief_hole(folded, mm.material)  # mm
     by_hand = math.ceil(need / 10 ** (math.floor(math.log10(need)) - 1)) * 10 ** (
         math.floor(math.log10(need)) - 1
     )
     assert relief_hole_diameter(mm, folded) == pytest.approx(by_hand, rel=1e-12)
     other = mm.in_units(unit)
-    hole = relief_hole_diameter(other, build_design(other))
+    hole = relief_hole_diameter(other, fold_design(other))
     assert hole * MM_PER[unit] == pytest.approx(by_hand, rel=1e-12)
 
 
@@ -286,7 +286,7 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
 
     monkeypatch.setattr(design_module, "min_relief_hole", counted)
     d = load_template("patkau-one-fold")
-    folded = build_design(d)
+    folded = fold_design(d)
     pattern = flat_pattern(d, folded)
     report = design_report(d, folded, pattern=pattern)
     relief_hole_diameter(d, folded)
@@ -295,24 +295,24 @@ def test_the_solids_smallest_hole_is_computed_once_per_fold_and_material(monkeyp
     thin = d.material.with_changes(thickness=1.0)
     design_module.solid_min_relief_hole(folded, thin)
     design_module.solid_min_relief_hole(folded, thin)
-    assert build_design(d) is folded  # the same design object: the same fold
+    assert fold_design(d) is folded  # the same design object: the same fold
     d2 = load_template("patkau-one-fold")  # another design object: a new fold
-    design_report(d2, build_design(d2))
+    design_report(d2, fold_design(d2))
     assert len(calls) == 3
     from onefold_cad.design import DERIVED
 
     before = len(DERIVED)
-    del folded, pattern, d, d2  # a design holds its fold (build_design's cache)
+    del folded, pattern, d, d2  # a design holds its fold (fold_design's cache)
     gc.collect()
     assert len(DERIVED) < before
 
 
 def test_an_implausible_density_is_a_warning():
     d = plate("mm", thickness=1.0, density=8e-6)
-    (w,) = fabrication_warnings(d, build_design(d))
+    (w,) = fabrication_warnings(d, fold_design(d))
     assert w.startswith("density: 8e-06 kg/m^3") and "kg/m^3" in w
     ok = plate("mm", thickness=1.0, density=7850.0)
-    assert fabrication_warnings(ok, build_design(ok)) == []
+    assert fabrication_warnings(ok, fold_design(ok)) == []
 
 
 @pytest.mark.parametrize(
@@ -321,7 +321,7 @@ def test_an_implausible_density_is_a_warning():
 )
 def test_shipped_templates_have_no_fabrication_warning(name):
     d = load_template(name)
-    assert fabrication_warnings(d, build_design(d)) == []
+    assert fabrication_warnings(d, fold_design(d)) == []
 
 
 def test_units_factor_table():
@@ -332,11 +332,11 @@ def test_units_factor_table():
     assert Units.FT.mm == pytest.approx(12 * 25.4, rel=1e-15)
 
 
-def test_build_design_folds_each_design_object_once():
+def test_fold_design_folds_each_design_object_once():
     d = plate()
-    folded = build_design(d)
-    assert build_design(d) is folded  # the checks' fold is the writers' fold
+    folded = fold_design(d)
+    assert fold_design(d) is folded  # the checks' fold is the writers' fold
     other = plate()  # an equal design, another object: folded for itself
-    again = build_design(other)
+    again = fold_design(other)
     assert again is not folded
     assert again.solution.apex_height == folded.solution.apex_height

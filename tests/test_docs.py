@@ -93,12 +93,12 @@ def test_generated_blocks_are_current(reference, name):
 
 def test_bend_example_numbers_match_bend_values(reference):
     """The worked example's BA/OSSB/BD are those of bend_values at the template's angle."""
-    from onefold_cad import bend_values, build_design
+    from onefold_cad import bend_values, fold_design
 
     name, design = reference.bend_template()
     assert design.material.thickness > 0.0
     text = reference.read_block((DOCS / "fabrication.md").read_text(), "bend-example")
-    for c in build_design(design).crease:
+    for c in fold_design(design).crease:
         bv = bend_values(c.fold_angle_deg, design.material)
         row = next(r for r in text.splitlines() if r.startswith(f"| {c.name} |"))
         cells = [x.strip() for x in row.strip("|").split("|")]
@@ -167,7 +167,7 @@ def test_readme_python_examples_run(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.splitlines()[1].startswith("True ")  # the solid is valid
-    for name in ("demo.stl", "demo.glb", "demo.brep", "demo.step"):
+    for name in ("demo.stl", "demo.glb", "demo.brep", "demo.step", "patkau.step", "patkau.dxf"):
         assert (tmp_path / name).stat().st_size > 0
 
 

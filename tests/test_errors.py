@@ -14,7 +14,7 @@ import pytest
 from onefold_cad.errors import InvalidParameterError, not_installed
 from onefold_cad.export.writers import WRITERS, parse_formats
 from onefold_cad.flags.parser import UsageError
-from onefold_cad.hops.serve import check_installed
+from onefold_cad.hops.launch import check_installed
 from onefold_cad.sweep.backends import check_dask
 
 REPO = Path(__file__).resolve().parents[1]

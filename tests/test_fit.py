@@ -14,9 +14,11 @@ from onefold_cad.templates import find_template, load_template
 
 
 def _cli(capfd, *args: str) -> tuple[int, str, str]:
+    """Status, stdout and stderr without fit's progress lines ('[fit] ...',
+    one a step of the search; -q leaves them out)."""
     code = main(list(args))
     out, err = capfd.readouterr()
-    return code, out, err
+    return code, out, "".join(x for x in err.splitlines(True) if not x.startswith("[fit] "))
 
 
 def _solve(capfd, template: str, *flags: str) -> dict:
@@ -90,6 +92,9 @@ def test_unreachable_target_exits_2_with_one_line(capfd):
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("onefold: error: ")
     assert "out of reach" in lines[0] and "height" in lines[0] and " to " in lines[0]
+    # with -q there is no progress: the refusal is stderr's one line
+    assert main(["fit", "table1-row1", "--height", "3000", "--span", "300", "-q"]) == 2
+    assert capfd.readouterr().err.splitlines() == lines
     with pytest.raises(OutOfReachError) as info:
         fit_design(load_template(find_template("table1-row1")), 3000.0, 300.0)
     low, high = info.value.reachable["height"]

@@ -76,10 +76,10 @@ def test_one_step_build_is_valid_when_read_back(fuzz: ModuleType) -> None:
 def test_the_checks_can_fail(fuzz: ModuleType) -> None:
     # A wrong apex height (1 % off) must be caught by the independent angle
     # condition, and a polygon that winds the wrong way must not be "ok".
-    from onefold_cad import build_design
+    from onefold_cad import fold_design
 
     p = dict(SQUARE_30)
-    sol = build_design(fuzz.make_design(p)).solution
+    sol = fold_design(fuzz.make_design(p)).solution
 
     class Off:
         apex_height = sol.apex_height * 1.01
@@ -95,10 +95,10 @@ def test_the_solvers_claimed_angle_error_is_checked(fuzz: ModuleType) -> None:
     # so the angle condition holds, but far above a claimed error of 0.
     import math
 
-    from onefold_cad import build_design
+    from onefold_cad import fold_design
 
     p = dict(SQUARE_30)
-    sol = build_design(fuzz.make_design(p)).solution
+    sol = fold_design(fuzz.make_design(p)).solution
     shift = math.radians(3e-10) / 2.0 / abs(sol.ds_dh)
 
     class Claims0:
@@ -137,7 +137,7 @@ def test_the_solvers_claimed_apex_height_error_is_checked(fuzz: ModuleType) -> N
 @pytest.mark.parametrize(
     ("index", "fallback"),
     [
-        # seed-1 designs the double-precision checks called wrong (issue 12):
+        # seed-1 designs the double-precision checks once called wrong:
         # H 6.6e-9 R from an end, the end division point's P - A lost 8 digits
         (1523, None),
         # H 2e-7 R from an end: the double fan sum said S(h/2) < 180 deg
@@ -193,12 +193,12 @@ def test_the_resting_check_sees_a_form_below_the_ground(fuzz: ModuleType) -> Non
 
     import numpy as np
 
-    from onefold_cad import build_design
+    from onefold_cad import fold_design
     from onefold_cad.fabrication.rules import resting_placement
 
     p = dict(EXACT_QUAD)
     design = fuzz.make_design(p)
-    folded = build_design(design)
+    folded = fold_design(design)
     rest = resting_placement(design, folded)
     rng = np.random.default_rng(5)
     fuzz.check_resting(rest, design, folded, rng)
@@ -214,7 +214,7 @@ def test_reproducer_command_gives_the_same_apex(fuzz: ModuleType, capsys) -> Non
     import json
     import shlex
 
-    from onefold_cad import build_design
+    from onefold_cad import fold_design
     from onefold_cad.cli.main import main
 
     p = {
@@ -232,7 +232,7 @@ def test_reproducer_command_gives_the_same_apex(fuzz: ModuleType, capsys) -> Non
     assert argv[:2] == ["onefold", "solve"]
     assert main(argv[1:]) == 0
     report = json.loads(capsys.readouterr().out)
-    solved = build_design(fuzz.make_design(p)).solution
+    solved = fold_design(fuzz.make_design(p)).solution
     assert report["direction_surface"]["apex_height"] == solved.apex_height
 
 

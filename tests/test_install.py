@@ -95,7 +95,9 @@ def test_an_installed_wheel_lists_and_builds_the_templates_from_another_folder(
     assert Path(where.stdout.strip()).is_relative_to(site)  # the installed copy, not the checkout
     listed = onefold("templates")
     assert listed.returncode == 0, listed.stderr
-    assert [line.split()[0] for line in listed.stdout.splitlines()] == DESIGN_TEMPLATES
+    designs = listed.stdout.split("\n\n")[0]  # then the site files, after a blank line
+    assert [line.split()[0] for line in designs.splitlines()] == DESIGN_TEMPLATES
+    assert "site-patkau-three" in listed.stdout.split("\n\n")[1]
     built = onefold("build", "patkau-one-fold", "-o", "out", "--formats", "json")
     assert built.returncode == 0, built.stderr
     assert built.stdout.split() == [str(Path("out") / "patkau-one-fold.json")]

@@ -8,7 +8,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from onefold_cad import InvalidParameterError, InvalidSheetError, Model, Units, build_design
+from onefold_cad import InvalidParameterError, InvalidSheetError, Model, Units, fold_design
 from onefold_cad.fabrication.rules import fabrication_warnings
 from onefold_cad.geometry.developability import developability
 from onefold_cad.geometry.placement import rest_form
@@ -68,12 +68,11 @@ def test_every_template_loads_folds_and_documents_itself(name):
     comments = " ".join(line for line in text.splitlines() if line.startswith("#")).lower()
     assert "source" in comments and "assum" in comments
     assert design.units.value == read_template(path)["units"]  # every template states it
-    folded = build_design(design)
+    folded = fold_design(design)
     m = developability(folded)
     # The fold keeps the sheet: area, boundary length and ruling lengths survive. The
     # paper model's fan is exact to rounding; the exact model's boundary is measured on
-    # 4000 samples (a chord error below 1e-6 of the length or area, until the exact
-    # measure of issue 12 lands).
+    # 4000 samples (a chord error below 1e-6 of the length or area).
     tol = 1e-12 if design.model is Model.PAPER else 1e-6
     assert m.area_rel_error < tol
     assert m.boundary_length_rel_error < tol
@@ -188,7 +187,7 @@ def _error(data: dict) -> InvalidParameterError:
         ),
         (lambda d: d.update(material={"k_factor": 2}), "material.k_factor", "[0, 1]"),
         (lambda d: d.update(material={"relief_hole": -1}), "material.relief_hole", ">= 0"),
-        (lambda d: d.update(units="furlong"), "units", "mm, in, ft"),
+        (lambda d: d.update(units="furlong"), "units", "mm, m, in, ft"),
         (lambda d: d.update(model="fan"), "model", "paper, exact"),
         (lambda d: d.update(name="no spaces"), "name", "letters"),
     ],
@@ -270,7 +269,7 @@ def test_a_relief_hole_larger_than_the_sheet_is_a_design_with_a_warning():
     data["material"] = {"relief_hole": 50}
     d = design_from_data(data)
     assert d.material.relief_hole == 50
-    (w,) = fabrication_warnings(d, build_design(d))
+    (w,) = fabrication_warnings(d, fold_design(d))
     # The square's vertices are 3 from H on the axes: its edges are 3 / sqrt(2) away.
     assert w.startswith(f"relief_hole: diameter 50 mm must be < {2 * 3 / math.sqrt(2):.6g} mm")
 

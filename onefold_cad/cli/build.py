@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import functools
 import gc
 import signal
 import sys
@@ -18,12 +19,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from onefold_cad.choices import Body, Compensation, Placement
 from onefold_cad.cli.summary import material_lines
 from onefold_cad.errors import InvalidParameterError, OneFoldError, memory_message
 from onefold_cad.export.writers import WRITERS
 from onefold_cad.flags.design_flags import (
     FLAG_OF,
-    PLACEMENTS,
 )
 from onefold_cad.flags.jobs import Job, load_jobs
 
@@ -57,12 +58,12 @@ class BuildTask:
     total: int
     job: Job
     formats: tuple[str, ...]
-    body: str | None
-    compensation: str
+    body: Body | None
+    compensation: Compensation
     folder: str
     quiet: bool
     warnings: tuple[str, ...] = ()
-    placement: str = PLACEMENTS[0]
+    placement: Placement = Placement.REST
     freeze: bool = False  # the command runs as its own process (see _freeze_imports)
 
 
@@ -92,13 +93,13 @@ def _freeze_imports(frozen: set[str]) -> None:
 def task_context(task: BuildTask) -> BuildContext:
     """The build context of one task's design (solved here, or taken from the
     fold cache when the parent solved it before the fork)."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.writers import BuildContext
 
     d = task.job.design
     return BuildContext(
         d,
-        build_design(d),
+        fold_design(d),
         task.body,
         task.compensation,
         task.job.sources,
@@ -165,9 +166,11 @@ def run_tasks(tasks: Sequence[Any], jobs: int, fn: Callable[[Any], Any]) -> list
         return [fn(t) for t in tasks]
     import multiprocessing
 
+    ctx: multiprocessing.context.BaseContext
     if "forkserver" in multiprocessing.get_all_start_methods():
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["onefold_cad.export.writers", fn.__module__])
+        server = multiprocessing.get_context("forkserver")
+        server.set_forkserver_preload(["onefold_cad.export.writers", fn.__module__])
+        ctx = server
     else:
         ctx = multiprocessing.get_context("spawn")
     pool = ctx.Pool(min(jobs, len(tasks)), initializer=_worker_init)
@@ -199,11 +202,12 @@ def check_jobs(
         OneFoldError: what a design or a writer refuses (named by the design
             when there are several).
     """
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.writers import BuildContext, check_before_writing
     from onefold_cad.fabrication.report import design_warnings
 
-    body = None if ns.body == "auto" else ns.body
+    body = None if ns.body == "auto" else Body.parse(ns.body)
+    compensation = Compensation.parse(ns.compensation)
     n = len(jobs)
     progress = Progress(ns.quiet)
     found: list[tuple[str, ...]] = []
@@ -213,9 +217,11 @@ def check_jobs(
         # a design's lines wait for its checks: a refusal is the one line on stderr
         lines = [f"started: {_describe(d)}"]
         t0 = time.perf_counter()
-        folded = build_design(d)
+        folded = fold_design(d)
         lines += [*_material_text(d, folded, job), f"solve {time.perf_counter() - t0:.2f} s"]
-        ctx = BuildContext(d, folded, body, ns.compensation, job.sources, placement=ns.placement)
+        ctx = BuildContext(
+            d, folded, body, compensation, job.sources, placement=Placement.parse(ns.placement)
+        )
         t0 = time.perf_counter()
         try:
             check_before_writing(ctx, formats)
@@ -232,15 +238,14 @@ def check_jobs(
 
             for text in bend_table(ctx.pattern, rulings=False).splitlines():
                 progress.line(i, n, d.name, text)
-        notes = tuple(design_warnings(d, folded, ns.compensation, body))
-        if "fold" in formats:  # the file's, not the design's: on stderr, not in the report
+        notes = tuple(design_warnings(d, folded, compensation, body))
+        for w in notes:
+            warn(f"{d.name}: {w}")
+        if "fold" in formats:  # the file's: in the file and the report, not on stderr
             from onefold_cad.export.fold_file import fold_note
 
             note = fold_note(d, folded)
-            if note is not None:
-                warn(f"{d.name}: {note}")
-        for w in notes:
-            warn(f"{d.name}: {w}")
+            notes += () if note is None else (note,)
         found.append(notes)
     return found
 
@@ -307,8 +312,9 @@ def output_folder(outdir: Path) -> Iterator[Path]:
 
 def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
-    from onefold_cad.export.atomic import FileSet, Staging, check_targets, pause_point, recover
-    from onefold_cad.export.writers import file_names, parse_formats
+    from onefold_cad.export.atomic import Staging
+    from onefold_cad.export.files import stage_files
+    from onefold_cad.export.writers import parse_formats
 
     refs = list(ns.templates)
     if ns.name is not None and len(refs) > 1:
@@ -316,7 +322,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     if ns.jobs < 1:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
     formats = parse_formats(ns.formats)
-    body = None if ns.body == "auto" else ns.body
+    body = None if ns.body == "auto" else Body.parse(ns.body)
     jobs = load_jobs(refs, design_flag_values(ns), ns.name, skip_site=warn)
     stems = [j.design.name for j in jobs]
     dup = sorted({s for s in stems if stems.count(s) > 1})
@@ -329,21 +335,22 @@ def cmd_build(ns: argparse.Namespace) -> int:
     found = check_jobs(jobs, formats, ns)
     n = len(jobs)
     with output_folder(outdir):
-        recover(outdir, say=warn)
-        check_targets(outdir, [f for j in jobs for f in file_names(j.design.name, formats)])
-        with Staging(outdir, say=warn) as staging:
-            STATE["staging"] = staging
+
+        def write(staging: Staging) -> list[Path]:
             tasks = [
-                BuildTask(i, n, job, formats, body, ns.compensation, str(staging.path / str(i)),
-                      ns.quiet, found[i - 1], ns.placement, bool(STATE.get("process")))
+                BuildTask(i, n, job, formats, body, Compensation.parse(ns.compensation),
+                          str(staging.path / str(i)), ns.quiet, found[i - 1],
+                          Placement.parse(ns.placement), bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
-            files = [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]
-            pause_point("staged")
-            sets = [FileSet(s, tuple(file_names(s, list(WRITERS)))) for s in stems]
-            for p in staging.commit(files, sets=sets):
-                print(p, flush=True)
-            say_removed(staging.removed)
+            return [Path(p) for fs in run_tasks(tasks, ns.jobs, _files) for p in fs]
+
+        # the one path of a build's files (onefold_cad.write_files takes it too)
+        keep = functools.partial(STATE.__setitem__, "staging")  # what Ctrl-C left: main asks
+        written, removed = stage_files(outdir, stems, formats, write, warn, keep)
+        for p in written:
+            print(p, flush=True)
+        say_removed(removed)
     return 0
 
 
@@ -384,14 +391,14 @@ def _flag_named(exc: OneFoldError, ns: argparse.Namespace) -> OneFoldError:
     prefix = f"{param}: "
     if flag is None or getattr(ns, str(param), None) is None or not str(exc).startswith(prefix):
         return exc
-    return type(exc)(flag, str(exc)[len(prefix) :])  # type: ignore[call-arg]
+    return type(exc)(flag, str(exc)[len(prefix) :])
 
 
 def _prefixed(exc: OneFoldError, name: str) -> OneFoldError:
     """``exc`` with the design's name in front (several designs in one call)."""
     param = getattr(exc, "parameter", None)  # InvalidParameterError, FabricationError
     if isinstance(param, str) and str(exc).startswith(f"{param}: "):
-        return type(exc)(f"{name}: {param}", str(exc)[len(param) + 2 :])  # type: ignore[call-arg]
+        return type(exc)(f"{name}: {param}", str(exc)[len(param) + 2 :])
     return OneFoldError(f"{name}: {exc}")
 
 

@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import os
 import sys
 from collections.abc import Callable
 
 from onefold_cad.cli.build import STATE, cmd_build
 from onefold_cad.cli.compensate import cmd_compensate
+from onefold_cad.cli.loads import cmd_loads
 from onefold_cad.cli.output import warn
 from onefold_cad.cli.parser import build_parser
 from onefold_cad.cli.simulate import cmd_simulate
@@ -26,23 +28,31 @@ __all__ = ["COMMANDS"]
 
 
 def cmd_templates(ns: argparse.Namespace) -> int:
-    """List the shipped templates, one line each."""
-    from onefold_cad.templates import list_templates
+    """List the shipped templates, one line each, then the shipped site files."""
+    from onefold_cad.templates import list_sites, list_templates
 
-    infos = list_templates()
-    width = max((len(t.name) for t in infos), default=0)
+    infos, sites = list_templates(), list_sites()
+    width = max((len(t.name) for t in [*infos, *sites]), default=0)
     for t in infos:
         print(f"{t.name:<{width}}  {t.description}")
+    if sites:
+        print(f"\n{SITES_HEADING}")
+        for t in sites:
+            print(f"{t.name:<{width}}  {t.description}")
     return 0
+
+
+#: The line before the shipped site files in ``onefold templates``.
+SITES_HEADING = "sites (several sheets on one site: onefold site NAME):"
 
 
 def cmd_solve(ns: argparse.Namespace) -> int:
     """Solve one design and print it (text or JSON); warnings on stderr."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
 
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), ns.name)
-    report = design_report(job.design, build_design(job.design), sources=job.sources)
+    report = design_report(job.design, fold_design(job.design), sources=job.sources)
     check_finite(report)  # a NaN is an error naming its key, in the text as in the JSON
     text = report_json(report) if ns.json else summary(report) + "\n"
     for w in report["warnings"]:
@@ -55,6 +65,7 @@ def cmd_explore(ns: argparse.Namespace) -> int:
     """Serve the explorer page until Ctrl-C."""
     from onefold_cad.explore.server import serve
 
+    STATE["interrupted"] = "the explorer has stopped (it writes no files)"
     serve(ns.template, port=ns.port, open_browser=not ns.no_browser)
     return 0
 
@@ -63,17 +74,28 @@ def cmd_fit(ns: argparse.Namespace) -> int:
     """Inverse design: the frame whose resting form has the target size."""
     import json
 
+    from onefold_cad.cli.output import one_line
     from onefold_cad.fit import fit_design
+    from onefold_cad.templates import DEFAULT_TEMPLATE
 
-    (job,) = load_jobs([ns.template], {})
+    template = ns.template or DEFAULT_TEMPLATE  # as solve and build: the default template
+    (job,) = load_jobs([template], {})
     design = job.design
-    result = fit_design(design, ns.height, ns.span, ns.depth, ns.min_tipping_margin)
+
+    def progress(text: str) -> None:
+        if not ns.quiet:
+            os.write(2, f"[fit] {design.name}: {one_line(text)}\n".encode())
+
+    result = fit_design(
+        design, ns.height, ns.span, ns.depth, ns.min_tipping_margin, progress=progress
+    )
     f = result.design.frame
+    progress(f"found after {result.evaluations} solved frames")
     if ns.outdir is not None:  # the build's list of files goes to stderr under --json
         frame = ["--alpha", repr(f.alpha), "--beta", repr(f.beta), "--hc", repr(f.h_c)]
         # named after the template and the fit, not after the flags' values
         name = ["--name", f"{design.name}-fit"]
-        argv = [ns.template, "-o", str(ns.outdir), *frame, *name, *(["-q"] if ns.quiet else [])]
+        argv = [template, "-o", str(ns.outdir), *frame, *name, *(["-q"] if ns.quiet else [])]
         with contextlib.redirect_stdout(sys.stderr) if ns.json else contextlib.nullcontext():
             status = cmd_build(build_parser()["build"].parse_intermixed_args(argv))
         if status:
@@ -94,8 +116,9 @@ def cmd_fit(ns: argparse.Namespace) -> int:
 
 def cmd_hops(ns: argparse.Namespace) -> int:
     """Serve the Grasshopper Hops components until Ctrl-C (``onefold_cad.hops``)."""
-    from onefold_cad.hops.serve import serve
+    from onefold_cad.hops.launch import serve
 
+    STATE["interrupted"] = "the Hops server has stopped (it writes no files)"
     serve(ns.host, ns.port, ns.templates, ns.allow_host)
     return 0
 
@@ -156,4 +179,5 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "simulate": cmd_simulate,
     "compensate": cmd_compensate,
     "site": cmd_site,
+    "loads": cmd_loads,
 }

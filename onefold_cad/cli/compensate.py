@@ -99,7 +99,7 @@ def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[
 
     from onefold_cad.cli.build import make_outdir, say_removed
     from onefold_cad.compensate.evaluate import target_form
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.atomic import FileSet, Staging, check_targets, recover
     from onefold_cad.export.build_context import BuildContext
     from onefold_cad.export.compensation_picture import Panel, render_compensation
@@ -141,7 +141,7 @@ def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[
             ))  # fmt: skip
         render_compensation(panels, u, paths[3], title=f"{base}: springback and weight compensated")
         paths[4].write_text(report_json(report))
-        ctx = BuildContext(design, build_design(design), None, "sharp", job.sources, ())
+        ctx = BuildContext(design, fold_design(design), None, "sharp", job.sources, ())
         built = write_design(ctx, stage.path / "build", formats)
         _springback_notes(built, stem, result)
         done = stage.commit([*paths, *built], sets=[FileSet(stem, tuple(names))])
@@ -179,7 +179,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     from onefold_cad.compensate.parallel import Evaluator
     from onefold_cad.compensate.run import compensate
     from onefold_cad.compensate.target import make_target
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
     from onefold_cad.sweep.backends import default_workers
 
@@ -206,7 +206,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     if not result.reached:
         warn(f"compensate: target {result.verdict}")
     comp = result.compensated
-    report = design_report(comp, build_design(comp), sources=job.sources)
+    report = design_report(comp, fold_design(comp), sources=job.sources)
     report["name"] = design.name
     report["compensation"] = result.to_data()
     check_finite(report)

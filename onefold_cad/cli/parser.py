@@ -13,6 +13,7 @@ from typing import Any
 from onefold_cad.cli.compensate_parser import compensate_parser
 from onefold_cad.cli.help_format import fill, formatter, raw_formatter
 from onefold_cad.cli.hops_parser import HOPS_PORT, hops_parser, parse_port
+from onefold_cad.cli.loads_parser import loads_parser
 from onefold_cad.cli.site_parser import site_parser
 from onefold_cad.export.writers import WRITERS, files_help
 from onefold_cad.flags.design_flags import (
@@ -25,7 +26,6 @@ from onefold_cad.flags.design_flags import (
 )
 from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
-from onefold_cad.version import __version__
 
 __all__ = ["HOPS_PORT", "build_parser", "help_text", "parse_port"]
 
@@ -44,7 +44,7 @@ def _template_argument(parser: argparse.ArgumentParser, dest: str, nargs: str) -
     )
 
 
-def _add_common(p: argparse.ArgumentParser) -> None:
+def _add_common(p: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
     p.add_argument(
         "--name", help="the design's name (file stem); default: the template's, with the "
         "flags given appended; without a template, made from the flags"
@@ -53,6 +53,16 @@ def _add_common(p: argparse.ArgumentParser) -> None:
         "-q", "--quiet", action="store_true", help="no progress or material lines on stderr "
         "(warnings and errors are still printed)"
     )  # fmt: skip
+
+
+class _VersionAction(argparse._VersionAction):
+    """``--version``: the version read when asked (:mod:`onefold_cad.version`)."""
+
+    def __call__(self, parser: Any, namespace: Any, values: Any, option: Any = None) -> None:
+        from onefold_cad.version import __version__
+
+        self.version = f"{PROG} {__version__}"
+        super().__call__(parser, namespace, values, option)
 
 
 def build_parser() -> dict[str, argparse.ArgumentParser]:
@@ -74,12 +84,13 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n"
         "  compensate the fold to form so that the steel stands as designed (springback)\n"
         "  hops       a Grasshopper Hops server: onefold/solve and onefold/fit in Grasshopper\n"
-        "  site       a site of several sheets: their files, STEP/IFC/GLB, plan, order\n\n"
+        "  site       a site of several sheets: their files, STEP/IFC/GLB, plan, order\n"
+        "  loads      outdoors: wind, snow, a person; anchors or ballast per foot\n\n"
         f"'{PROG} COMMAND --help' shows a command's options.",
         formatter_class=lambda prog: argparse.RawDescriptionHelpFormatter(prog, width=100),
         allow_abbrev=False,
     )
-    top.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    top.add_argument("--version", action=_VersionAction)
 
     build = FlagParser(
         prog=f"{PROG} build",
@@ -143,7 +154,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     templates = FlagParser(
         prog=f"{PROG} templates",
         usage=f"{PROG} templates",
-        description="List the shipped templates, one line each: name and description.",
+        description="List the shipped templates, one line each: name and description; then, "
+        "after a blank line and a heading, the shipped site files (onefold site NAME).",
         formatter_class=formatter,
         allow_abbrev=False,
     )
@@ -163,8 +175,8 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
                          help="only print the address; do not open a browser")  # fmt: skip
     fit = FlagParser(
         prog=f"{PROG} fit",
-        usage=f"{PROG} fit TEMPLATE --height H --span S [--depth D]\n"
-        "         [--min-tipping-margin DEG] [--json] [-o DIR]",
+        usage=f"{PROG} fit [TEMPLATE] --height H --span S [--depth D]\n"
+        "         [--min-tipping-margin DEG] [--json] [-o DIR] [-q]",
         description="Find alpha, beta and h_c whose resting form has the target height and "
         "span (footprint width), and depth if given, each within 0.5 %. The template's sheet, "
         "material and model are kept; lengths are in its unit. A target out of reach is an "
@@ -174,8 +186,10 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
     )
     fit.add_argument(
         "template",
+        nargs="?",
         metavar="TEMPLATE",
-        help="template file or shipped template name: sheet and material",
+        help="template file or shipped template name: sheet and material "
+        f"(default: {DEFAULT_TEMPLATE})",
     )
     fit.add_argument(
         "--height",
@@ -212,7 +226,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         help="also build the found design into this folder (as NAME-fit)",
     )
     fit.add_argument("-q", "--quiet", action="store_true",
-                     help="no progress lines on stderr when building (-o)")  # fmt: skip
+                     help="no progress lines on stderr (the search's, the build's)")  # fmt: skip
     return {
         "": top,
         "build": build,
@@ -225,6 +239,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "simulate": _simulate_parser(),
         "compensate": compensate_parser(PROG),
         "site": site_parser(PROG),
+        "loads": loads_parser(PROG),
     }
 
 
@@ -282,6 +297,10 @@ def simulation_options(g: Any, *, defaults: bool) -> None:
          "default) or the designed form (a structural check)"),
         ("crease", "the crease keeps its set angle (default), or bends with its bend zone's "
          "own stiffness"),
+        ("law", "how the steel yields: the 1D moment law of a rectangular section (default; "
+         "elastic membrane and unloading, its stresses past yield are estimates), or J2 "
+         "(von Mises) plasticity through the thickness, membrane and bending together "
+         "(unloading and reverse yield follow the law; 5 to 10 times the CPU)"),
         ("mesh", "mesh fineness (default normal; coarse: a quick preview without the "
          "convergence check)"),
     ):  # fmt: skip
@@ -323,7 +342,8 @@ def _sweep_parser() -> FlagParser:
             "NAME is a design flag without its dashes (alpha, hc, apex-fraction, rectangle, ...).\n"
             "SPEC: LO:HI:N (N values from LO to HI), LO:HI (a range for --sampler lhs|sobol,\n"
             "or --samples values on a grid), V,V,... (a list; a polygon's list uses |), V.\n"
-            "e.g. onefold sweep patkau-one-fold --vary alpha=10:80:15 --vary hc=-50,0,50 -o out\n\n"
+            "e.g. onefold sweep patkau-one-fold --vary alpha=10:80:15 "
+            "--vary hc-fraction=-0.5,0,0.5 -o out\n\n"
             f"measures (--measure NAME,...):\n{measure_help()}"
         ),
         formatter_class=raw_formatter,

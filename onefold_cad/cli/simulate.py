@@ -55,14 +55,30 @@ def _length(value: float | None, unit: str) -> str:
     return "-" if value is None else f"{value:.4g} {unit}"
 
 
+def _hardening(m: dict[str, Any]) -> str:
+    h = m.get("hardening_modulus_MPa") or 0.0
+    if h <= 0:
+        return ", perfectly plastic"
+    return f", hardening {h:g} MPa ({100 * m.get('kinematic_hardening', 0.0):.3g} % kinematic)"
+
+
+def _peeq(value: float | None, at: list[float] | None, unit: str) -> str:
+    """'; largest plastic strain 0.17 at (x, y) unit' or ''."""
+    if value is None:
+        return ""
+    where = f" at ({at[0]:.4g}, {at[1]:.4g}) {unit}" if at else ""
+    return f"; largest plastic strain {value:.3g}{where}"
+
+
 def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
     """The text ``simulate`` prints, from the report's ``simulation`` section."""
     u = sim["units"]
     m = sim["material"]
     out = [
         f"{name}  simulated as steel (E {m['youngs_modulus_GPa']:g} GPa, nu {m['poisson']:g}, "
-        f"yield stress {m['yield_stress_MPa']:g} MPa, t {m['thickness']:g} {u}; reference "
-        f"{sim['reference']}, supports {sim['supports']}, crease {sim['crease']})",
+        f"yield stress {m['yield_stress_MPa']:g} MPa{_hardening(m)}, t {m['thickness']:g} {u}; "
+        f"law {sim.get('law', 'moment')}, reference {sim['reference']}, supports "
+        f"{sim['supports']}, crease {sim['crease']})",
         f"  {'weight':<24} {sim['weight_N']:.6g} N",
     ]
     mesh = sim["mesh"]
@@ -84,6 +100,7 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
             f"  {'formed':<24} work of bending {f['bending_energy_J']:.5g} J; "
             f"{100 * f['plastic_area_share']:.3g} % of the sheet yields "
             f"(out to {_length(f['plastic_radius_max'], u)} from H)"
+            + _peeq(f.get("max_plastic_strain"), f.get("max_plastic_strain_at"), u)
         )
     if "released" in sim:
         r = sim["released"]
@@ -91,6 +108,11 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
             f"  {'released (springback)':<24} deviation max {_length(r['max_deviation'], u)}, rms "
             f"{_length(r['rms_deviation'], u)}; height {_length(r['height'], u)}, span "
             f"{_length(r['span'], u)}"
+            + (
+                f"; {100 * r['reloaded_area_share']:.3g} % of the sheet yields again"
+                if sim.get("law") == "j2"
+                else ""
+            )
         )
     s = sim["standing"]
     head = f"standing ({sim['supports']})"
@@ -98,6 +120,8 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
         out.append(f"  {head:<24} does not stand: {s['reason']}")
         return out
     verdict = "stands" if s["stands"] else f"does not stand ({s['reason']})"
+    if s.get("uncertain"):
+        verdict = f"uncertain ({s['uncertain']})"
     margin = s["tipping_margin_deg"]
     out.append(
         f"  {head:<24} {verdict}; tipping margin {margin:.3g} deg, {len(s['contacts'])} "
@@ -110,10 +134,16 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
     )
     at = s["max_stress_at"]
     where = f" at ({at[0]:.4g}, {at[1]:.4g}) {u} on the flat sheet" if at else ""
+    what = "von Mises stress at the surfaces" if sim.get("law") == "j2" else "stress"
     out.append(
-        f"  {'':<24} largest stress {s['max_stress_MPa']:.4g} MPa ({s['utilisation']:.3g} x "
+        f"  {'':<24} largest {what} {s['max_stress_MPa']:.4g} MPa ({s['utilisation']:.3g} x "
         f"yield){where}"
     )
+    if s.get("max_plastic_strain") is not None:
+        out.append(
+            f"  {'':<24} yielded (at some stage): {100 * s['plastic_area_share']:.3g} % of the "
+            "sheet" + _peeq(s["max_plastic_strain"], s.get("max_plastic_strain_at"), u)
+        )
     if "designed" in sim:
         d = sim["designed"]
         out.append(
@@ -170,7 +200,7 @@ def _write(outdir: Path, name: str, report: dict[str, Any], sim: Any) -> list[Pa
 
 def cmd_simulate(ns: argparse.Namespace) -> int:
     """Simulate one design; print it; with ``-o`` write its files."""
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
     from onefold_cad.mechanics.simulate import simulate
 
@@ -178,7 +208,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
     design = job.design
     if ns.outdir is not None:  # before the simulation's minutes, not after
         check_outdir(ns.outdir)
-    folded = build_design(design)
+    folded = fold_design(design)
     check = ns.check if ns.check is not None else MeshLevel.parse(ns.mesh).checked
     progress = None if ns.quiet else _Progress(f"onefold: simulate {design.name}", ns.verbose)
     sim = simulate(
@@ -187,6 +217,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
         supports=ns.supports,
         reference=ns.reference,
         crease=ns.crease,
+        law=ns.law,
         level=ns.mesh,
         convergence=check,
         progress=progress,

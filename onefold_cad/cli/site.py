@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from onefold_cad.choices import Compensation, Placement
 from onefold_cad.cli.build import (
     STATE,
     BuildTask,
@@ -77,7 +78,7 @@ def _sheet_formats(text: str | None) -> tuple[str, ...]:
 
 
 def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteContext:
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.site_context import SiteContext, SiteSheet
     from onefold_cad.site.placement import SitePlacement
 
@@ -85,7 +86,7 @@ def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteCo
         SiteSheet(
             s.name,
             job.design,
-            build_design(job.design),
+            fold_design(job.design),
             b.part,
             b.resting,
             b.report,
@@ -115,6 +116,15 @@ def cmd_site(ns: argparse.Namespace) -> int:
     jobs = site_jobs(spec)
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
+    if not ns.allow_touching:  # sheets whose surfaces cross: refused before building them
+        from onefold_cad.site.overlap import check_plan
+        from onefold_cad.site.placement import SitePlacement
+
+        check_plan(
+            [(s.name, j.design, SitePlacement(s.x, s.y, s.rotation_deg))
+             for s, j in zip(spec.sheets, jobs, strict=True)],
+            spec.units,
+        )  # fmt: skip
     n = len(jobs)
     targets = [
         f"{j.design.name}/{f}" for j in jobs for f in file_names(j.design.name, sheet_formats)
@@ -126,12 +136,14 @@ def cmd_site(ns: argparse.Namespace) -> int:
         with Staging(outdir, say=warn) as staging:
             STATE["staging"] = staging
             tasks = [
-                BuildTask(i, n, job, sheet_formats, None, ns.compensation,
-                          str(staging.path / job.design.name), ns.quiet, found[i - 1], "rest",
-                          bool(STATE.get("process")))
+                BuildTask(i, n, job, sheet_formats, None, Compensation.parse(ns.compensation),
+                          str(staging.path / job.design.name), ns.quiet, found[i - 1],
+                          Placement.REST, bool(STATE.get("process")))
                 for i, job in enumerate(jobs, 1)
             ]  # fmt: skip
             built: list[SheetBuilt] = run_tasks(tasks, ns.jobs, _build_sheet)
+            if spec.loads is not None:
+                _outdoors(spec.loads, jobs, built, ns.quiet)
             ctx = _site_context(spec, jobs, built)
             t0 = time.perf_counter()
             ctx.clearance = measure_clearance(ctx.sheets)
@@ -165,6 +177,29 @@ def cmd_site(ns: argparse.Namespace) -> int:
                 why = not_installed(f"the {w.name} file", [w.requires], w.extra)
                 warn(f"{spec.name}{w.suffix} not written: {why}")
     return 0
+
+
+def _outdoors(loads: dict[str, Any], jobs: list[Any], built: list[SheetBuilt], quiet: bool) -> None:
+    """``onefold loads`` on every sheet: its report's ``outdoors`` section
+    (SITE-order.csv's anchor columns read it)."""
+    from onefold_cad.design import fold_design
+    from onefold_cad.mechanics.loads.outdoors import outdoors
+    from onefold_cad.mechanics.loads.spec import LoadSpec
+
+    fields = dict(loads)
+    mesh = fields.pop("mesh")
+    spec = LoadSpec(**fields)
+    for job, b in zip(jobs, built, strict=True):
+        t0 = time.perf_counter()
+        result = outdoors(job.design, fold_design(job.design), spec, level=mesh)
+        b.report["outdoors"] = result.to_data()
+        for w in result.warnings:
+            warn(f"{job.design.name}: {w}")
+        t = b.report["outdoors"]["totals"]
+        _say(quiet, job.design.name,
+             f"outdoors ({spec.supports} feet): {t['feet']} feet, {t['anchored_feet']} pulled "
+             f"up ({t['tension_N'] / 1e3:.3g} kN), ballast {t['ballast_kg']:.4g} kg; governing "
+             f"{result.governing} ({time.perf_counter() - t0:.1f} s)")  # fmt: skip
 
 
 def _report_clearance(ctx: SiteContext, ns: argparse.Namespace, seconds: float) -> None:

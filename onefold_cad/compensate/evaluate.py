@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design, rest_once
+from onefold_cad.design import Design, fold_design, rest_once
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.deviation import surface_distance
@@ -86,7 +86,7 @@ def simulate_standing(design: Design, level: str, check: bool = False) -> Standi
     from onefold_cad.mechanics.simulate import simulate
 
     t0 = time.process_time()
-    sim = simulate(design, build_design(design), level=level, convergence=check)
+    sim = simulate(design, fold_design(design), level=level, convergence=check)
     st = sim.standing
     x = sim.standing_positions
     conv = None if sim.convergence is None else sim.convergence.get("max_deviation_change")
@@ -200,7 +200,7 @@ def _vertex_normals(x: Array, faces: Array) -> Array:
 def target_form(target: Design, flat: Array) -> Array:
     """``(k, 3)`` the target design's form at the flat points ``flat`` (k, 2),
     as it rests on the ground (its resting placement, design unit)."""
-    folded = build_design(target)
+    folded = fold_design(target)
     return rest_once(folded).apply(folded.map_points(flat))
 
 
@@ -218,7 +218,7 @@ def standing_measures(
     """
     if standing.positions is None:
         raise ValueError("no standing form to measure")
-    folded = build_design(target)
+    folded = fold_design(target)
     rest = rest_once(folded)
     w = node_weights(standing.flat, standing.faces)
     goal = target_form(target, standing.flat)
@@ -273,7 +273,7 @@ def crease_springback(design: Design, standing: Standing) -> dict[str, float]:
     the triangles' own angle to the curved surface cancels). Keys '+x', '-x'."""
     if standing.positions is None:
         return {}
-    folded = build_design(design)
+    folded = fold_design(design)
     designed = folded.map_points(standing.flat)
     s0, a0 = _crease_dihedrals(standing.flat, standing.faces, designed)
     _, a1 = _crease_dihedrals(standing.flat, standing.faces, standing.positions)

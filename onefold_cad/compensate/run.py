@@ -27,7 +27,7 @@ from onefold_cad.compensate.evaluate import (
 from onefold_cad.compensate.optimise import Search, search
 from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.target import Target
-from onefold_cad.design import Design, build_design, rest_once
+from onefold_cad.design import Design, fold_design, rest_once
 from onefold_cad.errors import ConvergenceError
 from onefold_cad.geometry.numeric import Array
 
@@ -215,7 +215,7 @@ def compensate(
     weights = node_weights(before_sim.flat, before_sim.faces)
     before = _form(target, samples, weights, before_sim)
     after = _form(target, samples, weights, after_sim)
-    rest = rest_once(build_design(target.form))
+    rest = rest_once(fold_design(target.form))
     designed = {"height": rest.height, "span": rest.width, "depth": rest.depth}
     reached, verdict = _verdict(target, designed, before, after, found)
     if not reached and found.limits:
@@ -229,7 +229,7 @@ def compensate(
             "after_springback_deg": c.fold_angle_deg
             + back.get("+x" if c.name == "plus_x" else "-x", np.nan),
         }
-        for c in build_design(compensated).crease
+        for c in fold_design(compensated).crease
     )
     return Compensation(
         target, designed, start, compensated, before, after, before_sim, after_sim, crease,

@@ -43,11 +43,14 @@ MAX_VALUE = 40
 MAX_POLYGON = 4000
 
 #: Page control -> the ``onefold solve`` flag it sets. ``width`` and
-#: ``height`` (rectangle sheets) go together into ``--rectangle WxH``.
+#: ``height`` (rectangle sheets) go together into ``--rectangle WxH``. The
+#: page places H with ``hc_fraction`` (a fraction of the half f-line: it
+#: stays on it whatever alpha and R); a query may give ``hc`` instead.
 PAGE_FLAGS: dict[str, str] = {
     "model": "--model",
     "alpha": "--alpha",
     "beta": "--beta",
+    "hc_fraction": "--hc-fraction",
     "hc": "--hc",
     "radius": "--radius",
     "divisions": "--divisions",
@@ -191,8 +194,8 @@ def page_values(design: Design) -> dict[str, Any]:
 
     Returns:
         ``{"values": {control: text}, "sheet_kind": ..., "units": ...,
-        "hc_limit": R cos(alpha), "sheet_size": ...}`` (``hc`` must stay
-        strictly inside ``(-hc_limit, hc_limit)``, see
+        "hc_limit": R cos(alpha), "sheet_size": ...}`` (``hc_fraction`` is
+        h_c / hc_limit, strictly inside (-1, 1), see
         :class:`onefold_cad.FrameCurve`; ``sheet_size`` is the sheet's largest
         distance from H, a scale for the sliders).
     """
@@ -202,7 +205,7 @@ def page_values(design: Design) -> dict[str, Any]:
         "model": data["model"],
         "alpha": _text(frame["alpha"]),
         "beta": _text(frame["beta"]),
-        "hc": _text(frame["h_c"]),
+        "hc_fraction": _text(frame["h_c"] / design.frame.half_chord),
         "radius": _text(frame["radius"]),
         "divisions": str(frame["divisions"]),
         "thickness": _text(material["thickness"]),

@@ -15,7 +15,7 @@ import threading
 from dataclasses import dataclass
 from pathlib import Path
 
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ExportError, not_installed
 
 __all__ = ["KINDS", "Download", "make_download"]
@@ -56,7 +56,7 @@ def make_download(kind: str, design: Design) -> Download:
         from onefold_cad.templates import design_to_data
 
         return Download(name, mime, tomli_w.dumps(design_to_data(design)).encode("utf-8"))
-    folded = build_design(design)
+    folded = fold_design(design)
     if kind == "json":
         from onefold_cad.fabrication.report import design_report, report_json
 

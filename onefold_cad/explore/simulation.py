@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import OneFoldError
 from onefold_cad.export.colour_scale import (
     DEVIATION_STOPS,
@@ -59,6 +59,7 @@ def simulation_numbers(sim: Simulation) -> dict[str, Any]:
     s = sim.standing
     return {
         "stands": bool(s.stands),
+        "uncertain": s.uncertain,
         "reason": s.reason,
         "max_deviation": s.max_deviation,
         "rms_deviation": s.rms_deviation,
@@ -84,6 +85,8 @@ def _mesh(sim: Simulation) -> dict[str, Any]:
         kind, shown = "released", sim.released_positions
     else:
         kind, shown = None, None
+    if sim.faces is None or sim.designed_positions is None:
+        raise OneFoldError("the simulation carries no mesh to show")
     faces = np.asarray(sim.faces)
     small = len(sim.designed_positions) < 2**16
     out: dict[str, Any] = {
@@ -124,7 +127,7 @@ def simulation_state(design: Design) -> dict[str, Any]:
 
     t0 = time.perf_counter()
     try:
-        folded = build_design(design)
+        folded = fold_design(design)
         with _ONE_AT_A_TIME:
             sim = simulate(design, folded, level=LEVEL, convergence=False)
     except OneFoldError as exc:

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import OneFoldError
 from onefold_cad.explore.controls import PAGE_FLAGS, ParameterProblem, page_values
 from onefold_cad.explore.flat_svg import flat_pattern_svg
@@ -143,7 +143,7 @@ def design_state(design: Design, known_mesh: str | None = None) -> dict[str, Any
     messages: list[dict[str, Any]] = []
     state: dict[str, Any] = {"ok": False, "messages": messages, "page": page_values(design)}
     try:
-        folded = build_design(design)
+        folded = fold_design(design)
     except OneFoldError as exc:
         messages.append(message("error", str(exc), _controls(exc)))
         return state

@@ -129,10 +129,10 @@ def _signals_held() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    pending: list[int] = []
+    pending: list[signal.Signals] = []
 
     def record(signum: int, frame: object) -> None:
-        pending.append(signum)
+        pending.append(signal.Signals(signum))
 
     old = {s: signal.signal(s, record) for s in _HELD}
     try:

@@ -1,5 +1,10 @@
 """The bend sheet as ``NAME-bends.csv``: the rows of the bend table
 (:func:`onefold_cad.fabrication.bend_table.bend_rows`), a header row first.
+
+Numbers are rounded to what a press brake and a tape can use, and each
+header cell names its step: angles to 0.01 deg (``fold_angle_deg [0.01
+deg]``), lengths to 0.01 mm (0.00001 m), 0.001 in or 0.0001 ft (``length [0.01 mm]``).
+The material's own values (r, t, K) are written as given.
 """
 
 from __future__ import annotations
@@ -10,7 +15,8 @@ import os
 from dataclasses import astuple, fields
 from pathlib import Path
 
-from onefold_cad.design import Design, build_design
+from onefold_cad.choices import Compensation
+from onefold_cad.design import Design, fold_design
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.fabrication.bend_table import BendRow, bend_rows
 from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern_once
@@ -19,13 +25,49 @@ from onefold_cad.geometry.folding import FoldedSheet
 __all__ = ["bend_csv", "write_bend_csv"]
 
 
+#: Decimals of a rounded length, by the design's unit (0.01 mm, 0.001 in, 0.0001 ft).
+LENGTH_DECIMALS = {"mm": 2, "m": 5, "in": 3, "ft": 4}
+#: Decimals of a rounded angle (0.01 deg).
+ANGLE_DECIMALS = 2
+#: The columns written as given (the material's values).
+_AS_GIVEN = ("inside_radius", "thickness", "k_factor")
+
+
+def _decimals(name: str, units: str) -> int | None:
+    """The decimals column ``name`` is rounded to (None: written as given or text)."""
+    if name.endswith("_deg"):
+        return ANGLE_DECIMALS
+    if name in _AS_GIVEN:
+        return None
+    return LENGTH_DECIMALS[units]
+
+
+def _header(name: str, units: str, value: object) -> str:
+    d = _decimals(name, units)
+    if d is None or not isinstance(value, float):
+        return name
+    return f"{name} [{10.0**-d:.{d}f} {'deg' if name.endswith('_deg') else units}]"
+
+
+def _cell(name: str, units: str, value: object) -> object:
+    d = _decimals(name, units)
+    if d is None or not isinstance(value, float):
+        return value
+    return f"{round(value, d) + 0.0:.{d}f}"  # + 0.0: no '-0.00'
+
+
 def bend_csv(pattern: FlatPattern) -> str:
-    """The bend sheet as CSV text: a header row, then one row per crease half."""
+    """The bend sheet as CSV text: a header row naming each column's rounding
+    step, then one row per crease half (and per ruling fold)."""
+    units = pattern.units.value
+    rows = [astuple(row) for row in bend_rows(pattern)]
+    names = [f.name for f in fields(BendRow)]
+    sample = rows[0] if rows else (None,) * len(names)
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
-    writer.writerow([f.name for f in fields(BendRow)])
-    for row in bend_rows(pattern):
-        writer.writerow(astuple(row))
+    writer.writerow([_header(n, units, v) for n, v in zip(names, sample, strict=True)])
+    for row in rows:
+        writer.writerow([_cell(n, units, v) for n, v in zip(names, row, strict=True)])
     return out.getvalue()
 
 
@@ -34,13 +76,13 @@ def write_bend_csv(
     path: str | os.PathLike[str],
     folded: FoldedSheet | None = None,
     *,
-    compensation: str = "sharp",
+    compensation: Compensation = Compensation.SHARP,
 ) -> Path:
     """Write ``NAME-bends.csv`` (atomically: nothing is written if anything fails).
 
     Args:
         source: a flat pattern, or a design (its pattern is computed with
-            ``compensation``; ``folded`` is ``build_design(design)`` if given).
+            ``compensation``; ``folded`` is ``fold_design(design)`` if given).
         path: the output file.
         folded: for a design: its fold, if already computed.
         compensation: for a design: 'sharp' or 'none'.
@@ -49,7 +91,7 @@ def write_bend_csv(
         The path written.
     """
     if isinstance(source, Design):
-        folded = build_design(source) if folded is None else folded
+        folded = fold_design(source) if folded is None else folded
         source = flat_pattern_once(source, folded, compensation)
     text = bend_csv(source)
     with atomic_output(path) as tmp:

@@ -103,7 +103,9 @@ def refine(probe: Array, err: Array, tol: float) -> tuple[Array, float]:
     return probe[rows[bad], worst[bad]], float(np.max(err))
 
 
-def arc_length_nodes(points: Array, params: Array, count: int) -> tuple[Array, object, object]:
+def arc_length_nodes(
+    points: Array, params: Array, count: int
+) -> tuple[Array, Callable[[Array], Array], Callable[[Array], Array]]:
     """``count`` parameters evenly spread along the polyline ``points`` ``(k, 3)``
     sampled at ``params`` ``(k,)``, and the maps length -> parameter and
     parameter -> length."""

@@ -18,7 +18,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from onefold_cad.choices import Compensation, Placement
+from onefold_cad.choices import Body, Compensation, Placement
 
 if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer runs
     from onefold_cad.design import Design
@@ -35,7 +35,7 @@ class BuildContext:
 
     Attributes:
         design: the design.
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         body: the STEP body ('solid', 'shell') or None for the default.
         compensation: 'sharp' (bend compensation) or 'none'.
         sources: where each input came from (for the report).
@@ -50,13 +50,13 @@ class BuildContext:
 
     design: Design
     folded: FoldedSheet
-    body: str | None = None
-    compensation: str = Compensation.SHARP.value
+    body: Body | None = None
+    compensation: Compensation = Compensation.SHARP
     sources: Mapping[str, str] = field(default_factory=dict)
     warnings: Sequence[str] = ()
     files: list[Path] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
-    placement: str = Placement.REST.value
+    placement: Placement = Placement.REST
     sections: dict[str, dict[str, Any]] = field(default_factory=dict)
 
     @property

@@ -119,7 +119,7 @@ def cone_patch(cone: ExactCone, phi0: float, phi1: float, mirror: bool, reach: f
         Geom_TrimmedCurve(circle, float(phi0), float(phi1)), Convert_RationalC1
     )
     c0, c1 = arc.FirstParameter(), arc.LastParameter()
-    probe = ConePatch(None, c0, c1, apex, centre, ex, ey, fr.radius, 1.0, phi0, phi1)  # type: ignore[arg-type]
+    probe = ConePatch(None, c0, c1, apex, centre, ex, ey, fr.radius, 1.0, phi0, phi1)
     dmin = float(np.min(np.linalg.norm(probe.arc(np.linspace(phi0, phi1, 64)) - apex, axis=1)))
     scale = 1.02 * reach / dmin
     n = arc.NbPoles()

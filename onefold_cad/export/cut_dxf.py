@@ -17,7 +17,7 @@ from pathlib import Path
 from ezdxf.document import Drawing
 
 from onefold_cad.choices import Compensation
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.dxf import design_seed, new_document, set_units, write_dxf_atomic
 from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern
@@ -61,7 +61,7 @@ def export_design_cut_dxf(
     Args:
         design: the design.
         path: the output file; nothing is written if anything fails.
-        folded: ``build_design(design)`` if already computed.
+        folded: ``fold_design(design)`` if already computed.
         dxfversion: 'R2000' (default), 'R12' or a later version.
         compensation: 'sharp' (default) or 'none' (see
             :func:`~onefold_cad.fabrication.flat_pattern.flat_pattern`).
@@ -69,6 +69,6 @@ def export_design_cut_dxf(
     Raises:
         FabricationError: the sharp-crease compensation's limits are passed.
     """
-    folded = build_design(design) if folded is None else folded
+    folded = fold_design(design) if folded is None else folded
     doc = draw_cut(flat_pattern(design, folded, compensation), dxfversion=dxfversion)
     return write_dxf_atomic(doc, path, seed=design_seed(design, compensation, "cut"))

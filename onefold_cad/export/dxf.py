@@ -8,7 +8,9 @@ Layers (exact names, so a CAM setup maps them once):
   with the DASHED linetype (the layer's and the entity's own), on the layer
   of its bend direction seen from the drawing's (top) side; XDATA
   (application ``ONEFOLD``) holds the direction and angle.
-- ``APEX``: a cross and a small circle at H (always drawn).
+- ``APEX``: a cross and a small circle at H (always drawn); with a relief
+  hole, a leader from the hole's edge and its label ("relief hole, diameter 19.14
+  mm"), so the hole shows at full-sheet scale.
 - ``BEND_ZONE``: for t > 0, each half's limit lines at +-BA/2.
 - the paper model's ruling folds (:attr:`FlatPattern.fold_rulings`: its fan's
   triangles meet at an angle along them) on ``BEND_UP`` / ``BEND_DOWN`` like
@@ -48,7 +50,7 @@ from ezdxf import units as dxf_units
 from ezdxf.document import Drawing
 
 from onefold_cad.choices import Compensation, Units
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ExportError, InvalidParameterError
 from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.dxf_notes import flat_pattern_notes
@@ -76,7 +78,12 @@ LAYERS: dict[str, tuple[int, str]] = {
     "NOTES": (7, "Continuous"),
 }
 _VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
-_INSUNITS = {Units.MM: dxf_units.MM, Units.IN: dxf_units.IN, Units.FT: dxf_units.FT}
+_INSUNITS = {
+    Units.MM: dxf_units.MM,
+    Units.M: dxf_units.M,
+    Units.IN: dxf_units.IN,
+    Units.FT: dxf_units.FT,
+}
 _APPID = "ONEFOLD"
 #: the fixed date of every time stamp in the files (2000-01-01, as ezdxf's own tests)
 _FIXED_DATE = datetime(2000, 1, 1)
@@ -96,7 +103,7 @@ def set_units(doc: Drawing, units: Units) -> None:
     """$INSUNITS (not in R12) and $MEASUREMENT for the design's unit."""
     if doc.dxfversion > "AC1009":  # R12 has no $INSUNITS
         doc.units = _INSUNITS[units]
-    doc.header["$MEASUREMENT"] = 1 if units is Units.MM else 0
+    doc.header["$MEASUREMENT"] = 1 if units in (Units.MM, Units.M) else 0
 
 
 def _setup(doc: Drawing, pattern: FlatPattern) -> None:
@@ -117,8 +124,11 @@ def _setup(doc: Drawing, pattern: FlatPattern) -> None:
 
 
 def _literal(text: str) -> str:
-    """Escape DXF caret codes ('^J' etc.) so the text reads as written."""
-    return text.replace("^", "^ ")
+    """``text`` as DXF text that reads as written: powers of units plainly
+    ('kg/m^3' as 'kg/m3', ASCII: R12 and R2000 files are in a code page, so a
+    superscript would not be UTF-8), any other caret escaped ('^ ', the DXF
+    form of a literal '^', which LibreCAD shows as is)."""
+    return text.replace("^3", "3").replace("^2", "2").replace("^", "^ ")
 
 
 def _text_height(pattern: FlatPattern) -> float:
@@ -189,6 +199,7 @@ def draw_flat_pattern(
         )
         line.set_xdata(_APPID, [(1000, f.name), (1000, f.bend), (1040, f.angle_deg)])
     _apex_mark(msp, pattern)
+    _hole_leader(msp, pattern, h)
     if rulings:
         for a, b in pattern.rulings:
             msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "RULINGS"})
@@ -218,6 +229,24 @@ def _apex_mark(msp: object, pattern: FlatPattern) -> None:
         a, b = pattern.apex - m * arm, pattern.apex + m * arm
         msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
     msp.add_circle(tuple(pattern.apex.tolist()), radius, dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
+
+
+def _hole_leader(msp: object, pattern: FlatPattern, height: float) -> None:
+    """A leader (a LINE) from the relief hole's edge, square to the fold line,
+    an eighth of the sheet long, and the hole's label at its end (APEX)."""
+    d = pattern.hole_diameter
+    if d <= 0.0:
+        return
+    f = pattern.fold_direction
+    n = np.array([-f[1], f[0]])
+    a = pattern.apex + n * d / 2.0
+    b = pattern.apex + n * max(pattern.scale / 8.0, d)
+    msp.add_line(tuple(a.tolist()), tuple(b.tolist()), dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
+    text = f"relief hole, diameter {d:.4g} {pattern.units.value}"
+    label = msp.add_text(text, height=height, dxfattribs={"layer": "APEX"})  # type: ignore[attr-defined]
+    label.set_placement(
+        tuple((b + n * height / 2.0).tolist()), align=ezdxf.enums.TextEntityAlignment.BOTTOM_CENTER
+    )
 
 
 def _guid(seed: str, kind: str) -> str:
@@ -304,7 +333,7 @@ def export_design_dxf(
     Args:
         design: the design.
         path: the output file; nothing is written if anything fails.
-        folded: ``build_design(design)`` if already computed.
+        folded: ``fold_design(design)`` if already computed.
         dxfversion: 'R2000' (default) or 'R12' (or a later version).
         rulings: include the RULINGS layer.
         compensation: 'sharp' (default) or 'none', see
@@ -316,7 +345,7 @@ def export_design_dxf(
     Raises:
         FabricationError: the sharp-crease compensation's limits are passed.
     """
-    folded = build_design(design) if folded is None else folded
+    folded = fold_design(design) if folded is None else folded
     pattern = flat_pattern_once(design, folded, compensation)
     doc = draw_flat_pattern(pattern, dxfversion=dxfversion, rulings=rulings)
     return write_dxf_atomic(doc, path, seed=design_seed(design, compensation, "annotated"))

@@ -46,11 +46,11 @@ def flat_pattern_notes(p: FlatPattern) -> tuple[str, ...]:
         )
         lines += [f"limit passed: {q.message}" for q in p.problems]
     else:
-        e = [round(x, 9) + 0.0 for x in p.move.errors]  # no '-0.0000'
+        shown = [round(x, 9) + 0.0 for x in p.move.errors]  # no '-0.0000'
         lines.append(
             f"thickness compensation: each side moved {p.shift:.4f} {u} towards the fold line "
             "(the mean of the halves' shifts SB - BA/2); blank width error across +x, -x: "
-            f"{e[0]:.4f}, {e[1]:.4f} {u}"
+            f"{shown[0]:.4f}, {shown[1]:.4f} {u}"
         )
     lines += bend_table(p).splitlines()
     lines.append(f"kerf: {p.kerf:g} {u} (cut contours offset by kerf/2)")

@@ -23,7 +23,7 @@ left-aligned under the blank: material, bends, the bend table) is drawn up
 to :data:`MAX_NOTE_LINES` lines, then one line saying how many more the DXF
 holds: a paper fan of 10 000 divisions lists its 19 978 ruling folds there,
 and every glyph of them became an SVG path (3.9 GB and 16 minutes for a
-500 MB picture, issue 38). The DXF and the bend sheet keep every line.
+500 MB picture). The DXF and the bend sheet keep every line.
 """
 
 from __future__ import annotations
@@ -62,6 +62,7 @@ _CONFIG = Configuration(
 #: The SVG length unit and how many of it make a millimetre, per DXF unit.
 _SVG_UNIT = {
     dxf_units.MM: ("mm", 1.0),
+    dxf_units.M: ("mm", 1.0),
     dxf_units.IN: ("in", 1 / 25.4),
     dxf_units.FT: ("in", 1 / 25.4),
 }
@@ -75,7 +76,11 @@ def _units(doc: Drawing) -> int:
 def _mm_per_unit(doc: Drawing) -> float:
     """Millimetres per drawing unit (1 when the DXF states none)."""
     code = _units(doc)
-    return dxf_units.conversion_factor(code, dxf_units.MM) if code else 1.0
+    if not code:
+        return 1.0
+    return dxf_units.conversion_factor(
+        dxf_units.InsertUnits(code), dxf_units.InsertUnits.Millimeters
+    )
 
 
 def _weights(entity: Any, properties: Any) -> None:

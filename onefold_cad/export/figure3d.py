@@ -18,7 +18,7 @@ import numpy as np
 
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
-from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.numeric import Array, Mask
 
 __all__ = [
     "LIGHT",
@@ -41,7 +41,7 @@ def view_direction(elev: float, azim: float) -> Array:
     return np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
 
 
-def lambert(tri: Array, view: Array) -> tuple[Array, Array]:
+def lambert(tri: Array, view: Array) -> tuple[Mask, Array]:
     """Which side of each triangle ``(m, 3, 3)`` faces the camera and how
     bright it is lit.
 

@@ -32,25 +32,26 @@ Simulator: see docs/formats.md, "vertex load"). So the file folds a paper
 fan over the design's frame curve with its own division count,
 :func:`fold_divisions` (:data:`FOLD_DIVISIONS` per side, or a paper-model
 design's own divisions if fewer: then it is written as it is), graded
-towards the crease (:mod:`onefold_cad.export.fold_fan`: its division points
-on the frame curve, narrow wedges beside the crease halves, so that the
-file's crease folds as the design's to about k_g x the narrowest wedge
-allowed), except with a relief hole (``fold_fan.HOLE_DIVISIONS`` equal
-divisions: Origami Simulator did not fold the graded holed fans right).
-The fan is solved for its own apex (the angle condition then holds exactly
-for it) and folded by the fan's own code, so each ray's fold
-angle is that fan's. It approximates the design's surface (the exact cone,
-or the paper fan of more divisions) to O(1 / divisions^2);
+towards the crease (narrow wedges beside it; gently with a relief hole,
+whose sides must stay long for Origami Simulator) and tangent-ended at the
+design's apex (:mod:`onefold_cad.export.fold_fan`): the wedges beside the
+crease lie in the design's tangent planes along it, so the file's crease
+folds as the design's, and the directions between are moved off the
+division points just enough for the fan to fold from the flat sheet. Each
+ray's fold angle is that fan's. It approximates the design's surface (the
+exact cone, or the paper fan of more divisions) to O(1 / divisions^2);
 ``onefold:max_deviation_from_design`` records the largest distance between
 the two (fold frame, matched by flat point), ``onefold:design_crease_fold_angle_deg``
-the design's crease, and ``onefold:mesh`` both division counts and the
-grading (``grading_ratio``, ``wedge_widths_of_span``: each wedge's share of
-the arc, ``crease_wedges_deg``: the flat angles beside the two crease
-halves). An inscribed polyhedral
-cone (the exact apex, rulings at chosen angles) would not do: its
-triangles' apex angles are chords of the cone's directions, so they add up
-to less than 180 deg per side and the folded triangles cannot have their
-flat shapes. So the folded frame is exact to itself: every edge keeps its
+the design's crease, ``onefold:notes`` what a reader must know of the
+file (a crease more than ``fold_fan.CREASE_TOLERANCE_DEG`` from the
+design's; none for the fans ``build`` writes), and ``onefold:mesh`` both
+division counts and the grading (``grading_ratio``,
+``wedge_widths_of_span``: each wedge's share of the arc,
+``crease_wedges_deg``: the flat angles beside the two crease halves). An
+inscribed polyhedral cone (the exact apex, rulings at chosen angles) would
+not do: its triangles' apex angles are chords of the cone's directions, so
+they add up to less than 180 deg per side and the folded triangles cannot
+have their flat shapes. So the folded frame is exact to itself: every edge keeps its
 flat length and every dihedral angle equals its ``edges_foldAngle``, to
 rounding.
 
@@ -80,6 +81,7 @@ from onefold_cad.export.atomic import atomic_output
 from onefold_cad.export.fold_fan import (  # the file's fan: see the module notes
     FOLD_DIVISIONS,
     GRADING_RATIO,
+    HOLE_GRADING_RATIO,
     fold_divisions,
     fold_fan,
     fold_note,
@@ -90,6 +92,7 @@ from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.sheet import sheet_inradius
+from onefold_cad.geometry.tangent_fan import TangentEndedFan
 
 __all__ = [
     "FOLD_DIVISIONS",
@@ -170,7 +173,7 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
 
     Args:
         design: the design (name, units, frame, sheet, material).
-        folded: its fold (:func:`onefold_cad.build_design`).
+        folded: its fold (:func:`onefold_cad.fold_design`).
         divisions: the file's fan's divisions per side (None:
             :func:`fold_divisions`).
 
@@ -213,11 +216,12 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
     quality |= {"divisions": n, "design_divisions": design.frame.divisions}
     surface = fan.solution.surface
     spacing = surface.spacing if isinstance(surface, PaperFan) else None
-    if spacing is not None:  # the graded fan's wedges (fold_fan)
+    if isinstance(surface, PaperFan) and spacing is not None:  # fold_fan's graded wedges
+        assert surface.gammas is not None  # a solved fan has its apex angles
         steps = np.asarray(spacing.steps)
         widths = np.abs(np.diff(steps)) / spacing.per_span
         quality |= {
-            "grading_ratio": GRADING_RATIO,
+            "grading_ratio": GRADING_RATIO if hole == 0.0 else HOLE_GRADING_RATIO,
             "wedge_widths_of_span": widths.tolist(),
             "crease_wedges_deg": np.degrees(surface.gammas[[0, -1]]).tolist(),
         }
@@ -239,15 +243,20 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
             "the paper model's fan of planar triangles"
             if fan is folded
             else (
-                f"a graded paper fan of {n} divisions per side over the design's frame "
-                "curve (its division points on the curve, narrow wedges beside the crease: "
-                "onefold:mesh wedge_widths_of_span)"
+                f"a graded fan of {n} divisions per side over the design's frame curve "
+                "(onefold:mesh wedge_widths_of_span)"
+                + (
+                    ", tangent-ended at the design's apex: the wedges beside the crease lie "
+                    "in the design's tangent planes along it, the directions between moved "
+                    "off the division points so that the fan folds from the flat sheet"
+                    if isinstance(surface, TangentEndedFan)
+                    else ", solved for its own apex"
+                )
                 if spacing is not None
                 else f"the paper fan of {n} equal divisions per side over the design's "
-                "frame curve (not graded: a relief hole)"
+                "frame curve, solved for its own apex"
             )
-            + ", solved for its own apex: an isometric polyhedral approximation of the "
-            f"design's {design.model.value} model"
+            + f": an isometric polyhedral approximation of the design's {design.model.value} model"
         ),
         "onefold:apex_height": fan.solution.apex_height,
         "onefold:crease": [
@@ -259,6 +268,7 @@ def fold_data(design: Design, folded: FoldedSheet, divisions: int | None = None)
         "onefold:sheet_size": design.sheet.size,
         "onefold:mesh": quality,
         "onefold:resting_tilt_deg": rest_once(fan).tilt_deg,
+        "onefold:notes": [n for n in [fold_note(design, folded, divisions)] if n is not None],
     }
     if fan is not folded:
         # at both fans' outline vertices and the mesh's: the larger gaps are at the outline

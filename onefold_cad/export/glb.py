@@ -35,7 +35,7 @@ from pathlib import Path
 
 import build123d as bd
 
-from onefold_cad.choices import Units
+from onefold_cad.choices import Compensation, Placement, Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
@@ -52,7 +52,7 @@ ANGULAR_DEFLECTION = 0.05
 #: The material's base colour (sRGB), a light steel grey.
 COLOUR = STEEL_GREY
 
-_UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
+_UNIT = {Units.MM: bd.Unit.MM, Units.M: bd.Unit.M, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
 
 
 def write_glb(
@@ -61,8 +61,8 @@ def write_glb(
     path: str | os.PathLike[str],
     part: bd.Shape | None = None,
     *,
-    placement: str = "rest",
-    compensation: str = "sharp",
+    placement: Placement = Placement.REST,
+    compensation: Compensation = Compensation.SHARP,
 ) -> Path:
     """Write the folded form, standing as it rests, as binary glTF (metres, y-up).
 

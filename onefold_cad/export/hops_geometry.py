@@ -24,7 +24,7 @@ import rhino3dm
 
 from onefold_cad.errors import InvalidSheetError
 from onefold_cad.export.rhino_faces import Place
-from onefold_cad.fabrication.flat_pattern import FlatPattern
+from onefold_cad.fabrication.flat_pattern import FlatPattern, FoldHalf, FoldRuling
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 
@@ -85,7 +85,7 @@ def flat_curves(pattern: FlatPattern) -> FlatCurves:
     if pattern.cut_hole_diameter > 0.0:
         circle = rhino3dm.Circle(_p3(pattern.apex), pattern.cut_hole_diameter / 2.0)
         hole = circle.ToNurbsCurve()
-    bends = [*pattern.halves, *pattern.fold_rulings]
+    bends: list[FoldHalf | FoldRuling] = [*pattern.halves, *pattern.fold_rulings]
     return FlatCurves(
         rhino3dm.PolylineCurve([*outline, outline[0]]),
         hole,

@@ -43,7 +43,7 @@ Lengths are in the design's unit.
 Example::
 
     import build123d as bd
-    from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+    from onefold_cad import Design, FrameCurve, Material, Sheet, fold_design
     from onefold_cad.export.part import build_part, build_shell
     from onefold_cad.export.step import export_design_step
 
@@ -52,7 +52,7 @@ Example::
     thick = design.with_changes(material=Material(thickness=3.0))
     solid = build_part(thick)                      # a Solid, relief hole 3 x 3 = 9
     export_design_step(design, "demo.step")        # deterministic STEP, in mm
-    shell = build_shell(build_design(design), relief_hole=10.0)   # fold frame
+    shell = build_shell(fold_design(design), relief_hole=10.0)   # fold frame
     placed = bd.Pos(0, 0, 50) * shell              # use it in your own model
     bd.export_stl(part, "demo.stl")                # or any build123d exporter
 """
@@ -67,7 +67,7 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.gp import gp_Trsf, gp_Vec
 
 from onefold_cad.choices import Body, Compensation, Placement
-from onefold_cad.design import Design, build_design
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ExportError, InvalidParameterError, OneFoldError
 from onefold_cad.export.bspline_fit import MAX_NODES
 from onefold_cad.export.cone_faces import FoldedBackError, ruled_shell
@@ -133,7 +133,7 @@ def build_shell(
     """The folded surface as one build123d Shell (top side = face normals).
 
     Args:
-        folded: the fold of a design (:func:`onefold_cad.build_design`).
+        folded: the fold of a design (:func:`onefold_cad.fold_design`).
         relief_hole: diameter of a hole about the apex, 0 <= d < twice the
             distance from H to the nearest sheet edge (length; 0 = none).
         faces: 'ruled' (exact cone patches, exact model only) or 'fan' (the
@@ -328,10 +328,11 @@ def build_solid(
     clock.check()
     solid.fit_deviation = deviation
     solid.fit_tolerance = tol
+    solid.solid_volume = volume
     return solid
 
 
-def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: str) -> None:
+def _fabrication_limits(design: Design, folded: FoldedSheet, compensation: Compensation) -> None:
     """Refuse a solid past the bend model's limits (FabricationError: a bend
     zone reaching a sheet corner, a large set-back beside the flanges, a fold
     near 180 deg) unless ``compensation`` is 'none':
@@ -364,7 +365,7 @@ def place(part: bd.Shape, placement: RestingPlacement) -> bd.Shape:
     lift.SetTranslation(gp_Vec(0.0, 0.0, -box.CornerMin().Z()))
     out = bd.Shape.cast(BRepBuilderAPI_Transform(moved, lift, True).Shape())
     out.label = part.label
-    for name in ("fit_deviation", "fit_tolerance"):
+    for name in ("fit_deviation", "fit_tolerance", "solid_volume"):
         if hasattr(part, name):
             setattr(out, name, getattr(part, name))
     return out
@@ -374,9 +375,9 @@ def build_part(
     design: Design,
     folded: FoldedSheet | None = None,
     *,
-    body: str | None = None,
-    placement: str = "rest",
-    compensation: str = "sharp",
+    body: Body | None = None,
+    placement: Placement = Placement.REST,
+    compensation: Compensation = Compensation.SHARP,
     budget: float | None = KERNEL_BUDGET,
 ) -> bd.Shape:
     """The design's part, labelled with its name.
@@ -413,7 +414,7 @@ def build_part(
         raise InvalidParameterError("body", f"must be 'shell' or 'solid', got {body!r}")
     if placement not in PLACEMENTS:
         raise InvalidParameterError("placement", f"must be 'rest' or 'frame', got {placement!r}")
-    folded = build_design(design) if folded is None else folded
+    folded = fold_design(design) if folded is None else folded
     m = design.material
     m = m.with_changes(relief_hole=relief_hole_diameter(design, folded))
     if body == "solid":

@@ -1,6 +1,6 @@
 """NAME.3dm: the folded form and its flat pattern for Rhino (a rhino3dm adapter).
 
-One Rhino 8 file, model units from the design (mm, in, ft), holding:
+One Rhino 8 file, model units from the design (mm, m, in, ft), holding:
 
 - ``Folded::Sheet``: the folded form as one Brep per side (``upper side``,
   ``lower side``), each a single NURBS face on the exact cone whose natural
@@ -47,7 +47,7 @@ import numpy as np
 import rhino3dm
 from ezdxf.colors import aci2rgb
 
-from onefold_cad.choices import Compensation, Units
+from onefold_cad.choices import Body, Compensation, Placement, Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
@@ -75,6 +75,7 @@ __all__ = [
 VERSION = 8
 _UNITS = {
     Units.MM: rhino3dm.UnitSystem.Millimeters,
+    Units.M: rhino3dm.UnitSystem.Meters,
     Units.IN: rhino3dm.UnitSystem.Inches,
     Units.FT: rhino3dm.UnitSystem.Feet,
 }
@@ -249,15 +250,15 @@ def build_3dm(
     folded: FoldedSheet,
     *,
     pattern: FlatPattern | None = None,
-    placement: str = "rest",
-    body: str | None = None,
+    placement: Placement = Placement.REST,
+    body: Body | None = None,
     compensation: Compensation | str = Compensation.SHARP,
 ) -> RhinoModel:
     """The .3dm document of ``design`` (see the module docstring).
 
     Args:
         design: the design (its unit, material and parameters).
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         pattern: its flat pattern if already made (else made here with
             ``compensation``).
         placement: 'rest' (standing on the ground z = 0) or 'frame' (the

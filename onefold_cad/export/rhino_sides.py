@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import rhino3dm
 
-from onefold_cad.choices import Compensation
+from onefold_cad.choices import Body, Compensation, Placement
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError, InvalidParameterError
 from onefold_cad.export.rhino_faces import (
@@ -124,7 +124,10 @@ def side_brep(
 
 
 def placement_of(
-    design: Design, folded: FoldedSheet, placement: str = "rest", body: str | None = None
+    design: Design,
+    folded: FoldedSheet,
+    placement: Placement = Placement.REST,
+    body: Body | None = None,
 ) -> tuple[Place, Any]:
     """The rigid map of fold-frame points for ``placement`` and the resting
     placement it applies (None in the fold frame).
@@ -147,8 +150,8 @@ def fold_sides(
     design: Design,
     folded: FoldedSheet,
     *,
-    placement: str = "rest",
-    body: str | None = None,
+    placement: Placement = Placement.REST,
+    body: Body | None = None,
     pattern: FlatPattern | None = None,
     compensation: Compensation | str = Compensation.SHARP,
 ) -> FoldSides:
@@ -196,8 +199,8 @@ def fold_sides(
 def side_breps(
     design: Design,
     folded: FoldedSheet,
-    placement: str = "rest",
-    body: str | None = None,
+    placement: Placement = Placement.REST,
+    body: Body | None = None,
 ) -> list[tuple[str, Any]]:
     """The folded form's Breps: ``[("upper", Brep), ("lower", Brep)]``, the
     +y and -y side, each one NURBS face on the exact cone (its natural
@@ -207,7 +210,7 @@ def side_breps(
 
     Args:
         design: the design.
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         placement: 'rest' (standing on the ground z = 0, as the STEP's) or
             'frame' (the fold frame).
         body: the body whose resting placement stands the form ('solid',

@@ -17,7 +17,7 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
-from onefold_cad.choices import Compensation
+from onefold_cad.choices import Body, Compensation
 from onefold_cad.design import Design
 from onefold_cad.fabrication.flat_pattern import FlatPattern
 from onefold_cad.fabrication.report import design_report
@@ -89,7 +89,7 @@ def report_strings(
     *,
     pattern: FlatPattern | None = None,
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
 ) -> dict[str, str]:
     """``report.<key>`` -> value for every key of :data:`KEY_NUMBERS`, from
     the design's report (with ``pattern``, ``compensation`` and ``body`` as

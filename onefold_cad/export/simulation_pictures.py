@@ -69,6 +69,17 @@ def _form(sim: Simulation) -> tuple[str, Array]:
     return "designed", np.asarray(sim.designed_positions, dtype=float)
 
 
+def _faces(sim: Simulation) -> Array:
+    """``(m, 3)`` the simulation's mesh triangles (node indices).
+
+    Raises:
+        ExportError: the simulation carries no mesh.
+    """
+    if sim.faces is None:
+        raise ExportError("the simulation carries no mesh to draw")
+    return np.asarray(sim.faces)
+
+
 def _outline(faces: Array, points: Array) -> Array:
     """``(k, 2, 3)`` the mesh's boundary edges (used by one triangle) on ``points``."""
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
@@ -78,7 +89,7 @@ def _outline(faces: Array, points: Array) -> Array:
 
 def _flat_areas(sim: Simulation) -> Array:
     """``(m,)`` the triangles' areas on the flat sheet (design unit squared)."""
-    tri = np.asarray(sim.flat, dtype=float)[sim.faces]
+    tri = np.asarray(sim.flat, dtype=float)[_faces(sim)]
     a, b = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
     return 0.5 * np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
 
@@ -101,7 +112,7 @@ def _new_figure(
     designed = np.asarray(sim.designed_positions, dtype=float)
     if kind != "designed":
         outline = Line3DCollection(
-            _outline(sim.faces, designed), colors=_OUTLINE, linewidths=0.6, linestyles=(0, (3, 2))
+            _outline(_faces(sim), designed), colors=_OUTLINE, linewidths=0.6, linestyles=(0, (3, 2))
         )
         outline.set_zorder(4)
         ax.add_collection3d(outline)
@@ -139,7 +150,8 @@ def _outline_handle(kind: str) -> list[Any]:
 
 def _no_equilibrium(fig: Any, ax: Any, sim: Simulation, kind: str, points: Array, view) -> None:
     """Draw ``points`` uncoloured and say in the picture why there are no colours."""
-    _surface(ax, points, sim.faces, np.tile(_NEUTRAL, (len(sim.faces), 1)), view)
+    faces = _faces(sim)
+    _surface(ax, points, faces, np.tile(_NEUTRAL, (len(faces), 1)), view)
     drawn = {
         "released": "drawn: the released form (after springback, without gravity), uncoloured",
         "designed": "drawn: the designed form, uncoloured",
@@ -214,7 +226,8 @@ def render_deviation(
     if kind == "standing" and sim.deviation is not None:
         dev = np.asarray(sim.deviation, dtype=float)
         lo, hi = deviation_range(dev)
-        _surface(ax, points, sim.faces, ramp(dev[sim.faces].mean(axis=1), lo, hi), view)
+        faces = _faces(sim)
+        _surface(ax, points, faces, ramp(dev[faces].mean(axis=1), lo, hi), view)
         cmap = LinearSegmentedColormap.from_list("deviation", DEVIATION_STOPS)
         cax = fig.add_axes((0.86, 0.2, 0.025, 0.55))
         bar = fig.colorbar(ScalarMappable(Normalize(lo, hi), cmap), cax=cax)
@@ -230,6 +243,7 @@ def render_deviation(
 def _stress_colours(scale: StressScale) -> tuple[Any, Any]:
     """The colour map and norm of ``scale`` (matplotlib)."""
     from matplotlib.colors import (
+        Colormap,
         LinearSegmentedColormap,
         ListedColormap,
         Normalize,
@@ -240,8 +254,8 @@ def _stress_colours(scale: StressScale) -> tuple[Any, Any]:
     low = LinearSegmentedColormap.from_list("below", BELOW_YIELD)(np.linspace(0, 1, 128))
     if scale.kind == "yield":
         high = LinearSegmentedColormap.from_list("over", OVER_YIELD)(np.linspace(0, 1, 128))
-        cmap = ListedColormap(np.vstack([low, high]), name="stress")
-        norm = TwoSlopeNorm(vmin=0.0, vcenter=scale.yield_MPa, vmax=scale.top)
+        cmap: Colormap = ListedColormap(np.vstack([low, high]), name="stress")
+        norm: Normalize = TwoSlopeNorm(vmin=0.0, vcenter=scale.yield_MPa, vmax=scale.top)
     else:
         cmap = ListedColormap(low, name="stress")
         linear = scale.gamma == 1.0
@@ -314,9 +328,10 @@ def render_stress(
         stress = np.asarray(sim.face_stress_MPa, dtype=float)
         scale = stress_scale(stress, _flat_areas(sim), sim.yield_stress_MPa)
         cmap, norm = _stress_colours(scale)
-        _surface(ax, points, sim.faces, cmap(norm(stress))[:, :3], view)
+        faces = _faces(sim)
+        _surface(ax, points, faces, cmap(norm(stress))[:, :3], view)
         k = int(np.argmax(stress))
-        spot = points[sim.faces[k]].mean(axis=0)
+        spot = points[faces[k]].mean(axis=0)
         ax.scatter(*spot, marker="X", s=70, color=_MARK, edgecolors="white", zorder=6)
         box = {"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8}
         ax.text(*spot, f"  {stress[k]:.4g} MPa", fontsize=8, color=_MARK, zorder=6, bbox=box)

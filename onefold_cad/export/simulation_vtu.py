@@ -13,7 +13,16 @@ form as it stands (the resting frame: z up, the ground at z = 0). Its fields
   ``deviation_standing`` (m): each node's distance from the designed form as
   it stands; ``flat_position`` (m): the node on the flat sheet (fold frame);
 - cell data ``von_mises_MPa``: the larger von Mises stress of the sheet's two
-  surfaces in each triangle, standing (the stress picture's).
+  surfaces in each triangle, standing (the stress picture's);
+- with the J2 law, per stage ``S`` (``formed``, ``released``, ``standing``):
+  ``S_von_mises_bottom_MPa`` and ``S_von_mises_top_MPa`` (the surfaces
+  ``z = -t/2`` and ``+t/2`` along the shell's director), ``S_plastic_strain_bottom``
+  and ``S_plastic_strain_top`` (equivalent plastic strain),
+  ``S_membrane_force_N_per_m`` ``(N11, N22, N12)`` and
+  ``S_bending_moment_N_per_m`` ``(M11, M22, M12)`` (N m / m), the resultants
+  through the thickness on each triangle's own frame: axis 1 along its first
+  edge (cell vector ``resultant_axis_1``, the designed form's), axis 2 in its
+  plane. The formed stage is the designed form itself (no displacement).
 
 Only the fields the simulation has are written. The same simulation gives
 the same bytes.
@@ -52,6 +61,17 @@ def simulation_mesh(sim: Any) -> meshio.Mesh:
     cells: dict[str, list[np.ndarray]] = {}
     if sim.face_stress_MPa is not None:
         cells["von_mises_MPa"] = [np.asarray(sim.face_stress_MPa, dtype=float)]
+    faces = np.asarray(sim.faces, dtype=np.int64)
+    for stage, f in (getattr(sim, "fields", None) or {}).items():
+        cells[f"{stage}_von_mises_bottom_MPa"] = [np.asarray(f.stress[:, 0]) / 1e6]
+        cells[f"{stage}_von_mises_top_MPa"] = [np.asarray(f.stress[:, 1]) / 1e6]
+        cells[f"{stage}_plastic_strain_bottom"] = [np.asarray(f.plastic_strain[:, 0])]
+        cells[f"{stage}_plastic_strain_top"] = [np.asarray(f.plastic_strain[:, 1])]
+        cells[f"{stage}_membrane_force_N_per_m"] = [np.asarray(f.force, dtype=float)]
+        cells[f"{stage}_bending_moment_N_per_m"] = [np.asarray(f.moment, dtype=float)]
+    if getattr(sim, "fields", None):
+        edge = designed[faces[:, 1]] - designed[faces[:, 0]]
+        cells["resultant_axis_1"] = [edge / np.linalg.norm(edge, axis=1)[:, None]]
     return meshio.Mesh(
         designed,
         [("triangle", np.asarray(sim.faces, dtype=np.int64))],

@@ -58,7 +58,7 @@ class SiteSheet:
     Attributes:
         name: the sheet's name (its part's label, its folder).
         design: its design (in the site's unit).
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         part: the part its own STEP holds, standing in its resting frame.
         resting: how it stands (:func:`~onefold_cad.fabrication.rules.resting_placement`).
         report: its report (:func:`~onefold_cad.fabrication.report.design_report`),

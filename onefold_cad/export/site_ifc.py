@@ -55,7 +55,7 @@ __all__ = ["IfcResult", "write_site_ifc"]
 _ID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_DNS, "ifc.onefold_cad")
 
 #: One site unit in metres.
-_METRES = {"mm": 1e-3, "in": 0.0254, "ft": 0.3048}
+_METRES = {"mm": 1e-3, "m": 1.0, "in": 0.0254, "ft": 0.3048}
 _KG_PER_LB = 0.45359237
 
 
@@ -99,6 +99,8 @@ def _units(f: Any, units: str) -> None:
 
     if units == "mm":
         length = unit.add_si_unit(f, unit_type="LENGTHUNIT", prefix="MILLI")
+    elif units == "m":
+        length = unit.add_si_unit(f, unit_type="LENGTHUNIT")
     else:
         length = unit.add_conversion_based_unit(f, name={"in": "inch", "ft": "foot"}[units])
     area = unit.add_si_unit(f, unit_type="AREAUNIT")

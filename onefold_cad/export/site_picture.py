@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -59,7 +60,8 @@ def render_site_picture(
     view = view_direction(elev, azim)
     fig = agg_figure(size_px)
     ax = fig.add_axes((0.03, 0.06, 0.8, 0.88), projection="3d", computed_zorder=False)
-    tris, colours, everything, handles = [], [], [], []
+    tris, colours, everything = [], [], []
+    handles: list[Any] = []  # matplotlib artists for the legend
     for i, s in enumerate(ctx.sheets):
         verts, faces = resting_mesh(s.folded, angular=90, radial=6, placement=s.resting)
         verts = s.site.apply(verts)

@@ -16,7 +16,7 @@ import build123d as bd
 from OCP.Interface import Interface_Static
 from OCP.STEPControl import STEPControl_Controller
 
-from onefold_cad.choices import Units
+from onefold_cad.choices import Body, Compensation, Placement, Units
 from onefold_cad.design import Design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.atomic import atomic_output
@@ -30,8 +30,8 @@ __all__ = ["STEP_TIMESTAMP", "export_design_step", "export_site_step", "read_ste
 #: The header timestamp of every STEP file written here (reproducible bytes).
 STEP_TIMESTAMP = "2000-01-01T00:00:00"
 
-_UNIT = {Units.MM: bd.Unit.MM, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
-_STEP_UNIT_NAME = {Units.MM: "MM", Units.IN: "INCH", Units.FT: "FT"}
+_UNIT = {Units.MM: bd.Unit.MM, Units.M: bd.Unit.M, Units.IN: bd.Unit.IN, Units.FT: bd.Unit.FT}
+_STEP_UNIT_NAME = {Units.MM: "MM", Units.M: "M", Units.IN: "INCH", Units.FT: "FT"}
 
 
 def export_design_step(
@@ -39,9 +39,9 @@ def export_design_step(
     path: str | os.PathLike[str],
     folded: FoldedSheet | None = None,
     *,
-    body: str | None = None,
-    placement: str = "rest",
-    compensation: str = "sharp",
+    body: Body | None = None,
+    placement: Placement = Placement.REST,
+    compensation: Compensation = Compensation.SHARP,
     part: bd.Shape | None = None,
     budget: float | None = KERNEL_BUDGET,
 ) -> Path:

@@ -163,7 +163,7 @@ def near_edge_problem(sheet: Sheet, fan_rulings: np.ndarray | None = None) -> Ex
     """
     v = sheet.vertices
     fan = fan_rulings is not None
-    ruling = float(np.min(fan_rulings if fan else np.hypot(v[:, 0], v[:, 1])))
+    ruling = float(np.min(np.hypot(v[:, 0], v[:, 1]) if fan_rulings is None else fan_rulings))
     sides = np.hypot(*(np.roll(v, -1, axis=0) - v).T)
     edge_gap = sheet_inradius(sheet)
     rel = BOUNDARY_TOLERANCE * sheet.size

@@ -96,7 +96,8 @@ def draw_parallel_coordinates(
         lines.set_norm(norm)
         bar = fig.colorbar(lines, ax=ax, fraction=0.03, pad=0.02)
         bar.set_label(colour[0], fontsize=9)
-        bar.solids.set_alpha(1.0)
+        if bar.solids is not None:  # drawn by colorbar() for a mappable with data
+            bar.solids.set_alpha(1.0)
     else:
         lines.set_color("#7f7f7f")
     ax.add_collection(lines)

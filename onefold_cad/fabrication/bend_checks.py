@@ -248,8 +248,8 @@ def check_bends(
         inner_x, inner_y = x[1:last], y[1:last]
         for h in (0, 1):
             beside = inner_x >= 0.0 if h == 0 else inner_x <= 0.0
-            for i in np.flatnonzero(beside & ~(inner_y > c[h])) + 1:
-                corners[h].append((float(chain[i, 1]), chain[i] * np.array([1.0, sign])))
+            for v in np.flatnonzero(beside & ~(inner_y > c[h])) + 1:
+                corners[h].append((float(chain[v, 1]), chain[v] * np.array([1.0, sign])))
         for i in range(1, last - 1):  # edges between corners that pass over H
             if x[i] * x[i + 1] < 0.0:
                 y0 = _line_at_h(np.array([x[i], y[i]]), np.array([x[i + 1], y[i + 1]]))

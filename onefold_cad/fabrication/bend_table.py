@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from onefold_cad.choices import Compensation
 from onefold_cad.fabrication.flat_pattern import FlatPattern
 from onefold_cad.geometry.bend_model import BendValues
 
@@ -77,13 +78,13 @@ class BendRow:
     shift: float
     shift_used: float
     width_error: float
-    compensation: str
+    compensation: Compensation
     material: str
     units: str
 
 
 def _row(
-    name: str, start: np.ndarray, end: np.ndarray, b: BendValues, used: float, comp: str,
+    name: str, start: np.ndarray, end: np.ndarray, b: BendValues, used: float, comp: Compensation,
     pattern: FlatPattern,
 ) -> BendRow:  # fmt: skip
     return BendRow(
@@ -122,11 +123,11 @@ def bend_rows(pattern: FlatPattern) -> tuple[BendRow, ...]:
         full = float(np.hypot(*d))
         start = half.start + d * (min(pattern.hole_diameter / 2.0, full) / full)
         rows.append(
-            _row(half.name, start, half.end, half.values, pattern.shift, pattern.compensation,
+            _row(half.name, start, half.end, half.values, pattern.shift, pattern.move.compensation,
                  pattern)
         )  # fmt: skip
     for f in pattern.fold_rulings:
-        rows.append(_row(f.name, f.start, f.end, f.values, 0.0, "none", pattern))
+        rows.append(_row(f.name, f.start, f.end, f.values, 0.0, Compensation.NONE, pattern))
     return tuple(rows)
 
 

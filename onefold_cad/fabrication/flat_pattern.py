@@ -234,7 +234,7 @@ def flat_pattern(
 
     Args:
         design: the design (sheet, material, units, name).
-        folded: ``build_design(design)`` (fold angles and bend directions).
+        folded: ``fold_design(design)`` (fold angles and bend directions).
         compensation: 'sharp' (default): each side moves by the bend model's
             shift, refused past the limits of
             :func:`~onefold_cad.fabrication.bend_checks.check_bends`; 'none': the
@@ -251,7 +251,7 @@ def flat_pattern(
             numbers and what to change).
     """
     if folded.sheet is not design.sheet:
-        raise InvalidParameterError("folded", "must be build_design(design) of this design")
+        raise InvalidParameterError("folded", "must be fold_design(design) of this design")
     comp = Compensation.parse(compensation)
     sheet, mat = design.sheet, design.material
     v = np.asarray(sheet.vertices, dtype=float)

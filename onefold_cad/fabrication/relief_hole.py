@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from onefold_cad.design import Design, build_design, derived
+from onefold_cad.design import Design, derived, fold_design
 from onefold_cad.errors import FabricationError, InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
@@ -79,7 +79,7 @@ def relief_hole_problem(
 
     Args:
         design: the design.
-        folded: ``build_design(design)`` (solved here when None).
+        folded: ``fold_design(design)`` (solved here when None).
         blank: ``(n, 2)`` the compensated blank's outline (fold frame), when
             checking the flat pattern's; None: the designed sheet.
 
@@ -90,7 +90,7 @@ def relief_hole_problem(
         ``bend_radius`` (2 (t + r) with r > t / 2).
     """
     m, u = design.material, design.units.value
-    folded = build_design(design) if folded is None else folded
+    folded = fold_design(design) if folded is None else folded
     hole = relief_hole_diameter(design, folded)
     outline = design.sheet.vertices if blank is None else blank
     inner = boundary_distance(outline)

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.choices import Compensation
+from onefold_cad.choices import Body, Compensation
 from onefold_cad.design import Design, derived
 from onefold_cad.errors import (
     ExportError,
@@ -77,7 +77,9 @@ def _floats(a: Any) -> list[Any]:
     return np.asarray(a, dtype=float).tolist()
 
 
-def resting_numbers(design: Design, folded: FoldedSheet, body: str | None = None) -> dict[str, Any]:
+def resting_numbers(
+    design: Design, folded: FoldedSheet, body: Body | None = None
+) -> dict[str, Any]:
     """The report's ``resting`` section: how the body the STEP holds (``body``,
     default :func:`~onefold_cad.fabrication.rules.default_body`) stands on the ground
     (:func:`~onefold_cad.fabrication.rules.resting_placement`): its exact
@@ -187,7 +189,7 @@ def design_warnings(
     design: Design,
     folded: FoldedSheet,
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
 ) -> list[str]:
     """What ``solve`` and ``build`` warn about before any writer runs, one
     line each: the solver's own warnings (when it gives any),
@@ -212,9 +214,9 @@ def design_warnings(
     elif closed:  # whatever the compensation
         bends.append(f"{error}; build refuses the DXF, cut DXF, bend sheet and flat preview")
     elif error is not None:
-        solid = solid_bend_problem(design, folded) is not None  # the writers' own check
+        solid_refused = solid_bend_problem(design, folded) is not None  # the writers' check
         refused = "the DXF, cut DXF, bend sheet and flat preview" + (
-            " and a STEP solid and its GLB" if solid else ""
+            " and a STEP solid and its GLB" if solid_refused else ""
         )
         bends.append(
             f"{error}; build refuses {refused} (--compensation none writes the uncompensated blank)"
@@ -245,7 +247,7 @@ def report_warnings(
     *,
     warnings: Iterable[str] = (),
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
 ) -> tuple[list[str], FlatPattern | None, float | None]:
     """The report's ``warnings`` (``warnings`` given, then
     :func:`design_warnings`, the flat pattern's refusal and the solid's relief
@@ -271,7 +273,7 @@ def design_report(
     timings: Mapping[str, float] | None = None,
     warnings: Iterable[str] = (),
     compensation: Compensation | str = Compensation.SHARP,
-    body: str | None = None,
+    body: Body | None = None,
     step: Mapping[str, Any] | None = None,
     rhino: Mapping[str, Any] | None = None,
 ) -> dict[str, Any]:
@@ -283,7 +285,7 @@ def design_report(
 
     Args:
         design: the design.
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         files: the files written for the design (listed by name).
         pattern: ``flat_pattern(design, folded)`` if already computed.
         sources: where each input came from, keyed like the template

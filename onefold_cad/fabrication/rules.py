@@ -7,7 +7,7 @@ Lengths are in the design's unit.
 
 from __future__ import annotations
 
-from onefold_cad.choices import Compensation
+from onefold_cad.choices import Body, Compensation
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import FabricationError, InvalidParameterError
 from onefold_cad.fabrication.bend_checks import bend_error, check_bends
@@ -30,17 +30,19 @@ __all__ = [
 PLAUSIBLE_DENSITY = (1.0, 23_000.0)
 
 
-def default_body(design: Design) -> str:
+def default_body(design: Design) -> Body:
     """The STEP body ``build`` writes by default: 'solid' for an exact-model
     design with thickness and a relief hole (the default hole when thickness
     > 0), else 'shell' (the reference surface)."""
     m = design.material
     exact = design.model.value == "exact"
-    return "solid" if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else "shell"
+    return (
+        Body.SOLID if exact and m.thickness > 0.0 and m.relief_hole_diameter > 0.0 else Body.SHELL
+    )
 
 
 def resting_placement(
-    design: Design, folded: FoldedSheet, body: str | None = None
+    design: Design, folded: FoldedSheet, body: Body | None = None
 ) -> RestingPlacement:
     """How the body the STEP holds (``body``, default :func:`default_body`)
     stands on the ground: :func:`~onefold_cad.geometry.placement.rest_form`
@@ -58,21 +60,21 @@ def resting_placement(
     m, kind = _resting_material(design, folded, body)
     if body is None and kind == "solid":
         try:
-            return rest_once(folded, m, "solid")
+            return rest_once(folded, m, Body.SOLID)
         except InvalidParameterError:  # solid_problem: no mitre at the crease
-            m, kind = m.with_changes(thickness=0.0, bend_radius=0.0), "shell"
+            m, kind = m.with_changes(thickness=0.0, bend_radius=0.0), Body.SHELL
     return rest_once(folded, m, kind)
 
 
 def _resting_material(
-    design: Design, folded: FoldedSheet, body: str | None
-) -> tuple[Material, str]:
+    design: Design, folded: FoldedSheet, body: Body | None
+) -> tuple[Material, Body]:
     """The material (its relief hole resolved) and the body :func:`resting_placement`
     stands, before a default solid's own problem."""
     body = default_body(design) if body is None else body
     m = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
     if relief_hole_problem(design, folded) is not None:
-        return m.with_changes(relief_hole=0.0), "shell"
+        return m.with_changes(relief_hole=0.0), Body.SHELL
     return m, body
 
 
@@ -84,7 +86,7 @@ def solid_problem(design: Design, folded: FoldedSheet) -> InvalidParameterError 
     if body != "solid":
         return None
     try:
-        rest_once(folded, m, "solid")
+        rest_once(folded, m, Body.SOLID)
     except InvalidParameterError as exc:
         return exc
     return None

@@ -100,7 +100,11 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
     Flag("alpha", "--alpha", parse_float, "arc opening alpha, deg in (0, 90)", _FRAME, "DEG"),
     Flag("beta", "--beta", parse_float, "tilt beta of the arc's plane, deg in (0, 90)", _FRAME,
          "DEG"),
-    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint", _FRAME, "LENGTH"),
+    Flag("hc", "--hc", parse_float, "offset h_c of H from the f-line's midpoint (the paper's "
+         "tables: R = 100); |h_c| < R cos(alpha)", _FRAME, "LENGTH"),
+    Flag("hc_fraction", "--hc-fraction", parse_float, "where H sits on the f-line, whatever R "
+         "and alpha: h_c as a fraction of the half f-line R cos(alpha), in (-1, 1) (0: the "
+         "midpoint, -1 / 1: the -x / +x end; instead of --hc)", _FRAME, "F"),
     Flag("radius", "--radius", parse_float, "frame-curve radius R > 0, from 1e-6 to 1e6 times "
          "the sheet's size", _FRAME, "LENGTH"),
     Flag("divisions", "--divisions", parse_int, "triangles of the paper model's fan, in "
@@ -133,6 +137,10 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
          "stainless; for `simulate`)", _MAT, "NU"),
     Flag("yield_stress", "--yield-stress", parse_float, "yield stress in MPa, at least 0.001 "
          "and at most the modulus (215 for 304 stainless; for `simulate`)", _MAT, "MPA"),
+    Flag("hardening_modulus", "--hardening-modulus", parse_float, "linear hardening modulus in "
+         "MPa, >= 0 and below the modulus (0: perfectly plastic; for `simulate`)", _MAT, "MPA"),
+    Flag("kinematic_hardening", "--kinematic-hardening", parse_float, "the share of the "
+         "hardening that is kinematic (Bauschinger), in [0, 1] (for `simulate`)", _MAT, "SHARE"),
     Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
          "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
 )  # fmt: skip

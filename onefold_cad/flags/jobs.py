@@ -33,6 +33,8 @@ MATERIAL_KEYS = (
     "youngs_modulus",
     "poisson",
     "yield_stress",
+    "hardening_modulus",
+    "kinematic_hardening",
 )
 
 
@@ -57,7 +59,8 @@ def _sources(
     raw: dict[str, Any], names: dict[str, str], template: str, implicit: bool
 ) -> dict[str, str]:
     where = f"inherited from template {template}" if implicit else f"template {template}"
-    table = raw.get("material") if isinstance(raw.get("material"), dict) else {}
+    given = raw.get("material")
+    table = given if isinstance(given, dict) else {}
     out = {}
     for key in MATERIAL_KEYS:
         full = f"material.{key}"
@@ -174,7 +177,7 @@ def _template_data(
 
     key = to or ""
     if memo is not None and key in memo:
-        return memo[key]  # type: ignore[no-any-return]
+        return memo[key]
     data = raw
     if to and to != units.lower():
         data = {**raw, **design_to_data(design_from_data(raw).in_units(to))}

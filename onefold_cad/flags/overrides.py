@@ -7,6 +7,7 @@ design after what defines it.
 from __future__ import annotations
 
 import copy
+import math
 from typing import Any
 
 from onefold_cad.errors import InvalidParameterError
@@ -34,6 +35,8 @@ class Overrides:
         "material.youngs_modulus": "--youngs-modulus",
         "material.poisson": "--poisson",
         "material.yield_stress": "--yield-stress",
+        "material.hardening_modulus": "--hardening-modulus",
+        "material.kinematic_hardening": "--kinematic-hardening",
     }
     _QUAD = {
         "x_plus": "--x-plus",
@@ -56,6 +59,8 @@ class Overrides:
                 table, fld = key.split(".")
                 out.setdefault(table, {})[fld] = v[arg]
                 names[key] = flag
+        if "hc_fraction" in v:
+            self._apply_hc_fraction(out, names)
         if "model" in v:
             out["model"] = v["model"]
             names["model"] = "--model"
@@ -71,6 +76,38 @@ class Overrides:
         self._apply_sheet(out, names)
         return out, names
 
+    def _apply_hc_fraction(self, out: dict[str, Any], names: dict[str, str]) -> None:
+        """``--hc-fraction F``: h_c = F R cos(alpha), with the frame's radius
+        and alpha after the other flags (a template without a radius has the
+        frame's default, 100).
+
+        Raises:
+            InvalidParameterError: ('--hc-fraction') given with ``--hc``, or
+                not inside (-1, 1) (the f-line's ends).
+        """
+        f = self.values["hc_fraction"]
+        if "hc" in self.values:
+            raise InvalidParameterError("--hc-fraction", "cannot be combined with --hc")
+        if not (isinstance(f, (int, float)) and -1.0 < f < 1.0):
+            raise InvalidParameterError(
+                "--hc-fraction",
+                f"must be inside (-1, 1): the offset of H from the f-line's midpoint as a "
+                f"fraction of the half f-line R cos(alpha) (-1 and 1 are its ends), got {f!r}",
+            )
+        from onefold_cad.geometry.frame_curve import half_chord
+
+        frame = out.setdefault("frame", {})
+        alpha, radius = frame.get("alpha"), frame.get("radius", _DEFAULT_RADIUS)
+        try:  # a bad alpha or radius is the frame's to name: h_c is left to it
+            half = half_chord(float(alpha), float(radius))
+        except (TypeError, ValueError):
+            half = math.nan
+        if not (math.isfinite(half) and half > 0.0):
+            frame["h_c"] = 0.0
+        elif not (isinstance(frame.get("h_c"), (int, float)) and frame["h_c"] / half == f):
+            frame["h_c"] = f * half  # (an h_c of this very fraction is kept to the bit)
+        names["frame.h_c"] = "--hc-fraction"
+
     def _apply_sheet(self, out: dict[str, Any], names: dict[str, str]) -> None:
         v = self.values
         quad = {k: v[k] for k in self._QUAD if k in v}
@@ -85,7 +122,8 @@ class Overrides:
         ]
         if len(given) > 1:
             raise InvalidParameterError(given[1], f"cannot be combined with {given[0]}")
-        sheet = out.get("sheet") if isinstance(out.get("sheet"), dict) else {}
+        current = out.get("sheet")
+        sheet = current if isinstance(current, dict) else {}
         if "polygon" in v:
             out["sheet"] = {"polygon": parse_polygon(v["polygon"])}
             names["sheet.polygon"] = "--polygon"
@@ -149,10 +187,15 @@ def parse_rectangle(text: str) -> tuple[float, float]:
     return width, height
 
 
-_SHORT = {"hc": "hc", "radius": "r", "divisions": "div", "apex_fraction": "af", "k_factor": "k",
-          "bend_radius": "br", "relief_hole": "hole", "x_plus": "xp", "x_minus": "xm",
+#: The frame's radius where a template gives none (FrameCurve's default).
+_DEFAULT_RADIUS = 100.0
+
+_SHORT = {"hc": "hc", "hc_fraction": "hcf", "radius": "r", "divisions": "div",
+          "apex_fraction": "af", "k_factor": "k", "bend_radius": "br", "relief_hole": "hole",
+          "x_plus": "xp", "x_minus": "xm",
           "y_plus": "yp", "y_minus": "ym", "thickness": "t", "density": "rho",
-          "youngs_modulus": "E", "poisson": "nu", "yield_stress": "sy"}  # fmt: skip
+          "youngs_modulus": "E", "poisson": "nu", "yield_stress": "sy", "hardening_modulus": "H",
+          "kinematic_hardening": "kin"}  # fmt: skip
 
 
 def derived_name(base: str, flags: dict[str, Any]) -> str:

@@ -42,7 +42,7 @@ class FlagParser(argparse.ArgumentParser):
             words = message.split(": ", 1)[1].split()
             opts = [w for w in words if w.startswith("-")]
             message = (
-                f"no such option: {opts[0].split('=')[0]}"
+                f"no such option: {opts[0].split('=')[0]}{self._did_you_mean(opts[0])}"
                 if opts
                 else f"unexpected argument {words[0]!r}"
             )
@@ -52,11 +52,21 @@ class FlagParser(argparse.ArgumentParser):
             message = f"{flag.split('/')[-1]}: {rest}"
         raise UsageError(message)
 
+    def _did_you_mean(self, typed: str) -> str:
+        """' (did you mean --alpha?)' for the option closest to ``typed``
+        (``--alpah``), or '' when none is close (difflib's ratio >= 0.7)."""
+        import difflib
+
+        name = typed.split("=")[0]
+        known = [o for o in self._option_string_actions if o.startswith("--")]
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.7)
+        return f" (did you mean {close[0]}?)" if close else ""
+
 
 def add_design_flags(p: argparse.ArgumentParser) -> None:
     # A value may start with a minus sign ('--polygon -1,0;...', '--hc -5'):
     # argparse reads '-<digit>...' as a value, not as an option.
-    p._negative_number_matcher = re.compile(r"^-\.?\d")  # type: ignore[attr-defined]
+    p._negative_number_matcher = re.compile(r"^-\.?\d")
     groups: dict[str, Any] = {}
     for f in DESIGN_FLAGS:
         g = groups.get(f.group) or groups.setdefault(f.group, p.add_argument_group(f.group))

@@ -195,6 +195,14 @@ def bend_values(angle_deg: float, material: Material, bend: str | None = None) -
         bend: 'UP' or 'DOWN'. Needed for an INSIDE or OUTSIDE reference
             surface (the bend direction decides which face is inside); a MID
             reference is the same in both directions.
+
+    Returns:
+        The setback, allowance, deduction and shift (the material's length
+        unit) and the angle.
+
+    Raises:
+        InvalidParameterError: an angle outside [0, 180) deg, or no ``bend``
+            for an INSIDE or OUTSIDE reference surface.
     """
     psi = fold_angle(angle_deg)
     if bend is None:

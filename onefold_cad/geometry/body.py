@@ -43,7 +43,7 @@ from functools import cached_property
 
 import numpy as np
 
-from onefold_cad.choices import Body as BodyKind
+from onefold_cad.choices import Body
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.arc import ArcFrames
 from onefold_cad.geometry.body_families import Sectors, Walls
@@ -63,10 +63,10 @@ from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.pieces import Piece, zoom_min
 from onefold_cad.geometry.thick_map import CreaseFrames, SideMap
 
-__all__ = ["BODIES", "MIRROR", "Body"]
+__all__ = ["BODIES", "MIRROR", "FoldedBody"]
 
 #: The bodies a form can be written as (the values of :class:`~onefold_cad.choices.Body`).
-BODIES = tuple(b.value for b in BodyKind)
+BODIES = tuple(b.value for b in Body)
 #: The mirror image in the xz-plane (the -y side of the +y side).
 MIRROR = np.array([1.0, -1.0, 1.0])
 #: Sample points of all pieces together, spread by flat edge length.
@@ -75,7 +75,7 @@ _SAMPLES = 1200
 _MAX_ANGLE_STEP = math.pi / 180
 
 
-class Body(Sampled):
+class FoldedBody(Sampled):
     """A folded form as written: its extreme pieces and its centre of mass.
 
     Args:
@@ -95,7 +95,9 @@ class Body(Sampled):
         size: the sheet's size (length), the scale of tolerances.
     """
 
-    def __init__(self, folded: FoldedSheet, material: Material | None = None, kind: str = "shell"):
+    def __init__(
+        self, folded: FoldedSheet, material: Material | None = None, kind: Body = Body.SHELL
+    ):
         if kind not in BODIES:
             raise InvalidParameterError("body", f"must be 'shell' or 'solid', got {kind!r}")
         self.folded = folded

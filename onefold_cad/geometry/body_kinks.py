@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import ArcFrames
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3
 
@@ -41,7 +41,7 @@ _LOOKS = 16
 Section = Callable[[Array, NDArray[np.bool_]], tuple[Array, Array, Array]]
 
 
-def arc_section(body: Body) -> Section:
+def arc_section(body: FoldedBody) -> Section:
     """The exact model's :data:`Section` in the arc parameter phi (the rule's
     own variable, :mod:`~onefold_cad.geometry.body_mass`)."""
     folded = body.folded
@@ -57,7 +57,7 @@ def arc_section(body: Body) -> Section:
     return at
 
 
-def flat_section(body: Body) -> Section:
+def flat_section(body: FoldedBody) -> Section:
     """Any surface's :data:`Section` in the flat angle theta (the paper
     model's planar wedges: their frames at theta)."""
     folded = body.folded
@@ -71,7 +71,7 @@ def flat_section(body: Body) -> Section:
     return at
 
 
-def _corners(body: Body, section: Section, t: Array, lower: NDArray[np.bool_]) -> Array:
+def _corners(body: FoldedBody, section: Section, t: Array, lower: NDArray[np.bool_]) -> Array:
     """The five functions ``(5, k)`` whose zeros are the kinks, at parameters
     ``t`` of the +y side or the -y one (``lower``): rho u_y + s n_y and
     r_out u_y + s n_y for s = s0, s1 (the cut's line through a corner of
@@ -99,7 +99,7 @@ def _inverse_cubic(xs: Array, fs: Array) -> Array:
     return out
 
 
-def section_kinks(body: Body, section: Section, breaks: list[Array]) -> list[Array]:
+def section_kinks(body: FoldedBody, section: Section, breaks: list[Array]) -> list[Array]:
     """Per side (+y, then -y), the parameters of ``section`` (:func:`arc_section`,
     :func:`flat_section`) strictly inside that side's
     sorted ``breaks`` ``(m,)`` at which the section's closed forms change
@@ -137,10 +137,10 @@ def section_kinks(body: Body, section: Section, breaks: list[Array]) -> list[Arr
     t = np.linspace(0.0, 1.0, _LOOKS + 1)
     grid = a[:, None] + (b - a)[:, None] * t  # (c, _LOOKS + 1)
     k = np.arange(len(a))
-    inner = _corners(body, section, grid[:, 1:-1].ravel(), np.repeat(side_of, _LOOKS - 1))
+    between = _corners(body, section, grid[:, 1:-1].ravel(), np.repeat(side_of, _LOOKS - 1))
     f = np.empty_like(grid)
     f[:, 0], f[:, -1] = values[fun, left], values[fun, left + 1]
-    f[:, 1:-1] = inner[np.repeat(fun, _LOOKS - 1), np.arange(inner.shape[1])].reshape(
+    f[:, 1:-1] = between[np.repeat(fun, _LOOKS - 1), np.arange(between.shape[1])].reshape(
         len(a), _LOOKS - 1
     )
     change = np.argmax(np.signbit(f[:, 1:]) != np.signbit(f[:, :-1]), axis=1)

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.geometry.arc import ArcFrames
-from onefold_cad.geometry.body import MIRROR, Body
+from onefold_cad.geometry.body import MIRROR, FoldedBody
 from onefold_cad.geometry.body_kinks import arc_section, flat_section, section_kinks
 from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.numeric import Array, cross3, gauss_legendre, panel_rule, sorted_unique
@@ -25,7 +25,7 @@ from onefold_cad.geometry.sheet import Sheet
 __all__ = ["mass_properties"]
 
 
-def mass_properties(body: Body) -> tuple[float, Array]:
+def mass_properties(body: FoldedBody) -> tuple[float, Array]:
     """The sheet's measure (area for zero thickness, else volume; length^2
     or length^3) and its centre of mass ``(3,)`` (relative to the apex).
 
@@ -44,7 +44,9 @@ def mass_properties(body: Body) -> tuple[float, Array]:
     return total, moment / total
 
 
-def _paper_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> tuple[float, Array]:
+def _paper_slabs(
+    body: FoldedBody, sides: list[tuple[bool, Array, Array, Array]]
+) -> tuple[float, Array]:
     """The paper model's measure and first moment (see :func:`mass_properties`),
     ``sides`` as :func:`_exact_slabs`': planar triangles, no curvature within
     them, the rule in the flat angle with breaks at the division rays (where
@@ -80,7 +82,9 @@ def _paper_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> t
     return total, moment
 
 
-def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> tuple[float, Array]:
+def _exact_slabs(
+    body: FoldedBody, sides: list[tuple[bool, Array, Array, Array]]
+) -> tuple[float, Array]:
     """The exact model's measure and first moment (see :func:`mass_properties`)
     from both sides' ``(lower, vertex angles, breaks towards poles, their
     spans)``, their rules evaluated together.
@@ -111,16 +115,16 @@ def _exact_slabs(body: Body, sides: list[tuple[bool, Array, Array, Array]]) -> t
         phi, weights = _sector_rule(breaks, _EXACT_POINTS, _EXACT_PANELS)
         rules.append((phi, weights, graded))
     phi = np.concatenate([r[0] for r in rules])
-    lower = np.repeat([False, True], [len(r[0]) for r in rules])
+    on_lower = np.repeat([False, True], [len(r[0]) for r in rules])
     theta = cone.theta_near(phi)
     for side, (_, _, graded) in enumerate(rules):
-        np.clip(theta, graded[0], graded[-1], out=theta, where=lower == bool(side))
+        np.clip(theta, graded[0], graded[-1], out=theta, where=on_lower == bool(side))
     u, _, n, k, speed = ArcFrames(folded.solution.frame, folded.apex).frames(phi, curvature=True)
-    slab = _slab_moments(body, theta, lower, u, n, k) * speed[:, None]
+    slab = _slab_moments(body, theta, on_lower, u, n, k) * speed[:, None]
     total, moment = 0.0, np.zeros(3)
     blocks = _block_moments(body) if body.thickness > 0.0 else []
     for side, (_, weights, _) in enumerate(rules):
-        vals = weights @ slab[lower == bool(side)]
+        vals = weights @ slab[on_lower == bool(side)]
         total += vals[0]
         moment += vals[1:] * (MIRROR if side else np.ones(3))
         for vol, mom in blocks[2 * side : 2 * side + 2]:
@@ -173,7 +177,7 @@ def _graded(breaks: Array, halvings: int) -> Array:
 
 
 def _slab_moments(
-    body: Body, theta: Array, lower: NDArray[np.bool_], u: Array, n: Array, k: Array
+    body: FoldedBody, theta: Array, lower: NDArray[np.bool_], u: Array, n: Array, k: Array
 ) -> Array:
     """Per flat angle ``(k,)`` of the -y side or not (``lower``), with the
     ruling direction u, top normal n and curvature k there: the section's
@@ -248,9 +252,9 @@ def _cut_radius(s: Array, uy: Array, ny: Array) -> Array:
         return np.where(suy > 0.0, -sny / suy, np.where(sny >= 0.0, -np.inf, np.inf))
 
 
-def _block_moments(body: Body) -> list[tuple[float, Array]]:
+def _block_moments(body: FoldedBody) -> list[tuple[float, Array]]:
     """Volume and first moment ``(3,)`` of the kept part of each mitre block
-    (:attr:`Body.mitre_frames`; +y side's coordinates): x integrated exactly,
+    (:attr:`FoldedBody.mitre_frames`; +y side's coordinates): x integrated exactly,
     Gauss-Legendre in d and s, the four blocks in one pass."""
     s0, s1 = body.s_range
     rho = body.hole

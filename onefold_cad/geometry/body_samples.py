@@ -1,5 +1,5 @@
 """A body's samples and its evaluation: the side of
-:class:`~onefold_cad.geometry.body.Body` that lays out its pieces' grids,
+:class:`~onefold_cad.geometry.body.FoldedBody` that lays out its pieces' grids,
 evaluates them a family at a time (:mod:`.body_families`), and finds the
 lowest points of many brackets at once (:mod:`.zoom`). Points relative to the
 apex; lengths in the design unit.
@@ -46,7 +46,7 @@ class Rows:
 
 class Sampled:
     """The sampling and evaluation of a body's pieces (a mixin of
-    :class:`~onefold_cad.geometry.body.Body`, which sets the attributes)."""
+    :class:`~onefold_cad.geometry.body.FoldedBody`, which sets the attributes)."""
 
     pieces: list[Piece]
     fixed: Array
@@ -281,12 +281,12 @@ class Sampled:
             def f(jobs: NDArray[np.int64], t: Array) -> tuple[Array, Array]:
                 return self.lowest_corners(pieces[jobs], t, gs[jobs])
 
-            lo = np.array([asks[i][1] for i in idx], dtype=float)
-            hi = np.array([asks[i][2] for i in idx], dtype=float)
+            los = np.array([asks[i][1] for i in idx], dtype=float)
+            his = np.array([asks[i][2] for i in idx], dtype=float)
             sub = None if group is None else np.asarray(group)[idx]
-            t, _, p, done = zoom_many(f, lo, hi, sub, ceiling, known, margin)
+            ts, _, ps, done = zoom_many(f, los, his, sub, ceiling, known, margin)
             for j, key in enumerate(todo):
-                (self._lowest if done[j] else found)[key] = (float(t[j]), p[j])
+                (self._lowest if done[j] else found)[key] = (float(ts[j]), ps[j])
         out = []
         for key in keys:
             t, p = self._lowest[key] if key in self._lowest else found[key]

@@ -203,7 +203,7 @@ def integer_at_least(name: str, value: object, lo: int, hi: int | None = None) -
         else:
             rng = f">= {lo}" if hi is None else f"in [{lo}, {hi}]"
             raise InvalidParameterError(name, f"must be an integer {rng}, got {value!r}")
-    n = int(value)  # type: ignore[arg-type]
+    n = int(value)
     if n < lo or (hi is not None and n > hi):
         rng = f">= {lo}" if hi is None else f"in [{lo}, {hi}]"
         raise InvalidParameterError(name, f"must be an integer {rng}, got {n}")

@@ -184,8 +184,9 @@ class ExactCone(DirectionSurface):
         hu = h / g.radius
         coarse = self._rule_for([hu])
         # the verified rule: every panel halved
-        fine = tuple(half_rule(g, hf.plus, halved(hf.edges)) for hf in coarse)  # type: tuple[HalfRule, HalfRule]
-        speeds = tuple(rule_speed(hf, g, hu) for hf in fine)
+        c0, c1 = coarse
+        fine = (half_rule(g, c0.plus, halved(c0.edges)), half_rule(g, c1.plus, halved(c1.edges)))
+        speeds = (rule_speed(fine[0], g, hu), rule_speed(fine[1], g, hu))
         lo = []
         totals = []
         for hf, sp in zip(fine, speeds, strict=True):
@@ -195,8 +196,8 @@ class ExactCone(DirectionSurface):
             np.cumsum(per, out=th[1:])
             lo.append(th)
             totals.append(float(per.sum()))
-        self._apex_rule = fine  # type: ignore[assignment]
-        self._speed_at = speeds  # type: ignore[assignment]
+        self._apex_rule = fine
+        self._speed_at = speeds
         self._theta_lo = (lo[0], lo[1])
         self._half_total = (totals[0], totals[1])
         self._tables = None

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from onefold_cad.geometry.arc import arc_range
+from onefold_cad.geometry.cone import ExactCone
 from onefold_cad.geometry.fan import PaperFan
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array, cross3, edge_lengths, sorted_unique
@@ -90,6 +91,7 @@ def _sharp_rays(folded: FoldedSheet) -> Array:
     circle)."""
     frame = folded.solution.frame
     cone = folded.solution.surface
+    assert isinstance(cone, ExactCone)  # the paper's fan has planar pieces: no such rays
     r = frame.radius
     wx = -frame.h_c
     wd = r * math.sin(math.radians(frame.alpha)) - float(folded.apex[2]) * math.sin(

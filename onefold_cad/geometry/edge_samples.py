@@ -2,7 +2,7 @@
 
 Each edge is sampled evenly along its length and evenly in its flat angle
 about H (an edge passing close to H sweeps a wide angle in a short length),
-as :class:`onefold_cad.geometry.body.Body` lays out its sheet-edge pieces.
+as :class:`onefold_cad.geometry.body.FoldedBody` lays out its sheet-edge pieces.
 Nothing here depends on the fold: the samples are kept per sheet (a sweep
 over the frame's angles folds one sheet many times). Lengths in the sheet's
 unit; angles in radians.

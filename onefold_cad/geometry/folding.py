@@ -310,6 +310,10 @@ def fold(solution: Solution, sheet: Sheet, *, boundary_samples: int = 4000) -> F
         The :class:`FoldedSheet`: the rulings (flat and in 3D) and the crease
         computed now; the boundary (the paper model's: the ruling ends, in
         order) on first access.
+
+    Raises:
+        Nothing of its own: the sheet and the solution are checked when they
+        are made (:class:`Sheet`, :func:`~onefold_cad.geometry.solver.solve`).
     """
     t0 = time.perf_counter()
     surface = solution.surface

@@ -33,6 +33,7 @@ __all__ = [
     "arc_geometry",
     "check_design_divisions",
     "end_distances",
+    "half_chord",
 ]
 
 #: Smallest alpha and beta (deg). The construction squares them in radians
@@ -54,6 +55,14 @@ MAX_DIVISIONS = 100_000
 #: (at the cap solve + fold + flat pattern + DXF take about a second,
 #: docs/reliability.md).
 MAX_DESIGN_DIVISIONS = 10_000
+
+
+def half_chord(alpha: float, radius: float) -> float:
+    """Half the f-line length, R cos(alpha) (``alpha`` in deg, length as
+    ``radius``), to a relative rounding error: above 45 deg as sin(90 -
+    alpha), the difference being exact."""
+    c = math.cos(math.radians(alpha)) if alpha <= 45.0 else math.sin(math.radians(90.0 - alpha))
+    return radius * c
 
 
 @dataclass(frozen=True)
@@ -113,11 +122,8 @@ class FrameCurve:
 
     @property
     def half_chord(self) -> float:
-        """Half the f-line length, R cos(alpha) (length), to a relative rounding
-        error: above 45 deg as sin(90 - alpha), the difference being exact."""
-        a = self.alpha
-        c = math.cos(math.radians(a)) if a <= 45.0 else math.sin(math.radians(90.0 - a))
-        return self.radius * c
+        """Half the f-line length, R cos(alpha) (length): :func:`half_chord`."""
+        return half_chord(self.alpha, self.radius)
 
     @property
     def paper_lower_bound(self) -> float:
@@ -147,7 +153,8 @@ def _over_cap(value: object) -> bool:
     """Whether ``value`` is a number above MAX_DIVISIONS (to explain the cap)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         return False
-    return math.isfinite(value) and value > MAX_DIVISIONS
+    number = float(value)
+    return math.isfinite(number) and number > MAX_DIVISIONS
 
 
 def _angle(name: str, value: object) -> float:

@@ -1,6 +1,6 @@
 """How a body meets the ground: the exact plane after toppling on samples.
 
-The body (:class:`onefold_cad.geometry.body.Body`) is set down with the
+The body (:class:`onefold_cad.geometry.body.FoldedBody`) is set down with the
 ground's upward normal ``g`` given in its own frame and let go: it tips about
 its lowest points (one, then an edge) towards its centre of mass until the
 centre of mass lies over the convex hull of three or more of them
@@ -11,7 +11,7 @@ of a boundary curve, a corner, the apex, a mitre vertex) and the plane is put
 through three of them, alternately, until it no longer moves (the points move
 along their curves, in the plane to first order: the plane converges
 quadratically; :func:`settle`; the features' zooms run together,
-:meth:`Body.lowest_many`). On two contacts, one of them a curved edge, the
+:meth:`FoldedBody.lowest_many`). On two contacts, one of them a curved edge, the
 body rocks: the plane is then the one on which they balance the centre of
 mass (:func:`rock`). The exact lowest points of every piece that may come
 near the ground check the plane (:func:`onefold_cad.geometry.lows.exact_lows`,
@@ -28,13 +28,14 @@ unit.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 from itertools import combinations
 
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.hull import convex_hull_2d, edge_distances
 from onefold_cad.geometry.numeric import Array, cross3, polygon_area, sorted_unique
 from onefold_cad.geometry.topple import basis
@@ -86,7 +87,7 @@ class Samples:
         )
 
 
-def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Feature]:
+def features(body: FoldedBody, samples: Samples, on: NDArray[np.int64]) -> list[_Feature]:
     """Group the sampled contacts ``on``: neighbouring samples of one piece are one."""
     owner, param = samples.owner[on], samples.param[on]
     out = [_Feature(-1, 0.0, 0.0, samples.points[i].copy()) for i in on[owner < 0]]
@@ -100,7 +101,7 @@ def features(body: Body, samples: Samples, on: NDArray[np.int64]) -> list[_Featu
     return out
 
 
-def exact_features(body: Body, lows: list[tuple[int, float, Array]]) -> list[_Feature]:
+def exact_features(body: FoldedBody, lows: list[tuple[int, float, Array]]) -> list[_Feature]:
     """Features for exact lowest points (piece, parameter, point), as
     :func:`lowest_points` finds them: a fixed point as it is, a piece's
     point by the grid bracket around its parameter."""
@@ -114,10 +115,10 @@ def exact_features(body: Body, lows: list[tuple[int, float, Array]]) -> list[_Fe
     return out
 
 
-def _locate(body: Body, features: list[_Feature], g: Array) -> list[Array]:
+def _locate(body: FoldedBody, features: list[_Feature], g: Array) -> list[Array]:
     """Move each feature to the exact lowest point of its bracket along ``g``,
     widening a bracket while the lowest point sits on an end of it (the
-    features' zooms run together, :meth:`Body.lowest_many`)."""
+    features' zooms run together, :meth:`FoldedBody.lowest_many`)."""
     todo = [f for f in features if f.piece >= 0]
     for _ in range(8):
         if not todo:
@@ -155,6 +156,7 @@ def _plane_through(pts: Array, com: Array, g: Array, tol: float) -> Array | None
         common = _common_plane(pts, g, tol)
         if common is not None:
             return common
+    triples: Iterable[tuple[int, int, int]]
     if len(pts) > _ALL_TRIPLES_MAX:
         triples = _lower_facets(pts, g)
     else:
@@ -228,7 +230,9 @@ def _distinct(pts: list[Array], tol: float) -> Array:
     return np.array(out).reshape(-1, 3)
 
 
-def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[Array, float, bool]:
+def settle(
+    body: FoldedBody, features: list[_Feature], com: Array, g: Array
+) -> tuple[Array, float, bool]:
     """Make the ground plane through the features exact (see the module doc):
     its upward normal, the features' lowest height along it, and whether it
     rests on two features only (a curved edge touching along with a point or
@@ -261,7 +265,7 @@ def settle(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[
     return g, float(np.min(pts @ g)), rocks
 
 
-def rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[Array, bool]:
+def rock(body: FoldedBody, features: list[_Feature], com: Array, g: Array) -> tuple[Array, bool]:
     """The ground normal near ``g`` on which the body rests on two features
     (one of them a curve it could rock on), with the centre of mass above the
     line through their lowest points: Newton's method on the two conditions
@@ -320,12 +324,12 @@ def rock(body: Body, features: list[_Feature], com: Array, g: Array) -> tuple[Ar
 
 
 def lowest_points(
-    body: Body, samples: Samples, g: Array, band: float
+    body: FoldedBody, samples: Samples, g: Array, band: float
 ) -> list[tuple[int, float, Array]]:
     """The exact lowest point along ``g`` of every fixed point whose height
     lies within ``band`` (length) of the lowest sample, and of every piece
     whose samples come within ``band`` or twice its own sample spacing
-    (:attr:`Body.spacings`), the smaller, of it (no point of a piece lies
+    (:attr:`FoldedBody.spacings`), the smaller, of it (no point of a piece lies
     lower than its samples by more than that spacing): a list of (piece,
     parameter, point), the lowest first.
 
@@ -340,7 +344,7 @@ def lowest_points(
 
 
 def _candidates(
-    body: Body, samples: Samples, g: Array, band: float
+    body: FoldedBody, samples: Samples, g: Array, band: float
 ) -> tuple[list[tuple[int, float, Array]], list[tuple[int, float, float, Array]]]:
     """The fixed points within ``band`` of the lowest sample along ``g`` (as
     (piece -1, 0, point)), and the zooms :func:`lowest_points` needs (piece,
@@ -367,8 +371,8 @@ def _candidates(
     return found, asks
 
 
-def sample_spacing(body: Body) -> float:
-    """The largest of the pieces' sample spacings (:attr:`Body.spacings`;
+def sample_spacing(body: FoldedBody) -> float:
+    """The largest of the pieces' sample spacings (:attr:`FoldedBody.spacings`;
     length): no point of a piece lies further than that from its nearest
     sample; the thickness when there are no pieces."""
     return float(body.spacings.max()) if len(body.spacings) else body.thickness

@@ -14,7 +14,7 @@ whose 1/8 is c L^2 / 4): the lower bound of the bracket.
 Every sample is a point of the body, so the lowest sample (or fixed point)
 bounds the lowest point from above. :func:`exact_lows` zooms only the brackets
 whose lower bound lies under that, or under a height the caller asks about,
-all directions' zooms together (:meth:`Body.lowest_many`): for the default
+all directions' zooms together (:meth:`FoldedBody.lowest_many`): for the default
 template's solid, a few brackets per direction out of fifteen.
 
 The sampling's premise is the one :func:`~.ground.lowest_points` makes: the
@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_samples import Rows
 from onefold_cad.geometry.ground import CONTACT_TOLERANCE, Samples
 from onefold_cad.geometry.numeric import Array
@@ -40,7 +40,9 @@ __all__ = ["bound_directions", "exact_bounds", "exact_lows"]
 Low = tuple[int, float, Array]
 
 
-def _window(rows: Rows, row: Array, h: Array, d: Array) -> tuple[Array, Array]:
+def _window(
+    rows: Rows, row: NDArray[np.intp], h: Array, d: NDArray[np.intp]
+) -> tuple[Array, Array]:
     """Heights ``h`` ``(M, D)`` and parameters at the five rows about each
     candidate (``row``, direction ``d``; ``(c,)``): ``(c, 5)`` each, NaN past
     the ends of the candidate's piece."""
@@ -66,11 +68,11 @@ def _dip(hw: Array, tw: Array) -> Array:
 
 
 def _bounded_minima(
-    body: Body, hs: Array, dirs: Array
+    body: FoldedBody, hs: Array, dirs: Array
 ) -> tuple[NDArray[np.int64], NDArray[np.int64], Array]:
     """Every piece's sampled local minima along each of ``dirs`` ``(D, 3)``
     (``hs`` ``(D, N)``: the body's samples' heights): their rows
-    (:attr:`Body.rows`) and directions, and the lower bounds of their
+    (:attr:`FoldedBody.rows`) and directions, and the lower bounds of their
     brackets (see the module docstring); ``(c,)`` each."""
     rows = body.rows
     h = np.full((len(dirs), len(rows.t)), np.inf)  # the lowest corner's height
@@ -115,7 +117,7 @@ def _bounded_minima(
 
 
 def exact_lows(
-    body: Body, samples: Samples, dirs: Array, above: Array | None = None
+    body: FoldedBody, samples: Samples, dirs: Array, above: Array | None = None
 ) -> list[list[Low]]:
     """Per direction of ``dirs`` ``(D, 3)``: the exact lowest points (piece,
     parameter, point; piece -1 a fixed point) of every fixed point and zoomed
@@ -152,7 +154,8 @@ def exact_lows(
     for dd, (k, _, _, _), (t, p) in zip(whose, asks, found, strict=True):
         out[dd].append((k, t, p))
     for dd in range(nd):
-        out[dd].sort(key=lambda item, g=dirs[dd]: float(item[2] @ g))
+        g = dirs[dd]
+        out[dd].sort(key=lambda item: float(item[2] @ g))  # noqa: B023 (sorted at once)
     return out
 
 
@@ -164,7 +167,7 @@ def bound_directions(rot: Array) -> Array:
 
 
 def exact_bounds(
-    body: Body,
+    body: FoldedBody,
     samples: Samples,
     rot: Array,
     translation: Array,

@@ -62,8 +62,14 @@ class Material:
         yield_stress: the yield stress sigma_y in MPa, 1e-3 <= sigma_y <= E (a
             yield stress as high as the modulus itself never yields: a check
             of the elastic model), or None.
+        hardening_modulus: the linear hardening modulus H in MPa, 0 <= H < E
+            (the flow stress grows by H times the equivalent plastic strain:
+            sigma = sigma_y + H eps_p in uniaxial tension; 0: perfectly
+            plastic), or None (perfectly plastic).
+        kinematic_hardening: the share of H that is kinematic (moves the yield
+            surface: the Bauschinger effect), in [0, 1], or None (0: isotropic).
 
-    The three elastic-plastic values are what ``onefold simulate`` needs
+    The elastic-plastic values are what ``onefold simulate`` needs
     (:mod:`onefold_cad.mechanics`); nothing else reads them.
     """
 
@@ -78,6 +84,8 @@ class Material:
     youngs_modulus: float | None = None
     poisson: float | None = None
     yield_stress: float | None = None
+    hardening_modulus: float | None = None
+    kinematic_hardening: float | None = None
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -133,6 +141,23 @@ class Material:
                     f"must be in [{MIN_YIELD_MPA:g}, {top:g}] MPa (up to {what}), got {shown(sy)}",
                 )
             set_(self, "yield_stress", sy)
+        self._check_hardening()
+
+    def _check_hardening(self) -> None:
+        """Validate the hardening modulus and its kinematic share (each may be None)."""
+        set_ = object.__setattr__
+        if self.hardening_modulus is not None:
+            h = finite("hardening_modulus", self.hardening_modulus)
+            top = (MAX_MODULUS_GPA if self.youngs_modulus is None else self.youngs_modulus) * 1e3
+            if not 0.0 <= h < top:
+                raise InvalidParameterError(
+                    "hardening_modulus",
+                    f"must be >= 0 and below Young's modulus ({top:g} MPa), got {shown(h)} MPa",
+                )
+            set_(self, "hardening_modulus", h)
+        if self.kinematic_hardening is not None:
+            share = closed_interval("kinematic_hardening", self.kinematic_hardening, 0.0, 1.0)
+            set_(self, "kinematic_hardening", share)
 
     @property
     def relief_hole_diameter(self) -> float:

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "Array",
+    "Mask",
     "cross2",
     "cross3",
     "edge_lengths",
@@ -29,6 +30,8 @@ __all__ = [
 
 #: The float arrays of the package (shapes in each function's docstring).
 Array = NDArray[np.float64]
+#: The boolean arrays (masks) of the package.
+Mask = NDArray[np.bool_]
 
 
 def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:

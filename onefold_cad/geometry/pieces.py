@@ -198,9 +198,9 @@ def clipped_rectangle(
             s[:, 4 + j] = sj
             ok[:, 4 + j] = (cr != 0.0) & (rj >= r0) & (rj <= r1)
         for j, rj in enumerate((r0, r1)):  # sides r = r0, r1: s = -cr r / cs
-            s[:, 6 + j] = sj = -cr * rj / cs
+            s[:, 6 + j] = sr = -cr * rj / cs
             r[:, 6 + j] = rj
-            ok[:, 6 + j] = (cs != 0.0) & (sj >= s0) & (sj <= s1)
+            ok[:, 6 + j] = (cs != 0.0) & (sr >= s0) & (sr <= s1)
     z = np.full((k, 8, 2), np.nan)
     np.copyto(z[..., 0], r, where=ok)  # z[ok] = (r, s)[ok], without the masks' copies
     np.copyto(z[..., 1], s, where=ok)

@@ -1,7 +1,7 @@
 """Stand a folded form on the ground: its resting placement and how stable it is.
 
 :func:`rest_form` sets the body the STEP holds (the reference surface, or the
-solid of the sheet's thickness: :class:`onefold_cad.geometry.body.Body`) down
+solid of the sheet's thickness: :class:`onefold_cad.geometry.body.FoldedBody`) down
 as it was solved (apex above H), lets it topple to rest, and makes the ground
 plane exact (:mod:`onefold_cad.geometry.ground`): its lowest point lies on
 z = 0 to rounding, found on the exact curves where it can lie, never on
@@ -26,8 +26,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from onefold_cad.choices import Body
 from onefold_cad.errors import NoSolutionError
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.ground import (
@@ -101,7 +102,7 @@ class RestingPlacement:
 
     rotation: Array
     translation: Array
-    body: str
+    body: Body
     tilt_deg: float
     centre_of_mass: Array
     contacts: Array
@@ -236,7 +237,7 @@ def _tipping_warnings(rest: RestingPlacement, u: str) -> list[str]:
 
 
 def rest_form(
-    folded: FoldedSheet, material: Material | None = None, body: str = "shell"
+    folded: FoldedSheet, material: Material | None = None, body: Body = Body.SHELL
 ) -> RestingPlacement:
     """How the form written as ``body`` stands on the ground (z = 0).
 
@@ -259,7 +260,7 @@ def rest_form(
             paper model or without thickness).
         NoSolutionError: the fold's points are not finite.
     """
-    form = Body(folded, material, body)
+    form = FoldedBody(folded, material, body)
     size = form.size
     _, com = mass_properties(form)
     samples = Samples(*form.samples)
@@ -361,7 +362,7 @@ def rest_form(
 
 
 def _cut(
-    form: Body, samples: Samples, com: Array, g: Array, band: float, tol: float
+    form: FoldedBody, samples: Samples, com: Array, g: Array, band: float, tol: float
 ) -> tuple[Array, list[tuple[int, float, Array]], Samples]:
     """Cutting planes on the samples' rest along ``g``: the exact lowest
     points below its plane (by more than the contact tolerance) join the
@@ -384,7 +385,7 @@ def _surface_centre(folded: FoldedSheet, material: Material | None) -> Array:
     """The centre of mass ``(3,)`` of the zero-thickness reference surface
     (relative to the apex, as :func:`~onefold_cad.geometry.body_mass.mass_properties`)."""
     thin = None if material is None else material.with_changes(thickness=0.0, bend_radius=0.0)
-    return mass_properties(Body(folded, thin, "shell"))[1]
+    return mass_properties(FoldedBody(folded, thin, Body.SHELL))[1]
 
 
 def rotation_to_up(g: Array) -> Array:

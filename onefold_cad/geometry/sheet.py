@@ -3,8 +3,7 @@
 Fold frame: the fold line is the x axis and H is the origin. Vertices are kept
 counter-clockwise, start at the boundary's crossing of the +x axis, and every
 crossing of the x axis is a vertex, so the upper (y >= 0) and lower (y <= 0)
-boundaries are vertex runs of their own.
-"""
+boundaries are vertex runs of their own."""
 
 from __future__ import annotations
 
@@ -12,6 +11,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -166,13 +166,13 @@ class Sheet:
             (identity for polygons and quadrilaterals; for a rectangle, a corner
             at the origin and its sides on the axes).
         kind: 'polygon', 'quadrilateral' or 'rectangle'.
-        inputs: the values the sheet was made from (for reports).
+        inputs: the values it was made from (for reports; 'polygon': [[x, y], ...]).
     """
 
     vertices: NDArray[np.float64]
     to_sheet: Placement2D = field(default_factory=Placement2D)
     kind: str = "polygon"
-    inputs: dict[str, object] = field(default_factory=dict)
+    inputs: dict[str, Any] = field(default_factory=dict)
 
     # -- constructors -------------------------------------------------------
     @classmethod
@@ -183,7 +183,7 @@ class Sheet:
         name: str = "polygon",
         to_sheet: Placement2D | None = None,
         kind: str = "polygon",
-        inputs: dict[str, object] | None = None,
+        inputs: dict[str, Any] | None = None,
     ) -> Sheet:
         """Validate a polygon given in the fold frame and return the sheet.
 

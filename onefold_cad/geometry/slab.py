@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.material import Material, sheet_offsets
-from onefold_cad.geometry.numeric import Array, sorted_unique
+from onefold_cad.geometry.numeric import Array, Mask, sorted_unique
 from onefold_cad.geometry.thick_map import SideMap, mitre_planes
 
 __all__ = ["Boundary", "Patch", "Slab", "merge_angles"]
@@ -142,7 +142,7 @@ class Slab:
         mid = 0.5 * (float(np.min(theta)) + float(np.max(theta)))
         return -1 if mid < 0.0 else (1 if mid > self.total else 0)
 
-    def _past(self, theta: Array, region: int | None) -> tuple[Array, Array]:
+    def _past(self, theta: Array, region: int | None) -> tuple[Mask, Mask]:
         """Masks of the angles past crease half 0 and past crease half 1 (all
         or none of them when ``region`` is given, for one-sided values at a
         crease)."""

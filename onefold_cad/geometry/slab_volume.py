@@ -61,8 +61,8 @@ def _active(slab: Slab, theta: Array, u: Array, n: Array) -> list[tuple[Array, A
     0 r + 0 s + 1 >= 0."""
     out = []
     for name in ("y", "m0", "m1"):
-        a, b, g = slab.plane_terms(name, u, n)
-        g = np.full(len(theta), g)
+        a, b, c = slab.plane_terms(name, u, n)
+        g = np.full(len(theta), c)
         if name != "y":
             off = ~(theta < 0.0) if name == "m0" else ~(theta > slab.total)
             a, b, g = np.where(off, 0.0, a), np.where(off, 0.0, b), np.where(off, 1.0, g)

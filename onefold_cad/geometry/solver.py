@@ -186,7 +186,7 @@ def _s_max(surface: DirectionSurface, root: float) -> tuple[float, float]:
     returned is therefore the maximum to within its evaluation's error bound
     plus about 1e-14 of itself (S is quadratic at its maximum), provided S
     has no narrower peak between grid heights than half an octave."""
-    hs = root * 2.0 ** (-0.5 * np.arange(2 * _S_MAX_OCTAVES + 1))
+    hs = np.asarray(root * 2.0 ** (-0.5 * np.arange(2 * _S_MAX_OCTAVES + 1)), dtype=np.float64)
     fast = surface.excesses(hs)
     # a height whose fast value lies below the largest by far more than their
     # rounding cannot hold the maximum: only the others need the accurate S

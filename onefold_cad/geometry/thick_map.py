@@ -26,6 +26,7 @@ Lengths are in the design unit; angles in radians.
 from __future__ import annotations
 
 import math
+from typing import Protocol
 
 import numpy as np
 
@@ -46,6 +47,13 @@ __all__ = [
     "mitre_planes",
     "mitre_reach",
 ]
+
+
+class HasCreaseFrames(Protocol):
+    """What the mitre blocks read of a side: its crease frames
+    (:meth:`SideMap.crease_frame`; :class:`CreaseFrames` caches them)."""
+
+    def crease_frame(self, end: int) -> tuple[Array, Array, Array]: ...
 
 
 class SideMap:
@@ -151,7 +159,7 @@ class SideMap:
         return u[:m], e[:m], n[:m], k
 
 
-def mitre_depth(side: SideMap, s_range: tuple[float, float]) -> float:
+def mitre_depth(side: HasCreaseFrames, s_range: tuple[float, float]) -> float:
     """How far past each crease half (length, in its tangent plane) the sheet
     must continue for the cut at y = 0 to leave the whole mitre, with a margin
     of 5% of the thickness."""
@@ -198,7 +206,7 @@ def mitre_reach(side: SideMap, s_range: tuple[float, float]) -> tuple[tuple[floa
 MITRE_CLEARANCE = 0.05
 
 
-def mitre_planes(side: SideMap, thickness: float) -> tuple[tuple[Array, float], ...]:
+def mitre_planes(side: HasCreaseFrames, thickness: float) -> tuple[tuple[Array, float], ...]:
     """The planes ``w . (p - A) >= c`` that bound the mitre block of each
     crease half (``(w (3,), c)`` for ends 0 and 1, +y side's coordinates).
 

@@ -19,6 +19,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from onefold_cad.choices import Placement
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.hops.inputs import FIT_INPUTS, SOLVE_INPUTS, flag_args, parse_solve_args
 
 __all__ = [
@@ -93,7 +95,7 @@ FIT_OUTPUTS: tuple[HopsOutput, ...] = (
 )
 
 #: Rhino's unit systems (a Hops request's ``modelunits``) by the design's unit.
-RHINO_UNITS = {"mm": "Millimeters", "in": "Inches", "ft": "Feet"}
+RHINO_UNITS = {"mm": "Millimeters", "m": "Meters", "in": "Inches", "ft": "Feet"}
 
 
 def units_warning(design_units: str, model_units: object) -> str | None:
@@ -102,11 +104,16 @@ def units_warning(design_units: str, model_units: object) -> str | None:
     want = RHINO_UNITS.get(design_units)
     if not isinstance(model_units, str) or not model_units or model_units == want:
         return None
+    name = _UNIT_NAMES.get(design_units, design_units)
     return (
-        f"the design is in {design_units} and the Rhino document in {model_units}: "
-        f"lengths are the design's, not converted (give units {design_units!r} a document "
-        f"in {want}, or set the units input)"
+        f"the design's lengths are in {name} (units {design_units!r}) and the Rhino "
+        f"document's in {model_units}: they are not converted (open a document in {want}, "
+        "or set the units input to the document's)"
     )
+
+
+#: The design units' names in a sentence.
+_UNIT_NAMES = {"mm": "millimetres", "m": "metres", "in": "inches", "ft": "feet"}
 
 
 def _sheet_text(curve: Mapping[str, Any]) -> str:
@@ -135,7 +142,7 @@ def solve_answer(values: Mapping[str, Any], model_units: object = None) -> Answe
     Raises:
         UsageError, OneFoldError: a value the command refuses (its message).
     """
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
     from onefold_cad.export.hops_geometry import (
         crease_lines,
         flat_curves,
@@ -154,11 +161,12 @@ def solve_answer(values: Mapping[str, Any], model_units: object = None) -> Answe
     given = dict(values)
     if given.get("sheet") is not None:
         given["sheet"] = _sheet_text(given["sheet"])
-    flags, placement = parse_solve_args(flag_args(SOLVE_INPUTS, given))
+    flags, placed = parse_solve_args(flag_args(SOLVE_INPUTS, given))
+    placement = Placement.parse(placed)
     template = given.get("template")
     (job,) = load_jobs([template] if template is not None else [], flags)
     design = job.design
-    folded = build_design(design)
+    folded = fold_design(design)
     report = design_report(design, folded, sources=job.sources)
     check_finite(report)
     notes = list(report["warnings"])
@@ -210,6 +218,8 @@ def fit_answer(values: Mapping[str, Any]) -> Answer:
 
     names = [inp.name for inp in FIT_INPUTS]
     template, height, span, depth, margin = (values.get(n) for n in names)
+    if height is None or span is None:  # read_values refuses a request without them
+        raise InvalidParameterError("height" if height is None else "span", "is required")
     (job,) = load_jobs([DEFAULT_TEMPLATE if template is None else template], {})
     result = fit_design(job.design, height, span, depth, margin)
     data = result.to_data()

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import ipaddress
 from collections.abc import Iterable, Mapping
+from email.message import Message
 from pathlib import Path
 
 from onefold_cad.errors import InvalidParameterError
@@ -60,7 +61,7 @@ def allowed_hosts(host: str, port: int, extra: Iterable[str] = ()) -> frozenset[
     return frozenset(f"{n}:{port}" for n in names)
 
 
-def request_problem(headers: Mapping[str, str], hosts: frozenset[str]) -> str | None:
+def request_problem(headers: Mapping[str, str] | Message, hosts: frozenset[str]) -> str | None:
     """Why a request with these headers is refused (one line), or None.
 
     ``hosts``: :func:`allowed_hosts`; an allowed ``Origin`` is ``http://``

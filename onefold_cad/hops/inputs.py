@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import functools
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -74,7 +74,8 @@ class HopsInput:
 
 def _flag_input(dest: str) -> HopsInput:
     f = next(f for f in DESIGN_FLAGS if f.dest == dest)
-    kind = {parse_float: "number", parse_int: "integer"}.get(f.kind, "text")
+    kinds: dict[Callable[[str], Any], str] = {parse_float: "number", parse_int: "integer"}
+    kind = kinds.get(f.kind, "text")
     return HopsInput(dest, kind, f"{f.help} (as {f.flag}; empty: the template's)", f.flag)
 
 
@@ -132,6 +133,7 @@ SOLVE_INPUTS: tuple[HopsInput, ...] = (
         "resting numbers) or frame (the fold frame: H at the origin, the fold line on x)",
         "--placement",
     ),
+    _flag_input("hc_fraction"),  # last: a definition made before it keeps its wiring
 )
 
 #: The inputs of ``onefold/fit`` (``onefold fit``'s options).

@@ -1,15 +1,24 @@
 """The sheet as steel: a shell model of the flat sheet and its static equilibria.
 
 Plain arrays in, plain arrays out, SI units (m, N, Pa, J). The layer imports
-nothing from the rest of onefold_cad but its errors.
+the layers below it (the design, its geometry, the choices and the errors),
+never the files' writers or the CLI above it.
 
 - ``mesh``: the triangulation (``mesh_sheet``, ``build_mesh``, ``SheetMesh``);
 - ``material``, ``shell``: the material and the model (``ShellMaterial``, ``Shell``);
 - ``kinematics``, ``energy``, ``assembly``: the energies with exact gradients and
   sparse Hessians (``evaluate``);
-- ``plastic``: the elastic-perfectly-plastic bending law and the faces' states;
-- ``newton``, ``equilibrium``: Newton's method, supports, ground contact,
-  continuation, forming and the plastic re-solve.
+- ``plastic``: the 1D moment law (elastic-perfectly-plastic bending) and the
+  faces' states;
+- ``j2``, ``section``, ``layered``: J2 plasticity at points, through the
+  thickness, on every face;
+- ``newton``, ``equilibrium``: Newton's method (QDLDL's LDL^T), supports,
+  ground contact, continuation, forming and the plastic re-solve;
+- ``model``, ``stages``, ``j2_stages``, ``j2_simulate``, ``simulate``: a design
+  as a sheet model and ``onefold simulate``'s stages with either law;
+  ``j2_measures``, ``standing_measures``, ``deviation``, ``stress``,
+  ``reserve``, ``results``: what the stages say;
+- ``loads``: outdoor loads on the standing sheet and what anchors it.
 """
 
 from onefold_cad.mechanics.energy import Evaluation, evaluate, second_fundamental_form

@@ -163,7 +163,7 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
     a = 2.0 / 3.0 * hk + law.c_eigen * _P_EIGEN  # xi_i = xt_i / (1 + dgamma a_i)
     root23 = math.sqrt(2.0 / 3.0)
 
-    def g(dg: F) -> tuple[F, F]:
+    def g(dg: F, xt: F, alpha: F) -> tuple[F, F]:
         den = 1.0 + dg[:, None] * a
         xi = xt / den
         phi2 = np.sum(_P_EIGEN * xi**2, axis=1)
@@ -175,27 +175,33 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
         return phi - root23 * kappa, dphi - root23 * dkappa
 
     # g(0) > 0 and g falls monotonically (phi falls, kappa grows): Newton from a
-    # bracket [lo, hi] kept by bisection where a step leaves it.
-    lo = np.zeros(len(xt))
+    # bracket [lo, hi] kept by bisection where a step leaves it; each pass works
+    # on the points not yet converged only.
+    k = len(xt)
     scale = root23 * (sy + hi * alpha)  # the yield surface's size in phi
-    hi_ = np.ones(len(xt)) / np.min(a)
+    hi_ = np.ones(k) / np.min(a)
     for _ in range(200):  # hi: a point where g < 0
-        ghi, _ = g(hi_)
+        ghi, _ = g(hi_, xt, alpha)
         if np.all(ghi < 0):
             break
         hi_ = np.where(ghi < 0, hi_, 2.0 * hi_)
-    dg = np.zeros(len(xt))
+    dg, lo = np.zeros(k), np.zeros(k)
+    todo = np.arange(k)
     for _ in range(100):
-        val, der = g(dg)
-        lo = np.where(val > 0, dg, lo)
-        hi_ = np.where(val <= 0, dg, hi_)
-        if np.all((np.abs(val) <= TOLERANCE * scale) | (hi_ - lo <= 1e-15 * hi_)):
+        val, der = g(dg[todo], xt[todo], alpha[todo])
+        lo_t = np.where(val > 0, dg[todo], lo[todo])
+        hi_t = np.where(val <= 0, dg[todo], hi_[todo])
+        lo[todo], hi_[todo] = lo_t, hi_t
+        done = (np.abs(val) <= TOLERANCE * scale[todo]) | (hi_t - lo_t <= 1e-15 * hi_t)
+        if np.all(done):
             return dg
         with np.errstate(divide="ignore", invalid="ignore"):
-            step = dg - val / der
-        inside = np.isfinite(step) & (step > lo) & (step < hi_)
-        dg = np.where(inside, step, 0.5 * (lo + hi_))
-    worst = float(np.max(np.abs(g(dg)[0]) / scale))
+            step = dg[todo] - val / der
+        inside = np.isfinite(step) & (step > lo_t) & (step < hi_t)
+        new = np.where(inside, step, 0.5 * (lo_t + hi_t))
+        dg[todo] = np.where(done, dg[todo], new)
+        todo = todo[~done]
+    worst = float(np.max(np.abs(g(dg, xt, alpha)[0]) / scale))
     raise ConvergenceError(
         f"the J2 return mapping did not converge (relative residual {worst:.3g})",
         iterations=100,

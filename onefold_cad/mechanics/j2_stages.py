@@ -59,7 +59,7 @@ FORMING_STEPS = 4
 #: and 8 take 153 iterations, a whole first step and 25 take 204 (the same
 #: springback to 0.05 %): each step's active set of yielding points then
 #: changes less (scripts/j2_trial.py).
-RELEASE_STEP, RELEASE_ITERATIONS = 0.125, 8
+RELEASE_STEP, RELEASE_ITERATIONS = 0.125, 12
 
 
 @dataclass(frozen=True)
@@ -90,17 +90,14 @@ class J2Stage:
         return np.maximum(e[:, 0], e[:, -1])
 
 
-def j2_shell(
-    model: SheetModel,
-    points: int | None = None,
-    hardening_iso: float = 0.0,
-    hardening_kin: float = 0.0,
-) -> Shell:
+def j2_shell(model: SheetModel, points: int | None = None) -> Shell:
     """The model's shell with virgin J2 sections (``points`` through the
-    thickness, the section's default if None; hardening moduli in Pa) and no
-    rest curvature: the plastic strains carry the formed curvature."""
+    thickness, the section's default if None; the material's hardening) and
+    no rest curvature: the plastic strains carry the formed curvature."""
     mat = model.material
-    law = J2Law(mat.youngs_modulus, mat.poisson, mat.yield_stress, hardening_iso, hardening_kin)
+    law = J2Law(
+        mat.youngs_modulus, mat.poisson, mat.yield_stress, mat.hardening_iso, mat.hardening_kin
+    )
     rule = ThicknessRule(mat.thickness) if points is None else ThicknessRule(mat.thickness, points)
     shell = model.shell
     return shell.with_changes(

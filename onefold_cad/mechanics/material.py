@@ -33,6 +33,9 @@ class ShellMaterial:
         thickness: t (m).
         density: rho (kg/m^3).
         yield_stress: sigma_y (Pa); ``inf`` for a sheet that never yields.
+        hardening_iso, hardening_kin: the linear isotropic and kinematic
+            hardening moduli (Pa, >= 0; both 0: perfectly plastic), read by
+            the J2 law (:mod:`onefold_cad.mechanics.j2`).
     """
 
     youngs_modulus: float
@@ -40,6 +43,8 @@ class ShellMaterial:
     thickness: float
     density: float = 0.0
     yield_stress: float = math.inf
+    hardening_iso: float = 0.0
+    hardening_kin: float = 0.0
 
     def __post_init__(self) -> None:
         for name in ("youngs_modulus", "thickness"):
@@ -52,6 +57,10 @@ class ShellMaterial:
             raise InvalidParameterError("density", f"must be finite and >= 0, got {self.density!r}")
         if not self.yield_stress > 0:
             raise InvalidParameterError("yield_stress", f"must be > 0, got {self.yield_stress!r}")
+        for name in ("hardening_iso", "hardening_kin"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value >= 0):
+                raise InvalidParameterError(name, f"must be finite and >= 0 Pa, got {value!r}")
 
     def with_changes(self, **changes: float) -> ShellMaterial:
         """A copy with some fields replaced."""

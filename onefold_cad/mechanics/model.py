@@ -152,7 +152,9 @@ def shell_material(design: Design, yield_stress_MPa: float | None = None) -> She
         )
     sy = sy if yield_stress_MPa is None else yield_stress_MPa
     metres = design.units.mm / 1000.0
-    return ShellMaterial(e * 1e9, nu, m.thickness * metres, rho, sy * 1e6)
+    h = 0.0 if m.hardening_modulus is None else m.hardening_modulus * 1e6
+    kin = 0.0 if m.kinematic_hardening is None else m.kinematic_hardening
+    return ShellMaterial(e * 1e9, nu, m.thickness * metres, rho, sy * 1e6, (1.0 - kin) * h, kin * h)
 
 
 def check_simulable(design: Design) -> None:
@@ -261,7 +263,7 @@ def sheet_model(
 
     Args:
         design: the design (exact model, thickness, elastic data).
-        folded: ``build_design(design)``.
+        folded: ``fold_design(design)``.
         h_max: the mesh's largest edge (m); None: ``level``'s.
         level: 'coarse', 'normal' or 'fine' (:data:`MESH_LEVELS`).
         crease: 'held' or 'elastic' (:data:`CREASES`).

@@ -1,10 +1,13 @@
 """Newton's method on an energy with a sparse Hessian: line search, regularisation,
 fixed unknowns eliminated.
 
-Each step solves ``(H_ff + lambda diag|H_ff|) p = -g_f`` with SuperLU (symmetric
-mode, diagonal pivots, so the signs of ``U``'s diagonal are the matrix's inertia):
-``lambda = 0`` first, then growing shifts while the factorisation fails, the
-matrix is not positive definite or the step is no descent direction. Full steps
+Each step solves ``(H_ff + lambda diag|H_ff|) p = -g_f`` by a sparse LDL^T
+factorisation without pivoting (QDLDL, :class:`SymmetricFactor`: one
+symbolic analysis, AMD-ordered, for every matrix of the Hessian's structure,
+so each Newton step refactors numerically only; ``D``'s signs are the
+matrix's inertia): ``lambda = 0`` first, then growing shifts while the
+factorisation fails, the matrix is not positive definite or the step is no
+descent direction. Full steps
 are taken under a watchdog: when a few of them have not brought the energy
 sufficiently (Armijo) below the last reference point, the method returns there
 and backtracks along its direction. Convergence: the
@@ -19,13 +22,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+import qdldl
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import ConvergenceError
 
-__all__ = ["NewtonResult", "Progress", "minimize", "restrict"]
+__all__ = ["NewtonResult", "Progress", "SymmetricFactor", "minimize", "restrict"]
 
 F = NDArray[np.float64]
 #: ``fun(q, order) -> (energy, gradient, hessian)``, gradient and Hessian None below
@@ -76,17 +79,54 @@ def restrict(h: sp.csc_matrix, free: NDArray[np.bool_]) -> tuple[NDArray[np.int6
     return keep, block
 
 
-def factor(a: sp.csc_matrix) -> tuple[spla.SuperLU | None, bool]:
-    """SuperLU of a symmetric matrix and whether it is positive definite."""
-    try:
-        lu = spla.splu(
-            a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
-        )
-    except RuntimeError:
-        return None, False
-    pivots = lu.U.diagonal()
-    symmetric = np.array_equal(lu.perm_r, lu.perm_c)
-    return lu, bool(symmetric and np.all(pivots > 0) and np.all(np.isfinite(pivots)))
+class SymmetricFactor:
+    """``LDL^T`` factorisations of symmetric matrices of one sparsity structure
+    plus a diagonal shift (QDLDL: the ordering and symbolic analysis are done
+    once, each :meth:`factor` refactors numerically).
+
+    Args:
+        a: (n, n) CSC, symmetric, with every diagonal entry in its structure
+            (stored, even if zero).
+    """
+
+    def __init__(self, a: sp.csc_matrix) -> None:
+        n = a.shape[0]
+        cols = np.repeat(np.arange(n), np.diff(a.indptr))
+        rows = a.indices
+        keep = rows <= cols  # the upper triangle, column by column as stored
+        self._keep = np.flatnonzero(keep)
+        ptr = np.zeros(n + 1, dtype=np.int64)
+        np.cumsum(np.bincount(cols[keep], minlength=n), out=ptr[1:])
+        self._indices, self._indptr, self._n = rows[keep], ptr, n
+        diag = np.flatnonzero(rows[keep] == cols[keep])
+        if len(diag) != n:
+            raise ValueError("the matrix's structure lacks diagonal entries")
+        self._diag = diag
+        self._solver: qdldl.Solver | None = None
+
+    def factor(self, a: sp.csc_matrix, shift: F | None = None) -> bool:
+        """Factor ``a + diag(shift)`` (``a`` of this structure); whether it is
+        positive definite (every pivot of ``D`` positive and finite). A
+        factorisation that breaks down counts as not definite."""
+        data = a.data[self._keep].copy()
+        if shift is not None:
+            data[self._diag] += shift
+        upper = sp.csc_matrix((data, self._indices, self._indptr), shape=(self._n, self._n))
+        try:
+            if self._solver is None:
+                self._solver = qdldl.Solver(upper, upper=True)
+            else:
+                self._solver.update(upper, upper=True)
+            d = self._solver.factors()[1]
+        except (ValueError, RuntimeError):
+            self._solver = None
+            return False
+        return bool(np.all(d > 0) and np.all(np.isfinite(d)))
+
+    def solve(self, b: F) -> F:
+        """``x`` with ``(a + diag(shift)) x = b`` of the last :meth:`factor`."""
+        assert self._solver is not None
+        return np.asarray(self._solver.solve(b), dtype=float)
 
 
 def minimize(
@@ -128,6 +168,7 @@ def minimize(
     scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
     energy, grad, hess = fun(q, 2)
     _, block = restrict(hess, free)
+    factors = SymmetricFactor(block(hess))
 
     def residual(g: F) -> float:
         return float(np.max(np.abs(g[free] * scale[free]), initial=0.0))
@@ -155,7 +196,8 @@ def minimize(
             # back to it, and search along a line there.
             q, energy, grad, hess = ref[0].copy(), ref[1], ref[2], ref[3]
         taken = False
-        for p, slope, k in _directions(block(hess), grad[free], shift_start):
+        ahead: tuple[F, sp.csc_matrix] | None = None  # the gradient and Hessian at the new q
+        for p, slope, k in _directions(factors, block(hess), grad[free], shift_start):
             if monotone:
                 accepted = _line_search(fun, q, free, p, energy, slope)
                 if accepted is None:
@@ -168,9 +210,12 @@ def minimize(
                 before = (res, energy)
                 trial = q.copy()
                 trial[free] += p
-                e = fun(trial, 0)[0]
+                # a full step is kept but for a non-finite energy: evaluate it whole
+                e, g_trial, h_trial = fun(trial, 2)
                 if not math.isfinite(e):
                     continue
+                assert g_trial is not None and h_trial is not None
+                ahead = (g_trial, h_trial)
                 assert ref is not None
                 slack = 1e-13 * max(abs(ref[1]), 1e-300)
                 relaxed = 0 if e <= ref[1] + 1e-4 * ref[4] + slack else relaxed + 1
@@ -185,7 +230,10 @@ def minimize(
                 iterations=it,
                 residual=res,
             )
-        energy, grad, hess = fun(q, 2)
+        if ahead is not None:
+            grad, hess = ahead
+        else:
+            energy, grad, hess = fun(q, 2)
         res = residual(grad)
     raise ConvergenceError(
         f"Newton did not converge in {max_iter} iterations: residual {res:.3g} N "
@@ -195,7 +243,7 @@ def minimize(
     )
 
 
-def _directions(hf: sp.csc_matrix, gf: F, shift_start: int):
+def _directions(factors: SymmetricFactor, hf: sp.csc_matrix, gf: F, shift_start: int):
     """Newton directions ``p`` with ``slope = g.p < 0`` from ``(H + lambda diag|H|) p = -g``
     for growing shifts ``lambda`` (only positive definite matrices are used).
     Yields ``(p, slope, k)``, ``k`` the shift's index (0: unshifted)."""
@@ -203,11 +251,9 @@ def _directions(hf: sp.csc_matrix, gf: F, shift_start: int):
     diag = np.where(diag > 0, diag, max(float(diag.max(initial=0.0)), 1.0))
     for k in range(shift_start, len(_SHIFTS)):
         lam = _SHIFTS[k]
-        a = hf if lam == 0 else (hf + sp.diags(lam * diag)).tocsc()
-        lu, definite = factor(a)
-        if lu is None or not definite:
+        if not factors.factor(hf, None if lam == 0 else lam * diag):
             continue
-        p = -lu.solve(gf)
+        p = -factors.solve(gf)
         slope = float(gf @ p)
         if slope < 0 and np.all(np.isfinite(p)):
             yield p, slope, k

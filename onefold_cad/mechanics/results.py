@@ -23,6 +23,10 @@ def _f(x: float | None) -> float | None:
     return None if x is None else float(x)
 
 
+def _xy(x: Array | None) -> list[float] | None:
+    return None if x is None else np.asarray(x, dtype=float).tolist()
+
+
 @dataclass(frozen=True)
 class FormedResult:
     """The sheet bent into the design.
@@ -33,11 +37,19 @@ class FormedResult:
         plastic_area_share: the share (0..1) of the sheet's area bent past yield.
         plastic_radius_max: the largest distance from H of a yielded face's
             centroid (length; 0 when nothing yields).
+        max_plastic_strain: the largest equivalent plastic strain at the
+            sheet's surfaces (J2 law; None for the moment law).
+        max_plastic_strain_at: ``(2,)`` where it is on the flat sheet
+            (length, fold frame; H at the origin), or None.
+        max_stress_MPa: the largest von Mises stress at the surfaces (J2 law).
     """
 
     bending_energy_J: float
     plastic_area_share: float
     plastic_radius_max: float
+    max_plastic_strain: float | None = None
+    max_plastic_strain_at: Array | None = None
+    max_stress_MPa: float | None = None
 
 
 @dataclass(frozen=True)
@@ -89,9 +101,17 @@ class Standing:
         max_stress_at: ``(2,)`` where it is on the flat sheet (length, fold
             frame; H at the origin), None without an equilibrium.
         iterations: Newton steps.
-        reloaded_area_share: the share of the sheet's area its weight bends
-            past the elastic range (yielding, which the stage takes elastically).
+        reloaded_area_share: the share of the sheet's area its weight makes
+            yield again (J2 law; the moment law: bends past the elastic range,
+            which it takes elastically).
         positions: ``(n, 3)`` the standing nodes (m), None without one.
+        max_plastic_strain: the largest equivalent plastic strain at the
+            surfaces standing (J2 law), its place ``max_plastic_strain_at``
+            (flat sheet, fold frame) and ``plastic_area_share``, the share of
+            the area whose surfaces have yielded at some stage.
+        reserve: on the coarse preview mesh, the multiple of its weight the
+            sheet was found to carry (up to :data:`COARSE_RESERVE`), else None.
+        uncertain: why a coarse 'stands' is no yes ('' when it is).
     """
 
     stands: bool
@@ -111,6 +131,18 @@ class Standing:
     iterations: int
     reloaded_area_share: float
     positions: Array | None = field(default=None, repr=False)
+    max_plastic_strain: float | None = None
+    max_plastic_strain_at: Array | None = None
+    plastic_area_share: float | None = None
+    reserve: float | None = None
+    uncertain: str = ""
+
+    @property
+    def verdict(self) -> str:
+        """'stands', 'uncertain' (a coarse preview near its limit) or 'does not stand'."""
+        if not self.stands:
+            return "does not stand"
+        return "uncertain" if self.uncertain else "stands"
 
     @classmethod
     def stalled(
@@ -142,6 +174,9 @@ class Standing:
         """The JSON data (the positions left out)."""
         return {
             "stands": bool(self.stands),
+            "verdict": self.verdict,
+            "uncertain": self.uncertain,
+            "reserve": _f(self.reserve),
             "reason": self.reason,
             "load_factor": float(self.load_factor),
             "max_deviation": _f(self.max_deviation),
@@ -154,11 +189,12 @@ class Standing:
             "tipping_margin_deg": _f(self.tipping_margin_deg),
             "max_stress_MPa": _f(self.max_stress_MPa),
             "utilisation": _f(self.utilisation),
-            "max_stress_at": None
-            if self.max_stress_at is None
-            else np.asarray(self.max_stress_at, dtype=float).tolist(),
+            "max_stress_at": _xy(self.max_stress_at),
             "iterations": int(self.iterations),
             "reloaded_area_share": float(self.reloaded_area_share),
+            "max_plastic_strain": _f(self.max_plastic_strain),
+            "max_plastic_strain_at": _xy(self.max_plastic_strain_at),
+            "plastic_area_share": _f(self.plastic_area_share),
         }
 
 
@@ -186,6 +222,10 @@ class Simulation:
         weight_N: the sheet's weight.
         nodes, triangles, h_max: the mesh (h_max in the design's unit).
         yield_stress_MPa, youngs_modulus_GPa, poisson, thickness: the values used.
+        law: 'j2' (J2 plasticity through the thickness) or 'moment' (the 1D
+            moment-curvature law of a rectangular section, elastic membrane).
+        hardening_modulus_MPa, kinematic_hardening: the law's linear
+            hardening and its kinematic share (J2).
         density_kg_m3: the sheet's density (kg/m^3).
         formed, released: the forming sequence (reference 'flat'), else None.
         standing: on the ground.
@@ -205,6 +245,9 @@ class Simulation:
         standing_positions, released_positions: ``(n, 3)`` the simulated nodes
             (design unit; standing in the resting frame, released as the
             standing start placed it), None when there is none.
+        fields: per stage (J2 law) the faces' surface stresses, plastic
+            strains and resultants (:class:`~onefold_cad.mechanics.j2_measures.Surfaces`),
+            and ``stage_positions`` its nodes (m), for the VTU file.
     """
 
     unit: str
@@ -235,6 +278,11 @@ class Simulation:
     designed_positions: Array | None = field(default=None, repr=False)
     standing_positions: Array | None = field(default=None, repr=False)
     released_positions: Array | None = field(default=None, repr=False)
+    law: str = "moment"
+    hardening_modulus_MPa: float = 0.0
+    kinematic_hardening: float = 0.0
+    fields: dict[str, Any] | None = field(default=None, repr=False)
+    stage_positions: dict[str, Array] | None = field(default=None, repr=False)
 
     def to_data(self) -> dict[str, Any]:
         """The report's ``simulation`` section."""
@@ -243,10 +291,13 @@ class Simulation:
             "supports": self.supports,
             "reference": self.reference,
             "crease": self.crease,
+            "law": self.law,
             "material": {
                 "youngs_modulus_GPa": self.youngs_modulus_GPa,
                 "poisson": self.poisson,
                 "yield_stress_MPa": self.yield_stress_MPa,
+                "hardening_modulus_MPa": self.hardening_modulus_MPa,
+                "kinematic_hardening": self.kinematic_hardening,
                 "thickness": self.thickness,
             },
             "weight_N": self.weight_N,
@@ -258,6 +309,9 @@ class Simulation:
                 "bending_energy_J": self.formed.bending_energy_J,
                 "plastic_area_share": self.formed.plastic_area_share,
                 "plastic_radius_max": self.formed.plastic_radius_max,
+                "max_plastic_strain": _f(self.formed.max_plastic_strain),
+                "max_plastic_strain_at": _xy(self.formed.max_plastic_strain_at),
+                "max_stress_MPa": _f(self.formed.max_stress_MPa),
             }
         if self.released is not None:
             r = self.released

@@ -25,18 +25,22 @@ from dataclasses import replace
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from onefold_cad.choices import MeshLevel, Reference, Supports
+from onefold_cad.choices import Law, MeshLevel, Reference, Supports
 from onefold_cad.design import Design
 from onefold_cad.geometry.folding import FoldedSheet
-from onefold_cad.geometry.hull import convex_hull_2d
-from onefold_cad.geometry.numeric import Array
-from onefold_cad.geometry.placement import tipping_margin
-from onefold_cad.mechanics.deviation import best_fit, surface_distance
 from onefold_cad.mechanics.equilibrium import PathStalled
+from onefold_cad.mechanics.j2_simulate import form_j2, run_j2
 from onefold_cad.mechanics.model import FINER, SheetModel, sheet_model
+from onefold_cad.mechanics.reserve import COARSE_RESERVE, carried
 from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation, Standing
 from onefold_cad.mechanics.shell import director_angles, pack, unpack
 from onefold_cad.mechanics.stages import Placed, form, place, release, stand
+from onefold_cad.mechanics.standing_measures import (
+    aligned_deviation,
+    area_share,
+    stalled,
+    standing_result,
+)
 from onefold_cad.mechanics.stress import face_stress
 
 __all__ = [
@@ -86,35 +90,15 @@ def formed_only(
     level: str = "normal",
     h_max: float | None = None,
     yield_stress_MPa: float | None = None,
+    law: str = "moment",
 ) -> FormedResult:
     """The ``formed`` stage alone (the flat sheet bent into the design: where it
     yields and the work of bending), on the mesh :func:`run` would use; the
     same numbers as ``run(...).formed`` without the stages after it."""
     model = sheet_model(design, folded, h_max=h_max, level=level, yield_stress_MPa=yield_stress_MPa)
+    if Law.parse(law) is Law.J2:
+        return form_j2(model).result
     return _formed_result(model, form(model))
-
-
-def _share(model: SheetModel, faces: np.ndarray) -> float:
-    """The share of the sheet's area on ``faces`` (m,) bool."""
-    area = model.shell.ref_area
-    return float(area[faces].sum() / area.sum())
-
-
-def aligned_deviation(model: SheetModel, folded: FoldedSheet, x: Array) -> tuple[float, float]:
-    """Max and rms distance (design unit) of nodes ``x`` (m) from the designed
-    form after the best rigid alignment."""
-    mass = model.shell.node_mass
-    fit = best_fit(x, model.designed, mass)
-    d = surface_distance(folded, fit.apply(x) / model.scale, model.hole_radius / model.scale)
-    return float(d.max()), float(np.sqrt(np.average(d**2, weights=mass)))
-
-
-def _standing_deviation(model: SheetModel, folded: FoldedSheet, x: Array) -> Array:
-    """``(n,)`` distance (design unit) of standing nodes ``x`` (m, resting frame)
-    from the designed form as it stands."""
-    rot, shift = model.standing_frame()
-    back = (x - shift) @ rot  # to the fold frame
-    return surface_distance(folded, back / model.scale, model.hole_radius / model.scale)
 
 
 def _standing(
@@ -126,65 +110,73 @@ def _standing(
     supports,
     progress,
     unit: str,
+    coarse: bool = False,
 ):
-    """The standing stage and its measures (a stall is an answer: it does not stand)."""
-    s = model.scale
+    """The standing stage of the moment law (or of the designed reference) and
+    its measures (a stall is an answer: it does not stand). On the ``coarse``
+    preview mesh a sheet that stands must carry :data:`COARSE_RESERVE` times
+    its weight to be a plain yes (:mod:`onefold_cad.mechanics.reserve`)."""
     try:
         stage = stand(model, placed, rest_curvature, state, supports, progress)
     except PathStalled as err:
-        reason = (
-            f"no equilibrium under its full weight on {supports} supports: the load path ends at "
-            f"{err.reached:.3g} of the weight (Newton's residual there {err.residual:.3g} N)"
-        )
-        last = err.last
-        spread = None
-        if last is not None:
-            x0 = unpack(model.mesh, placed.q)[0]
-            spread = float(np.max(np.linalg.norm(last.positions - x0, axis=1)) / s)
-            reason += f"; at that load it had moved by up to {spread:.4g} {unit}"
-        stalled = Standing.stalled(reason, err.reached, err.iterations, spread)
-        return stalled, None, None
+        return stalled(model, placed, err, supports, unit), None, None
     eq = stage.equilibrium
-    x = eq.positions
     loaded = placed.shell.with_changes(rest_curvature=rest_curvature)
     stress = face_stress(loaded, eq.q, state if state is not None else None) / 1e6
-    dev = _standing_deviation(model, folded, x)
-    mass = model.shell.node_mass
-    contacts = x[eq.contacts] / s
-    com = mass @ x / mass.sum() / s
-    margin = None
-    if len(contacts) >= 1:
-        hull = contacts[convex_hull_2d(contacts[:, :2], 1e-9 * float(np.ptp(x)) / s), :2]
-        margin = float(tipping_margin(hull, com, 1e-9 * float(np.ptp(x)) / s)[0])
-    stands = margin is not None and margin > 0.0
-    reason = "" if stands else "its centre of mass is not over its contacts' support polygon"
-    x0 = unpack(model.mesh, placed.q)[0]
-    return (
-        Standing(
-            stands=stands,
-            reason=reason,
-            load_factor=1.0,
-            max_deviation=float(dev.max()),
-            rms_deviation=float(np.sqrt(np.average(dev**2, weights=mass))),
-            max_displacement=float(np.max(np.linalg.norm(x - x0, axis=1)) / s),
-            height=float(x[:, 2].max() / s),
-            span=float(np.ptp(x[:, 0]) / s),
-            reactions_total_N=float(eq.reactions[:, 2].sum()),
-            contacts=contacts,
-            tipping_margin_deg=margin,
-            max_stress_MPa=float(stress.max()),
-            utilisation=float(stress.max() / (model.material.yield_stress / 1e6)),
-            max_stress_at=model.mesh.nodes[model.mesh.triangles[int(np.argmax(stress))]].mean(
-                axis=0
-            )
-            / s,
-            iterations=eq.iterations,
-            reloaded_area_share=_share(model, stage.reloaded),
-            positions=x,
-        ),
+    standing, dev = standing_result(
+        model,
+        folded,
+        placed,
+        eq,
         stress,
-        dev,
+        model.material.yield_stress / 1e6,
+        reloaded_area_share=area_share(model, stage.reloaded),
     )
+    if coarse and standing.stands:
+        reserve = carried(model, placed, eq, rest_curvature, supports)
+        uncertain = ""
+        if reserve < COARSE_RESERVE:
+            uncertain = (
+                f"on the coarse preview mesh it carries {reserve:.3g} times its weight, less "
+                f"than the {COARSE_RESERVE:g} the coarse mesh's stiffness calls for: "
+                "run --mesh normal"
+            )
+        standing = replace(standing, reserve=reserve, uncertain=uncertain)
+    return standing, stress, dev
+
+
+def _law_warnings(law: str, released: Released | None, standing: Standing, reverse: int
+                  ) -> list[str]:  # fmt: skip
+    """What the law could not honour (the moment law: elastic unloading and
+    membrane) or what the steel does that a user must know (J2: its weight
+    makes it yield)."""
+    out = []
+    if law == "j2":
+        if standing.reloaded_area_share > 0:
+            out.append(
+                f"standing, its weight makes {100 * standing.reloaded_area_share:.3g} % of the "
+                "sheet's area yield again (largest plastic strain "
+                f"{standing.max_plastic_strain or 0:.3g})"
+            )
+        return out
+    if released is not None and released.reloaded_area_share > 0:
+        out.append(
+            f"in springback {100 * released.reloaded_area_share:.3g} % of the sheet's area bends "
+            "past its elastic range; the moment law unloads every face elastically, so the "
+            "springback there is underestimated (--law j2 follows the law)"
+        )
+    if standing.reloaded_area_share > 0:
+        out.append(
+            f"standing, {100 * standing.reloaded_area_share:.3g} % of the sheet's area is bent "
+            "past its elastic range (springback and weight together; taken elastically, so the "
+            "form there is an estimate)"
+        )
+    if reverse:
+        out.append(
+            f"{reverse} faces unload in springback by more than 2 M_y, past a rectangular "
+            "section's reverse yield (kept elastic: the springback there is an estimate)"
+        )
+    return out
 
 
 def _one_blas_thread(fn: Callable[..., Simulation]) -> Callable[..., Simulation]:
@@ -206,6 +198,7 @@ def run(
     supports: str = "anchored",
     reference: str = "flat",
     crease: str = "held",
+    law: str = "moment",
     level: str = "normal",
     h_max: float | None = None,
     yield_stress_MPa: float | None = None,
@@ -223,6 +216,7 @@ def run(
     """
     supports = Supports.parse(supports).value
     reference = Reference.parse(reference).value
+    law = Law.parse(law).value
     times: dict[str, float] = {}
     clock = time.process_time()
 
@@ -246,63 +240,59 @@ def run(
     lap("mesh")
     s, mat = model.scale, model.material
     formed_result = released = designed = released_at = None
+    fields = stage_positions = None
     reverse = 0
-    if reference == "flat":
-        formed = form(model)
-        formed_result = _formed_result(model, formed)
-        lap("formed")
-        rel = release(model, formed, _stage_progress(progress, "released"))
-        xr = rel.equilibrium.positions
-        max_dev, rms_dev = aligned_deviation(model, folded, xr)
-        placed = place(model, rel.equilibrium.q)
-        xp = unpack(model.mesh, placed.q)[0]
-        released_at = xp / s
-        released = Released(
-            max_dev,
-            rms_dev,
-            float(xp[:, 2].max() / s),
-            float(np.ptp(xp[:, 0]) / s),
-            rel.equilibrium.iterations,
-            _share(model, rel.reloaded),
-        )
-        reverse = int(rel.reverse.sum())
-        rest_curvature, state = rel.state.rest, rel.state
-        lap("released")
+    if reference == "flat" and law == "j2":
+        j2 = run_j2(
+            model, folded, supports, design.units.value,
+            lambda stage: _stage_progress(progress, stage), lap,
+        )  # fmt: skip
+        formed_result, released, standing = j2.formed, j2.released, j2.standing
+        stress, dev, released_at = j2.stress_MPa, j2.deviation, j2.released_at / s
+        fields, stage_positions = j2.fields, j2.positions
     else:
-        q = pack(model.designed, director_angles(model.shell, model.designed, model.normals))
-        placed = place(model, q)
-        rest_curvature, state = model.shell.rest_curvature, None
-    standing, stress, dev = _standing(
-        model,
-        folded,
-        placed,
-        rest_curvature,
-        state,
-        supports,
-        _stage_progress(progress, "standing"),
-        design.units.value,
-    )
-    lap("standing")
+        if reference == "flat":
+            formed = form(model)
+            formed_result = _formed_result(model, formed)
+            lap("formed")
+            rel = release(model, formed, _stage_progress(progress, "released"))
+            xr = rel.equilibrium.positions
+            max_dev, rms_dev = aligned_deviation(model, folded, xr)
+            placed = place(model, rel.equilibrium.q)
+            xp = unpack(model.mesh, placed.q)[0]
+            released_at = xp / s
+            released = Released(
+                max_dev,
+                rms_dev,
+                float(xp[:, 2].max() / s),
+                float(np.ptp(xp[:, 0]) / s),
+                rel.equilibrium.iterations,
+                area_share(model, rel.reloaded),
+            )
+            reverse = int(rel.reverse.sum())
+            rest_curvature, state = rel.state.rest, rel.state
+            lap("released")
+        else:
+            q = pack(model.designed, director_angles(model.shell, model.designed, model.normals))
+            placed = place(model, q)
+            rest_curvature, state = model.shell.rest_curvature, None
+        standing, stress, dev = _standing(
+            model,
+            folded,
+            placed,
+            rest_curvature,
+            state,
+            supports,
+            _stage_progress(progress, "standing"),
+            design.units.value,
+            coarse=MeshLevel.parse(level) is MeshLevel.COARSE and refine == 1.0,
+        )
+        lap("standing")
     if reference == "designed":
         designed = Designed(standing.max_displacement, standing.max_stress_MPa)
-    warnings = []
-    if released is not None and released.reloaded_area_share > 0:
-        warnings.append(
-            f"in springback {100 * released.reloaded_area_share:.3g} % of the sheet's area bends "
-            "past its elastic range; the model unloads every face elastically, so the springback "
-            "there is underestimated"
-        )
-    if standing.reloaded_area_share > 0:
-        warnings.append(
-            f"standing, {100 * standing.reloaded_area_share:.3g} % of the sheet's area is bent "
-            "past its elastic range (springback and weight together; taken elastically, so the "
-            "form there is an estimate)"
-        )
-    if reverse:
-        warnings.append(
-            f"{reverse} faces unload in springback by more than 2 M_y, past a rectangular "
-            "section's reverse yield (kept elastic: the springback there is an estimate)"
-        )
+    warnings = _law_warnings(law, released, standing, reverse)
+    if standing.uncertain:
+        warnings.append(f"whether it stands is uncertain: {standing.uncertain}")
     if not standing.stands:
         hint = ""
         if standing.max_deviation is None and MeshLevel.parse(level) is MeshLevel.COARSE:
@@ -317,13 +307,14 @@ def run(
             f"{design.units.value} ({100 * standing.max_displacement / design.sheet.size:.2g} % of "
             "the sheet's size): a form far from the design"
         )
-    elif standing.utilisation is not None and standing.utilisation >= 1.0:
+    elif law == "moment" and standing.utilisation is not None and standing.utilisation >= 1.0:
         at = standing.max_stress_at
         where = "" if at is None else f" {math.hypot(at[0], at[1]):.4g} {design.units.value} from H"
         warnings.append(
             f"standing, the largest stress {standing.max_stress_MPa:.4g} MPa{where} reaches the "
             f"yield stress {mat.yield_stress / 1e6:.4g} MPa (residual bending and membrane "
-            "stress, both taken elastic: past yield it is an estimate)"
+            "stress, both taken elastic by the moment law: past yield it is an estimate; "
+            "--law j2 gives the stress the steel can be in)"
         )
     return Simulation(
         unit=design.units.value,
@@ -345,6 +336,15 @@ def run(
         designed=designed,
         convergence=None,
         reverse_yield_faces=reverse,
+        law=law if reference == "flat" else "elastic",
+        hardening_modulus_MPa=(mat.hardening_iso + mat.hardening_kin) / 1e6,
+        kinematic_hardening=(
+            mat.hardening_kin / (mat.hardening_iso + mat.hardening_kin)
+            if mat.hardening_iso + mat.hardening_kin > 0
+            else 0.0
+        ),
+        fields=fields,
+        stage_positions=stage_positions,
         warnings=tuple(warnings),
         timings_s=times,
         face_stress_MPa=stress,

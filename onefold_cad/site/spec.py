@@ -15,6 +15,11 @@ A site file::
     y = 0.0
     rotation = 0.0                 # about the vertical, deg, counter-clockwise seen from above
 
+    [loads]                        # optional: `onefold loads` on every sheet (docs/loads.md),
+    wind_speed = 25.0              # its anchors and ballast in SITE-order.csv
+    terrain = "II"
+    snow = 1.0
+
     [[sheet]]
     name = "inline"
     x = 9000.0
@@ -39,6 +44,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.templates import find_site_file, find_template, read_template, read_toml
 
 __all__ = [
+    "LOADS_KEYS",
     "MAX_SHEETS",
     "SHEET_KEYS",
     "SITE_KEYS",
@@ -49,9 +55,17 @@ __all__ = [
 ]
 
 #: The keys of the site file's top level and of one ``[[sheet]]`` entry.
-SITE_KEYS = ("name", "description", "units", "sheet")
+SITE_KEYS = ("name", "description", "units", "sheet", "loads")
+#: The keys of the optional ``[loads]`` table: ``onefold loads``'s options
+#: without dashes, and the ``LoadSpec`` field each sets (``mesh``: the mesh).
+LOADS_KEYS = {
+    "wind_speed": "wind_speed", "terrain": "terrain", "velocity_pressure": "velocity_pressure_kPa",
+    "height": "height", "cf_down": "cf_down", "cf_up": "cf_up", "directions": "directions",
+    "snow": "snow_kPa", "exposure": "exposure", "thermal": "thermal", "person": "person_kN",
+    "person_grid": "person_grid", "supports": "supports", "friction": "friction", "mesh": "mesh",
+}  # fmt: skip
 SHEET_KEYS = ("name", "template", "design", "flags", "x", "y", "rotation")
-_UNITS = ("mm", "in", "ft")
+_UNITS = ("mm", "m", "in", "ft")
 #: The most sheets a site takes, refused up front (:func:`read_site`), before
 #: any is built. Every sheet's part stays in memory until the site's STEP,
 #: GLB, IFC and clearance are written (about 11 MB more per default sheet
@@ -103,6 +117,8 @@ class SiteSpec:
             sheet is built in it.
         sheets: the placed designs, in the file's order.
         path: the file.
+        loads: the ``[loads]`` table checked (``LoadSpec`` fields and
+            ``mesh``), or None: no outdoors check.
     """
 
     name: str
@@ -110,6 +126,31 @@ class SiteSpec:
     units: str
     sheets: tuple[SheetSpec, ...]
     path: Path = field(default=Path("site.toml"))
+    loads: dict[str, Any] | None = None
+
+
+def _loads(raw: object, site: str) -> dict[str, Any] | None:
+    """The ``[loads]`` table as ``LoadSpec`` fields (and ``mesh``), checked."""
+    if raw is None:
+        return None
+    from onefold_cad.mechanics.loads.spec import LoadSpec
+
+    where = f"{site}: loads"
+    if not isinstance(raw, dict):
+        raise _fail(where, "must be a table ([loads])")
+    _unknown(raw, tuple(LOADS_KEYS), where)
+    out = {LOADS_KEYS[k]: v for k, v in raw.items()}
+    mesh = out.pop("mesh", "normal")
+    if mesh not in ("coarse", "normal", "fine"):
+        raise _fail(f"{where}: mesh", f"must be coarse, normal or fine, got {mesh!r}")
+    try:
+        LoadSpec(**out)
+    except InvalidParameterError as exc:
+        key = next((k for k, v in LOADS_KEYS.items() if v == exc.parameter), exc.parameter)
+        raise _fail(f"{where}: {key}", str(exc).split(": ", 1)[1]) from None
+    except TypeError as exc:
+        raise _fail(where, str(exc)) from None
+    return {**out, "mesh": mesh}
 
 
 def find_site(ref: str | Path) -> Path:
@@ -234,4 +275,5 @@ def read_site(ref: str | Path) -> SiteSpec:
         seen[s.name] = s.entry
     if name in seen:
         raise _fail(f"{site}: name", f"{name!r} is also a sheet's name (their files would mix)")
-    return SiteSpec(name, description, str(units), sheets, path)
+    loads = _loads(raw.get("loads"), site)
+    return SiteSpec(name, description, str(units), sheets, path, loads)

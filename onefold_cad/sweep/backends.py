@@ -24,7 +24,7 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Generator
 from typing import Any
 
 from onefold_cad.errors import not_installed
@@ -73,7 +73,7 @@ def lost_rows(batch: Batch, why: BaseException) -> Rows:
     ]  # fmt: skip
 
 
-def inline_rows(next_batch: NextBatch) -> Iterator[Rows]:
+def inline_rows(next_batch: NextBatch) -> Generator[Rows, None, None]:
     """Evaluate the batches in this process, one after the other."""
     while (batch := next_batch()) is not None:
         yield evaluate_batch(batch)
@@ -105,7 +105,7 @@ def _context() -> Any:
     return multiprocessing.get_context("spawn")
 
 
-def pool_rows(next_batch: NextBatch, workers: int) -> Iterator[Rows]:
+def pool_rows(next_batch: NextBatch, workers: int) -> Generator[Rows, None, None]:
     """Evaluate the batches on a local pool of ``workers`` processes."""
     from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
     from concurrent.futures.process import BrokenProcessPool
@@ -178,15 +178,16 @@ class DaskSession:
         self.close()
 
     def close(self) -> None:
-        if getattr(self, "client", None) is not None:
-            self.client.close()
-            self.client = None
+        client = getattr(self, "client", None)  # None: Client() failed
+        if client is not None:
+            client.close()
+            del self.client
         if self.cluster is not None:
             self.cluster.close()
             self.cluster = None
 
 
-def dask_rows(next_batch: NextBatch, session: DaskSession) -> Iterator[Rows]:
+def dask_rows(next_batch: NextBatch, session: DaskSession) -> Generator[Rows, None, None]:
     """Evaluate the batches on the session's cluster: futures of
     :func:`evaluate_batch`, about two per worker in flight, taken as they
     complete (``as_completed``)."""

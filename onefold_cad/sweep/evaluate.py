@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.fabrication.rules import resting_placement
 from onefold_cad.flags.jobs import template_job
 from onefold_cad.sweep.measures import MEASURES
@@ -73,7 +73,7 @@ def evaluate_design(
     try:
         design = template_job(raw, template, flags, None, implicit, memo).design
         row["name"] = design.name
-        folded = build_design(design)
+        folded = fold_design(design)
         rest = resting_placement(design, folded)
         for m in measures:
             row.update(MEASURES[m].compute(design, folded, rest, settings or {}))

@@ -47,7 +47,7 @@ Settings = Mapping[str, Any]
 UNIT_KINDS = {
     "": "no unit (a count, a ratio, a word)",
     "deg": "degrees",
-    "length": "the design's length unit (mm, in or ft: the units column)",
+    "length": "the design's length unit (mm, m, in or ft: the units column)",
     "length^2": "the design's length unit squared",
     "mass": "kg for mm designs, lb for inch and foot designs (the mass_unit column)",
     "kg/m^3": "kilograms per cubic metre",
@@ -244,6 +244,7 @@ def _simulate(
         supports=settings["supports"],
         reference=settings["reference"],
         crease=settings["crease"],
+        law=settings["law"],
         level=settings["mesh"],
         convergence=settings["check"],
     ).to_data()

@@ -44,7 +44,7 @@ IMAGES_UP_TO = 1000
 #: The most designs one sweep may have.
 MAX_DESIGNS = 10_000_000
 #: The settings of ``--measure simulate``: ``onefold simulate``'s options.
-SIMULATION_SETTINGS = ("supports", "reference", "crease", "mesh", "check")
+SIMULATION_SETTINGS = ("supports", "reference", "crease", "law", "mesh", "check")
 #: The columns every row has besides its inputs and measures.
 ROW_COLUMNS = (
     Column("key", "str", "", "stable hash of the design's inputs (template data and flags)"),
@@ -213,8 +213,10 @@ def _points(
     n = count_of(specs, sampler, samples)
     if n > MAX_DESIGNS:
         raise UsageError(f"--vary: {n} designs; a sweep has at most {MAX_DESIGNS}")
-    pts = grid_points(specs) if sampler == "grid" else sample_points(specs, sampler, samples, seed)
-    return specs, pts
+    if sampler == "grid":
+        return specs, grid_points(specs)
+    assert samples is not None  # refused above without --samples
+    return specs, sample_points(specs, sampler, samples, seed)
 
 
 def _measures(names: Sequence[str]) -> tuple[str, ...]:

@@ -160,7 +160,9 @@ def parse_vary(text: str) -> VarySpec:
     """
     name, eq, body = text.partition("=")
     if not eq or not name.strip():
-        raise UsageError(f"--vary {text}: must be NAME=SPEC (e.g. alpha=10:80:15 or hc=-50,0,50)")
+        raise UsageError(
+            f"--vary {text}: must be NAME=SPEC (e.g. alpha=10:80:15 or hc-fraction=-0.5,0,0.5)"
+        )
     flag = flag_named(name, text)
     body = body.strip()
     if not body:

@@ -47,14 +47,19 @@ def table_columns(plan: SweepPlan) -> list[tuple[str, Column]]:
     if plan.objectives:
         cols.append(("row", Column("pareto", "bool", "", "on the Pareto front of --objectives")))
     seen: set[str] = set()  # a varied --units is also the units output: once
-    return [(r, c) for r, c in cols if not (c.name in seen or seen.add(c.name))]
+    out = []
+    for role, column in cols:
+        if column.name not in seen:
+            seen.add(column.name)
+            out.append((role, column))
+    return out
 
 
 def column_units(columns: Sequence[Column], rows: Sequence[dict[str, Any]]) -> dict[str, str]:
     """The concrete unit of each column (its kind resolved with the rows'
     design unit and mass unit when all rows share one, else the kind's words)."""
-    units = {r.get("units") for r in rows if r.get("units")}
-    masses = {r.get("mass_unit") for r in rows if r.get("mass_unit")}
+    units = {str(r["units"]) for r in rows if r.get("units")}
+    masses = {str(r["mass_unit"]) for r in rows if r.get("mass_unit")}
     out = {}
     for c in columns:
         if c.unit in ("length", "length^2") and len(units) != 1:

@@ -1,4 +1,4 @@
-"""A SIGKILL at every step of a commit (issue 38, item 3).
+"""A SIGKILL at every step of a commit leaves the output folder whole.
 
 ``onefold build`` and ``onefold site`` run as real processes that send
 themselves SIGKILL (``ONEFOLD_TEST_KILL``) at one pause point, for every

@@ -95,13 +95,13 @@ def test_o_writes_the_compensated_template_and_its_files(written) -> None:
 def test_the_bend_sheet_gives_the_angle_to_fold_to_and_after_springback(written) -> None:
     # the stand-in steel stands as the template's own fold: after springback the
     # crease is at the template's angle, and it is formed to the compensated one's
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
 
     out, report = written
     rows = list(csv.DictReader((out / f"{NAME}-compensated-bends.csv").open()))
     assert len(rows) == 2
-    comp = build_design(load_template(out / f"{NAME}-compensated.toml")).crease
-    base = build_design(load_template(find_template(NAME))).crease
+    comp = fold_design(load_template(out / f"{NAME}-compensated.toml")).crease
+    base = fold_design(load_template(find_template(NAME))).crease
     fold_to = sorted(float(r["fold_to_deg"]) for r in rows)
     after = sorted(float(r["after_springback_deg"]) for r in rows)
     assert fold_to == pytest.approx(sorted(c.fold_angle_deg for c in comp), abs=1e-4)
@@ -112,13 +112,13 @@ def test_the_bend_sheet_gives_the_angle_to_fold_to_and_after_springback(written)
 def test_the_dxf_notes_give_the_angle_to_fold_to_and_after_springback(written) -> None:
     import ezdxf
 
-    from onefold_cad.design import build_design
+    from onefold_cad.design import fold_design
 
     out, report = written
     doc = ezdxf.readfile(out / f"{NAME}-compensated.dxf")
     assert not doc.audit().has_errors
     notes = [e.dxf.text for e in doc.modelspace().query("TEXT") if e.dxf.layer == "NOTES"]
-    comp = build_design(load_template(out / f"{NAME}-compensated.toml")).crease
+    comp = fold_design(load_template(out / f"{NAME}-compensated.toml")).crease
     for c, r in zip(comp, report["compensation"]["crease"], strict=True):
         line = next(n for n in notes if n.startswith(f"fold half {c.name} to "))
         assert f"to {c.fold_angle_deg:.2f} deg" in line
@@ -130,14 +130,14 @@ def test_the_standing_form_is_written_in_metres_on_the_target(written) -> None:
     # GLB's vertices (metres, y up), brought back to inches and z up, lie on it
     import numpy as np
 
-    from onefold_cad.design import build_design, rest_once
+    from onefold_cad.design import fold_design, rest_once
     from onefold_cad.mechanics.deviation import surface_distance
 
     out, report = written
     scene = trimesh.load(out / f"{NAME}-compensated-standing.glb")
     v = next(iter(scene.geometry.values())).vertices / 0.0254
     pts = np.column_stack([v[:, 0], -v[:, 2], v[:, 1]])
-    folded = build_design(load_template(find_template(NAME)))
+    folded = fold_design(load_template(find_template(NAME)))
     rest = rest_once(folded)
     d = surface_distance(folded, (pts - rest.translation) @ rest.rotation)
     assert d.max() < 1e-3  # in

@@ -31,7 +31,7 @@ def test_a_bad_file_is_one_line(cli, tmp_path, kind, command):
 
 
 #: A sliver whose edges pass 6.87e-7 from H: solve answers (with warnings),
-#: the STEP's shell cannot be given to the CAD kernel (issue 38, item 8).
+#: the STEP's shell cannot be given to the CAD kernel (refused in one line).
 SLIVER = ("--alpha", "66", "--beta", "49", "--radius", "0.0363", "--polygon",
           "99.375,0;0,6.87e-07;-25.67,0;0,-6.87e-07", "--thickness", "0",
           "--kerf", "1e-11", "--relief-hole", "0")  # fmt: skip

@@ -88,12 +88,12 @@ def test_a_design_the_writer_refuses_gives_its_error_and_no_file(square):
 def test_the_step_of_a_solid_past_the_bend_limits_is_refused_as_build_refuses_it():
     """The page's STEP is build's: a solid past the bend model's limits gets the
     error build gives before writing (the page has no --compensation none)."""
-    from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+    from onefold_cad import Design, FrameCurve, Material, Sheet, fold_design
     from onefold_cad.fabrication.rules import solid_bend_problem
 
     design = Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
                     material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
-    expected = solid_bend_problem(design, build_design(design))
+    expected = solid_bend_problem(design, fold_design(design))
     assert expected is not None
     with pytest.raises(FabricationError) as err:
         make_download("step", design)

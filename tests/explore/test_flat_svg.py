@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.explore.flat_svg import flat_pattern_svg
 from onefold_cad.fabrication.flat_pattern import flat_pattern
 
@@ -18,7 +18,7 @@ W, H, F = 1200.0, 2600.0, 0.35
 
 
 def _svg(design: Design):
-    folded = build_design(design)
+    folded = fold_design(design)
     return ET.fromstring(flat_pattern_svg(flat_pattern(design, folded))), folded
 
 

@@ -113,4 +113,9 @@ def test_the_form_s_size_reads_as_onefold_solve_prints_it(tab, capfd):
     assert tab.text("#form-height") == f"{height} mm"
     assert tab.text("#form-span") == f"{span} mm"
     assert tab.text("#form-footprint").startswith(f"{width} × {depth} mm, hull area ")
+    # the hull's area in m^2 (1 m^2 = 1e6 mm^2), 5 significant digits, not mm^2
+    capfd.readouterr()
+    assert main(["solve", "--json"]) == 0
+    hull = json.loads(capfd.readouterr().out)["resting"]["footprint"]["area"]
+    assert tab.text("#form-footprint").endswith(f"hull area {float(f'{hull / 1e6:.5g}'):g} m²")
     assert tab.errors == []

@@ -226,7 +226,7 @@ def test_the_command_serves_until_interrupted():
 
 
 def test_half_sent_requests_are_bounded_and_time_out(monkeypatch):
-    """More slow clients than the server has slots (issue 38, item 4): each
+    """More slow clients than the server has slots: each
     slot is held by a half-sent request, the extra ones are answered 503 at
     once, the slow ones are dropped after the timeout (5 s here, the margin
     for opening them all on a busy machine), and then it answers. Loopback

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from onefold_cad.cli.main import main
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.server import load_templates
 from onefold_cad.explore.state import MESH_ANGULAR, MESH_RADIAL, design_state
@@ -38,7 +38,7 @@ def test_the_form_is_the_folded_mesh_standing_as_it_rests(templates, name):
     json.dumps(state, allow_nan=False)  # the page gets strict JSON
     assert state["ok"] and state["messages"] == []
     pos, idx = _decode(state["form"])
-    folded = build_design(design)
+    folded = fold_design(design)
     verts, faces = folded.mesh(MESH_ANGULAR, MESH_RADIAL)
     place = resting_placement(design, folded)  # the STEP body's placement, as the report's
     expected = place.apply(verts)
@@ -73,7 +73,7 @@ def test_the_numbers_are_the_reports(templates):
     data, key = templates
     design = design_from_params({"alpha": "37", "beta": "41"}, data, key)
     n = design_state(design)["numbers"]
-    r = design_report(design, build_design(design))
+    r = design_report(design, fold_design(design))
     assert n["units"] == "mm"
     assert {k: v["deg"] for k, v in n["fold_angles"].items()} == r["fold_angles_deg"]
     assert {k: v["bend"] for k, v in n["fold_angles"].items()} == r["bend"]
@@ -103,7 +103,7 @@ def test_the_warnings_are_the_reports(templates, params):
     data, key = templates
     design = design_from_params(params, data, key)
     state = design_state(design)
-    r = design_report(design, build_design(design))
+    r = design_report(design, fold_design(design))
     errors = [m["text"] for m in state["messages"] if m["level"] == "error"]
     expected = [w for w in r["warnings"] if not any(w.startswith(e) for e in errors)]
     assert r["warnings"] and len(errors) == ("bend_radius" in params)
@@ -187,6 +187,6 @@ def test_the_triangles_the_page_has_are_not_sent_again(templates):
     assert again["positions"] != first["positions"]
     full = design_state(moved, known_mesh="0-0-0")["form"]
     _, idx = _decode(full)
-    np.testing.assert_array_equal(idx, build_design(moved).mesh(MESH_ANGULAR, MESH_RADIAL)[1])
+    np.testing.assert_array_equal(idx, fold_design(moved).mesh(MESH_ANGULAR, MESH_RADIAL)[1])
     star = design_state(design_from_params({"template": "star-polygon"}, data, key))["form"]
     assert star["mesh_key"] != first["mesh_key"]

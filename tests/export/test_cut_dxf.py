@@ -8,7 +8,7 @@ import ezdxf
 import numpy as np
 import pytest
 
-from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, Units, build_design
+from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, Units, fold_design
 from onefold_cad.export.cut_dxf import export_design_cut_dxf
 from onefold_cad.export.dxf import export_design_dxf
 from tests.hand_bend import hand_bend
@@ -21,7 +21,7 @@ def _design(units: Units = Units.MM, **changes) -> tuple[Design, object]:
         "cut", FrameCurve(32, 34, 20, 100, 90), Sheet.rectangle(400, 250, 0.4), units=units,
         material=MAT.with_changes(**changes),
     )  # fmt: skip
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def _cut_path_by_hand(folded) -> np.ndarray:

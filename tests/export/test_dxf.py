@@ -24,14 +24,16 @@ from onefold_cad import (
     Model,
     Sheet,
     Units,
-    build_design,
+    fold_design,
 )
 from onefold_cad.export.dxf import LAYERS, draw_flat_pattern, export_design_dxf
 from onefold_cad.export.dxf_notes import flat_pattern_notes
 from onefold_cad.export.dxf_preview import render_preview
 from onefold_cad.fabrication.bend_checks import check_bends
 from onefold_cad.fabrication.flat_pattern import flat_pattern
+from onefold_cad.templates import load_template
 from tests.hand_bend import fan_folds, hand_bend
+from tests.shipped import REPO_TEMPLATES
 
 STAR = [(220, 0), (70, 45), (90, 190), (-30, 80), (-150, 150), (-110, 15), (-200, -50),
         (-45, -60), (30, -170), (75, -35)]  # fmt: skip
@@ -62,7 +64,7 @@ def _design(shape: str, mat: str, model: str = "exact") -> tuple[Design, object]
     frame, sheet = SHAPES[shape]
     design = Design(f"{shape}_{mat}", FrameCurve(*frame), sheet(), model=model,
                     material=MATERIALS[mat])  # fmt: skip
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def write_read(tmp_path: Path, design: Design, folded=None, **kw) -> ezdxf.document.Drawing:
@@ -163,9 +165,39 @@ def test_layers_entities_and_hygiene(tmp_path, shape, mat):
     assert len(circles) == (1 if hole > 0 else 0)
     if circles:
         assert circles[0].dxf.radius == pytest.approx((hole - design.material.kerf) / 2, abs=1e-12)
-    assert len(entities(doc, "APEX", "CIRCLE")) == 1 and len(entities(doc, "APEX", "LINE")) == 2
+    # the cross (2 lines), the circle, and with a relief hole its leader and label
+    leader = 1 if hole > 0 else 0
+    assert len(entities(doc, "APEX", "CIRCLE")) == 1
+    assert len(entities(doc, "APEX", "LINE")) == 2 + leader
+    assert len(entities(doc, "APEX", "TEXT")) == leader
     assert len(entities(doc, "BEND_ZONE")) == (4 if design.material.thickness > 0 else 0)
     assert len(entities(doc, "RULINGS")) > 0
+
+
+def _is_leader(line, apex) -> bool:
+    """The relief hole's leader: a line from the hole's edge (the cross's
+    arms are centred on H)."""
+    a, b = seg(line)
+    return bool(np.linalg.norm((a + b) / 2 - apex) > 1e-6 * np.linalg.norm(b - a))
+
+
+def test_the_relief_hole_has_a_leader_and_label_visible_at_sheet_scale(tmp_path):
+    """LibreCAD at full-sheet scale shows a 19 mm hole on a 7 m sheet as a
+    dot: a leader from its edge, an eighth of the sheet long, and its label."""
+    design = load_template(REPO_TEMPLATES / "patkau-one-fold.toml")
+    folded = fold_design(design)
+    doc = write_read(tmp_path, design, folded)
+    centre = entities(doc, "APEX", "CIRCLE")[0].dxf.center
+    apex = np.array([centre.x, centre.y])
+    hole = entities(doc, "CUT", "CIRCLE")[0].dxf.radius * 2 + design.material.kerf
+    (leader,) = [e for e in entities(doc, "APEX", "LINE") if _is_leader(e, apex)]
+    a, b = seg(leader)
+    assert np.linalg.norm(a - apex) == pytest.approx(hole / 2, rel=1e-9)  # from the hole's edge
+    assert np.linalg.norm(b - a) >= design.sheet.size / 10  # seen at sheet scale
+    (label,) = entities(doc, "APEX", "TEXT")
+    assert label.dxf.text == f"relief hole, diameter {hole:.4g} mm"
+    at = np.array([label.dxf.align_point.x, label.dxf.align_point.y])
+    assert np.linalg.norm(at - b) <= 2 * label.dxf.height  # at the leader's end
 
 
 @pytest.mark.parametrize(("shape", "mat"), CASES)
@@ -176,7 +208,9 @@ def test_fold_halves_meet_at_apex_and_end_on_outline(tmp_path, shape, mat):
     apex = np.array([apex.x, apex.y])
     h = design.sheet.to_sheet.apply(np.zeros((1, 2)))[0]
     assert np.allclose(apex, h, atol=1e-9 * design.sheet.size)
-    for cross in entities(doc, "APEX", "LINE"):
+    crosses = [e for e in entities(doc, "APEX", "LINE") if not _is_leader(e, apex)]
+    assert len(crosses) == 2
+    for cross in crosses:
         assert np.allclose(seg(cross).mean(axis=0), apex, atol=1e-9 * design.sheet.size)
     lines = entities(doc, "BEND_UP", "LINE") + entities(doc, "BEND_DOWN", "LINE")
     assert len(lines) == 2  # the exact model: the crease halves alone
@@ -329,8 +363,10 @@ def test_notes_content_and_mass(tmp_path):
     for half in folded.crease:
         assert f"{half.bend} {half.fold_angle_deg:.2f} deg" in text
     area = shoelace(outline_of(doc)) - math.pi * m.relief_hole_diameter**2 / 4
-    # ("^ " is how DXF text writes a caret)
-    mass = float(re.search(r"mass: ([-0-9.eE+]+) kg \(density 7900 kg/m\^ 3\)", text).group(1))
+    # the unit's power written plainly (ASCII: R12 and R2000 files are in a code
+    # page), not DXF's caret escape "^ 3", which LibreCAD shows as is
+    assert "^" not in text
+    mass = float(re.search(r"mass: ([-0-9.eE+]+) kg \(density 7900 kg/m3\)", text).group(1))
     # 7900 kg/m^3 x t (mm) x area (mm^2), with 1 mm^3 = 1e-9 m^3
     assert mass == pytest.approx(area * m.thickness * 7900.0 * 1e-9, rel=1e-5)
     w, h = np.ptp(outline_of(doc), axis=0)
@@ -473,7 +509,7 @@ def test_down_half_by_hand_layer_width_refusal_and_uncompensated_blank(tmp_path)
     mat = Material(thickness=1.0, bend_radius=1.0, k_factor=0.44, sheet_surface="INSIDE")
     design = Design("down", frame, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     assert folded.solution.apex_height == pytest.approx(h, rel=1e-9)
     plus = folded.crease[0]
     assert plus.bend == "DOWN" and plus.fold_angle_deg == pytest.approx(psi, abs=1e-9)
@@ -638,7 +674,7 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
     pts = np.stack([np.cos(ang), np.sin(ang)], axis=1) * np.array(radii)[:, None]
     mat = Material(thickness=t, bend_radius=r, kerf=kerf, relief_hole=0)
     design = Design("rnd", FrameCurve(40, 40, 10, 100, 90), Sheet.polygon(pts), material=mat)
-    folded = build_design(design)
+    folded = fold_design(design)
     try:
         pattern = flat_pattern(design, folded)
     except FabricationError as exc:  # the bend model's limits, and only those

@@ -1,12 +1,12 @@
 """The flat preview draws a bounded NOTES block: a paper fan lists every
 ruling fold in the DXF's notes, and every glyph of them became an SVG path
-(issue 38: 3.9 GB and 16 minutes for a 500 MB SVG at 10 000 divisions)."""
+(once 3.9 GB and 16 minutes for a 500 MB SVG at 10 000 divisions)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from onefold_cad import build_design
+from onefold_cad import fold_design
 from onefold_cad.export.dxf import export_design_dxf
 from onefold_cad.export.dxf_notes import flat_pattern_notes
 from onefold_cad.export.dxf_preview import MAX_NOTE_LINES, _notes_cut, render_preview
@@ -22,7 +22,7 @@ def paper(divisions: int):
 def svg_size(tmp_path: Path, divisions: int) -> tuple[int, int]:
     """The flat SVG's bytes and the number of NOTES lines of the design."""
     d = paper(divisions)
-    folded = build_design(d)
+    folded = fold_design(d)
     dxf = export_design_dxf(d, tmp_path / f"p{divisions}.dxf", folded)
     svg = render_preview(dxf, tmp_path / f"p{divisions}-flat.svg")
     return svg.stat().st_size, len(flat_pattern_notes(flat_pattern(d, folded)))
@@ -32,7 +32,7 @@ def test_the_notes_past_the_limit_are_one_line_that_counts_them(tmp_path):
     import ezdxf
 
     d = paper(300)
-    folded = build_design(d)
+    folded = fold_design(d)
     notes = flat_pattern_notes(flat_pattern(d, folded))
     assert len(notes) > MAX_NOTE_LINES
     doc = ezdxf.readfile(export_design_dxf(d, tmp_path / "p.dxf", folded))

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from onefold_cad import Design, FrameCurve, NoSolutionError, Sheet, build_design
+from onefold_cad import Design, FrameCurve, NoSolutionError, Sheet, fold_design
 from onefold_cad.export.fold_file import fold_data, fold_fan
 from onefold_cad.export.fold_mesh import (
     MAX_STEINER,
@@ -57,7 +57,7 @@ def _check_mesh(design: Design) -> tuple[float, float]:
     (distance from the apex = flat distance from H, within the wedge), the
     ray edges on their rays; returns the smallest face angle (deg) and the
     shortest edge (fraction of the sheet's size)."""
-    folded = build_design(design)
+    folded = fold_design(design)
     fan = fold_fan(design, folded)
     radius = relief_hole_diameter(design, folded) / 2.0
     mesh = fold_mesh(fan, radius)
@@ -103,7 +103,7 @@ def test_every_template_meshes_within_the_bounds(name):
     angle, edge = _check_mesh(design)
     assert angle >= MIN_FACE_ANGLE_DEG
     assert edge >= MIN_EDGE
-    doc = fold_data(design, build_design(design))
+    doc = fold_data(design, fold_design(design))
     assert doc["onefold:mesh"]["within_bounds"] is True
     assert doc["onefold:mesh"]["min_face_angle_deg"] == pytest.approx(angle, rel=1e-12)
 
@@ -115,7 +115,7 @@ def test_a_ruling_through_a_sheet_corner_cuts_no_sliver():
     the fan's own smallest wedge angle (the graded fan's beside the crease,
     just above the bound), to Triangle's 10 %."""
     design = load_template("star-polygon")
-    fan = fold_fan(design, build_design(design))
+    fan = fold_fan(design, fold_design(design))
     gamma = math.degrees(float(np.diff(fold_mesh(fan).ray_theta).min()))
     angle, _ = _check_mesh(design)
     assert angle >= MIN_FACE_ANGLE_DEG and angle >= 0.9 * min(gamma, 20.0)
@@ -130,7 +130,7 @@ def test_limits_of_a_square_about_its_centre_worked_by_hand():
     corners."""
     square = Sheet.polygon([(100.0, 100.0), (-100.0, 100.0), (-100.0, -100.0), (100.0, -100.0)])
     design = Design("sq", FrameCurve(40, 40, 0.0, 100.0, 4), square, "paper")
-    fan = fold_fan(design, build_design(design))
+    fan = fold_fan(design, fold_design(design))
     mesh = fold_mesh(fan)
     assert len(mesh.ray_theta) == 8
     gamma = np.degrees(np.diff(np.append(mesh.ray_theta, 2 * math.pi)))
@@ -159,7 +159,7 @@ def test_property_drawn_designs_mesh_within_the_bounds_their_geometry_allows(des
     wedge's apex angle, a corner, a ray meeting the outline), that one, to
     Triangle's rounding; likewise its shortest edge."""
     try:
-        folded = build_design(design)
+        folded = fold_design(design)
         fan = fold_fan(design, folded)
     except (NoSolutionError, ValueError):  # no fold, or no fan for the exact model: no file
         return
@@ -181,22 +181,22 @@ def test_the_docs_table_of_the_templates_meshes_is_the_files():
     assert sorted(rows) == TEMPLATES
     for name, (angle, edge) in rows.items():
         design = load_template(name)
-        mesh = fold_data(design, build_design(design))["onefold:mesh"]
+        mesh = fold_data(design, fold_design(design))["onefold:mesh"]
         assert mesh["min_face_angle_deg"] == pytest.approx(angle, abs=0.005)
         assert float(f"{mesh['min_edge_relative']:.1e}") == edge
 
 
 def test_a_sliver_s_mesh_stops_at_the_point_budget():
-    """A sheet 1.4e-6 wide and 125 long (issue 38's sliver): a 1 deg face angle
+    """A sheet 1.4e-6 wide and 125 long (a fuzzed sliver): a 1 deg face angle
     needs about length / width / tan(1 deg) = 5e9 triangles, which Triangle
     tried to make (4.9 GB after two minutes). It stops at MAX_STEINER added
     points, and the file says that the bounds are not kept."""
     sliver = Sheet.polygon([[99.375, 0.0], [0.0, 6.87e-7], [-25.67, 0.0], [0.0, -6.87e-7]])
     design = Design("sliver", FrameCurve(66, 49, 0.0, 0.0363, 90), sliver)
-    fan = fold_fan(design, build_design(design))
+    fan = fold_fan(design, fold_design(design))
     mesh = fold_mesh(fan)
     given = len(fan.boundary_flat) + 1  # the outline's points and H
     assert given < len(mesh.flat) <= given + MAX_STEINER
-    quality = fold_data(design, build_design(design))["onefold:mesh"]
+    quality = fold_data(design, fold_design(design))["onefold:mesh"]
     assert quality["within_bounds"] is False
     assert quality["min_face_angle_deg"] < MIN_FACE_ANGLE_DEG

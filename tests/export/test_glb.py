@@ -19,7 +19,7 @@ from onefold_cad import (
     FrameCurve,
     Material,
     Sheet,
-    build_design,
+    fold_design,
 )
 from onefold_cad.export.glb import ANGULAR_DEFLECTION, LINEAR_DEFLECTION, write_glb
 from onefold_cad.export.measure import measure
@@ -62,7 +62,7 @@ def _to_design_frame(design: Design, folded, vertices_m: np.ndarray) -> np.ndarr
 def shell(tmp_path_factory):
     """A zero-thickness design in inches: the part is the sewn shell."""
     design = Design("shell", FrameCurve(40, 40), Sheet.quadrilateral(30, 30, 20, 20), units="in")
-    folded = build_design(design)
+    folded = fold_design(design)
     path = write_glb(design, folded, tmp_path_factory.mktemp("glb") / "shell.glb")
     return design, folded, path
 
@@ -76,7 +76,7 @@ def solid(tmp_path_factory):
         Sheet.quadrilateral(100, 100, 100, 100),
         material=Material(thickness=2.0),
     )
-    folded = build_design(design)
+    folded = fold_design(design)
     part = build_part(design, folded)
     path = write_glb(design, folded, tmp_path_factory.mktemp("glb") / "solid.glb", part=part)
     return design, folded, part, path
@@ -194,7 +194,7 @@ def test_a_solid_past_the_bend_limits_is_refused_as_the_step_refuses_it(tmp_path
     with the same error (nothing written) unless compensation is 'none'."""
     design = Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
                     material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     expected = solid_bend_problem(design, folded)
     assert expected is not None
     with pytest.raises(FabricationError) as err:

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import rhino3dm
 
-from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.errors import InvalidSheetError
 from onefold_cad.export.hops_geometry import (
     crease_lines,
@@ -28,7 +28,7 @@ def holed():
     """A 2 mm sheet with its relief hole, an uneven polygon."""
     sheet = Sheet.polygon([[100, 0], [70, 90], [-40, 110], [-120, 0], [-60, -80], [80, -70]])
     design = Design("holed", FrameCurve(45, 35, h_c=5.0), sheet, material=Material(thickness=2.0))
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def _net(brep) -> np.ndarray:
@@ -85,7 +85,7 @@ def test_flat_curves_are_the_flat_pattern_s(holed):
 def test_the_paper_model_s_ruling_folds_are_bend_lines_too():
     design = Design("fan", FrameCurve(35, 40, divisions=6), Sheet.rectangle(8, 5, 0.4),
                     model="paper")  # fmt: skip
-    pattern = flat_pattern_once(design, build_design(design))
+    pattern = flat_pattern_once(design, fold_design(design))
     flat = flat_curves(pattern)
     assert len(pattern.fold_rulings) > 0 and flat.relief_hole is None
     assert len(flat.bend_lines) == 2 + len(pattern.fold_rulings)

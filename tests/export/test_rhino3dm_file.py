@@ -16,7 +16,7 @@ import pytest
 import rhino3dm
 from ezdxf.colors import aci2rgb
 
-from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.export.dxf import LAYERS as DXF_LAYERS
 from onefold_cad.export.rhino3dm_file import build_3dm, write_3dm
 from onefold_cad.fabrication.flat_pattern import flat_pattern_once
@@ -46,7 +46,7 @@ def _on(doc, layer: str) -> list:
 def shell(tmp_path_factory):
     """A zero-thickness design in inches (no relief hole), in the fold frame."""
     design = Design("shell", FrameCurve(40, 40), Sheet.quadrilateral(30, 30, 20, 20), units="in")
-    folded = build_design(design)
+    folded = fold_design(design)
     path = tmp_path_factory.mktemp("3dm") / "shell.3dm"
     write_3dm(design, folded, path, placement="frame")
     return design, folded, _read(path)
@@ -57,7 +57,7 @@ def holed(tmp_path_factory):
     """A 2 mm sheet with its default relief hole, an uneven polygon, standing as it rests."""
     sheet = Sheet.polygon([[100, 0], [70, 90], [-40, 110], [-120, 0], [-60, -80], [80, -70]])
     design = Design("holed", FrameCurve(45, 35, h_c=5.0), sheet, material=Material(thickness=2.0))
-    folded = build_design(design)
+    folded = fold_design(design)
     path = tmp_path_factory.mktemp("3dm") / "holed.3dm"
     write_3dm(design, folded, path)
     return design, folded, _read(path)
@@ -68,7 +68,7 @@ def paper(tmp_path_factory):
     """The paper model (a fan of 12 planar triangles a side) in feet, in the fold frame."""
     frame = FrameCurve(35, 40, divisions=12)
     design = Design("fan", frame, Sheet.rectangle(8, 5, 0.4), model="paper", units="ft")
-    folded = build_design(design)
+    folded = fold_design(design)
     path = tmp_path_factory.mktemp("3dm") / "fan.3dm"
     write_3dm(design, folded, path, placement="frame")
     return design, folded, _read(path)
@@ -139,7 +139,7 @@ def test_units_are_the_designs(tmp_path):
         ("ft", rhino3dm.UnitSystem.Feet),
     ):
         design = Design("u", FrameCurve(40, 40), Sheet.rectangle(10, 6), units=units)
-        write_3dm(design, build_design(design), tmp_path / f"{units}.3dm")
+        write_3dm(design, fold_design(design), tmp_path / f"{units}.3dm")
         doc = _read(tmp_path / f"{units}.3dm")
         assert doc.Settings.ModelUnitSystem == want
         assert rhino3dm.File3dm.ReadArchiveVersion(str(tmp_path / f"{units}.3dm")) == 80
@@ -353,7 +353,7 @@ def test_mass_is_a_user_string_when_the_material_has_a_density():
         Sheet.rectangle(300, 200, 0.4),
         material=Material(thickness=1.5, density=7930.0),
     )
-    folded = build_design(design)
+    folded = fold_design(design)
     mass = design_report(design, folded)["mass"]
     doc = build_3dm(design, folded, placement="frame").file
     assert json.loads(doc.Strings["report.mass.value"]) == mass["value"] > 0.0
@@ -373,7 +373,7 @@ def test_two_writes_give_the_same_bytes_and_stamp_no_time(tmp_path):
         )
         paths.append(tmp_path / str(i) / "twice.3dm")
         paths[-1].parent.mkdir()
-        write_3dm(design, build_design(design), paths[-1])
+        write_3dm(design, fold_design(design), paths[-1])
     assert paths[0].read_bytes() == paths[1].read_bytes()
     doc = _read(paths[0])
     ids = [o.Attributes.Id for o in doc.Objects] + [lay.Id for lay in doc.Layers]
@@ -381,7 +381,7 @@ def test_two_writes_give_the_same_bytes_and_stamp_no_time(tmp_path):
     with pytest.raises((TypeError, ValueError)):  # rhino3dm cannot convert an unset time
         _ = doc.Created
     other = Design("other", FrameCurve(45, 36, h_c=5.0), sheet, material=Material(thickness=2.0))
-    write_3dm(other, build_design(other), tmp_path / "other.3dm")
+    write_3dm(other, fold_design(other), tmp_path / "other.3dm")
     other_ids = {o.Attributes.Id for o in _read(tmp_path / "other.3dm").Objects}
     assert other_ids.isdisjoint(ids)
     doc.Revision = 0  # as a fresh model: openNURBS stamps the write's time

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import BSpline
 
-from onefold_cad import Design, ExportError, FrameCurve, Sheet, build_design
+from onefold_cad import Design, ExportError, FrameCurve, Sheet, fold_design
 from onefold_cad.export import rhino_faces
 from onefold_cad.export.rhino_faces import face_nets, side_nets
 
@@ -17,7 +17,7 @@ from onefold_cad.export.rhino_faces import face_nets, side_nets
 @pytest.fixture(scope="module")
 def folded():
     sheet = Sheet.polygon([[90, 0], [40, 70], [-80, 50], [-100, 0], [-30, -60], [70, -40]])
-    return build_design(Design("nets", FrameCurve(40, 30), sheet))
+    return fold_design(Design("nets", FrameCurve(40, 30), sheet))
 
 
 def _curves(net):

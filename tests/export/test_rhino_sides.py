@@ -15,7 +15,7 @@ from onefold_cad import (
     InvalidParameterError,
     Material,
     Sheet,
-    build_design,
+    fold_design,
 )
 from onefold_cad.export.rhino_sides import side_breps
 from onefold_cad.export.rhino_strings import KEY_NUMBERS
@@ -26,7 +26,7 @@ from onefold_cad.fabrication.rules import resting_placement
 def case():
     sheet = Sheet.polygon([[90, 0], [40, 70], [-80, 50], [-100, 0], [-30, -60], [70, -40]])
     design = Design("sides", FrameCurve(40, 30), sheet, material=Material(thickness=1.0))
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def _points(brep, n: int = 7) -> np.ndarray:
@@ -78,4 +78,4 @@ def test_a_bad_placement_and_a_hole_too_big_are_refused(case):
         side_breps(design, folded, placement="upside-down")
     big = design.with_changes(material=design.material.with_changes(relief_hole=150.0))
     with pytest.raises(FabricationError):
-        side_breps(big, build_design(big))
+        side_breps(big, fold_design(big))

@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from onefold_cad import Design, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.export.rhino_strings import (
     KEY_NUMBERS,
     design_strings,
@@ -26,7 +26,7 @@ def test_a_value_reads_back_exactly(value):
 
 def test_key_numbers_are_the_reports_and_null_without_a_density():
     design = Design("k", FrameCurve(40, 35, h_c=3.0), Sheet.rectangle(100, 60, 0.3))
-    folded = build_design(design)
+    folded = fold_design(design)
     strings = report_strings(design, folded)
     assert set(strings) == {f"report.{k}" for k in KEY_NUMBERS}
     assert strings["report.mass.value"] == "null" and strings["report.mass.unit"] == "null"

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.errors import ExportError, InvalidParameterError
 from onefold_cad.export.colour_scale import (
     DEVIATION_STOPS,
@@ -31,7 +31,7 @@ FLOAT32 = float(np.finfo(np.float32).eps)
 @pytest.fixture(scope="module")
 def sim():
     design = load_template("patkau-one-fold")
-    return simulate(design, build_design(design), level="coarse", convergence=False)
+    return simulate(design, fold_design(design), level="coarse", convergence=False)
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.export.simulation_inp import inp_text, structural_model, write_structural_inp
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
@@ -22,7 +22,7 @@ from onefold_cad.templates import load_template
 def sim():
     design = load_template("patkau-one-fold")
     return simulate(
-        design, build_design(design), level="coarse", reference="designed", convergence=False
+        design, fold_design(design), level="coarse", reference="designed", convergence=False
     )
 
 

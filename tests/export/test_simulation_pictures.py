@@ -10,7 +10,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.errors import ExportError
 from onefold_cad.export.colour_scale import DEVIATION_STOPS
 from onefold_cad.export.simulation_pictures import render_deviation, render_stress
@@ -23,7 +23,7 @@ from tests.export.simulations import stalled_copy
 @pytest.fixture(scope="module")
 def sim():
     design = load_template("patkau-one-fold")
-    return simulate(design, build_design(design), level="coarse", convergence=False)
+    return simulate(design, fold_design(design), level="coarse", convergence=False)
 
 
 def _png(path):

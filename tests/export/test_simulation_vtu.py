@@ -8,7 +8,7 @@ import meshio
 import numpy as np
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.export.simulation_vtu import write_simulation_vtu
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
@@ -17,7 +17,7 @@ from onefold_cad.templates import load_template
 @pytest.fixture(scope="module")
 def sim():
     design = load_template("patkau-one-fold")
-    return simulate(design, build_design(design), level="coarse", convergence=False)
+    return simulate(design, fold_design(design), level="coarse", convergence=False, law="j2")
 
 
 def test_read_back_it_is_the_simulation_in_metres(sim, tmp_path):
@@ -42,6 +42,49 @@ def test_read_back_it_is_the_simulation_in_metres(sim, tmp_path):
     )
 
 
+def _vm(v):
+    """The von Mises norm of plane (11, 22, 12) resultants."""
+    return np.sqrt(v[:, 0] ** 2 - v[:, 0] * v[:, 1] + v[:, 1] ** 2 + 3 * v[:, 2] ** 2)
+
+
+def test_each_stage_has_its_surfaces_and_resultants_within_the_yield_bounds(sim, tmp_path):
+    """The J2 fields of every stage: the surface stresses never above the flow
+    stress (patkau's 304 hardens isotropically: sigma_y + H alpha), plastic
+    strains that only grow from stage to stage, and resultants inside the
+    bounds von Mises puts on any section whose points are at most at the
+    largest flow stress (independent of the law's integration):
+    |N|_vm <= sigma t and |M|_vm <= sigma t^2 / 4."""
+    mesh = meshio.read(write_simulation_vtu(sim, tmp_path / "p.vtu"))
+    cd = {k: v[0] for k, v in mesh.cell_data.items()}
+    assert sim.kinematic_hardening == 0
+    h = sim.hardening_modulus_MPa
+    peeq_max = max(
+        cd[f"{s}_plastic_strain_{side}"].max()
+        for s in ("formed", "released", "standing")
+        for side in ("bottom", "top")
+    )
+    sy, t = sim.yield_stress_MPa + h * peeq_max, sim.thickness / 1000  # MPa, m
+    last = np.zeros((sim.triangles, 2))
+    for stage in ("formed", "released", "standing"):
+        stress = np.column_stack(
+            [cd[f"{stage}_von_mises_bottom_MPa"], cd[f"{stage}_von_mises_top_MPa"]]
+        )
+        peeq = np.column_stack(
+            [cd[f"{stage}_plastic_strain_bottom"], cd[f"{stage}_plastic_strain_top"]]
+        )
+        assert np.all(stress <= (sim.yield_stress_MPa + h * peeq) * (1 + 1e-9))
+        assert np.all(peeq >= last - 1e-15)
+        last = peeq
+        assert _vm(cd[f"{stage}_membrane_force_N_per_m"]).max() <= sy * 1e6 * t * (1 + 1e-9)
+        assert _vm(cd[f"{stage}_bending_moment_N_per_m"]).max() <= sy * 1e6 * t**2 / 4 * (1 + 1e-9)
+    # the formed sheet's largest surface plastic strain is the report's
+    formed = np.maximum(cd["formed_plastic_strain_bottom"], cd["formed_plastic_strain_top"])
+    assert formed.max() == pytest.approx(sim.formed.max_plastic_strain, rel=1e-12)
+    # and the cells' own frame: unit vectors along each triangle's first edge
+    axis = cd["resultant_axis_1"]
+    assert np.allclose(np.linalg.norm(axis, axis=1), 1.0)
+
+
 def test_the_same_simulation_gives_the_same_bytes(sim, tmp_path):
     a = write_simulation_vtu(sim, tmp_path / "a.vtu").read_bytes()
     b = write_simulation_vtu(sim, tmp_path / "b.vtu").read_bytes()
@@ -59,6 +102,7 @@ print(json.dumps({
     "points": grid.GetNumberOfPoints(),
     "cells": grid.GetNumberOfCells(),
     "point_arrays": sorted(pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())),
+    "cell_arrays": sorted(cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())),
     "stress_range": list(cd.GetArray("von_mises_MPa").GetRange()),
     "bounds": list(grid.GetBounds()),
 }))
@@ -85,6 +129,9 @@ def test_paraview_reads_it(sim, tmp_path):
     assert got["point_arrays"] == sorted(
         ["displacement_standing", "displacement_released", "deviation_standing", "flat_position"]
     )
+    for stage in ("formed", "released", "standing"):
+        for field in ("von_mises_top_MPa", "plastic_strain_bottom", "bending_moment_N_per_m"):
+            assert f"{stage}_{field}" in got["cell_arrays"]
     stress = np.asarray(sim.face_stress_MPa)
     assert got["stress_range"] == pytest.approx([stress.min(), stress.max()], rel=1e-12)
     designed = np.asarray(sim.designed_positions) / 1000

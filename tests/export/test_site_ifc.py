@@ -1,4 +1,4 @@
-"""SITE.ifc is deterministic (issue 38): two writes of one site are the same
+"""SITE.ifc is deterministic: two writes of one site are the same
 bytes, every GlobalId is a valid IFC GUID (22 characters of IFC's base64
 alphabet, decoding to the uuid it came from), unique in the file, and none is
 shared with a site of another name. The site here is two sheets whose parts
@@ -14,7 +14,7 @@ import uuid
 import build123d as bd
 import pytest
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.export.site_context import SiteContext, SiteSheet
 from onefold_cad.export.site_ifc import write_site_ifc
 from onefold_cad.site.placement import SitePlacement
@@ -26,7 +26,7 @@ GUID = re.compile(r"^[0-3][0-9A-Za-z_$]{21}$")
 
 def _site(name: str) -> SiteContext:
     design = load_template("paper-square")
-    folded = build_design(design)
+    folded = fold_design(design)
     size = float(design.sheet.size)
     sheets = [
         SiteSheet(

@@ -41,7 +41,9 @@ def test_a_row_per_sheet_from_its_report_and_the_total():
     assert a["bends"] == "2" and a["bend_angles_deg"] == "82.800;70.250"
     assert a["bend_directions"] == "plus_x:UP;minus_x:DOWN"
     assert total["sheet"] == "TOTAL" and float(total["mass"]) == pytest.approx(610.75)
-    assert float(total["blank_area"]) == pytest.approx(4.0e7)
+    # ordered in m^2: 2.0e7 mm^2 a sheet is 20 m^2 (1 m^2 = 1e6 mm^2)
+    assert (a["blank_area"], a["area_unit"]) == ("20", "m^2")
+    assert float(total["blank_area"]) == pytest.approx(40.0) and total["area_unit"] == "m^2"
     assert float(total["cut_length"]) == pytest.approx(40001.0) and total["bends"] == "4"
 
 
@@ -57,3 +59,39 @@ def test_no_total_mass_without_every_mass_or_across_units():
     assert total["mass"] == ""
     (_, _, total) = rows(order_csv([("a", report("a", 1.0)), ("b", report("b", 1.0, "lb"))]))
     assert total["mass"] == "" and total["mass_unit"] == ""
+
+
+def outdoors(pull: float, shear: float, ballast: float, feet: int = 3) -> dict:
+    return {
+        "governing": "EQU 0.9G + 1.5W-0",
+        "totals": {"feet": feet, "anchored_feet": 2, "tension_N": pull, "shear_N": shear,
+                   "ballast_kg": ballast},
+    }  # fmt: skip
+
+
+def test_the_anchors_of_each_sheet_and_their_total():
+    """With the site's loads, each sheet's feet, anchors, pull, shear and
+    ballast from its report's outdoors section, and their sums in the total."""
+    a, b = report("a", 1.0), report("b", 1.0)
+    a["outdoors"], b["outdoors"] = outdoors(4500.5, 20000.0, 1200.0), outdoors(100.0, 5.0, 3.0, 4)
+    ra, rb, total = rows(order_csv([("a", a), ("b", b)]))
+    assert (ra["feet"], ra["anchors"], ra["anchor_pull_N"]) == ("3", "2", "4500.5")
+    assert ra["governing_case"] == "EQU 0.9G + 1.5W-0"
+    assert total["feet"] == "7" and total["anchors"] == "4"
+    assert float(total["anchor_pull_N"]) == pytest.approx(4600.5)
+    assert float(total["anchor_shear_N"]) == pytest.approx(20005.0)
+    assert float(total["ballast_kg"]) == pytest.approx(1203.0)
+
+
+def test_no_anchor_columns_without_loads():
+    (a, total) = rows(order_csv([("a", report("a", 1.0))]))
+    assert a["feet"] == "" and total["anchor_pull_N"] == ""
+
+
+def test_an_inch_site_orders_its_blanks_in_square_feet():
+    r = report("a", 1.0, "lb")
+    r["units"] = "in"
+    r["flat_area"] = 288.0  # in^2: 2 ft^2 (144 in^2 a square foot)
+    (a, total) = rows(order_csv([("a", r)]))
+    assert (a["blank_area"], a["area_unit"]) == ("2", "ft^2")
+    assert (total["blank_area"], total["area_unit"]) == ("2", "ft^2")

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, build_design
+from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.export import writers
 from onefold_cad.export.writers import (
@@ -25,7 +25,7 @@ def context(**material) -> BuildContext:
     d = Design(
         "w", FrameCurve(40, 40), Sheet.rectangle(300, 200, 0.5), material=Material(**material)
     )
-    return BuildContext(d, build_design(d))
+    return BuildContext(d, fold_design(d))
 
 
 def test_default_is_every_writer_with_the_report_last():
@@ -79,7 +79,7 @@ def test_a_flat_pattern_that_cannot_be_made_is_refused_before_writing():
         "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
         material=Material(thickness=3.57, bend_radius=6.0),
     )  # fmt: skip
-    ctx = BuildContext(d, build_design(d))
+    ctx = BuildContext(d, fold_design(d))
     with pytest.raises(FabricationError, match="^bend_radius: "):
         check_before_writing(ctx, ("dxf", "json"))
     with pytest.raises(FabricationError, match="^bend_radius: "):
@@ -119,7 +119,7 @@ def test_a_solid_past_the_bend_limits_is_refused_for_the_step_and_the_glb_alike(
         "corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
         material=Material(thickness=3.57, bend_radius=6.0),
     )  # fmt: skip
-    ctx = BuildContext(d, build_design(d))
+    ctx = BuildContext(d, fold_design(d))
     expected = str(solid_bend_problem(d, ctx.folded))
     for fmt in ("step", "glb"):
         with pytest.raises(FabricationError) as exc:
@@ -178,8 +178,28 @@ def test_the_step_and_the_glb_are_one_part_built_once_and_the_report_gives_its_f
         "placement": placement,
         "fit_deviation": part.fit_deviation,
         "fit_tolerance": part.fit_tolerance,
+        "volume": None,  # a shell
+        "volume_over_blank": None,
     }
     assert 0.0 < rep["step"]["fit_deviation"] <= rep["step"]["fit_tolerance"]
+
+
+def test_the_report_gives_the_solid_s_volume_against_the_blank_s(tmp_path):
+    """The mass weighs the blank (flat_area x t); the STEP solid holds the
+    mitre at the crease as well: the report gives both, measured apart."""
+    import build123d as bd
+
+    from onefold_cad.export.measure import measure
+
+    ctx = context(thickness=2.0)
+    write_design(ctx, tmp_path / "1", parse_formats("step,json"))
+    rep = json.loads((tmp_path / "1" / "w.json").read_text())
+    volume = measure(bd.import_step(tmp_path / "1" / "w.step"), "volume")
+    assert rep["step"]["body"] == "solid"
+    assert rep["step"]["volume"] == pytest.approx(volume, rel=1e-6)
+    blank = rep["flat_area"] * 2.0
+    assert rep["step"]["volume_over_blank"] == pytest.approx(volume / blank - 1.0, abs=1e-6)
+    assert 0.0 < rep["step"]["volume_over_blank"] < 0.05  # the mitre adds a little
 
 
 @pytest.mark.parametrize("placement", ["rest", "frame"])
@@ -241,7 +261,7 @@ def test_the_blank_width_limit_refuses_the_flat_pattern_not_the_solid():
         "asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
         material=Material(thickness=10.0, bend_radius=10.0),
     )  # fmt: skip
-    ctx = BuildContext(d, build_design(d), body="solid")
+    ctx = BuildContext(d, fold_design(d), body="solid")
     for fmt in ("dxf", "cut", "bends", "svg"):
         with pytest.raises(FabricationError, match="^hc: plus_x .* too wide across it"):
             check_before_writing(ctx, (fmt,))

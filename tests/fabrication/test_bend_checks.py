@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from onefold_cad import build_design
+from onefold_cad import fold_design
 from onefold_cad.errors import FabricationError
 from onefold_cad.fabrication.bend_checks import check_bends
 from onefold_cad.fabrication.flat_pattern import flat_pattern
@@ -31,7 +31,7 @@ def _design(beta: float, **flags):
 @pytest.mark.parametrize("thickness", [0.0, 3.57])
 def test_a_crease_folded_onto_itself_is_a_problem_naming_beta(thickness):
     design = _design(CLOSED, thickness=thickness)
-    folded = build_design(design)
+    folded = fold_design(design)
     assert [c.fold_angle_deg for c in folded.crease] == [180.0, 180.0]
     problems = check_bends(folded, design.material, design.units)
     assert [(p.half, p.kind, p.parameter) for p in problems] == [
@@ -57,7 +57,7 @@ def test_solve_answers_with_warnings_and_build_refuses_in_one_line(tmp_path):
 
 def test_a_default_solid_that_cannot_be_made_stands_as_its_surface_and_says_so():
     design = _design(NEAR)
-    folded = build_design(design)
+    folded = fold_design(design)
     why = solid_problem(design, folded)
     assert why is not None and why.parameter == "alpha" and "no mitre" in str(why)
     rest = resting_placement(design, folded)
@@ -68,5 +68,5 @@ def test_a_default_solid_that_cannot_be_made_stands_as_its_surface_and_says_so()
     assert len(lines) == 1 and lines[0].startswith("onefold: warning: no STEP solid: alpha:")
     # a design that can have its solid stands as it
     ok = _design(89.0)
-    assert solid_problem(ok, build_design(ok)) is None
-    assert resting_placement(ok, build_design(ok)).body == "solid"
+    assert solid_problem(ok, fold_design(ok)) is None
+    assert resting_placement(ok, fold_design(ok)).body == "solid"

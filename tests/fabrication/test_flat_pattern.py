@@ -27,7 +27,7 @@ from onefold_cad import (
     Material,
     NoSolutionError,
     Sheet,
-    build_design,
+    fold_design,
 )
 from onefold_cad.export.dxf import export_design_dxf
 from onefold_cad.fabrication.bend_checks import check_bends
@@ -68,7 +68,7 @@ def _down_design(surface: str) -> tuple[Design, object]:
     mat = Material(thickness=1.0, bend_radius=0.0, k_factor=DOWN_K[surface], sheet_surface=surface)
     sheet = Sheet.quadrilateral(60.0, 340.0, 300.0, 280.0)  # H near the +x end
     design = Design(f"down-{surface}", frame, sheet, model="paper", material=mat)
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 @cache
@@ -77,7 +77,7 @@ def _up_design(surface: str) -> tuple[Design, object]:
     mat = Material(thickness=3.0, bend_radius=4.0, k_factor=0.35, sheet_surface=surface)
     sheet = Sheet.quadrilateral(300.0, 300.0, 300.0, 300.0)
     design = Design(f"up-{surface}", FrameCurve(50, 45, 0, 100, 90), sheet, material=mat)
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 @pytest.mark.parametrize("surface", SURFACES)
@@ -120,7 +120,7 @@ def test_done_when_10x24ft_diagonal_shift_per_side(tmp_path, surface):
     (r + s t) tan(psi/2) - BA/2 within 1e-3 mm (s = 0, 1/2, 1 for an UP bend)."""
     mat = Material(thickness=3.57, bend_radius=6.0, k_factor=0.44, sheet_surface=surface)
     design = Design(f"diag-{surface}", FrameCurve(30, 30, 0, 100, 90), DIAGONAL, material=mat)
-    folded = build_design(design)
+    folded = fold_design(design)
     assert [h.bend for h in folded.crease] == ["UP", "UP"]
     psi = math.radians(folded.crease[0].fold_angle_deg)
     s = {"INSIDE": 0.0, "MID": 0.5, "OUTSIDE": 1.0}[surface]
@@ -142,7 +142,7 @@ def test_patkau_reproducer_is_refused_and_none_writes_the_designed_outline(tmp_p
     uncompensated one is written on request and says so."""
     mat = Material(thickness=3.57, bend_radius=6.0, k_factor=0.44, sheet_surface="MID")
     design = Design("p85", FrameCurve(85, 85, 0, 100, 90), DIAGONAL, material=mat)
-    folded = build_design(design)
+    folded = fold_design(design)
     psi = folded.crease[0].fold_angle_deg
     assert psi > 179.0
     target = tmp_path / "p85.dxf"
@@ -173,7 +173,7 @@ def test_mean_shift_past_a_zone_bridges_from_the_moved_crease_end():
     frame = FrameCurve(32, 34, 68, 100, 90)
     mat = Material(thickness=1.0, bend_radius=0.0, k_factor=1.0, sheet_surface="INSIDE")
     design = Design("m", frame, Sheet.quadrilateral(103, 201, 300, 96), material=mat)
-    folded = build_design(design)
+    folded = fold_design(design)
     assert [h.bend for h in folded.crease] == ["UP", "UP"]
     hb = [hand_bend(h.fold_angle_deg, h.bend, "INSIDE", 1.0, 0.0, 1.0) for h in folded.crease]
     d = (hb[0]["shift"] + hb[1]["shift"]) / 2
@@ -236,7 +236,7 @@ def test_blank_corners_where_the_bend_model_puts_them(
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface=surface, relief_hole=0)
     design = Design("rnd", frame, Sheet.polygon(pts), material=mat)
     try:
-        folded = build_design(design)
+        folded = fold_design(design)
     except (NoSolutionError, InvalidParameterError):  # e.g. H on the f-line's end to 40 digits
         assume(False)
     assert all(math.isfinite(h.fold_angle_deg) for h in folded.crease)

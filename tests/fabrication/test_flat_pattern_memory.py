@@ -1,4 +1,4 @@
-"""The flat pattern of a paper fan in memory linear in its divisions (issue 38:
+"""The flat pattern of a paper fan in memory linear in its divisions (once,
 a (2n, 2n, 2) array of distances needed about 6 GB at 10 000 divisions, the
 largest a design takes, and the build 18 GB)."""
 
@@ -8,7 +8,7 @@ import tracemalloc
 
 import numpy as np
 
-from onefold_cad import build_design
+from onefold_cad import fold_design
 from onefold_cad.fabrication.flat_pattern import flat_pattern
 from onefold_cad.templates import find_template, load_template
 
@@ -21,7 +21,7 @@ PER_END = 4096
 def test_a_paper_fan_flat_pattern_takes_memory_linear_in_its_rulings():
     d = load_template(find_template("patkau-one-fold"))
     d = d.with_changes(model="paper", frame=d.frame.with_changes(divisions=400))
-    folded = build_design(d)
+    folded = fold_design(d)
     ends = len(folded.rulings_flat)
     tracemalloc.start()  # sees numpy's buffers as well as Python's objects
     try:

@@ -60,7 +60,7 @@ def test_every_edge_moves_exactly_the_offset() -> None:
 
 
 def test_a_needle_corner_s_mitre_is_finite_and_exact() -> None:
-    """The tip of a sliver (issue 38: 6.87e-7 wide, 99.375 long) turns by all
+    """The tip of a sliver (a fuzzed sheet 6.87e-7 wide, 99.375 long) turns by all
     but 2 phi, phi = atan(6.87e-7 / 99.375) = 6.9e-9 rad: 1 + m.n is then
     below the rounding of the 1 (it gave inf and NaN). The mitred tip moves
     along the axis by distance / sin(phi) (the corner of two lines offset by

@@ -16,7 +16,7 @@ from onefold_cad import (
     Material,
     Model,
     Sheet,
-    build_design,
+    fold_design,
 )
 from onefold_cad.export.report_file import write_report
 from onefold_cad.fabrication.bend_checks import bend_error, check_bends
@@ -39,7 +39,7 @@ def steel():
         Sheet.rectangle(600, 400, 0.4),
         material=Material(thickness=2.0, bend_radius=3.0, k_factor=0.4, density=7850.0),
     )
-    folded = build_design(design)
+    folded = fold_design(design)
     return design, folded, design_report(design, folded, files=["out/steel.step"])
 
 
@@ -51,7 +51,7 @@ def paper():
         Sheet.quadrilateral(300, 200, 250, 150),
         model=Model.PAPER,
     )
-    folded = build_design(design)
+    folded = fold_design(design)
     return design, folded, design_report(design, folded)
 
 
@@ -187,14 +187,14 @@ def test_paper_model_reports_its_gammas(paper, steel):
 def test_a_flat_pattern_past_the_bend_limits_is_a_warning():
     """Past the bend model's limits the report keeps the geometry, describes the
     uncompensated blank (what --compensation none would write) and the
-    warning names the limit (issue 11 item 4)."""
+    warning names the limit it passes."""
     design = Design(
         "corner",
         FrameCurve(60, 70),
         Sheet.rectangle(40, 100, 0.5),
         material=Material(thickness=3.57, bend_radius=6.0),
     )
-    folded = build_design(design)
+    folded = fold_design(design)
     rep = design_report(design, folded)
     assert rep["flat_pattern"]["compensation"] == "none"
     assert rep["flat_pattern"]["shift"] == 0.0 and rep["flat_pattern"]["bend_problems"]
@@ -210,7 +210,7 @@ def test_a_flat_pattern_past_the_bend_limits_is_a_warning():
 def _corner_design() -> tuple[Design, object]:
     design = Design("corner", FrameCurve(60, 70), Sheet.rectangle(40, 100, 0.5),
                     material=Material(thickness=3.57, bend_radius=6.0))  # fmt: skip
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def test_the_bend_warning_says_what_build_does_with_the_compensation():
@@ -240,7 +240,7 @@ def test_a_width_problem_alone_does_not_refuse_the_solid():
     part, so the warning does not list it."""
     design = Design("asym", FrameCurve(5, 60, -60), Sheet.quadrilateral(3000, 1000, 2000, 1500),
                     material=Material(thickness=10.0, bend_radius=10.0))  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     assert {p.kind for p in check_bends(folded, design.material, design.units)} == {"width"}
     (w,) = design_warnings(design, folded)
     assert w.endswith("build refuses the DXF, cut DXF, bend sheet and flat preview "
@@ -258,7 +258,7 @@ def test_a_default_relief_hole_that_does_not_fit_is_one_warning():
         Sheet.rectangle(3000, 3000, 0.5),
         material=Material(thickness=1100.0, bend_radius=0.0),
     )
-    rep = design_report(design, build_design(design))
+    rep = design_report(design, fold_design(design))
     holes = [w for w in rep["warnings"] if "relief hole" in w or "relief_hole" in w]
     assert len(holes) == 1 and holes[0].startswith("thickness: "), rep["warnings"]
     assert "3300 mm must be < 3000 mm" in holes[0]
@@ -309,7 +309,7 @@ def test_the_cut_length_is_the_blank_s_perimeter_and_the_hole_s_circle(hole, ker
 
     base = load_template("paper-square")  # 200 x 200 mm, folded along its diagonal
     design = base.with_changes(material=base.material.with_changes(relief_hole=hole, kerf=kerf))
-    rep = design_report(design, build_design(design), compensation="none")
+    rep = design_report(design, fold_design(design), compensation="none")
     # uncompensated: the designed square, offset outwards by kerf/2 (its corners rounded
     # or mitred: between the two), and the hole's cutting circle of diameter hole - kerf
     side = 200.0 + kerf

@@ -15,7 +15,7 @@ from onefold_cad import (
     Material,
     Sheet,
     bend_values,
-    build_design,
+    fold_design,
 )
 from onefold_cad.fabrication.bend_checks import (
     MAX_SETBACK_FRACTION,
@@ -133,7 +133,7 @@ def test_reference_place_from_the_folded_geometry(case, surface):
         design = Design("u", FrameCurve(30, 30, 0, 100, 90), Sheet.rectangle(3048, 7315.2, 0.5))
     else:
         design = Design("d", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper")
-    folded = build_design(design)
+    folded = fold_design(design)
     mat = Material(thickness=2.0, bend_radius=1.0, sheet_surface=surface)
     for half, b in zip(folded.crease, crease_bends(folded, mat), strict=True):
         x = 0.5 * half.end_flat[0]
@@ -155,7 +155,7 @@ def test_reference_place_from_the_folded_geometry(case, surface):
 @cache
 def _diagonal(alpha: float) -> tuple[Design, object]:
     design = Design("diag", FrameCurve(alpha, alpha, 0, 100, 90), Sheet.rectangle(3048, 7315.2))
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def test_default_template_passes_every_limit():
@@ -203,7 +203,7 @@ def test_setback_limit_catches_the_fold_near_180_deg():
 
 def _table1() -> tuple[FrameCurve, object]:
     frame = FrameCurve(50, 45, 0, 100, 90)
-    return frame, build_design(Design("t", frame, Sheet.quadrilateral(300, 300, 300, 300)))
+    return frame, fold_design(Design("t", frame, Sheet.quadrilateral(300, 300, 300, 300)))
 
 
 @pytest.mark.parametrize("ratio", [1.0 - 1e-6, 1.0 + 1e-6])
@@ -217,7 +217,7 @@ def test_corner_limit_a_corner_closer_than_the_setback(ratio):
     sheet = Sheet.polygon([(300, 0), (150, y), (0, 300), (-300, 0), (0, -300)])
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("c", frame, sheet, material=mat)
-    problems = check_bends(build_design(design), design.material, design.units)
+    problems = check_bends(fold_design(design), design.material, design.units)
     if ratio < 1.0:
         assert problems == ()
     else:
@@ -227,7 +227,7 @@ def test_corner_limit_a_corner_closer_than_the_setback(ratio):
 
 def _down_material_hand(surface: str, t: float, r: float, k: float) -> tuple[object, dict, dict]:
     sheet = Sheet.quadrilateral(60, 340, 300, 280)
-    folded = build_design(Design("d", DOWN_FRAME, sheet, model="paper"))
+    folded = fold_design(Design("d", DOWN_FRAME, sheet, model="paper"))
     plus, minus = (hand_bend(h.fold_angle_deg, h.bend, surface, t, r, k) for h in folded.crease)
     return folded, plus, minus
 
@@ -257,7 +257,7 @@ def test_edge_limit_an_edge_passing_over_h_inside_the_wider_zone(eps):
            (-2000, 0), (-1000, -300), (1000, -300)]  # fmt: skip
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("e", DOWN_FRAME, Sheet.polygon(pts), model="paper", material=mat)
-    problems = _geometric(check_bends(build_design(design), design.material, design.units))
+    problems = _geometric(check_bends(fold_design(design), design.material, design.units))
     if eps > 0:
         assert problems == []
     else:
@@ -280,7 +280,7 @@ def test_edge_limit_a_half_whose_sheet_is_narrower_than_its_zone_up_to_h():
     pts = [(60, 0), (x_j, corner_y), (-1000, 200), (-1200, 0), (0, -300)]
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface="OUTSIDE", relief_hole=0)
     design = Design("n", DOWN_FRAME, Sheet.polygon(pts), model="paper", material=mat)
-    problems = _geometric(check_bends(build_design(design), design.material, design.units))
+    problems = _geometric(check_bends(fold_design(design), design.material, design.units))
     assert [(p.half, p.kind) for p in problems] == [("plus_x", "edge")]
     assert "narrower than its bend zone" in problems[0].message
 
@@ -299,7 +299,7 @@ def test_mean_shift_past_a_crease_end_zone_is_no_geometric_limit_but_a_width_err
     mat = Material(thickness=t, bend_radius=r, k_factor=k, sheet_surface="INSIDE", relief_hole=0)
     design = Design("m", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    problems = check_bends(build_design(design), design.material, design.units)
+    problems = check_bends(fold_design(design), design.material, design.units)
     crease = [p for p in problems if p.half in ("plus_x", "minus_x")]
     width = plus["shift"] - minus["shift"]  # across plus_x: 2 (shift+ - d)
     assert width > MAX_WIDTH_ERROR_FRACTION * t  # the blank is too wide across plus_x
@@ -315,7 +315,7 @@ def _t1d(r: float, t: float = 2.0, k: float = 0.44) -> tuple[Design, object]:
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("t1d", FrameCurve(32, 34, 68, 100, 90), Sheet.quadrilateral(103, 201, 300, 96),
                     material=mat)  # fmt: skip
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 @pytest.mark.parametrize("factor", [1.0 - 1e-6, 1.0 + 1e-6])
@@ -357,7 +357,7 @@ def test_width_limit_names_hc_when_no_bend_radius_helps():
     mat = Material(thickness=t, bend_radius=10.0, k_factor=0.44, relief_hole=0)
     design = Design("asym", FrameCurve(5, 60, -60, 100, 90),
                     Sheet.quadrilateral(3000, 1000, 2000, 1500), material=mat)  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     psi = [h.fold_angle_deg for h in folded.crease]
 
     def width(r: float) -> float:  # across plus_x, by hand
@@ -381,7 +381,7 @@ def test_ruling_folds_of_the_paper_fan_have_the_width_limit_too():
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("fan", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper",
                     material=mat)  # fmt: skip
-    folded = build_design(design)
+    folded = fold_design(design)
     f = DOWN_FRAME
     a = math.radians(f.alpha)
     phi = -a + np.arange(5) * (math.pi + 2 * a) / 4
@@ -401,7 +401,7 @@ def test_ruling_folds_of_the_paper_fan_have_the_width_limit_too():
 
 def test_blank_move_is_the_mean_and_its_errors():
     design = Design("d", DOWN_FRAME, Sheet.quadrilateral(60, 340, 300, 280), model="paper")
-    folded = build_design(design)
+    folded = fold_design(design)
     mat = Material(thickness=1.0, bend_radius=1.0, sheet_surface="INSIDE")
     bends = crease_bends(folded, mat)
     hb = [hand_bend(h.fold_angle_deg, h.bend, "INSIDE", 1.0, 1.0, 0.44) for h in folded.crease]
@@ -430,7 +430,7 @@ def test_corners_in_a_zone_are_one_problem_per_half_naming_the_closest():
     pts = np.stack([np.cos(ang), np.sin(ang)], axis=1) * rad[:, None]
     mat = Material(thickness=t, bend_radius=r, k_factor=k, relief_hole=0)
     design = Design("fine", frame, Sheet.polygon(pts), material=mat)
-    folded = build_design(design)
+    folded = fold_design(design)
     v = np.asarray(design.sheet.vertices)
     inner = [p for i, p in enumerate(v) if i not in (0, design.sheet.minus_x_index)]
     problems = check_bends(folded, design.material, design.units)

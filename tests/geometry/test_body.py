@@ -9,7 +9,7 @@ import pytest
 
 from onefold_cad import FrameCurve, Sheet, fold, solve
 from onefold_cad.geometry.arc import ArcFrames
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.pieces import clipped_rectangle, zoom_min
 from onefold_cad.geometry.thick_map import SideMap
@@ -32,7 +32,7 @@ def folded():
 
 
 def test_shell_mass_is_the_area_and_its_centroid(folded) -> None:
-    area, com = mass_properties(Body(folded))
+    area, com = mass_properties(FoldedBody(folded))
     assert abs(area - folded.sheet.area) <= 1e-10 * folded.sheet.area
     # the centroid of a fine mesh of the surface, extrapolated in its step (h^2)
     cents = []
@@ -69,7 +69,7 @@ def test_lowest_asked_again_answers_the_same_without_zooming(folded, monkeypatch
     # copy (callers keep and move their points); a new direction zooms anew
     import onefold_cad.geometry.body as body_mod
 
-    body = Body(folded)
+    body = FoldedBody(folded)
     zooms = []
     real = body_mod.zoom_min
 

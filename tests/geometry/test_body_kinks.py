@@ -14,7 +14,7 @@ import pytest
 from onefold_cad import Material, fold, solve
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.arc import ArcFrames
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_kinks import arc_section, flat_section, section_kinks
 from onefold_cad.templates import load_template
 
@@ -24,7 +24,7 @@ def test_kinks_are_where_the_cut_passes_a_corner_of_the_slab(name: str) -> None:
     design = load_template(name)
     folded = fold(solve(design.frame, design.model), design.sheet)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
-    body = Body(folded, material, "solid")
+    body = FoldedBody(folded, material, "solid")
     cone, arc = folded.solution.surface, ArcFrames(folded.solution.frame, folded.apex)
     (s0, s1), rho = body.s_range, body.hole
 
@@ -51,7 +51,7 @@ def test_the_paper_model_s_kinks_are_in_the_flat_angle() -> None:
     design = load_template("table1-row1")
     folded = fold(solve(design.frame, design.model), design.sheet)
     thick = Material(thickness=0.01 * folded.sheet.size, relief_hole=0.0)
-    body = Body(folded, thick, "shell")
+    body = FoldedBody(folded, thick, "shell")
     fan = folded.solution.surface
     (s0, s1), rho = body.s_range, body.hole
     assert s1 > s0

@@ -26,7 +26,7 @@ from hypothesis import strategies as st
 import onefold_cad.geometry.body_mass as body_mass
 from onefold_cad import Material, fold, solve
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.templates import load_template
 from tests.geometry.folds import fold_or_none
@@ -47,7 +47,7 @@ def _fine(folded, material: Material, kind: str) -> tuple[float, np.ndarray]:
         for m, values in FINE.items():
             for k, v in zip(("POINTS", "PANELS", "HALVINGS"), values, strict=True):
                 setattr(body_mass, f"_{m}_{k}", v)
-        return mass_properties(Body(folded, material, kind))
+        return mass_properties(FoldedBody(folded, material, kind))
     finally:
         for n, v in kept.items():
             setattr(body_mass, n, v)
@@ -68,7 +68,7 @@ def test_every_template_s_mass_is_the_finer_rule_s(name: str, kind: str) -> None
     design = load_template(name)
     folded = fold(solve(design.frame, design.model), design.sheet)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
-    body = Body(folded, material, kind)
+    body = FoldedBody(folded, material, kind)
     measure, com = mass_properties(body)
     fine_measure, fine_com = _fine(folded, material, kind)
     assert abs(measure - fine_measure) <= 1e-12 * fine_measure
@@ -98,7 +98,7 @@ def test_drawn_designs_mass_is_the_finer_rule_s(frame, sheet, model, thickness, 
     size = float(np.max(np.hypot(*sheet.vertices.T)))
     near = float(np.min(sheet.ray_lengths(np.linspace(0.0, 2.0 * math.pi, 721))))
     material = Material(thickness=thickness * size, relief_hole=hole * near, sheet_surface=surface)
-    body = Body(folded, material, "shell")
+    body = FoldedBody(folded, material, "shell")
     measure, com = mass_properties(body)
     fine_measure, fine_com = _fine(folded, material, "shell")
     assert abs(measure - fine_measure) <= 1e-8 * fine_measure
@@ -134,7 +134,7 @@ def test_paper_sheet_s_centroid_is_its_folded_pieces(name: str) -> None:
     motion on the piece), weighted by the piece's area."""
     design = load_template(name)
     folded = fold(solve(design.frame, "paper"), design.sheet)
-    body = Body(folded, Material(), "shell")
+    body = FoldedBody(folded, Material(), "shell")
     area, com = mass_properties(body)
     rays = np.asarray(folded.solution.surface.thetas)
     flat = np.asarray(folded.sheet.vertices, dtype=float)

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
-from onefold_cad import Design, FrameCurve, Sheet, build_design, fold, solve
+from onefold_cad import Design, FrameCurve, Sheet, fold, fold_design, solve
 from onefold_cad.errors import NoSolutionError
 from onefold_cad.geometry.developability import developability
 from tests.angles import OPEN_ANGLE, cos_deg, refused_below_bound
@@ -471,7 +471,7 @@ def test_a_sliver_far_below_its_apex_keeps_its_area():
     sheet = Sheet.polygon([[a, 0.0], [0.0, w], [-b, 0.0], [0.0, -w]])
     design = Design("sliver", FrameCurve(51.61091593907539, 21.4574259789803, 0.0, 100.0, 10),
                     sheet, model="paper")  # fmt: skip
-    dev = developability(build_design(design))
+    dev = developability(fold_design(design))
     kite = 0.5 * (a + b) * 2.0 * w
     assert abs(dev.area_flat - kite) <= 1e-14 * kite
     assert abs(dev.area_3d - kite) <= 1e-12 * kite

@@ -19,7 +19,7 @@ from onefold_cad import (
     NoSolutionError,
     Sheet,
     bend_values,
-    build_design,
+    fold_design,
 )
 from onefold_cad.fabrication.relief_hole import relief_hole_problem
 from onefold_cad.geometry.checks import (
@@ -356,7 +356,7 @@ def test_in_bounds_designs_fold_to_finite_numbers_without_warnings(design: Desig
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         try:
-            folded = build_design(design)
+            folded = fold_design(design)
         except NoSolutionError:
             return
         assert math.isfinite(folded.solution.apex_height)

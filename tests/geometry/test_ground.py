@@ -67,7 +67,7 @@ def test_lowest_points_find_the_lowest_point_of_a_many_vertex_sheet() -> None:
     from scipy.optimize import minimize_scalar
 
     from onefold_cad import FrameCurve, Sheet, fold, solve
-    from onefold_cad.geometry.body import Body
+    from onefold_cad.geometry.body import FoldedBody
     from onefold_cad.geometry.ground import Samples, lowest_points, sample_spacing
 
     rng = np.random.default_rng(7)
@@ -77,7 +77,7 @@ def test_lowest_points_find_the_lowest_point_of_a_many_vertex_sheet() -> None:
     radii[n // 3] = 2000.0  # the spike
     poly = np.column_stack([radii * np.cos(angles), radii * np.sin(angles)])
     folded = fold(solve(FrameCurve(40.0, 60.0, 5.0, 100.0, 90), "exact"), Sheet.polygon(poly))
-    body = Body(folded)
+    body = FoldedBody(folded)
     samples = Samples(*body.samples)
     size = body.size
     band = 2.0 * sample_spacing(body) + 1e-10 * size

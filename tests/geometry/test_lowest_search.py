@@ -1,4 +1,4 @@
-"""The fast lowest-point search of issue 24 against slow, independent ones:
+"""The fast lowest-point search against slow, independent ones:
 the cone's angle from its node table, the batched zoom, the ends its samples
 certify, the pruned search over a body, and the numpy QuickHull."""
 
@@ -12,7 +12,7 @@ import pytest
 from onefold_cad import FrameCurve, Material, Sheet, fold, solve
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.arc import arc_range
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.ground import Samples
 from onefold_cad.geometry.hull import convex_hull_2d
 from onefold_cad.geometry.lows import exact_lows
@@ -87,7 +87,7 @@ def test_an_end_is_certified_only_where_the_piece_rises_from_it() -> None:
     assert end_minimum(grid, gone, 0.0, 0.1, g) is None
 
 
-def _brute_lowest(body: Body, g: np.ndarray) -> float:
+def _brute_lowest(body: FoldedBody, g: np.ndarray) -> float:
     """The body's lowest height along ``g``: every piece on a grid 8 times its
     own, zoom_min about each local minimum of that, and the fixed points."""
     best = float(np.min(body.fixed @ g)) if len(body.fixed) else math.inf
@@ -111,7 +111,7 @@ def test_exact_lows_finds_the_lowest_point_a_brute_force_finds(body) -> None:
     frame = design.frame.with_changes(alpha=50.0, beta=70.0, h_c=20.0)
     folded = fold(solve(frame, "exact"), Sheet.rectangle(3000.0, 5000.0, 0.4))
     material = None if body == "shell-without-hole" else Material(thickness=5.0, relief_hole=30.0)
-    form = Body(folded, material, body.split("-")[0])
+    form = FoldedBody(folded, material, body.split("-")[0])
     samples = Samples(*form.samples)
     rng = np.random.default_rng(11)
     dirs = rng.normal(size=(6, 3))

@@ -51,6 +51,12 @@ def test_every_value_in_range_is_kept(e, nu, share):
         ({"density": math.nextafter(DENSITY_RANGE[0], 0.0)}, "density"),
         ({"density": math.nextafter(DENSITY_RANGE[1], math.inf)}, "density"),
         ({"density": 1e-320}, "density"),
+        # hardening: not negative, not as stiff as the steel itself, a share of it kinematic
+        ({"hardening_modulus": -1.0}, "hardening_modulus"),
+        ({"hardening_modulus": math.nan}, "hardening_modulus"),
+        ({"youngs_modulus": 193.0, "hardening_modulus": 193e3}, "hardening_modulus"),
+        ({"kinematic_hardening": -0.1}, "kinematic_hardening"),
+        ({"kinematic_hardening": 1.5}, "kinematic_hardening"),
     ],
 )
 def test_values_outside_the_range_name_the_parameter(changes, name):

@@ -15,7 +15,8 @@ from onefold_cad.geometry.nearby import near_any
 
 
 def dense(points: np.ndarray, targets: np.ndarray, tol: float) -> np.ndarray:
-    """The old computation (flat_pattern before issue 38): every difference at once."""
+    """The old computation (flat_pattern before it was linear in memory): every
+    difference at once."""
     if not len(targets):
         return np.zeros(len(points), dtype=bool)
     gap = np.linalg.norm(points[:, None, :] - targets[None, :, :], axis=2)

@@ -16,12 +16,12 @@ from onefold_cad import (
     InvalidParameterError,
     Material,
     Sheet,
-    build_design,
     fold,
+    fold_design,
     solve,
 )
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.placement import (
@@ -255,7 +255,7 @@ def test_symmetric_form_balanced_on_its_crease_ends_tips_to_a_stable_rest() -> N
     # under a half turn about z, so in the fold frame it balances on its two
     # crease ends with the centre of mass exactly above the line between them
     design = load_template(find_template("patkau-one-fold"))
-    folded = build_design(design)
+    folded = fold_design(design)
     ends = np.array([h.end_3d for h in folded.crease])
     assert abs(ends[0, 2] - ends[1, 2]) <= 1e-9 * folded.sheet.size
     rest = rest_form(folded)
@@ -287,7 +287,7 @@ def test_rocking_form_has_two_contacts_and_no_margin() -> None:
 
 
 def test_tiny_sheet_on_a_huge_frame_gives_finite_numbers() -> None:
-    # the fuzz case of issue 12: a 0.01-unit sheet on a frame of radius 83 000
+    # a fuzzed design: a 0.01-unit sheet on a frame of radius 83 000
     frame = FrameCurve(82.90168514383389, 30.61985654143723, -10273.916792606657, 83143.13345090406)
     sheet = Sheet.quadrilateral(
         0.0010034710883311268, 0.0022882157409330533, 0.009722176126498587, 0.0005024616634494154
@@ -315,7 +315,7 @@ def _fan_centre(folded: FoldedSheet) -> np.ndarray:
 
 
 def test_needle_thicker_than_wide_lies_on_its_side_with_a_warning() -> None:
-    # fuzz design 6849 (issue 12; it rolled for ever), rounded, 60 divisions: a
+    # fuzz design 6849 (it rolled for ever), rounded, 60 divisions: a
     # kite 5.5e-5 long and 1.7e-11 wide folded into a needle, 6.9e-8 thick.
     # The thick sheet's centre of mass lies ~1.4e-8 off the shell (its slab
     # is cut at the crease): no rest of the shell holds it, so the shell is
@@ -349,7 +349,7 @@ def test_needle_thicker_than_wide_lies_on_its_side_with_a_warning() -> None:
 
 
 def test_stability_warning_below_five_degrees_only() -> None:
-    base = rest_form(build_design(load_template(find_template("patkau-one-fold"))))
+    base = rest_form(fold_design(load_template(find_template("patkau-one-fold"))))
     assert base.tipping_margin_deg > TIPPING_WARNING_DEG
     assert stability_warnings(base) == []
 
@@ -394,7 +394,7 @@ def _step_resting(design: Design, body: str):
 
     from onefold_cad.export.part import build_part
 
-    folded = build_design(design)
+    folded = fold_design(design)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
     rest = rest_form(folded, material, body)
     part = build_part(design, folded, body=body, placement="frame")  # placed here, by hand
@@ -435,7 +435,7 @@ def _step_resting(design: Design, body: str):
             p = curve.Value(float(u))
             if p.Z() <= 1e-6 * size:
                 touching.append((p.X(), p.Y()))
-    body_measure, _ = mass_properties(Body(folded, material, body))
+    body_measure, _ = mass_properties(FoldedBody(folded, material, body))
     assert abs(body_measure - measure) <= 1e-5 * measure  # volume (solid) or area (shell)
     return rest, lowest, com, np.array(touching)
 
@@ -494,7 +494,7 @@ def test_tipping_margin_agrees_with_the_written_part(step_case):
     name, _, (rest, _, com, ground) = step_case
     measured = _margin_deg(com, ground)
     assert abs(rest.tipping_margin_deg - measured) <= 0.5
-    if name == "shell-35-45-8":  # issue 17: "a tipping margin of only about 4 degrees"
+    if name == "shell-35-45-8":  # the warning's case: "a tipping margin of only about 4 degrees"
         assert 3.5 <= rest.tipping_margin_deg <= 4.5
         assert len(stability_warnings(rest)) == 1
 
@@ -513,7 +513,7 @@ def test_tipping_margin_is_zero_for_a_centre_of_mass_on_an_edge_within_tol() -> 
         margin, edge = tipping_margin(tri, com, tol)
         assert set(edge) == {1, 2}
         assert margin == pytest.approx(want, rel=1e-9, abs=0.0)
-    base = rest_form(build_design(load_template(find_template("patkau-one-fold"))))
+    base = rest_form(fold_design(load_template(find_template("patkau-one-fold"))))
     balanced = RestingPlacement(**{**base.__dict__, "tipping_margin_deg": 0.0})
     (warning,) = stability_warnings(balanced)
     assert "rocks" in warning and "no margin" in warning and "does not stand" not in warning

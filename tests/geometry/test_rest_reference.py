@@ -1,4 +1,4 @@
-"""The resting placement against the one issue 24 replaced, which it must
+"""The resting placement against the slower one it replaced, which it must
 reproduce: the same contacts and margins, to rounding.
 
 ``data/rest_main.json`` holds the placements of commit 9567d0a (written by
@@ -45,7 +45,7 @@ import pytest
 import onefold_cad.geometry.placement as placement
 from onefold_cad import fold, solve
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-from onefold_cad.geometry.body import Body
+from onefold_cad.geometry.body import FoldedBody
 from onefold_cad.geometry.body_mass import mass_properties
 from onefold_cad.geometry.placement import rest_form
 
@@ -79,7 +79,7 @@ def test_rests_where_the_placement_of_main_rested(
     design = reference.design_of(spec)
     folded = fold(solve(design.frame, design.model), design.sheet)
     material = design.material.with_changes(relief_hole=relief_hole_diameter(design, folded))
-    ours = mass_properties(Body(folded, material, spec["body"]))
+    ours = mass_properties(FoldedBody(folded, material, spec["body"]))
     # main's centre, relative to the apex: p' = R (p - A) + shift, with
     # translation = shift - R A
     rot, placed = np.array(case["rotation"]), np.array(case["centre_of_mass"])

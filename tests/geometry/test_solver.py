@@ -351,7 +351,7 @@ def test_exact_model_meets_the_angle_condition_or_says_why(
 
 # -- reproducers and regimes ---------------------------------------------------------------
 def test_root_close_to_an_end_of_the_f_line_is_found() -> None:
-    # issue 12: H 6.5e-6 from the -x end (R = 2231); the old search floor 2^-20 l
+    # a fuzzed frame: H 6.5e-6 from the -x end (R = 2231); the old search floor 2^-20 l
     # sat above the root and reported "no non-trivial apex"
     frame = FrameCurve(0.1, 31.91290306492352, -2231.1997775067985, 2231.203182139169, 3)
     sol = solve(frame, "paper")
@@ -361,7 +361,7 @@ def test_root_close_to_an_end_of_the_f_line_is_found() -> None:
 
 
 def test_exact_model_near_beta_90_is_right() -> None:
-    # issue 11: exited 0 with an angle error of 0.167 deg and twice the flat area
+    # once exited 0 with an angle error of 0.167 deg and twice the flat area
     frame = FrameCurve(0.001, 89.999999, 0.0, 100.0, 1)
     sol = solve(frame, "exact")
     f = float(mp_cone_excess(frame, sol.apex_height))
@@ -473,7 +473,7 @@ def test_fast_frame_paths_agree_with_frames(model: str) -> None:
         np.testing.assert_allclose(surf.theta_of_phi(phi), theta, rtol=0, atol=1e-14)
 
 
-# -- S_max - pi and the apex near an end of the f-line (issue 12's fuzz) ------------------
+# -- S_max - pi and the apex near an end of the f-line (the fuzzed frames) ----------------
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(alpha=ANGLES, beta=ANGLES, place=PLACES, n=st.integers(2, 6))
 @example(alpha=0.003303354767010754, beta=0.00014072288249136213, place=0.3, n=3)  # fuzz 27

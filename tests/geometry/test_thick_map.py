@@ -16,7 +16,7 @@ from onefold_cad import (
     Material,
     Sheet,
     SheetSurface,
-    build_design,
+    fold_design,
 )
 from onefold_cad.geometry.material import sheet_offsets
 from onefold_cad.geometry.slab import Slab
@@ -33,7 +33,7 @@ from onefold_cad.geometry.thick_map import (
 
 def _fold(alpha=50.0, beta=45.0, h_c=0.0, sheet=None, model="exact"):
     sheet = sheet or Sheet.quadrilateral(300, 200, 250, 150)
-    return build_design(Design("t", FrameCurve(alpha, beta, h_c), sheet, model=model))
+    return fold_design(Design("t", FrameCurve(alpha, beta, h_c), sheet, model=model))
 
 
 @settings(max_examples=25, deadline=None)

@@ -17,13 +17,13 @@ NUMPY = (
 def test_a_request_without_the_memory_is_an_error_answer_and_the_server_goes_on(
     url, monkeypatch, capfd
 ):
-    real = onefold_cad.design.build_design
+    real = onefold_cad.design.fold_design
 
     def no_memory(*args, **kwargs):
         raise MemoryError(NUMPY)
 
     body = hops_request("onefold/solve", SOLVE_INPUTS, SOLVE)
-    monkeypatch.setattr(onefold_cad.design, "build_design", no_memory)
+    monkeypatch.setattr(onefold_cad.design, "fold_design", no_memory)
     status, answer = post(f"{url}/solve", body)
     assert status == 500 and answer["values"] == []
     (text,) = answer["errors"]
@@ -32,6 +32,6 @@ def test_a_request_without_the_memory_is_an_error_answer_and_the_server_goes_on(
     log = capfd.readouterr().err
     assert "Traceback" not in log and "out of memory" in log
 
-    monkeypatch.setattr(onefold_cad.design, "build_design", real)
+    monkeypatch.setattr(onefold_cad.design, "fold_design", real)
     status, answer = post(f"{url}/solve", body)
     assert status == 200 and answer["errors"] == [] and answer["values"]

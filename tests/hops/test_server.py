@@ -151,8 +151,8 @@ def test_a_closed_polyline_sheet_is_the_polygon_flag(solve):
     assert report["sheet"]["vertices"] == reference["sheet"]["vertices"]
     assert report["fold_angles_deg"] == reference["fold_angles_deg"]
     # a Rhino document in inches, a design in mm: said, not converted
-    (units,) = [w for w in answer["warnings"] if "Rhino document in Inches" in w]
-    assert "design is in mm" in units
+    (units,) = [w for w in answer["warnings"] if "Rhino document's in Inches" in w]
+    assert "design's lengths are in millimetres (units 'mm')" in units
     assert units not in reference["warnings"]
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from matplotlib.path import Path
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.mechanics.deviation import best_fit, surface_distance
 from onefold_cad.templates import load_template
 
@@ -16,7 +16,7 @@ from onefold_cad.templates import load_template
 @pytest.fixture(scope="module")
 def patkau():
     design = load_template("patkau-one-fold")
-    return design, build_design(design)
+    return design, fold_design(design)
 
 
 def _inside(design, n: int, seed: int, margin: float) -> np.ndarray:

@@ -1,6 +1,6 @@
 """The stages (mechanics/stages.py) where a sheet is stood on the ground: a rigid
 motion of any size keeps the state's energy and directors, and the long sheets
-issue 38 found refused (``x: an edge points against its reference direction``)
+a fuzz run found refused (``x: an edge points against its reference direction``)
 simulate, checked against results not computed the new way:
 
 - a state turned half round (every edge against its reference direction) has
@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from onefold_cad.design import build_design
+from onefold_cad.design import fold_design
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.mechanics import evaluate, stages
 from onefold_cad.mechanics.model import sheet_model
@@ -34,7 +34,7 @@ from onefold_cad.mechanics.shell import (
 from onefold_cad.mechanics.simulate import run
 from tests.mechanics.test_energy import random_state  # noqa: F401 (a fixture)
 
-#: The designs issue 38 found refused (``--mesh coarse``): template (None: the
+#: The designs a fuzz run found refused (``--mesh coarse``): template (None: the
 #: default one, as ``onefold simulate`` without a template) and flags.
 REFUSED = {
     "patkau-4000x1000": ("patkau-one-fold", {"rectangle": "4000x1000"}),
@@ -56,7 +56,7 @@ REFUSED = {
 
 def _design(template: str | None, flags: dict):
     (job,) = load_jobs([template] if template else [], flags)
-    return job.design, build_design(job.design)
+    return job.design, fold_design(job.design)
 
 
 def _edge_cosines(shell, q) -> np.ndarray:
@@ -119,7 +119,7 @@ def test_a_sheet_the_old_placement_could_stand_stands_as_before():
 
 
 @pytest.mark.parametrize("name", ["patkau-4000x1000", "long-strip"])
-def test_long_sheets_issue_38_refused_stand_on_their_weight(name):
+def test_long_sheets_once_refused_stand_on_their_weight(name):
     template, flags = REFUSED[name]
     design, folded = _design(template, flags)
     sim = run(design, folded, level="coarse")
@@ -129,7 +129,7 @@ def test_long_sheets_issue_38_refused_stand_on_their_weight(name):
 
 def test_a_sheet_stood_more_than_a_quarter_turn_is_placed():
     """broken-vault 303.9659 x 24.5668 in: released, then turned past 90 deg by
-    its placement (the refusal of issue 38). Its springback alone is 10 s of
+    its placement (the refusal a fuzz run found). Its springback alone is 10 s of
     Newton and its standing (it does not stand: a 25 ft strip of 18 gauge
     sheet sags an inch under 1/16 of its weight) half a minute more, so the
     test stops at the placement and checks it is the released state turned."""

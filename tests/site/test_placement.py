@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from onefold_cad.design import build_design, rest_once
+from onefold_cad.design import fold_design, rest_once
 from onefold_cad.site.placement import SitePlacement
 from onefold_cad.templates import load_template
 
@@ -30,7 +30,7 @@ def test_the_turn_keeps_lengths_heights_and_turns_counter_clockwise():
 
 def test_compose_is_the_resting_placement_then_the_site_motion():
     d = load_template("paper-square")
-    folded = build_design(d)
+    folded = fold_design(d)
     rest = rest_once(folded)
     s = SitePlacement(120.0, 45.0, -37.0)
     pts = folded.boundary_3d

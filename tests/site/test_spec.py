@@ -74,7 +74,7 @@ def test_an_inline_design_is_kept_as_template_data(tmp_path):
         ('flags = { alpha = 40.0 }', 'flags = 3', "site.toml: sheet 2 'b': flags"),
         ('template = "paper-square"\nx = 1000', 'template = "no-such"\nx = 1000',
          "site.toml: sheet 2 'b': template"),
-        ('units = "mm"', 'units = "m"', "site.toml: units"),
+        ('units = "mm"', 'units = "km"', "site.toml: units"),
         ('units = "mm"', 'units = "mm"\ncolour = 1', "site.toml: colour"),
     ],
 )  # fmt: skip

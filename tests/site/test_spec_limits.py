@@ -1,6 +1,6 @@
 """A site's number of sheets is bounded: a larger one is refused up front,
-naming the limit, before any sheet is read or built (issue 38: a site of
-1 000 sheets grew to about 9 GB and 351 MB of staging before a refusal)."""
+naming the limit, before any sheet is read or built (a site of 1 000 sheets
+once grew to about 9 GB and 351 MB of staging before a refusal)."""
 
 from __future__ import annotations
 

@@ -12,7 +12,7 @@ const $ = (id) => document.getElementById(id);
 
 // Controls with a range slider and a number box (id and id-num); the number box
 // holds the value sent (it may hold a bad value: the server says what is wrong).
-const SLIDERS = ['alpha', 'beta', 'hc', 'width', 'height', 'apex_fraction',
+const SLIDERS = ['alpha', 'beta', 'hc_fraction', 'width', 'height', 'apex_fraction',
   'x_plus', 'x_minus', 'y_plus', 'y_minus', 'thickness', 'bend_radius'];
 const PLAIN = ['model', 'divisions', 'radius', 'polygon'];
 const SHEET_FIELDS = {
@@ -20,7 +20,7 @@ const SHEET_FIELDS = {
   quadrilateral: ['x_plus', 'x_minus', 'y_plus', 'y_minus'],
   polygon: ['polygon'],
 };
-const COMMON = ['model', 'alpha', 'beta', 'hc', 'radius', 'divisions', 'thickness', 'bend_radius'];
+const COMMON = ['model', 'alpha', 'beta', 'hc_fraction', 'radius', 'divisions', 'thickness', 'bend_radius'];
 
 let templateKey = null;
 let sheetKind = 'rectangle';
@@ -70,10 +70,6 @@ function fitRanges(page) {
   setRange('bend_radius', 0, Math.max(4 * num('bend_radius'), 4 * num('thickness'), size / 200));
 }
 
-function fitHcRange(page) {
-  if (page.hc_limit) setRange('hc', -0.98 * page.hc_limit, 0.98 * page.hc_limit);
-}
-
 function fillControls(page) {
   sheetKind = page.sheet_kind;
   units = page.units;
@@ -81,7 +77,6 @@ function fillControls(page) {
   for (const fs of document.querySelectorAll('fieldset[data-kind]')) fs.hidden = fs.dataset.kind !== sheetKind;
   for (const u of document.querySelectorAll('.unit')) u.textContent = units;
   fitRanges(page);
-  fitHcRange(page);
 }
 
 // -- 3D view --------------------------------------------------------------
@@ -313,6 +308,13 @@ function fmt(x, digits = 5) {
 function len(x) {
   return x === null || x === undefined ? '–' : `${fmt(x, 6)} ${units}`;
 }
+// an area in the design's unit² as one orders sheet metal: m² for mm designs,
+// ft² for inch and foot designs (a 22 m² blank, not 22274271 mm²)
+const AREA_UNITS = { mm: ['m²', 1e6], m: ['m²', 1], in: ['ft²', 144], ft: ['ft²', 1] };
+function area(x) {
+  const [name, per] = AREA_UNITS[units] || [`${units}²`, 1];
+  return x === null || x === undefined ? '–' : `${fmt(x / per)} ${name}`;
+}
 
 function showNumbers(n) {
   const halves = { plus_x: '+x half', minus_x: '−x half' };
@@ -323,7 +325,7 @@ function showNumbers(n) {
   $('form-span').textContent = len(n.span);
   // the footprint as `onefold solve` prints it: width x depth (x, y), 6 significant digits
   $('form-footprint').textContent = n.width === null ? '–'
-    : `${fmt(n.width, 6)} × ${fmt(n.depth, 6)} ${units}, hull area ${fmt(n.footprint_area)} ${units}²`
+    : `${fmt(n.width, 6)} × ${fmt(n.depth, 6)} ${units}, hull area ${area(n.footprint_area)}`
       + (n.stable === false ? ' (no stable resting face)' : '');
   $('flat-size').textContent = n.flat_size ? `${fmt(n.flat_size[0])} × ${fmt(n.flat_size[1])} ${units}` : '–';
   $('relief-hole').textContent = n.relief_hole ? `Ø ${len(n.relief_hole)}` : (n.relief_hole === 0 ? 'none' : '–');
@@ -410,7 +412,6 @@ async function run() {
 function apply(state, job, q) {
   if (state.page) {
     if (job.templateOnly) fillControls(state.page);
-    else fitHcRange(state.page);
   }
   showMessages(state.messages || []);
   document.body.classList.toggle('has-error', !state.ok);

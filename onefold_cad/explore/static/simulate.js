@@ -121,9 +121,10 @@ export function createSimulation({ scene, form, render, query }) {
     const len = (x) => (x === null || x === undefined ? '–' : `${fmt(x)} ${u}`);
     $('sim-deviation').textContent = n.max_deviation === null ? '– (no standing equilibrium)'
       : `max ${len(n.max_deviation)}, rms ${len(n.rms_deviation)}`;
-    $('sim-stands').textContent = n.stands
-      ? `yes${n.tipping_margin_deg === null ? '' : ` (tipping margin ${fmt(n.tipping_margin_deg, 3)}°)`}`
-      : `no: ${n.reason}`;
+    $('sim-stands').textContent = n.uncertain ? `uncertain: ${n.uncertain}`
+      : n.stands
+        ? `yes${n.tipping_margin_deg === null ? '' : ` (tipping margin ${fmt(n.tipping_margin_deg, 3)}°)`}`
+        : `no: ${n.reason}`;
     $('sim-size').textContent = `${len(n.height)} · ${len(n.span)}`;
     $('sim-springback').textContent = n.springback_max_deviation === null ? '–'
       : `max deviation ${len(n.springback_max_deviation)}`;

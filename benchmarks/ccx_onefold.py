@@ -1,0 +1,72 @@
+"""onefold's side of the CalculiX forming benchmark (``calculix_forming.py
+--onefold``): the public command ``onefold simulate TEMPLATE --json`` (whatever
+law it has when run) and ``scripts/j2_trial.py`` (the J2 stages in progress),
+each a child process timed by its wall and CPU time (``getrusage`` of the
+children), so the numbers and the times sit beside CalculiX's in one run."""
+
+from __future__ import annotations
+
+import json
+import re
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _child(cmd: list[str]) -> tuple[str, float, float]:
+    """Run ``cmd`` from the repository root: ``(stdout, wall s, CPU s)``."""
+    ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=True)
+    wall = time.perf_counter() - t0
+    ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = ru1.ru_utime + ru1.ru_stime - ru0.ru_utime - ru0.ru_stime
+    return proc.stdout, wall, cpu
+
+
+def onefold_side(
+    template: str, meshes: list[str], creases: list[str], laws: tuple[str, ...] = ("moment",)
+) -> list[dict[str, Any]]:
+    """``onefold simulate TEMPLATE --json`` for each mesh, crease model and
+    ``--law`` (``moment`` or ``j2``: the laws of ``onefold simulate``), and
+    ``scripts/j2_trial.py`` on the coarse mesh: the formed plastic share, the
+    springback's max deviation after the best fit, wall and CPU time."""
+    rows: list[dict[str, Any]] = []
+    for mesh, crease, law in ((m, c, w) for m in meshes for c in creases for w in laws):
+        cmd = [sys.executable, "-m", "onefold_cad", "simulate", template, "--json", "-q"]
+        cmd += ["--mesh", mesh, "--crease", crease, "--law", law]
+        out, wall, cpu = _child(cmd)
+        sim = json.loads(out)["simulation"]
+        rows.append(
+            {
+                "what": f"onefold simulate --mesh {mesh} --crease {crease} --law {law}",
+                "plastic_share": sim["formed"]["plastic_area_share"],
+                "springback_max": sim["released"]["max_deviation"],
+                "yields_again_share": sim["released"].get("reloaded_area_share"),
+                "wall_s": wall,
+                "cpu_s": cpu,
+            }
+        )
+    trial = ROOT / "scripts" / "j2_trial.py"
+    if trial.exists():
+        out, wall, cpu = _child([sys.executable, str(trial), template, "--mesh", "coarse"])
+        num = r"([-+0-9.eE]+)"
+        share = re.search(r"formed: plastic share " + num, out)
+        dev = re.search(r"released: deviation max " + num, out)
+        again = re.search(r"yields again " + num, out)
+        rows.append(
+            {
+                "what": "scripts/j2_trial.py --mesh coarse (J2, with the moment law after it)",
+                "plastic_share": float(share.group(1)) if share else None,
+                "springback_max": float(dev.group(1)) if dev else None,
+                "yields_again_share": float(again.group(1)) if again else None,
+                "wall_s": wall,
+                "cpu_s": cpu,
+            }
+        )
+    return rows

@@ -1,0 +1,58 @@
+"""NAME-loads.csv: the outdoors check's cases, one row each, read from the
+report's ``outdoors`` section (never recomputed).
+
+Columns: the case, its kind (EQU, STR, SLS), whether it stands and why not,
+the ground's vertical and horizontal load (N), the sliding ratio
+``|H| / (mu V)``, the tipping margin and the largest deflection (design
+unit), the utilisation, then per foot its reaction (N: ``foot1_x``,
+``foot1_y``, ``foot1_z``, ...) and the ballast it needs (kg).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from onefold_cad.export.atomic import atomic_output
+
+__all__ = ["cases_csv", "write_cases_csv"]
+
+_BASE = ("case", "kind", "stands", "reason", "vertical_N", "horizontal_N", "slide_ratio",
+         "tip_margin", "max_deflection", "utilisation")  # fmt: skip
+
+
+def _num(v: Any) -> Any:
+    if v is None:
+        return ""
+    return f"{v:.10g}" if isinstance(v, float) else v
+
+
+def cases_csv(outdoors: Mapping[str, Any]) -> str:
+    """The CSV text of the report's ``outdoors`` section."""
+    k = len(outdoors["feet"])
+    head = list(_BASE)
+    for i in range(1, k + 1):
+        head += [f"foot{i}_x_N", f"foot{i}_y_N", f"foot{i}_z_N", f"foot{i}_ballast_kg"]
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow(head)
+    for c in outdoors["cases"]:
+        row = [c["name"], c["kind"], c["stands"], c["reason"], c["vertical_N"],
+               c["horizontal_N"], c["slide_ratio"], c["tip_margin"], c["max_deflection"],
+               c["utilisation"]]  # fmt: skip
+        for r, b in zip(c["reactions_N"], c["ballast_kg"], strict=True):
+            row += [*r, b]
+        w.writerow([_num(v) for v in row])
+    return out.getvalue()
+
+
+def write_cases_csv(outdoors: Mapping[str, Any], path: str | os.PathLike[str]) -> Path:
+    """Write NAME-loads.csv atomically; return the path."""
+    text = cases_csv(outdoors)
+    with atomic_output(path) as tmp:
+        Path(tmp).write_text(text, encoding="utf-8")
+    return Path(path)

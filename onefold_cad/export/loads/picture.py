@@ -1,0 +1,91 @@
+"""NAME-loads.png: the governing case of an outdoors check.
+
+The sheet standing, moved by the governing case's loads (the movement drawn
+to scale, the standing form's outline thin and dashed), each face coloured
+by its utilisation (stress over the yield stress, in %, the scale up to the
+faces' 98th percentile or 100 %), and each foot's reaction drawn as
+an arrow from the foot (its length proportional to the force, the largest
+labelled in kN). Written atomically; matplotlib is imported only here.
+"""
+
+from __future__ import annotations
+
+import os
+import textwrap
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from onefold_cad.export.figure3d import (
+    agg_figure,
+    fit_axes,
+    label_axes,
+    lambert,
+    save_png,
+    view_direction,
+)
+
+__all__ = ["render_governing"]
+
+_ARROW = "#1d4ed8"
+
+
+def render_governing(result: Any, path: str | os.PathLike[str], title: str = "") -> Path:
+    """Draw ``result`` (:class:`~onefold_cad.mechanics.loads.results.Outdoors`)'s
+    governing case into the PNG ``path``."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+    scale = {"mm": 1000.0, "in": 1 / 0.0254, "ft": 1 / 0.3048}.get(result.unit, 1.0)
+    x0 = np.asarray(result.positions) * scale
+    moved = x0 + np.asarray(result.moves) * scale
+    faces = np.asarray(result.faces)
+    util = np.asarray(result.face_utilisation)
+    case = result.case(result.governing)
+    fig = agg_figure((960, 720))
+    ax = fig.add_axes((0.0, 0.1, 0.8, 0.82), projection="3d", computed_zorder=False)
+    elev, azim = 24.0, -60.0
+    view = view_direction(elev, azim)
+    import matplotlib as mpl
+
+    cmap = mpl.colormaps["viridis"]
+    # the scale to the 98th percentile (a face at a foot or at the apex does not wash it out)
+    top = max(float(np.percentile(util * 100.0, 98.0)), 100.0)
+    norm = mpl.colors.Normalize(vmin=0.0, vmax=top)
+    rgb = cmap(norm(np.clip(util * 100.0, 0.0, None)))[:, :3]
+    tri = moved[faces]
+    _, shade = lambert(tri, view)
+    light = 0.7 + 0.3 * (shade - 0.45) / 0.55
+    rgba = np.concatenate([np.clip(rgb * light[:, None], 0, 1), np.ones((len(tri), 1))], axis=1)
+    surf = Poly3DCollection(tri, facecolors=rgba, edgecolors="none", antialiased=False)
+    surf.set_zorder(3)
+    ax.add_collection3d(surf)
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    uniq, count = np.unique(edges, axis=0, return_counts=True)
+    rim = uniq[count == 1]
+    outline = Line3DCollection(x0[rim], colors="#333333", linewidths=0.6, linestyles=(0, (3, 2)))
+    outline.set_zorder(4)
+    ax.add_collection3d(outline)
+    reactions = np.asarray(case.reactions_N, dtype=float)
+    feet = np.array([np.append(f.at, 0.0) for f in result.feet])
+    size = float(np.ptp(x0, axis=0).max())
+    largest = max(float(np.linalg.norm(reactions, axis=1).max()), 1e-9)
+    for foot, r in zip(feet, reactions, strict=True):
+        d = 0.25 * size * r / largest
+        ax.quiver(*foot, *d, color=_ARROW, linewidth=1.6, arrow_length_ratio=0.15, zorder=6)
+        ax.text(*(foot + d), f"{np.linalg.norm(r) / 1e3:.3g} kN", fontsize=8, color=_ARROW,
+                zorder=7)  # fmt: skip
+    fit_axes(ax, np.vstack([x0, moved, feet]), ground=True, elev=elev, azim=azim, zoom=1.05)
+    label_axes(ax, result.unit)
+    head = f"governing case {case.name}"
+    fig.suptitle(f"{title}: {head}" if title else head, fontsize=11, y=0.985)
+    bar = fig.add_axes((0.86, 0.2, 0.025, 0.6))
+    fig.colorbar(mpl.cm.ScalarMappable(norm=norm, cmap=cmap), cax=bar,
+                 label="utilisation (% of the yield stress)")  # fmt: skip
+    verdict = "stands" if case.stands else f"does NOT stand: {case.reason}"
+    caption = (
+        f"{verdict}; largest movement {case.max_deflection:.4g} {result.unit} (drawn to scale), "
+        f"utilisation {case.utilisation:.3g}; arrows: the feet's reactions on the sheet"
+    )
+    fig.text(0.02, 0.02, "\n".join(textwrap.wrap(caption, 130)), fontsize=8)
+    return save_png(fig, path, "the loads picture")

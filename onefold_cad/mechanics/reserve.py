@@ -1,0 +1,58 @@
+"""How far the coarse preview may be trusted on "stands".
+
+The coarse mesh's few large triangles are much stiffer than the sheet: on
+patkau-one-fold at t = 3 mm the coarse mesh carries 1.875 times the sheet's
+weight before its load path ends, the normal mesh 0.906 (it does not stand),
+at t = 3.57 mm the coarse 2.375 (the moment law; :func:`carried` on each
+level's model, tests/mechanics/test_reserve.py): the coarse mesh overstates
+the load a sheet carries by about two. So a coarse "stands" is
+a yes only when the coarse sheet carries :data:`COARSE_RESERVE` times its
+weight; below that, or where the check cannot show it, the answer is
+"uncertain: run --mesh normal".
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from onefold_cad.geometry.numeric import Array
+from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled, solve_path
+from onefold_cad.mechanics.model import GRAVITY, SheetModel
+from onefold_cad.mechanics.stages import Placed, standing_path
+
+__all__ = ["COARSE_RESERVE", "carried"]
+
+#: The multiple of its weight a coarse sheet must carry for a plain "stands":
+#: the coarse-to-normal ratio of the load carried (1.875 / 0.906 = 2.07,
+#: patkau-one-fold at t = 3 mm) with a margin.
+COARSE_RESERVE = 2.5
+
+
+def carried(
+    model: SheetModel,
+    placed: Placed,
+    standing: Equilibrium,
+    rest_curvature: Array,
+    supports: str,
+    up_to: float = COARSE_RESERVE,
+) -> float:
+    """A multiple of its weight the standing sheet is shown to carry: ``up_to``
+    when it does, else 1 (its weight, carried already). Its gravity goes from
+    1 to ``up_to`` in one Newton solve of the standing stage's iterations: a
+    check, not the load path, so a sheet it cannot show to carry ``up_to``
+    may carry more (the answer is then "uncertain", which asks for the
+    normal mesh, never a wrong yes).
+    The moment law's shell, contacts and step limits of the standing stage."""
+    base = placed.shell.with_changes(rest_curvature=rest_curvature)
+    g = np.array([0.0, 0.0, -GRAVITY])
+    options = standing_path(model, placed, supports)
+    options.update(contacts=standing.contacts, first_step=1.0, max_solves=1)
+    try:
+        solve_path(
+            lambda s: base.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
+            standing.q,
+            **options,  # type: ignore[arg-type]
+        )
+    except PathStalled:
+        return 1.0
+    return up_to
