@@ -11,7 +11,7 @@ from matplotlib.path import Path
 from scipy.spatial import Delaunay
 
 from onefold_cad.compensate.evaluate import Standing
-from onefold_cad.design import Design, build_design, rest_once
+from onefold_cad.design import Design, fold_design, rest_once
 
 #: How much the fake steel opens the fold (alpha, beta), deg.
 SPRING = (3.0, 2.0)
@@ -48,7 +48,7 @@ def fake_standing(design: Design, level: str, check: bool = False) -> Standing:
     opened = design.with_changes(
         frame=f.with_changes(alpha=f.alpha - SPRING[0], beta=f.beta - SPRING[1])
     )
-    folded = build_design(opened)
+    folded = fold_design(opened)
     rest = rest_once(folded)
     flat, faces = flat_mesh(design)
     x = rest.apply(folded.map_points(flat))
