@@ -1,6 +1,7 @@
 """The ``onefold`` commands other than ``build``: ``solve``, ``templates``,
 ``explore``, ``fit``, ``hops``, ``sweep``, ``simulate``
-(:mod:`onefold_cad.cli.simulate`) and ``site`` (:mod:`onefold_cad.cli.site`),
+(:mod:`onefold_cad.cli.simulate`), ``compensate``
+(:mod:`onefold_cad.cli.compensate`) and ``site`` (:mod:`onefold_cad.cli.site`),
 each ``cmd_NAME(namespace) -> exit status``, and the table :data:`COMMANDS` of
 all of them."""
 
@@ -13,6 +14,7 @@ import sys
 from collections.abc import Callable
 
 from onefold_cad.cli.build import STATE, cmd_build
+from onefold_cad.cli.compensate import cmd_compensate
 from onefold_cad.cli.loads import cmd_loads
 from onefold_cad.cli.output import warn
 from onefold_cad.cli.parser import build_parser
@@ -175,6 +177,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "hops": cmd_hops,
     "sweep": cmd_sweep,
     "simulate": cmd_simulate,
+    "compensate": cmd_compensate,
     "site": cmd_site,
     "loads": cmd_loads,
 }

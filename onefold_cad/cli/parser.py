@@ -10,6 +10,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from onefold_cad.cli.compensate_parser import compensate_parser
 from onefold_cad.cli.help_format import fill, formatter, raw_formatter
 from onefold_cad.cli.hops_parser import HOPS_PORT, hops_parser, parse_port
 from onefold_cad.cli.loads_parser import loads_parser
@@ -81,6 +82,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "  fit        find the frame whose resting form has a target height and span\n"
         "  sweep      evaluate many designs (a pool or a Dask cluster): table, Pareto front\n"
         "  simulate   the sheet as steel: formed, sprung back, standing under its weight\n"
+        "  compensate the fold to form so that the steel stands as designed (springback)\n"
         "  hops       a Grasshopper Hops server: onefold/solve and onefold/fit in Grasshopper\n"
         "  site       a site of several sheets: their files, STEP/IFC/GLB, plan, order\n"
         "  loads      outdoors: wind, snow, a person; anchors or ballast per foot\n\n"
@@ -235,6 +237,7 @@ def build_parser() -> dict[str, argparse.ArgumentParser]:
         "hops": hops_parser(PROG),
         "sweep": _sweep_parser(),
         "simulate": _simulate_parser(),
+        "compensate": compensate_parser(PROG),
         "site": site_parser(PROG),
         "loads": loads_parser(PROG),
     }

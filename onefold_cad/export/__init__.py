@@ -17,6 +17,10 @@ The registry, the staging and the one-module formats:
 - :mod:`.glb`: NAME.glb, the folded form as binary glTF 2.0.
 - :mod:`.aligned_plane`: a planar face's plane with its axes along the face
   (so OCCT's default integration measures it).
+- ``onefold compensate``'s files: :mod:`.compensation_picture` (design,
+  uncompensated and compensated steel side by side), :mod:`.standing_form`
+  (a simulated standing form as GLB and STEP), :mod:`.springback_notes` (the
+  angles to fold to and after springback in the DXF notes and bend sheet).
 
 The families, one folder each (its ``__init__`` maps it):
 

@@ -670,7 +670,8 @@ def test_unknown_command_and_main_exit_codes(capfd):
     assert main(["frobnicate"]) == 2
     assert capfd.readouterr().err == (
         "onefold: error: unknown command 'frobnicate' "
-        "(choose from build, solve, templates, explore, fit, hops, sweep, simulate, site)\n"
+        "(choose from build, solve, templates, explore, fit, hops, sweep, simulate, compensate, "
+        "site, loads)\n"
     )
     assert main(["templates"]) == 0
     assert main(["solve", "--beta", "90"]) == 2

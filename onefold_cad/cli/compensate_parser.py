@@ -1,0 +1,71 @@
+"""``onefold compensate``'s option parser (standard library only: ``--help``
+starts in milliseconds)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from onefold_cad.cli.help_format import fill, raw_formatter
+from onefold_cad.flags.design_flags import parse_choice, parse_float, parse_int
+from onefold_cad.flags.parser import FlagParser, add_design_flags
+from onefold_cad.templates import DEFAULT_TEMPLATE
+
+__all__ = ["compensate_parser"]
+
+
+def compensate_parser(prog: str) -> FlagParser:
+    """The parser of ``PROG compensate``."""
+    p = FlagParser(
+        prog=f"{prog} compensate",
+        usage=f"{prog} compensate [TEMPLATE] [--target design | --height H --span S "
+        "[--depth D]]\n         [-j N] [--scheduler ADDRESS] [--json] [-o DIR] [options]",
+        description=fill(
+            "Find the fold to form so that the steel, after springback and standing under "
+            "its weight (as onefold simulate computes it), takes the target form: the design "
+            "itself (default: the least squares of the standing mid-surface's distance from "
+            "the designed form as it stands) or a height and span. The knobs are the fold the "
+            "sheet is formed to (alpha, beta, h_c); the crease is formed to the compensated "
+            "fold's angle. Coarse mesh first, the normal mesh to finish; the answer and the "
+            "uncompensated fold are checked on the normal mesh with its convergence check "
+            "(docs/compensate.md)."
+        ),
+        formatter_class=raw_formatter,
+        allow_abbrev=False,
+    )
+    p.add_argument(
+        "template", nargs="?", metavar="TEMPLATE",
+        help=f"template file or shipped template name (default: {DEFAULT_TEMPLATE})",
+    )  # fmt: skip
+    t = p.add_argument_group("target (default: the design's own form)")
+    t.add_argument("--target", type=parse_choice(("design",)), default=None, metavar="design",
+                   help="the designed form as it stands (the default)")  # fmt: skip
+    for name, text in (("height", "the standing steel's height"),
+                       ("span", "its footprint's width (the resting frame's x)"),
+                       ("depth", "its footprint's depth (optional third target)")):  # fmt: skip
+        t.add_argument(f"--{name}", type=parse_float, metavar="LENGTH",
+                       help=f"{text}, in the design's unit")  # fmt: skip
+    r = p.add_argument_group("evaluations")
+    r.add_argument(
+        "-j", "--jobs", type=parse_int, default=None, metavar="N",
+        help="simulations side by side in a local process pool (default: the cores this "
+        "process may use, at most 4)",
+    )  # fmt: skip
+    r.add_argument(
+        "--scheduler", metavar="ADDRESS",
+        help="run them on a Dask cluster (tcp://HOST:PORT, or local for a LocalCluster)",
+    )  # fmt: skip
+    o = p.add_argument_group("output")
+    o.add_argument("--json", action="store_true",
+                   help="print the JSON report with its compensation section")  # fmt: skip
+    o.add_argument(
+        "-o", "--outdir", type=Path, metavar="DIR",
+        help="write NAME-compensated.toml (the compensated design as a template), its build "
+        "files, NAME-compensated-standing.glb and .step (the steel as it stands), "
+        "NAME-compensation.png and NAME-compensation.json into DIR, all or nothing",
+    )  # fmt: skip
+    o.add_argument(
+        "-q", "--quiet", action="store_true",
+        help="no progress on stderr (warnings and errors are still printed)",
+    )  # fmt: skip
+    add_design_flags(p)
+    return p

@@ -1,0 +1,330 @@
+"""The compensation loop: which fold to form so that the steel stands as the target.
+
+The knobs are the fold the sheet is formed to: alpha and beta (deg) and h_c
+(as a fraction of its limit R cos(alpha)). alpha and beta move the standing
+form along nearly one direction (higher and narrower together); h_c adds
+another, which a height and span together need. Each evaluation is
+``onefold simulate`` of the candidate (forming, springback, standing).
+
+1. coarse mesh: ``scipy.optimize.least_squares`` (trust-region reflective,
+   bounded), its Jacobian by forward differences whose simulations run side
+   by side (:class:`~onefold_cad.compensate.parallel.Evaluator`);
+2. normal mesh: the same least squares started from the coarse answer with
+   the coarse Jacobian kept (a chord method: one simulation a step), so the
+   finish costs a few normal simulations, not a Jacobian's worth each.
+
+The residual: for a design target, the standing steel's distance from the
+target's form as it stands at fixed points of the flat sheet (the coarse
+mesh's nodes, weighted by their area); for a size target, the relative
+misses of height, span (and depth), in percent.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from onefold_cad.compensate.evaluate import (
+    Standing,
+    node_weights,
+    standing_measures,
+)
+from onefold_cad.compensate.parallel import Evaluator
+from onefold_cad.compensate.target import Target
+from onefold_cad.design import Design
+from onefold_cad.errors import InvalidParameterError
+from onefold_cad.geometry.numeric import Array
+
+__all__ = ["KNOBS", "Candidate", "Search", "search"]
+
+#: The knobs: name, unit, forward-difference step, lower and upper bound
+#: (h_c as a fraction of R cos(alpha)).
+KNOBS = (
+    ("alpha", "deg", 0.5, 0.5, 89.5),
+    ("beta", "deg", 0.5, 0.5, 89.5),
+    ("h_c", "of R cos(alpha)", 0.01, -0.95, 0.95),
+)
+#: Steps of the least squares on each mesh (function evaluations).
+COARSE_STEPS = 8
+NORMAL_STEPS = 4
+#: A size target is met when every miss is below this (relative).
+SIZE_TOLERANCE = 0.01
+
+Say = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One simulated candidate.
+
+    Attributes:
+        knobs: ``{alpha, beta, h_c}`` (deg, deg, design unit).
+        level: the mesh level.
+        standing: the simulation, or the error's line that refused it.
+        cost: half the squared residual (inf when it does not stand).
+        max_deviation, rms_deviation: from the target's form (design unit),
+            None for a size target or one that does not stand.
+    """
+
+    knobs: dict[str, float]
+    level: str
+    standing: Standing | str
+    cost: float
+    max_deviation: float | None = None
+    rms_deviation: float | None = None
+
+
+@dataclass
+class Search:
+    """What the loop did (filled as it goes).
+
+    Attributes:
+        candidates: every simulation, in order.
+        knobs: the knobs moved ('alpha', 'beta' and maybe 'h_c').
+        sensitivity: per knob, the change of the standing height, span and
+            rms deviation per unit of the knob (from the last coarse
+            Jacobian): ``{knob: {'height': ..., 'span': ..., 'rms_deviation': ...}}``.
+        limits: what limits the search: knobs at their bounds, the
+            directions the knobs move the residual in (the last coarse
+            Jacobian's singular values, relative to the largest) and why the
+            least squares stopped.
+        cpu_s: CPU seconds of every simulation together.
+    """
+
+    candidates: list[Candidate] = field(default_factory=list)
+    knobs: tuple[str, ...] = ()
+    sensitivity: dict[str, dict[str, float]] = field(default_factory=dict)
+    limits: list[str] = field(default_factory=list)
+    cpu_s: float = 0.0
+
+    def best(self, level: str) -> Candidate | None:
+        """The candidate of least cost on ``level`` that stands."""
+        ok = [c for c in self.candidates if c.level == level and math.isfinite(c.cost)]
+        return min(ok, key=lambda c: c.cost) if ok else None
+
+
+def _design_at(base: Design, names: tuple[str, ...], y: Array, fixed: dict[str, float]) -> Design:
+    """``base`` with the knobs ``names`` set to ``y`` (h_c as its fraction)."""
+    v = dict(fixed)
+    v.update(dict(zip(names, (float(a) for a in y), strict=True)))
+    half = base.frame.radius * math.cos(math.radians(v["alpha"]))
+    frame = base.frame.with_changes(alpha=v["alpha"], beta=v["beta"], h_c=v["h_c"] * half)
+    return base.with_changes(frame=frame)
+
+
+def knob_values(design: Design) -> dict[str, float]:
+    """The knobs of ``design`` (h_c as a fraction of R cos(alpha))."""
+    f = design.frame
+    half = f.radius * math.cos(math.radians(f.alpha))
+    return {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c / half}
+
+
+class _Problem:
+    """The residual of a candidate and the bookkeeping of one search."""
+
+    def __init__(self, target: Target, evaluator: Evaluator, found: Search, say: Say) -> None:
+        self.target, self.evaluator, self.found, self.say = target, evaluator, found, say
+        self.samples: Array | None = None
+        self.weights: Array | None = None
+        self.size_r = 0
+        self.penalty = 1.0
+        self.cache: dict[tuple[str, tuple[float, ...]], Array] = {}
+        self.by_key: dict[tuple[str, tuple[float, ...]], Candidate] = {}
+        self.start = time.monotonic()
+        self.planned = 0
+
+    def residual(self, s: Standing | str) -> tuple[Array | None, float | None, float | None]:
+        if isinstance(s, str) or not s.stands or s.positions is None:
+            return None, None, None
+        t = self.target
+        if t.kind == "size":
+            got = {"height": s.height, "span": s.span, "depth": s.depth}
+            assert all(v is not None for v in got.values())  # it stands
+            miss = [100.0 * (float(got[k]) - v) / v for k, v in t.sizes().items()]  # type: ignore[arg-type]
+            return np.array(miss), None, None
+        if self.samples is None:
+            self.samples = s.flat
+            self.weights = node_weights(s.flat, s.faces)
+        assert self.weights is not None
+        m = standing_measures(t.form, self.samples, self.weights, s)
+        return m.residual, m.max_deviation, m.rms_deviation
+
+    def evaluate(self, designs: list[Design], level: str) -> list[Array]:
+        """Simulate ``designs`` side by side; their residuals (penalised when
+        one does not stand)."""
+        out = []
+        for d, s in zip(designs, self.evaluator.map(designs, level), strict=True):
+            r, mx, rms = self.residual(s)
+            if r is not None:
+                self.size_r = len(r)
+                self.penalty = max(self.penalty, 10.0 * float(np.max(np.abs(r))))
+            cost = math.inf if r is None else 0.5 * float(r @ r)
+            if not isinstance(s, str):
+                self.found.cpu_s += s.cpu_s
+            knobs = {"alpha": d.frame.alpha, "beta": d.frame.beta, "h_c": d.frame.h_c}
+            self.found.candidates.append(Candidate(knobs, level, s, cost, mx, rms))
+            out.append(np.full(self.size_r, self.penalty) if r is None else r)
+        self.report(level)
+        return out
+
+    def report(self, level: str) -> None:
+        n = len(self.found.candidates)
+        best = self.found.best(level)
+        what = "" if best is None else f", best on {level} {_best_text(self.target, best)}"
+        elapsed = time.monotonic() - self.start
+        left = max(0, self.planned - n)
+        eta = f"; at most {left} more, ETA {_duration(elapsed / n * left)}" if left else ""
+        self.say(f"{n} simulations ({level}{what}){eta}")
+
+
+def _best_text(target: Target, c: Candidate) -> str:
+    s = c.standing
+    assert not isinstance(s, str)
+    if target.kind == "size":
+        return f"height {s.height:.5g}, span {s.span:.5g}"
+    return f"max deviation {c.max_deviation:.4g}, rms {c.rms_deviation:.4g}"
+
+
+def _duration(seconds: float) -> str:
+    s = int(round(seconds))
+    return f"{s} s" if s < 60 else f"{s // 60} min {s % 60} s"
+
+
+def search(
+    start: Design,
+    target: Target,
+    evaluator: Evaluator,
+    say: Say,
+    *,
+    coarse: str = "coarse",
+    fine: str = "normal",
+) -> Search:
+    """Search the knobs from ``start`` (see the module docstring).
+
+    Args:
+        start: the first candidate (the target design, or the size's fit).
+        target: what the standing steel should match.
+        evaluator: where the simulations run.
+        say: one progress line at a time (stderr).
+        coarse, fine: the mesh levels of the two stages.
+    """
+    from scipy.optimize import least_squares
+
+    found = Search()
+    names = ("alpha", "beta", "h_c")
+    found.knobs = names
+    fixed = knob_values(start)
+    spec = {k[0]: k for k in KNOBS}
+    lower = np.array([spec[n][3] for n in names])
+    upper = np.array([spec[n][4] for n in names])
+    steps = np.array([spec[n][2] for n in names])
+    problem = _Problem(target, evaluator, found, say)
+    problem.planned = (COARSE_STEPS + 1) * (len(names) + 1) + NORMAL_STEPS
+    y0 = np.clip(np.array([fixed[n] for n in names]), lower, upper)
+    jac_kept: dict[str, Array] = {}
+
+    def fun_at(level: str) -> Callable[[Array], Array]:
+        def fun(y: Array) -> Array:
+            key = (level, _key(y))
+            if key not in problem.cache:
+                (r,) = problem.evaluate([_design_at(start, names, y, fixed)], level)
+                problem.cache[key] = r
+                problem.by_key[key] = found.candidates[-1]
+            return problem.cache[key]
+
+        return fun
+
+    def coarse_jac(y: Array) -> Array:
+        r0 = fun_at(coarse)(y)
+        ys = []
+        for i in range(len(y)):
+            step = steps[i] if y[i] + steps[i] <= upper[i] else -steps[i]
+            yi = y.copy()
+            yi[i] += step
+            ys.append(yi)
+        rs = problem.evaluate([_design_at(start, names, yi, fixed) for yi in ys], coarse)
+        jac = np.column_stack([(r - r0) / (yi - y).sum() for r, yi in zip(rs, ys, strict=True)])
+        jac_kept["J"] = jac
+        base = problem.by_key[(coarse, _key(y))]
+        _sensitivity(found, names, base, found.candidates[-len(ys) :])
+        return jac
+
+    fun_at(coarse)(y0)
+    if problem.size_r == 0 and fine != coarse:
+        say(f"the {coarse} mesh finds the start not standing: the search runs on the {fine} mesh")
+        coarse = fine
+        fun_at(coarse)(y0)
+    if problem.size_r == 0:
+        why = found.candidates[-1].standing
+        why = why if isinstance(why, str) else why.reason
+        raise InvalidParameterError(
+            "target", f"the fold as given does not stand on the {fine} mesh ({why}): there is "
+            "no standing steel to compensate from"
+        )  # fmt: skip
+    x_scale = steps / steps[0]
+    if target.kind == "size":
+        done = {"ftol": 1e-4, "xtol": 1e-4, "gtol": 1e-8}
+    else:
+        done = {"ftol": 1e-3, "xtol": 1e-3, "gtol": 1e-8}
+    fit = least_squares(
+        fun_at(coarse), y0, jac=coarse_jac, bounds=(lower, upper), x_scale=x_scale,
+        max_nfev=COARSE_STEPS, **done,
+    )  # fmt: skip
+    y1 = fit.x
+    if fine != coarse:
+        say(f"to the {fine} mesh from alpha {y1[0]:.4g}, beta {y1[1]:.4g} deg")
+        if "J" not in jac_kept:
+            coarse_jac(y1)
+        jac = jac_kept["J"]
+        fit = least_squares(
+            fun_at(fine), y1, jac=lambda y: jac, bounds=(lower, upper), x_scale=x_scale,
+            max_nfev=NORMAL_STEPS, **done,
+        )  # fmt: skip
+    if "J" in jac_kept:
+        sv = np.linalg.svd(jac_kept["J"] / x_scale[None, :], compute_uv=False)
+        rel = ", ".join(f"{v / sv[0]:.2g}" for v in sv)
+        found.limits.append(
+            f"the {len(names)} knobs ({', '.join(names)}) move the residual along directions of "
+            f"relative strength {rel} (the last coarse Jacobian's singular values)"
+        )
+    found.limits.append(f"the {fine} least squares stopped: {fit.message.rstrip('.')}")
+    for i, n in enumerate(names):
+        v = fit.x[i]
+        if v <= lower[i] + 1e-6 or v >= upper[i] - 1e-6:
+            found.limits.append(f"{n} at its bound {v:.4g} {spec[n][1]}")
+    if not any(c.level == fine and math.isfinite(c.cost) for c in found.candidates):
+        found.limits.append(f"no candidate stands on the {fine} mesh")
+    return found
+
+
+def _key(y: Array) -> tuple[float, ...]:
+    return tuple(float(v) for v in np.round(y, 12))
+
+
+def _sensitivity(
+    found: Search, names: tuple[str, ...], base: Candidate, moved: list[Candidate]
+) -> None:
+    """Per knob, the change of the standing height, span and rms deviation per
+    unit of the knob (deg; h_c in the design's unit), from a Jacobian's
+    simulations: ``base`` and one ``moved`` candidate per knob."""
+    if isinstance(base.standing, str) or not math.isfinite(base.cost):
+        return
+    out: dict[str, dict[str, float]] = {}
+    for n, c in zip(names, moved, strict=True):
+        unit = c.knobs[n] - base.knobs[n]
+        if isinstance(c.standing, str) or not math.isfinite(c.cost) or unit == 0:
+            continue
+        assert c.standing.height is not None and base.standing.height is not None
+        assert c.standing.span is not None and base.standing.span is not None
+        rec = {
+            "height": (c.standing.height - base.standing.height) / unit,
+            "span": (c.standing.span - base.standing.span) / unit,
+        }
+        if c.rms_deviation is not None and base.rms_deviation is not None:
+            rec["rms_deviation"] = (c.rms_deviation - base.rms_deviation) / unit
+        out[n] = rec
+    found.sensitivity = out

@@ -1,0 +1,243 @@
+"""The whole compensation: the search, then the answer checked on the normal
+mesh with its convergence check, beside the uncompensated fold.
+
+:func:`compensate` returns a :class:`Compensation`: before and after (the
+standing form's max and rms distance from the target, height, span, depth,
+tipping margin), the compensated design, the crease angles to fold to and
+after springback, the knobs' sensitivities, how many simulations it took and,
+when the target is not met, what limits it. Lengths are in the design's unit,
+angles in degrees.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from onefold_cad.compensate.evaluate import (
+    Standing,
+    crease_springback,
+    node_weights,
+    standing_measures,
+)
+from onefold_cad.compensate.optimise import Search, search
+from onefold_cad.compensate.parallel import Evaluator
+from onefold_cad.compensate.target import Target
+from onefold_cad.design import Design, fold_design, rest_once
+from onefold_cad.errors import ConvergenceError
+from onefold_cad.geometry.numeric import Array
+
+__all__ = ["SIZE_TOLERANCE", "Compensation", "FormReport", "compensate"]
+
+#: Height and span (and a size target) are met within this (relative).
+SIZE_TOLERANCE = 0.01
+#: A design target is met when the largest deviation shrinks at least this much.
+SHRINK = 5.0
+
+
+@dataclass(frozen=True)
+class FormReport:
+    """One standing form against the target.
+
+    Attributes:
+        stands: it stands (positive tipping margin).
+        max_deviation, rms_deviation: its distance from the target's form
+            (design unit), after the horizontal alignment.
+        height, span, depth: standing (design unit).
+        tipping_margin_deg: deg.
+        convergence: the largest deviation's relative change on the finer mesh.
+        deviation: ``(n,)`` per node (for the picture).
+        aligned: ``(n, 3)`` the aligned standing nodes (for the files).
+    """
+
+    stands: bool
+    max_deviation: float | None
+    rms_deviation: float | None
+    height: float | None
+    span: float | None
+    depth: float | None
+    tipping_margin_deg: float | None
+    convergence: float | None
+    deviation: Array | None = field(default=None, repr=False)
+    aligned: Array | None = field(default=None, repr=False)
+
+    def to_data(self) -> dict[str, Any]:
+        """The report's form section (no arrays)."""
+        return {
+            "stands": self.stands,
+            "max_deviation": self.max_deviation,
+            "rms_deviation": self.rms_deviation,
+            "height": self.height,
+            "span": self.span,
+            "depth": self.depth,
+            "tipping_margin_deg": self.tipping_margin_deg,
+            "convergence": self.convergence,
+        }
+
+
+@dataclass(frozen=True)
+class Compensation:
+    """A compensation's answer (see the module docstring).
+
+    Attributes:
+        target: what the steel should match.
+        designed: the target's own designed form as it rests: height, span, depth.
+        start, compensated: the fold formed without and with compensation.
+        before, after: their standing steel against the target (normal mesh).
+        before_sim, after_sim: their simulations (mesh, nodes, faces).
+        crease: per crease half: name, bend, fold_to_deg (the compensated
+            fold's angle) and after_springback_deg (as the steel stands).
+        found: the search (candidates, knobs, sensitivity, limits).
+        reached: the target is met; ``verdict``: one sentence.
+    """
+
+    target: Target
+    designed: dict[str, float]
+    start: Design
+    compensated: Design
+    before: FormReport
+    after: FormReport
+    before_sim: Standing
+    after_sim: Standing
+    crease: tuple[dict[str, Any], ...]
+    found: Search
+    reached: bool
+    verdict: str
+
+    @property
+    def simulations(self) -> int:
+        """Every simulation run: the search's and the two checks (each on two meshes)."""
+        return len(self.found.candidates) + 2
+
+    @property
+    def cpu_s(self) -> float:
+        """CPU seconds of every simulation."""
+        return self.found.cpu_s + self.before_sim.cpu_s + self.after_sim.cpu_s
+
+    def to_data(self) -> dict[str, Any]:
+        """The report's ``compensation`` section."""
+        f0, f1 = self.start.frame, self.compensated.frame
+        u = self.compensated.units.value
+        return {
+            "units": u,
+            "target": {"kind": self.target.kind, **self.target.sizes()},
+            "designed": self.designed,
+            "before": self.before.to_data(),
+            "after": self.after.to_data(),
+            "start": {"alpha": f0.alpha, "beta": f0.beta, "h_c": f0.h_c},
+            "compensated": {"alpha": f1.alpha, "beta": f1.beta, "h_c": f1.h_c},
+            "knobs": list(self.found.knobs),
+            "sensitivity": self.found.sensitivity,
+            "crease": [dict(c) for c in self.crease],
+            "simulations": self.simulations,
+            "cpu_s": self.cpu_s,
+            "reached": self.reached,
+            "verdict": self.verdict,
+            "limits": list(self.found.limits),
+        }
+
+
+def _form(target: Target, samples: Array, weights: Array, s: Standing) -> FormReport:
+    if s.positions is None or not s.stands:
+        return FormReport(False, None, None, s.height, s.span, s.depth, s.tipping_margin_deg,
+                          s.convergence)  # fmt: skip
+    m = standing_measures(target.form, samples, weights, s)
+    return FormReport(
+        True, m.max_deviation, m.rms_deviation, s.height, s.span, s.depth,
+        s.tipping_margin_deg, s.convergence, m.deviation, m.aligned,
+    )  # fmt: skip
+
+
+def _miss(got: float | None, want: float) -> float:
+    return math.inf if got is None else abs(got - want) / want
+
+
+def _verdict(target: Target, designed: dict[str, float], before: FormReport,
+             after: FormReport, found: Search) -> tuple[bool, str]:  # fmt: skip
+    u = target.form.units.value
+    if not after.stands:
+        return False, "the compensated fold does not stand"
+    if target.kind == "size":
+        misses = {k: _miss(getattr(after, k), v) for k, v in target.sizes().items()}
+        ok = all(m <= SIZE_TOLERANCE for m in misses.values())
+        text = ", ".join(f"{k} {getattr(after, k):.5g} {u} ({100 * m:.2g} % off)"
+                         for k, m in misses.items())  # fmt: skip
+        return ok, ("met: " if ok else "not met: ") + text
+    sizes = {k: _miss(getattr(after, k), designed[k]) for k in ("height", "span")}
+    assert after.max_deviation is not None
+    shrink = math.inf if not before.max_deviation else before.max_deviation / after.max_deviation
+    ok = shrink >= SHRINK and all(m <= SIZE_TOLERANCE for m in sizes.values())
+    text = (
+        f"max deviation {after.max_deviation:.4g} {u}, {shrink:.3g} times smaller than "
+        f"uncompensated (needed {SHRINK:g}); height {100 * sizes['height']:.2g} % and span "
+        f"{100 * sizes['span']:.2g} % off the design's"
+    )
+    return ok, ("met: " if ok else "not met: ") + text
+
+
+def compensate(
+    design: Design,
+    target: Target,
+    evaluator: Evaluator,
+    say: Callable[[str], None],
+    *,
+    coarse: str = "coarse",
+    fine: str = "normal",
+) -> Compensation:
+    """Compensate ``design`` for ``target``: the search, then the best fold and
+    the uncompensated one simulated on ``fine`` with the convergence check,
+    side by side.
+
+    Raises:
+        ConvergenceError: neither the start nor any candidate stands on ``fine``.
+    """
+    start = target.form if target.kind == "size" else design
+    found = search(start, target, evaluator, say, coarse=coarse, fine=fine)
+    best = found.best(fine) or found.best(coarse)
+    if best is None:
+        raise ConvergenceError(
+            f"compensate: no candidate fold stands ({'; '.join(found.limits) or 'every one fell'})",
+            iterations=len(found.candidates),
+            residual=math.nan,
+        )
+    k = best.knobs
+    frame = start.frame.with_changes(alpha=k["alpha"], beta=k["beta"], h_c=k["h_c"])
+    compensated = start.with_changes(frame=frame, name=f"{design.name}-compensated")
+    say(f"checking the compensated fold and the uncompensated one on the {fine} mesh")
+    before_sim, after_sim = evaluator.map([start, compensated], fine, check=True)
+    for s in (before_sim, after_sim):
+        if isinstance(s, str):
+            raise ConvergenceError(
+                f"compensate: the check on the {fine} mesh failed: {s}",
+                iterations=len(found.candidates),
+                residual=math.nan,
+            )
+    assert not isinstance(before_sim, str) and not isinstance(after_sim, str)
+    samples = before_sim.flat
+    weights = node_weights(before_sim.flat, before_sim.faces)
+    before = _form(target, samples, weights, before_sim)
+    after = _form(target, samples, weights, after_sim)
+    rest = rest_once(fold_design(target.form))
+    designed = {"height": rest.height, "span": rest.width, "depth": rest.depth}
+    reached, verdict = _verdict(target, designed, before, after, found)
+    if not reached and found.limits:
+        verdict += "; within the family of folds: " + "; ".join(found.limits)
+    back = crease_springback(compensated, after_sim)
+    crease = tuple(
+        {
+            "half": c.name,
+            "bend": c.bend,
+            "fold_to_deg": c.fold_angle_deg,
+            "after_springback_deg": c.fold_angle_deg
+            + back.get("+x" if c.name == "plus_x" else "-x", np.nan),
+        }
+        for c in fold_design(compensated).crease
+    )
+    return Compensation(
+        target, designed, start, compensated, before, after, before_sim, after_sim, crease,
+        found, reached, verdict,
+    )  # fmt: skip

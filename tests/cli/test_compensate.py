@@ -1,0 +1,234 @@
+"""``onefold compensate`` as a user runs it, on a stand-in steel whose answer is
+known (tests/compensate/fake_steel.py: no simulation runs, the tests stay
+fast): the files of ``-o`` (the compensated template every command takes, the
+build files with the springback columns, the standing form, the picture),
+bad input refused in one line before any simulation, and an interrupted run
+that leaves nothing behind."""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+import trimesh
+
+from onefold_cad.compensate import parallel
+from onefold_cad.templates import find_template, load_template
+from tests.compensate.fake_steel import SPRING, fake_standing
+
+NAME = "broken-vault"
+
+
+def _never(*args: object, **kwargs: object) -> None:
+    raise AssertionError("a simulation ran before the input was checked")
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--height", "-5", "--span", "100"], "--height: must be a finite length > 0, got -5"),
+        (["--height", "500", "--span", "100"], "target: height 500, span 100 in is out of reach"),
+        (["--span", "100"], "--height: a size target needs both --height and --span"),
+        (["--target", "design", "--height", "50", "--span", "100"], "--target: design takes no"),
+        (["--youngs-modulus", "nan"], "--youngs-modulus"),
+        (["-j", "0"], "--jobs: must be >= 1, got 0"),
+    ],
+)
+def test_bad_input_exits_2_in_one_line_before_any_simulation(
+    cli, monkeypatch, tmp_path, args, words
+) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", _never)
+    rc, out, err = cli("compensate", NAME, "-o", str(tmp_path / "out"), *args)
+    assert rc == 2
+    assert err.count("\n") == 1 and err.startswith("onefold: error: ")
+    assert words in err
+    assert out == "" and not (tmp_path / "out").exists()
+
+
+def test_a_design_without_steel_data_is_refused_naming_the_value(cli, monkeypatch) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", _never)
+    rc, _, err = cli("compensate", "paper-square")
+    assert rc == 2 and err.count("\n") == 1
+    assert "youngs_modulus" in err and "--youngs-modulus" in err
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    from onefold_cad.cli.main import main
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(parallel, "simulate_standing", fake_standing)
+    out = tmp_path_factory.mktemp("comp") / "out"
+    try:
+        import contextlib
+        import io
+
+        text = io.StringIO()
+        with contextlib.redirect_stdout(text):
+            rc = main(["compensate", NAME, "-j", "1", "-q", "-o", str(out), "--json"])
+    finally:
+        mp.undo()
+    assert rc == 0
+    return out, json.loads(text.getvalue())
+
+
+def test_o_writes_the_compensated_template_and_its_files(written) -> None:
+    out, report = written
+    stem = f"{NAME}-compensated"
+    names = {p.name for p in out.iterdir()}
+    own = {f"{stem}.toml", f"{stem}-standing.glb", f"{stem}-standing.step",
+           f"{NAME}-compensation.png", f"{NAME}-compensation.json"}  # fmt: skip
+    assert own <= names
+    assert {f"{stem}.step", f"{stem}.dxf", f"{stem}-bends.csv"} <= names
+    # the template is what every other command takes: the fold formed SPRING more
+    design = load_template(out / f"{stem}.toml")
+    base = load_template(find_template(NAME))
+    assert design.frame.alpha == pytest.approx(base.frame.alpha + SPRING[0], abs=0.05)
+    assert design.frame.beta == pytest.approx(base.frame.beta + SPRING[1], abs=0.05)
+    assert json.loads((out / f"{NAME}-compensation.json").read_text()) == report
+    c = report["compensation"]
+    assert c["reached"] and c["simulations"] >= 3
+    assert c["compensated"]["alpha"] == design.frame.alpha
+
+
+def test_the_bend_sheet_gives_the_angle_to_fold_to_and_after_springback(written) -> None:
+    # the stand-in steel stands as the template's own fold: after springback the
+    # crease is at the template's angle, and it is formed to the compensated one's
+    from onefold_cad.design import fold_design
+
+    out, report = written
+    rows = list(csv.DictReader((out / f"{NAME}-compensated-bends.csv").open()))
+    assert len(rows) == 2
+    comp = fold_design(load_template(out / f"{NAME}-compensated.toml")).crease
+    base = fold_design(load_template(find_template(NAME))).crease
+    fold_to = sorted(float(r["fold_to_deg"]) for r in rows)
+    after = sorted(float(r["after_springback_deg"]) for r in rows)
+    assert fold_to == pytest.approx(sorted(c.fold_angle_deg for c in comp), abs=1e-4)
+    assert after == pytest.approx(sorted(c.fold_angle_deg for c in base), abs=0.5)
+    assert min(fold_to) > max(after)  # formed past the angle it springs back to
+
+
+def test_the_dxf_notes_give_the_angle_to_fold_to_and_after_springback(written) -> None:
+    import ezdxf
+
+    from onefold_cad.design import fold_design
+
+    out, report = written
+    doc = ezdxf.readfile(out / f"{NAME}-compensated.dxf")
+    assert not doc.audit().has_errors
+    notes = [e.dxf.text for e in doc.modelspace().query("TEXT") if e.dxf.layer == "NOTES"]
+    comp = fold_design(load_template(out / f"{NAME}-compensated.toml")).crease
+    for c, r in zip(comp, report["compensation"]["crease"], strict=True):
+        line = next(n for n in notes if n.startswith(f"fold half {c.name} to "))
+        assert f"to {c.fold_angle_deg:.2f} deg" in line
+        assert f"stands at {r['after_springback_deg']:.2f} deg" in line
+
+
+def test_the_standing_form_is_written_in_metres_on_the_target(written) -> None:
+    # the stand-in steel of the compensated fold is the template's own form: the
+    # GLB's vertices (metres, y up), brought back to inches and z up, lie on it
+    import numpy as np
+
+    from onefold_cad.design import fold_design, rest_once
+    from onefold_cad.mechanics.deviation import surface_distance
+
+    out, report = written
+    scene = trimesh.load(out / f"{NAME}-compensated-standing.glb")
+    v = next(iter(scene.geometry.values())).vertices / 0.0254
+    pts = np.column_stack([v[:, 0], -v[:, 2], v[:, 1]])
+    folded = fold_design(load_template(find_template(NAME)))
+    rest = rest_once(folded)
+    d = surface_distance(folded, (pts - rest.translation) @ rest.rotation)
+    assert d.max() < 1e-3  # in
+    assert np.ptp(pts[:, 2]) == pytest.approx(report["compensation"]["after"]["height"], rel=0.01)
+
+
+def test_an_interrupted_run_leaves_nothing(cli, monkeypatch, tmp_path) -> None:
+    from onefold_cad.export import standing_form
+
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+
+    def interrupted(*args: object, **kwargs: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(standing_form, "write_form_step", interrupted)
+    out = tmp_path / "out"
+    rc, _, _ = cli("compensate", NAME, "-j", "1", "-q", "-o", str(out))
+    assert rc == 130
+    assert not out.exists() or not any(out.iterdir())
+
+
+def _descendants(pid: int) -> set[int]:
+    """The processes below ``pid`` (Linux /proc)."""
+    import os
+
+    parent: dict[int, int] = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as fh:
+                    parent[int(entry)] = int(fh.read().rsplit(")", 1)[1].split()[1])
+            except OSError:
+                continue
+    found, todo = set(), [pid]
+    while todo:
+        p = todo.pop()
+        kids = {c for c, pp in parent.items() if pp == p}
+        found |= kids
+        todo += list(kids)
+    return found
+
+
+def _running(pid: int) -> bool:
+    """``pid`` exists and is no zombie."""
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def test_a_killed_run_leaves_no_file_and_no_worker(tmp_path) -> None:
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "onefold_cad", "compensate", NAME, "-j", "2", "-o", str(out)],
+        stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        line = proc.stderr.readline()  # the first simulation is done: the pool works
+        assert "simulations" in line, line
+        workers = _descendants(proc.pid)
+        assert workers
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert not out.exists() or [p.name for p in out.iterdir() if not p.name.startswith(".")] == []
+    for _ in range(100):  # each worker sees its parent gone within half a second
+        alive = [p for p in workers if _running(p)]
+        if not alive:
+            break
+        time.sleep(0.1)
+    assert alive == []
+
+
+def test_the_text_report_says_before_after_the_fold_and_the_creases(cli, monkeypatch) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    rc, out, err = cli("compensate", NAME, "-j", "1")
+    assert rc == 0, err
+    lines = out.splitlines()
+    assert lines[0].startswith(f"{NAME}  compensated for springback and weight: target its own")
+    assert lines[1].lstrip().startswith("uncompensated  deviation max")
+    assert lines[2].lstrip().startswith("compensated    deviation max")
+    base = load_template(find_template(NAME)).frame
+    assert f"(was {base.alpha:.5g})" in lines[3] and lines[3].lstrip().startswith("fold to")
+    assert sum(line.lstrip().startswith("crease ") for line in lines) == 2
+    assert "ETA" in err  # progress on stderr
+    assert lines[-1].lstrip().startswith("simulations") and "met:" in lines[-1]

@@ -1,0 +1,112 @@
+"""The compensation loop against a stand-in steel whose answer is known
+(tests/compensate/fake_steel.py: the steel opens alpha and beta by SPRING)."""
+
+from __future__ import annotations
+
+import pytest
+
+from onefold_cad.compensate import parallel
+from onefold_cad.compensate.parallel import Evaluator
+from onefold_cad.compensate.run import compensate
+from onefold_cad.compensate.target import Target, make_target
+from onefold_cad.templates import find_template, load_template
+from tests.compensate.fake_steel import SPRING, fake_standing
+
+
+@pytest.fixture
+def fake(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+
+
+def test_design_target_forms_the_fold_more_by_the_springback(fake: None) -> None:
+    design = load_template(find_template("broken-vault"))
+    lines: list[str] = []
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lines.append)
+    f, f0 = result.compensated.frame, design.frame
+    # the fake steel opens the fold by SPRING: the answer is the design plus SPRING
+    assert f.alpha == pytest.approx(f0.alpha + SPRING[0], abs=0.05)
+    assert f.beta == pytest.approx(f0.beta + SPRING[1], abs=0.05)
+    assert result.reached
+    assert result.after.max_deviation < 0.01 * result.before.max_deviation
+    assert any("ETA" in line for line in lines)
+    assert result.compensated.name == "broken-vault-compensated"
+    # the crease is formed to the compensated fold's angle
+    assert {c["half"] for c in result.crease} == {"plus_x", "minus_x"}
+    data = result.to_data()
+    assert data["simulations"] == len(result.found.candidates) + 2
+    assert set(data["sensitivity"]) == {"alpha", "beta", "h_c"}
+    # opening alpha lowers the fake steel (a flatter vault): height per deg > 0
+    assert data["sensitivity"]["alpha"]["height"] > 0
+
+
+def test_size_target_is_met_by_the_steel(fake: None) -> None:
+    design = load_template(find_template("broken-vault"))
+    f0 = design.frame
+    # the fake steel of the fold (alpha + 1, beta + 1) has this size: the target
+    aim = design.with_changes(frame=f0.with_changes(alpha=f0.alpha + 1.0, beta=f0.beta + 1.0))
+    steel = fake_standing(aim, "coarse")
+    # the loop alone (make_target's reach check is tests/cli/test_compensate.py's)
+    target = Target("size", design, height=steel.height, span=steel.span)
+    with Evaluator(1) as ev:
+        result = compensate(design, target, ev, lambda s: None)
+    assert result.reached, result.verdict
+    assert result.after.height == pytest.approx(steel.height, rel=0.01)
+    assert result.after.span == pytest.approx(steel.span, rel=0.01)
+    assert result.found.knobs == ("alpha", "beta", "h_c")
+
+
+def test_a_target_out_of_the_family_s_reach_says_what_limits_it(monkeypatch) -> None:
+    # a steel lifted off its feet by 2 in cannot be brought back by any fold
+    # (the measure allows a turn and shift on the ground, no lift)
+    from dataclasses import replace
+
+    def lifted(design, level, check=False):
+        s = fake_standing(design, level, check)
+        return replace(s, positions=s.positions + [0.0, 0.0, 2.0])
+
+    monkeypatch.setattr(parallel, "simulate_standing", lifted)
+    design = load_template(find_template("broken-vault"))
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lambda s: None)
+    assert not result.reached
+    assert result.verdict.startswith("not met: ")
+    assert "within the family of folds" in result.verdict
+    assert "singular values" in result.verdict and "least squares stopped" in result.verdict
+    # no fold removes the lift (a fold can only tilt the surface under it)
+    assert 1.5 < result.after.max_deviation < 3.0
+
+
+def _not_standing_on(levels: tuple[str, ...]):
+    from dataclasses import replace
+
+    def steel(design, level, check=False):
+        s = fake_standing(design, level, check)
+        if level in levels:
+            return replace(s, stands=False, reason="no equilibrium", positions=None)
+        return s
+
+    return steel
+
+
+def test_a_start_that_does_not_stand_on_the_coarse_mesh_is_searched_on_the_normal(
+    monkeypatch,
+) -> None:
+    # broken-vault's steel finds no standing equilibrium on the coarse mesh (only)
+    monkeypatch.setattr(parallel, "simulate_standing", _not_standing_on(("coarse",)))
+    design = load_template(find_template("broken-vault"))
+    lines: list[str] = []
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lines.append)
+    assert result.reached
+    assert result.compensated.frame.alpha == pytest.approx(design.frame.alpha + SPRING[0], abs=0.05)
+    assert any("the search runs on the normal mesh" in line for line in lines)
+
+
+def test_a_start_that_stands_on_no_mesh_is_refused_in_one_line(monkeypatch) -> None:
+    from onefold_cad.errors import InvalidParameterError
+
+    monkeypatch.setattr(parallel, "simulate_standing", _not_standing_on(("coarse", "normal")))
+    design = load_template(find_template("broken-vault"))
+    with Evaluator(1) as ev, pytest.raises(InvalidParameterError, match="does not stand on the"):
+        compensate(design, make_target(design, "design"), ev, lambda s: None)
