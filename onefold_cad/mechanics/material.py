@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from onefold_cad.errors import InvalidParameterError
 
-__all__ = ["ShellMaterial", "strain_form", "invert_metric"]
+__all__ = ["ShellMaterial", "check_hardening", "invert_metric", "strain_form"]
 
 F = NDArray[np.float64]
 STANDARD_GRAVITY = 9.80665  # m/s^2
@@ -57,10 +57,7 @@ class ShellMaterial:
             raise InvalidParameterError("density", f"must be finite and >= 0, got {self.density!r}")
         if not self.yield_stress > 0:
             raise InvalidParameterError("yield_stress", f"must be > 0, got {self.yield_stress!r}")
-        for name in ("hardening_iso", "hardening_kin"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0):
-                raise InvalidParameterError(name, f"must be finite and >= 0 Pa, got {value!r}")
+        check_hardening(self.hardening_iso, self.hardening_kin)
 
     def with_changes(self, **changes: float) -> ShellMaterial:
         """A copy with some fields replaced."""
@@ -100,6 +97,17 @@ class ShellMaterial:
     def areal_weight(self) -> float:
         """q = rho g t (N/m^2) under standard gravity."""
         return self.density * STANDARD_GRAVITY * self.thickness
+
+
+def check_hardening(hardening_iso: float, hardening_kin: float) -> None:
+    """Refuse a hardening modulus (Pa) that is negative or not finite, naming it.
+
+    Raises:
+        InvalidParameterError: ('hardening_iso' or 'hardening_kin').
+    """
+    for name, value in (("hardening_iso", hardening_iso), ("hardening_kin", hardening_kin)):
+        if not (math.isfinite(value) and value >= 0):
+            raise InvalidParameterError(name, f"must be finite and >= 0 Pa, got {value!r}")
 
 
 def invert_metric(abar: F) -> F:

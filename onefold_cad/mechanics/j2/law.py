@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
+from onefold_cad.mechanics.material import check_hardening
 
 __all__ = ["P", "J2Law", "J2Response", "J2State", "elastic_matrix", "update", "von_mises"]
 
@@ -81,10 +82,7 @@ class J2Law:
             raise InvalidParameterError("poisson", f"must lie in (-1, 0.5), got {self.poisson!r}")
         if not self.yield_stress > 0:
             raise InvalidParameterError("yield_stress", f"must be > 0, got {self.yield_stress!r}")
-        for name in ("hardening_iso", "hardening_kin"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0):
-                raise InvalidParameterError(name, f"must be finite and >= 0 Pa, got {value!r}")
+        check_hardening(self.hardening_iso, self.hardening_kin)
 
     @property
     def plane_modulus(self) -> float:
