@@ -8,13 +8,11 @@ along the resting frame's x axis; the footprint depth along its y axis is an
 optional third target), within a relative tolerance (0.5 %), optionally with
 a minimum tipping margin.
 
-How: a coarse grid of alpha, beta (and h_c) is measured on the paper's fan
-of 36 triangles (its corners are the ruling ends: a few milliseconds a
-design). The best grid points seed ``scipy.optimize.least_squares`` on a
-fan of 90 triangles (or the template's own fan), and the result is polished
-on the body the STEP holds: measure the body, shift the fan's targets by the
-difference, solve on the fan again (the body costs a tenth of a second, the
-fan a few milliseconds). With two targets the template's h_c is kept first;
+How: a coarse grid of alpha, beta (and h_c) on the paper's fan of 36
+triangles (milliseconds a design) seeds ``scipy.optimize.least_squares`` on
+a fan of 90 (or the template's own), and the result is polished on the body
+the STEP holds (a tenth of a second): measure it, shift the fan's targets by
+the difference, solve on the fan again. With two targets the template's h_c is kept first;
 h_c is set free when that fails or a depth is given. The resting form jumps
 where it starts to rest on other contacts, so several seeds are tried. When
 none reaches the targets, the error gives the ranges of height, span (and
@@ -195,13 +193,12 @@ _FAR = 1e6
 
 
 def _relative_miss(got: float, want: float) -> float:
-    """(got - want) / want, in [-:data:`_FAR`, :data:`_FAR`] (Python floats:
-    the quotient may overflow to inf, then clipped, without a numpy warning)."""
+    """(got - want) / want clipped to [-_FAR, _FAR] (floats: no numpy overflow warning)."""
     return max(-_FAR, min(_FAR, (float(got) - want) / want))
 
 
 def _meets(rest: RestingPlacement | None, targets: dict[str, float], tol: float) -> bool:
-    if rest is None:
+    if rest is None:  # no resting form: no target met
         return False
     got = {"height": rest.height, "span": rest.width, "depth": rest.depth}
     ok = all(abs(got[k] - v) <= tol * v for k, v in targets.items() if k in got)

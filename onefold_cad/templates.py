@@ -98,9 +98,9 @@ _MATERIAL: dict[str, str] = {
     "youngs_modulus": _NUMBER,
     "poisson": _NUMBER,
     "yield_stress": _NUMBER,
-    "hardening_modulus": _NUMBER,
-    "kinematic_hardening": _NUMBER,
+    **{k: _NUMBER for k in ("hardening_modulus", "kinematic_hardening")},
 }
+_HARDENING = ("hardening_modulus", "kinematic_hardening")
 _SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
 
 
@@ -433,27 +433,14 @@ def design_to_data(design: Design) -> dict[str, Any]:
         "kerf": m.kerf,
         "sheet_surface": m.sheet_surface.value,
     }
-    if m.relief_hole is not None:
-        material["relief_hole"] = m.relief_hole
-    if m.density is not None:
-        material["density"] = m.density
-    for key in (
-        "youngs_modulus", "poisson", "yield_stress", "hardening_modulus", "kinematic_hardening"
-    ):  # fmt: skip
-        if getattr(m, key) is not None:
-            material[key] = getattr(m, key)
+    optional = ("relief_hole", "density", "youngs_modulus", "poisson", "yield_stress", *_HARDENING)
+    material |= {k: getattr(m, k) for k in optional if getattr(m, k) is not None}  # unset: left out
     return {
         "name": design.name,
         "description": design.description,
         "units": design.units.value,
         "model": design.model.value,
-        "frame": {
-            "alpha": f.alpha,
-            "beta": f.beta,
-            "h_c": f.h_c,
-            "radius": f.radius,
-            "divisions": f.divisions,
-        },
+        "frame": {k: getattr(f, k) for k in ("alpha", "beta", "h_c", "radius", "divisions")},
         "sheet": sheet,
         "material": material,
     }

@@ -1,5 +1,5 @@
 """The ``onefold`` command: build, solve, templates, explore, fit, hops,
-sweep, simulate and site (:data:`.commands.COMMANDS`, the one list).
+sweep, simulate, site, compensate and loads (:data:`.commands.COMMANDS`, the one list).
 
 ``onefold_cad.cli.main.main(argv=None) -> int`` is the entry point (``onefold``
 and ``python -m onefold_cad``), so tests can call it directly. Every error of

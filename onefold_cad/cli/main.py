@@ -1,5 +1,5 @@
 """The ``onefold`` command's entry: build, solve, templates, explore, fit,
-hops, sweep, simulate and site (:data:`onefold_cad.cli.commands.COMMANDS`).
+hops, sweep, simulate, site, compensate and loads (:data:`onefold_cad.cli.commands.COMMANDS`).
 
 ``main(argv=None) -> int`` is the entry point (``onefold`` and ``python -m
 onefold_cad``), so tests can call it directly. Every error of the package,

@@ -12,7 +12,9 @@ from OCP.TopAbs import TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Wire
 
+from onefold_cad.errors import ExportError
 from onefold_cad.geometry.numeric import Array
+from onefold_cad.geometry.thick.slab import Slab
 
 __all__ = ["aligned_plane"]
 
@@ -46,3 +48,25 @@ def aligned_plane(plane: gp_Pln, wire: TopoDS_Wire) -> gp_Pln:
     return gp_Pln(
         gp_Ax3(gp_Pnt(*map(float, c)), gp_Dir(*map(float, d)), gp_Dir(*map(float, along)))
     )
+
+
+def cutting_plane(wire: TopoDS_Wire, slab: Slab, tol: float) -> gp_Pln:
+    """The thick sheet's cutting plane (y = 0 or a mitre plane, both sides'
+    coordinates) that holds ``wire``'s vertices within ``tol`` (length).
+
+    Raises:
+        ExportError: no cutting plane holds them (a gap in the solid's faces).
+    """
+    pts = []
+    ex = TopExp_Explorer(wire, TopAbs_VERTEX)
+    while ex.More():
+        q = BRep_Tool.Pnt_s(TopoDS.Vertex(ex.Current()))
+        pts.append((q.X(), q.Y(), q.Z()))
+        ex.Next()
+    p = np.array(pts)
+    apex = slab.sides[0].apex
+    for w, c in slab.planes.values():  # symmetric in y: the -y side's are the same planes
+        origin = apex + c * w
+        if np.max(np.abs((p - origin) @ w)) <= tol:
+            return gp_Pln(gp_Pnt(*map(float, origin)), gp_Dir(*map(float, w)))
+    raise ExportError("the thick sheet's faces leave a gap that is not on a cutting plane")

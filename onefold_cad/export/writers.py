@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from onefold_cad.errors import InvalidParameterError, OneFoldError, not_installed
+from onefold_cad.export.brep.part_numbers import part_numbers
 from onefold_cad.export.build_context import BuildContext
 
 if TYPE_CHECKING:  # the parser reads the registry: no numpy before a writer runs
@@ -201,35 +202,9 @@ def context_report(ctx: BuildContext) -> dict[str, Any]:
         warnings=ctx.warnings,
         compensation=ctx.compensation,
         body=ctx.body,
-        step=_part_numbers(ctx),
+        step=part_numbers(ctx),
         rhino=ctx.sections.get("rhino"),
     )
-
-
-def _part_numbers(ctx: BuildContext) -> dict[str, Any] | None:
-    """The report's ``step`` section when a writer built the part (else None:
-    the report never runs the CAD kernel)."""
-    part = ctx.built_part
-    if part is None:
-        return None
-    volume = getattr(part, "solid_volume", None)
-    blank = None
-    if volume is not None:
-        try:
-            blank = ctx.pattern.area * ctx.design.material.thickness
-        except OneFoldError:  # no flat pattern: the report's warnings say why
-            blank = None
-    return {
-        "body": ctx.body or _default_body(ctx.design),
-        "placement": ctx.placement,
-        "fit_deviation": float(part.fit_deviation),
-        "fit_tolerance": float(part.fit_tolerance),
-        # the solid's volume (design unit^3; null for a shell) and its excess
-        # over the blank's, flat_area x thickness, that the mass weighs: the
-        # mitre at the crease (about +0.1 % on patkau-one-fold)
-        "volume": None if volume is None else float(volume),
-        "volume_over_blank": None if not blank or volume is None else float(volume / blank - 1.0),
-    }
 
 
 register(

@@ -194,11 +194,13 @@ def test_the_report_gives_the_solid_s_volume_against_the_blank_s(tmp_path):
     ctx = context(thickness=2.0)
     write_design(ctx, tmp_path / "1", parse_formats("step,json"))
     rep = json.loads((tmp_path / "1" / "w.json").read_text())
-    volume = measure(bd.import_step(tmp_path / "1" / "w.step"), "volume")
+    # the file read back, integrated to 1e-6 (Gauss-Kronrod to 1e-7 on the
+    # read-back faces did not finish in 5 minutes, measured; 1e-6 takes 0.4 s)
+    volume = measure(bd.import_step(tmp_path / "1" / "w.step"), "volume", tol=1e-6)
     assert rep["step"]["body"] == "solid"
-    assert rep["step"]["volume"] == pytest.approx(volume, rel=1e-6)
+    assert rep["step"]["volume"] == pytest.approx(volume, rel=2e-6)
     blank = rep["flat_area"] * 2.0
-    assert rep["step"]["volume_over_blank"] == pytest.approx(volume / blank - 1.0, abs=1e-6)
+    assert rep["step"]["volume_over_blank"] == pytest.approx(volume / blank - 1.0, abs=2e-6)
     assert 0.0 < rep["step"]["volume_over_blank"] < 0.05  # the mitre adds a little
 
 

@@ -21,7 +21,7 @@ from tests.sweep.conftest import table_rows
 
 #: ``onefold simulate``'s flags for each setting.
 _FLAGS = {"supports": "--supports", "reference": "--reference", "crease": "--crease",
-          "mesh": "--mesh"}  # fmt: skip
+          "law": "--law", "mesh": "--mesh"}  # fmt: skip
 
 
 def _simulate_json(capfd, flags: list[str], settings: dict) -> dict:
@@ -40,6 +40,7 @@ def _simulate_json(capfd, flags: list[str], settings: dict) -> dict:
             "supports": "anchored",
             "reference": "flat",
             "crease": "held",
+            "law": "moment",
             "mesh": "coarse",
             "check": True,
         },
@@ -48,6 +49,7 @@ def _simulate_json(capfd, flags: list[str], settings: dict) -> dict:
             "supports": "anchored",
             "reference": "designed",
             "crease": "elastic",
+            "law": "moment",
             "mesh": "coarse",
             "check": False,
         },
@@ -90,7 +92,7 @@ def test_a_simulated_row_is_what_simulate_json_reports(capfd, settings):
 def test_the_settings_default_to_simulate_s_and_need_the_measure():
     plan = make_plan("patkau-one-fold", ["thickness=3,4"], measures=["simulate"], images=False)
     assert plan.settings == {"supports": "anchored", "reference": "flat", "crease": "held",
-                             "mesh": "normal", "check": True}  # fmt: skip
+                             "law": "moment", "mesh": "normal", "check": True}  # fmt: skip
     coarse = make_plan("patkau-one-fold", ["thickness=3,4"], measures=["simulate"],
                        simulation={"mesh": "coarse"})  # fmt: skip
     assert coarse.settings["check"] is False  # as `onefold simulate --mesh coarse`

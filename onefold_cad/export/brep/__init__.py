@@ -7,6 +7,7 @@
 - :mod:`.solid`: the sheet as a solid of thickness t, built face by face.
 - :mod:`.bspline_fit`: B-spline curves fitted through points to a tolerance.
 - :mod:`.measure`: area and volume of B-rep shapes.
+- :mod:`.part_numbers`: the report's ``step`` section from the part a writer built.
 - :mod:`.kernel_budget`: the CAD kernel's time budget for one part.
 - :mod:`.step_checks`: the part's pre-flight checks, numpy only, before any kernel call.
 - :mod:`.step`: NAME.step, deterministic bytes, read back before it is moved into place.

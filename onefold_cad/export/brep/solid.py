@@ -44,15 +44,15 @@ from OCP.collections import HSequence_TopoDS_Shape as TopTools_HSequenceOfShape
 from OCP.Geom import Geom_BSplineCurve, Geom_Line
 from OCP.Geom2d import Geom2d_Line
 from OCP.GeomFill import GeomFill_Generator
-from OCP.gp import gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
+from OCP.gp import gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d
 from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds, ShapeAnalysis_ShapeTolerance
 from OCP.ShapeFix import ShapeFix_Solid
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SHELL, TopAbs_VERTEX
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SHELL
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from onefold_cad.errors import ExportError
-from onefold_cad.export.aligned_plane import aligned_plane
+from onefold_cad.export.aligned_plane import aligned_plane, cutting_plane
 from onefold_cad.export.brep.bspline_fit import (
     curve_values,
     fit_curve,
@@ -406,23 +406,6 @@ def thick_solid(
     return bd.Solid(fix.Solid()), builder.deviation
 
 
-def _plane_of(wire: TopoDS_Wire, slab: Slab, tol: float) -> gp_Pln:
-    """The cutting plane (y = 0 or a mitre plane, both sides' coordinates)
-    that holds ``wire``'s vertices within ``tol``."""
-    pts = []
-    ex = TopExp_Explorer(wire, TopAbs_VERTEX)
-    while ex.More():
-        pts.append(_pnt_xyz(BRep_Tool.Pnt_s(TopoDS.Vertex(ex.Current()))))
-        ex.Next()
-    p = np.array(pts)
-    apex = slab.sides[0].apex
-    for w, c in slab.planes.values():  # symmetric in y: the -y side's are the same planes
-        origin = apex + c * w
-        if np.max(np.abs((p - origin) @ w)) <= tol:
-            return gp_Pln(gp_Pnt(*map(float, origin)), gp_Dir(*map(float, w)))
-    raise ExportError("the thick sheet's faces leave a gap that is not on a cutting plane")
-
-
 def _sew(faces: list[TopoDS_Face], tol: float, budget: KernelBudget, slab: Slab):
     """Sew the faces into one shell, closing the outlines left open on the
     cutting planes (where the two sides' sections of y = 0 differ, and where
@@ -445,7 +428,9 @@ def _sew(faces: list[TopoDS_Face], tol: float, budget: KernelBudget, slab: Slab)
         again.Add(shape)
         for i in range(1, wires.Length() + 1):
             w = TopoDS.Wire(wires.Value(i))
-            mk = BRepBuilderAPI_MakeFace(aligned_plane(_plane_of(w, slab, 10.0 * tol), w), w, True)
+            mk = BRepBuilderAPI_MakeFace(
+                aligned_plane(cutting_plane(w, slab, 10.0 * tol), w), w, True
+            )
             if not mk.IsDone():
                 raise ExportError("could not close a gap in the thick sheet's faces")
             again.Add(_with_pcurves(mk.Face()))
