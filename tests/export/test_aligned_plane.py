@@ -25,9 +25,8 @@ from OCP.TopoDS import TopoDS
 from onefold_cad.export.brep.measure import measure
 from onefold_cad.export.brep.step import export_design_step
 from onefold_cad.templates import load_template
+from tests.export.brep.test_step import _solid_trip
 from tests.shipped import REPO_TEMPLATES
-
-from .test_step import _solid_trip
 
 #: The take-off's agreement the issue asks for (relative).
 TAKE_OFF = 1e-3

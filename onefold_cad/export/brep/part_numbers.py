@@ -8,7 +8,6 @@ from typing import Any
 
 from onefold_cad.errors import OneFoldError
 from onefold_cad.export.build_context import BuildContext
-from onefold_cad.fabrication.rules import default_body
 
 __all__ = ["part_numbers"]
 
@@ -16,6 +15,8 @@ __all__ = ["part_numbers"]
 def part_numbers(ctx: BuildContext) -> dict[str, Any] | None:
     """The report's ``step`` section when a writer built the part (else None:
     the report never runs the CAD kernel)."""
+    from onefold_cad.fabrication.rules import default_body  # numpy: not for --help
+
     part = ctx.built_part
     if part is None:
         return None
