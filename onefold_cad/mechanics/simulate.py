@@ -137,9 +137,8 @@ def _standing(
         uncertain = ""
         if reserve < COARSE_RESERVE:
             uncertain = (
-                f"on the coarse preview mesh it carries {reserve:.3g} times its weight, less "
-                f"than the {COARSE_RESERVE:g} the coarse mesh's stiffness calls for: "
-                "run --mesh normal"
+                f"the coarse preview does not carry {COARSE_RESERVE:g} times its weight, the "
+                "margin its stiff mesh calls for: run --mesh normal"
             )
         standing = replace(standing, reserve=reserve, uncertain=uncertain)
     return standing, stress, dev
