@@ -7,6 +7,7 @@ thread (standard library only). The explorer's server and the Hops server
 from __future__ import annotations
 
 import socket
+import sys
 import threading
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
@@ -57,9 +58,20 @@ class BoundedServer(ThreadingHTTPServer):
             return
         try:
             super().process_request(request, client_address)
-        except BaseException:
+        except Exception:
+            # The thread could not be started, so its slot is free again.
+            # Not on KeyboardInterrupt: Ctrl+C can land while the started
+            # thread runs (it frees its own slot), and must reach the
+            # serving loop as itself, not as a second release's ValueError.
             self.slots.release()
             raise
+
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        """A client that hangs up mid-answer is not an error of ours: stay
+        quiet; anything else is printed as the standard library does."""
+        if isinstance(sys.exc_info()[1], (ConnectionError, TimeoutError)):
+            return
+        super().handle_error(request, client_address)
 
     def process_request_thread(self, request: Any, client_address: Any) -> None:
         try:
