@@ -56,3 +56,26 @@ def test_no_stress_above_the_flow_stress(formed):
     assert np.all(stress <= flow * (1 + 1e-9))
     flowed = stage.response.plastic[:, [0, -1]].any(axis=1)
     assert np.all(flowed | (stage.surface_stress() < sy))
+
+
+class _Stop(Exception):
+    """Ends the standing path at its first call."""
+
+
+def test_the_stand_starts_its_weight_ramp_at_a_quarter(formed, monkeypatch):
+    """The J2 stand carries a quarter of the weight first (a whole first step
+    spends the path's iteration budget and is halved twice on patkau)."""
+    from onefold_cad.mechanics.stages import place
+
+    design, folded, shell, stage = formed
+    model = sheet_model(design, folded, h_max=0.3)
+    seen: dict[str, object] = {}
+
+    def first_call(shell_at, q0, **options):
+        seen.update(options)
+        raise _Stop
+
+    monkeypatch.setattr(j2_stages, "solve_path", first_call)
+    with pytest.raises(_Stop):
+        j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored")
+    assert seen["first_step"] == pytest.approx(0.25)
