@@ -80,7 +80,8 @@ def main(argv: list[str] | None = None) -> int:
                 tmp = Path(tempfile.mkdtemp()) / f"{args.template}.toml"
                 tmp.write_text("\n".join(keep) + "\n", encoding="utf-8")
                 od = otpl.load_template(str(tmp))
-                cache["pair"] = (od, odes.fold_design(od))
+                fold = getattr(odes, "fold_design", None) or odes.build_design  # its old name
+                cache["pair"] = (od, fold(od))
             od, of = cache["pair"]  # type: ignore[misc]
             return osim.simulate(od, of, level=lvl, convergence=chk)
 

@@ -79,3 +79,23 @@ def test_the_stand_starts_its_weight_ramp_at_a_quarter(formed, monkeypatch):
     with pytest.raises(_Stop):
         j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored")
     assert seen["first_step"] == pytest.approx(0.25)
+
+
+def test_the_release_gives_its_eighth_steps_the_iterations_they_take(formed, monkeypatch):
+    """The release's ramp starts at steps of 1/8 with a budget of 16 Newton
+    iterations: on patkau's normal mesh those steps take 10 to 15, and a
+    budget of 12 halved one and sent the rest of the ramp at 1/16 (126
+    iterations in all against 100)."""
+    design, folded, shell, stage = formed
+    model = sheet_model(design, folded, h_max=0.3)
+    seen: dict[str, object] = {}
+
+    def first_call(shell_at, q0, **options):
+        seen.update(options)
+        raise _Stop
+
+    monkeypatch.setattr(j2_stages, "solve_path", first_call)
+    with pytest.raises(_Stop):
+        j2_stages.release(model, shell, stage)
+    assert seen["first_step"] == pytest.approx(0.125)
+    assert seen["step_iter"] >= 15
