@@ -35,6 +35,9 @@ __all__ = ["SUBPIXEL", "fill_triangles", "pixel_coverage"]
 SUBPIXEL = 256
 #: Pixels measured at once (bounds the memory: some 20 arrays of 3 x _CHUNK).
 _CHUNK = 100_000
+#: Block sizes (pixels) a triangle's bounding box is padded to: few blocks,
+#: little padding.
+_SIZES = np.unique(np.outer(1 << np.arange(31), [2, 3]) // 2)  # 1, 2, 3, 4, 6, 8, 12, ...
 #: Below this area (pixel areas) a coverage is zero (round-off of the
 #: integral; Agg's smallest area is 1 / (2 * 256^2) = 7.6e-6).
 _ZERO = 1e-9
@@ -139,15 +142,16 @@ def fill_triangles(
     count = box[:, 0] * box[:, 1]
     planes = _half_planes(tri, ccw)
     edges = _edges(tri)
-    pixels: list[NDArray[np.int64]] = []
-    painters: list[NDArray[np.int64]] = []
-    doubts: list[NDArray[np.int64]] = []
-    # the triangles of one bounding-box size at once: their candidate pixels
-    # are a (k, rows, columns) block, no gathering per pixel
-    shape = box[:, 1] * (width + 1) + box[:, 0]
+    pixels: list[NDArray[np.int64]] = []  # pixel numbers and painters, in turn
+    doubts: list[NDArray[np.int64]] = []  # the same, to be measured
+    # the triangles of one bounding-box size class at once: their candidate
+    # pixels are a (k, rows, columns) block, no gathering per pixel (a box
+    # padded to its class's size; the padding masked off)
+    bucket = np.searchsorted(_SIZES, box)
+    shape = bucket[:, 1] * len(_SIZES) + bucket[:, 0]
     for key in np.unique(shape[count > 0]):
         ids = np.flatnonzero(shape == key)
-        rows, cols = divmod(int(key), width + 1)
+        rows, cols = (int(_SIZES[k]) for k in divmod(int(key), len(_SIZES)))
         plane, corner = planes[ids], lo[ids]
         # each edge's value at the centre of the block's first pixel (exact
         # on the 1/256 grid), then stepped along x and y; separating axes:
@@ -157,35 +161,50 @@ def fill_triangles(
         first += plane[..., 1] * (corner[:, 1, None] + 0.5)
         step_x = plane[..., 0, None] * np.arange(cols)  # (k, 3, cols)
         step_y = plane[..., 1, None] * np.arange(rows)  # (k, 3, rows)
-        touch = np.ones((len(ids), rows, cols), dtype=bool)
+        touch = (np.arange(rows)[:, None] < box[ids, 1, None, None]) & (
+            np.arange(cols) < box[ids, 0, None, None]
+        )
         full = np.ones_like(touch)
         for i in range(3):
             grid = step_y[:, i, :, None] + step_x[:, i, None, :]
             touch &= grid > -(first[:, i] + plane[:, i, 3])[:, None, None]
             full &= grid >= -(first[:, i] - plane[:, i, 3])[:, None, None]
         partial = touch & ~full & ccw[ids, None, None]
-        x = np.broadcast_to(corner[:, 0, None, None] + np.arange(cols), touch.shape)
-        y = np.broadcast_to(corner[:, 1, None, None] + np.arange(rows)[:, None], touch.shape)
-        which = np.broadcast_to(ids[:, None, None], touch.shape)
+        # pixel numbers, row by row from the image's top
+        first_pixel = (height - 1 - corner[:, 1]) * width + corner[:, 0]
+        pixel = first_pixel[:, None, None] - width * np.arange(rows)[:, None] + np.arange(cols)
         sure = touch & ~partial
-        pixels.append(((height - 1 - y) * width + x)[sure])
-        painters.append(which[sure])
-        doubts.append(np.stack([which[partial], x[partial], y[partial]]))
-    # a counter-clockwise triangle needs 1/256 of the pixel: measure it
-    which, x, y = np.concatenate([np.empty((3, 0), dtype=np.int64), *doubts], axis=1)
-    area = np.concatenate(
-        [
-            _coverage(
-                edges, which[i : i + _CHUNK], x[i : i + _CHUNK] * 1.0, y[i : i + _CHUNK] * 1.0
-            )
-            for i in range(0, max(len(which), 1), _CHUNK)
-        ]
-    )
-    enough = np.abs(area) > 1.0 / SUBPIXEL - _ZERO
-    pixels.append(((height - 1 - y) * width + x)[enough])
-    painters.append(which[enough])
+        pixels += [pixel[sure], ids[np.nonzero(sure)[0]]]
+        doubts += [pixel[partial], ids[np.nonzero(partial)[0]]]
     winner = np.full(width * height, -1, dtype=np.int64)
-    np.maximum.at(winner, np.concatenate(pixels), np.concatenate(painters))
+    empty = np.empty(0, dtype=np.int64)
+    np.maximum.at(
+        winner, np.concatenate([empty, *pixels[::2]]), np.concatenate([empty, *pixels[1::2]])
+    )
+    # a counter-clockwise triangle needs 1/256 of a pixel it only touches:
+    # measure it where no later triangle surely paints that pixel, the
+    # latest-painted doubtful triangle of each pixel first (where it has its
+    # 1/256, the earlier ones there need no measuring)
+    pixel = np.concatenate([empty, *doubts[::2]])
+    which = np.concatenate([empty, *doubts[1::2]])
+    keep = which > winner[pixel]
+    order = np.lexsort((-which[keep], pixel[keep]))
+    which, pixel = which[keep][order], pixel[keep][order]
+    x, y = pixel % width, height - 1 - pixel // width
+    while len(which):
+        head = np.flatnonzero(np.r_[True, pixel[1:] != pixel[:-1]])
+        area = np.concatenate(
+            [
+                _coverage(edges, which[h], x[h] * 1.0, y[h] * 1.0)
+                for h in np.array_split(head, -(-len(head) // _CHUNK))
+            ]
+        )
+        enough = np.abs(area) > 1.0 / SUBPIXEL - _ZERO
+        winner[pixel[head[enough]]] = which[head[enough]]
+        rest = np.ones(len(which), dtype=bool)
+        rest[head] = False
+        rest &= ~np.isin(pixel, pixel[head[enough]])
+        which, x, y, pixel = which[rest], x[rest], y[rest], pixel[rest]
     colours = np.floor(np.clip(np.asarray(rgba, dtype=float), 0.0, 1.0) * 255.0 + 0.5)
     painted = winner >= 0
     image = np.zeros((width * height, 4), dtype=np.uint8)
