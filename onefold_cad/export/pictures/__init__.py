@@ -7,5 +7,6 @@
 - :mod:`.raster`: opaque triangles to pixels, as Agg fills them without
   antialiasing.
 - :mod:`.reuse`: one emptied 3D figure per size and thread (the thumbnails).
+- :mod:`.preload`: what a thumbnail draws with, imported by a sweep's forkserver.
 - :mod:`.sweep_plot`: a sweep's parallel coordinates, the Pareto front marked.
 """
