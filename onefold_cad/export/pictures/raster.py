@@ -2,7 +2,7 @@
 
 The shaded surface of a preview is some 9 000 small triangles. matplotlib
 draws each as its own path (a Python ``Path`` per triangle, an Agg
-rasterisation per path): three quarters of a sweep's time went there.
+rasterisation per path): most of a sweep's thumbnail time went there.
 :func:`fill_triangles` paints them all at once with numpy and gives the
 pixels Agg gives (matplotlib's ``antialiased=False`` fill):
 
@@ -16,10 +16,14 @@ pixels Agg gives (matplotlib's ``antialiased=False`` fill):
 - later triangles paint over earlier ones (the painter's order the caller
   gives), each with its colour rounded to 8 bits.
 
-The area of a triangle in a pixel is Green's theorem with the field
+How: the candidate pixels of a triangle are its bounding box, handled in
+blocks of triangles whose boxes pad to one size; whether a triangle touches
+a pixel, and whether it covers it whole, are separating-axis tests at the
+pixel's corners (exact on the 1/256 grid). The area itself is needed only
+where a counter-clockwise triangle merely touches a pixel no later triangle
+surely paints, latest painter first: Green's theorem with the field
 ``(0, clamp(x, 0, 1) * [0 <= y <= 1])`` (curl: the pixel's indicator), an
-exact integral per edge, vectorised over every (triangle, pixel) pair of the
-triangles' bounding boxes.
+exact integral per edge (:func:`pixel_coverage`).
 """
 
 from __future__ import annotations
