@@ -6,7 +6,8 @@ it finishes; the runner journals them.
 * :func:`inline_rows`: in this process, one batch at a time (``-j 1``).
 * :func:`pool_rows`: a ``concurrent.futures`` process pool of ``-j N``
   workers, started once (a forkserver that has imported the evaluation
-  code: no worker imports anything per design). Workers ignore Ctrl-C (the
+  code, and with thumbnails what they draw with: no worker imports
+  anything per design). Workers ignore Ctrl-C (the
   sweep stops them) and leave when the sweep's process is gone.
 * :func:`dask_rows`: a Dask distributed cluster, ``Client(address)`` with
   futures and ``as_completed``; ``local`` starts a ``LocalCluster`` of ``-j
@@ -97,10 +98,14 @@ def _worker_start(parent: int) -> None:
     threading.Thread(target=watch, daemon=True, name="onefold-sweep-parent-watch").start()
 
 
-def _context() -> Any:
+#: What the forkserver also imports when the designs get thumbnails.
+_PICTURES = "onefold_cad.export.pictures.preload"
+
+
+def _context(images: bool) -> Any:
     if "forkserver" in multiprocessing.get_all_start_methods():
         ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["onefold_cad.sweep.evaluate"])
+        ctx.set_forkserver_preload(["onefold_cad.sweep.evaluate", *([_PICTURES] * images)])
         return ctx
     return multiprocessing.get_context("spawn")
 
@@ -110,13 +115,19 @@ def pool_rows(next_batch: NextBatch, workers: int) -> Generator[Rows, None, None
     from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
     from concurrent.futures.process import BrokenProcessPool
 
+    first = next_batch()
+    if first is None:
+        return
+    images = first.images  # the workers start with what thumbnails draw with
+
     def start() -> ProcessPoolExecutor:
+        ctx = _context(images)
         return ProcessPoolExecutor(
-            workers, mp_context=_context(), initializer=_worker_start, initargs=(os.getpid(),)
+            workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),)
         )
 
     pool = start()
-    pending: dict[Future[Rows], Batch] = {}
+    pending: dict[Future[Rows], Batch] = {pool.submit(evaluate_batch, first): first}
     try:
         while True:
             while len(pending) < 2 * workers and (batch := next_batch()) is not None:

@@ -61,3 +61,26 @@ def test_sweep_help_and_solve_load_no_table_or_cluster_library():
     assert "numpy" not in help_modules
     heavy = ("pyarrow", "dask", "distributed", "scipy.stats", "matplotlib")
     assert [m for m in solve_modules if m.split(".")[0] in heavy or m == "scipy.stats"] == []
+
+
+def test_a_pool_with_thumbnails_starts_its_workers_with_matplotlib_loaded():
+    """The forkserver imports what a thumbnail draws with when the sweep has
+    thumbnails (each worker then skips its own ~1.5 s import), and only then;
+    the preloaded module brings matplotlib's canvas, 3D axes and the preview."""
+    code = (
+        "import json, sys, multiprocessing.forkserver as fs\n"
+        "from onefold_cad.sweep import backends\n"
+        "backends._context(images=False)\n"
+        "without = list(fs._forkserver._preload_modules)\n"
+        "backends._context(images=True)\n"
+        "with_images = list(fs._forkserver._preload_modules)\n"
+        "import onefold_cad.export.pictures.preload\n"
+        "names = ['matplotlib.backends.backend_agg', 'mpl_toolkits.mplot3d',\n"
+        "         'onefold_cad.export.pictures.surface_image']\n"
+        "print(json.dumps([without, with_images, [n in sys.modules for n in names]]))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    without, with_images, loaded = json.loads(out.stdout)
+    assert without == ["onefold_cad.sweep.evaluate"]
+    assert with_images == ["onefold_cad.sweep.evaluate", "onefold_cad.export.pictures.preload"]
+    assert all(loaded)

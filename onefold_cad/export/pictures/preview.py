@@ -15,8 +15,12 @@ support polygon and centre of mass; the caption still gives how it stands.
 
 matplotlib is imported only inside :func:`render_folded_preview` (and only
 when a preview is drawn), on the non-interactive Agg canvas, so the rest of
-the package never pays for it; the figure work is kept small (a few thousand
-triangles, no layout engine) because ``onefold build`` draws one per design.
+the package never pays for it; the figure work is kept small (no layout
+engine; the shaded surface's ~9 000 triangles painted in numpy as one image,
+:mod:`~onefold_cad.export.pictures.surface_image`, the pixels matplotlib's
+own collection gives) because ``onefold build`` draws one per design; a
+sweep's thumbnails reuse one emptied figure per thread
+(:mod:`~onefold_cad.export.pictures.reuse`).
 """
 
 from __future__ import annotations
@@ -37,6 +41,8 @@ from onefold_cad.export.pictures.figure3d import (
     save_png,
     view_direction,
 )
+from onefold_cad.export.pictures.reuse import empty_axes3d
+from onefold_cad.export.pictures.surface_image import add_surface
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.resting.placement import RestingPlacement
@@ -214,12 +220,15 @@ def _figure(
     apex = move(folded.apex[None, :])[0]
     support, centre = support_and_centre(rest)
 
-    fig = agg_figure(size_px)
     # explicit drawing order (ground, surface, crease, labels, dots): the dots
     # and labels stay visible where the surface would hide them
     bottom = 60.0 / size_px[1] if annotate else 0.0  # room for the three caption lines
     box = (0.0, bottom, 0.8, 0.99 - bottom) if annotate else (0.0, 0.0, 1.0, 1.0)
-    ax = fig.add_axes(box, projection="3d", computed_zorder=False)
+    if annotate:
+        fig = agg_figure(size_px)
+        ax = fig.add_axes(box, projection="3d", computed_zorder=False)
+    else:  # a thumbnail: the thread's figure of this size, emptied
+        fig, ax = empty_axes3d(size_px, box)
     edge = move(folded.boundary_3d)
     edge = np.vstack([edge, edge[:1]])
     if not frame:
@@ -232,11 +241,7 @@ def _figure(
             ax.plot(*support.T, color=_SUPPORT, linewidth=1.5, zorder=2)
         com_line = np.stack([centre, centre * [1.0, 1.0, 0.0]]).T
         ax.plot(*com_line, color=_COM, lw=1.0, ls=":", zorder=2)
-    surface = Poly3DCollection(
-        tri, facecolors=_face_colours(tri, view), edgecolors="none", antialiased=False
-    )
-    surface.set_zorder(3)
-    ax.add_collection3d(surface)
+    add_surface(ax, tri, _face_colours(tri, view), zorder=3)
     ax.plot(edge[:, 0], edge[:, 1], edge[:, 2], color="#333333", linewidth=0.7, zorder=4)
     crease = move(np.array([[folded.apex, c.end_3d] for c in folded.crease]).reshape(-1, 3))
     crease = crease.reshape(-1, 2, 3)
