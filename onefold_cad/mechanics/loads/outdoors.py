@@ -288,7 +288,8 @@ def _warnings(act: Actions, checks: tuple[NonlinearCheck, ...], u: str) -> list[
                     f"{c.case}: the full model moves the sheet by {c.max_deflection:.4g} {u} "
                     f"from its standing form, {100 * change:+.3g} % on the linear "
                     f"{c.linear_deflection:.4g} {u} "
-                    f"(utilisation {c.utilisation:.3g}): the linear cases are an estimate"
+                    f"(peak elastic stress {c.utilisation:.3g} x f_y): the linear cases are an "
+                    "estimate"
                 )
     if len(act.feet) < 3:
         out.append(f"it stands on {len(act.feet)} feet: no support polygon to resist tipping")
