@@ -47,7 +47,7 @@ __all__ = [
 GAMMA_M0, GAMMA_M1 = 1.0, 1.1
 #: The largest load ratio the path is taken to: beyond it the reserve is
 #: reported as ``>= R_MAX``.
-R_MAX = 1.25
+R_MAX = 1.5
 #: The first step of each leg (a share of its ratio) and the smallest one:
 #: ``r_R`` is found to within a smallest step below the limit.
 FIRST_STEP, MIN_STEP = 0.25, 1 / 128

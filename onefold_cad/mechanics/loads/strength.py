@@ -93,10 +93,10 @@ def _reason(chk: StrengthCheck) -> str:
     if chk.stands:
         return ""
     if chk.limit == "strain":
-        how = (f"reaches {100 * STRAIN_LIMIT:g} % plastic strain at {chk.ratio:.3g} x its design "
+        how = (f"reaches {100 * STRAIN_LIMIT:g} % plastic strain at {chk.ratio:.4g} x its design "
                "actions")  # fmt: skip
     else:
-        how = f"finds no equilibrium past {chk.ratio:.3g} x its design actions (a limit point)"
+        how = f"finds no equilibrium past {chk.ratio:.4g} x its design actions (a limit point)"
     return f"its J2 load path {how}: r_R < gamma_M1 = {GAMMA_M1:g}"
 
 

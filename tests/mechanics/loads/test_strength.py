@@ -61,7 +61,7 @@ def test_a_case_that_fails_says_its_load_ratio(checked):
         assert c.stands is s.stands
         assert s.ratio <= R_MAX
         if not s.stands:
-            assert f"{s.ratio:.3g} x its design actions" in c.reason
+            assert f"{s.ratio:.4g} x its design actions" in c.reason
             assert s.limit in ("strain", "stalled")
 
 
