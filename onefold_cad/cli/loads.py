@@ -68,13 +68,44 @@ def loads_lines(name: str, data: dict[str, Any]) -> list[str]:
         reached = "all" if c["reached"] >= 1 else f"{100 * c['reached']:.3g} %"
         moved = "-" if c["max_deflection"] is None else f"{c['max_deflection']:.4g} {u}"
         out.append(f"  full model, {c['case']}: carried {reached} of it, moved {moved}")
-    out.append(f"  {'case':<34}{'feet z kN':<24}{'H/muV':>7}{'moves':>10}{'util':>7}  verdict")
+    out += _strength_lines(data, u)
+    out.append(f"  {'case':<34}{'feet z kN':<24}{'H/muV':>7}{'moves':>10}{'el/f_y':>7}"
+               f"{'r_R':>7}  verdict")  # fmt: skip
     for c in data["cases"]:
         z = " ".join(_kn(r[2]) for r in c["reactions_N"])
         ratio = "lifts" if c["slide_ratio"] is None else f"{c['slide_ratio']:.3g}"
         verdict = "ok" if c["stands"] else c["reason"]
+        s = c["strength"]
+        r_r = "-" if s is None else _ratio(s)
         out.append(f"  {c['name']:<34}{z:<24}{ratio:>7}{c['max_deflection']:>10.4g}"
-                   f"{c['utilisation']:>7.3g}  {verdict}")  # fmt: skip
+                   f"{c['utilisation']:>7.3g}{r_r:>7}  {verdict}")  # fmt: skip
+    return out
+
+
+def _ratio(s: dict[str, Any]) -> str:
+    return (">=" if s["load_ratio_capped"] else "") + f"{s['load_ratio']:.3g}"
+
+
+def _strength_lines(data: dict[str, Any], u: str) -> list[str]:
+    """The STR cases' J2 load paths, one line each, and the elastic peak's
+    place (information)."""
+    st = data.get("strength", {})
+    out = [f"  strength (STR, J2 load path from the designed form taken as stress-free, "
+           f"r_R >= gamma_M1 = 1.1): {len(st.get('cases_checked', []))} case(s) checked in "
+           f"{st.get('cpu_s', 0.0):.3g} s CPU"]  # fmt: skip
+    for c in data["cases"]:
+        s = c["strength"]
+        if s is None:
+            continue
+        at = s["max_plastic_strain_at"]
+        where = "" if at is None else f" at ({at[0]:.4g}, {at[1]:.4g}) {u}"
+        el = c["utilisation_at"]
+        out.append(
+            f"    {c['name']}: r_R {_ratio(s)} ({s['limit']}); at {s['plastic_at_ratio']:.3g} x "
+            f"the case: plastic strain {100 * s['max_plastic_strain']:.3g} %{where}, "
+            f"{100 * s['plastic_area_share']:.2g} % of the area; peak elastic stress "
+            f"{c['utilisation']:.3g} x f_y at ({el[0]:.4g}, {el[1]:.4g}) {u} (information)"
+        )
     return out
 
 
@@ -113,7 +144,8 @@ def cmd_loads(ns: argparse.Namespace) -> int:
     if ns.outdir is not None:
         check_outdir(ns.outdir)
     folded = fold_design(design)
-    result = outdoors(design, folded, spec, level=ns.mesh, nonlinear=ns.nonlinear_check)
+    result = outdoors(design, folded, spec, level=ns.mesh, nonlinear=ns.nonlinear_check,
+                      strength_cases=ns.strength_cases)  # fmt: skip
     report = design_report(design, folded, sources=job.sources)
     report["outdoors"] = result.to_data()
     check_finite(report)

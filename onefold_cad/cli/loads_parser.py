@@ -17,7 +17,7 @@ from onefold_cad.flags.design_flags import parse_choice, parse_float, parse_int
 from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
 
-__all__ = ["load_spec_values", "loads_parser", "parse_point"]
+__all__ = ["load_spec_values", "loads_parser", "parse_point", "parse_strength_cases"]
 
 SUPPORTS = ("anchored", "friction", "ballast")
 MESHES = ("coarse", "normal", "fine")
@@ -29,6 +29,25 @@ def parse_point(text: str) -> tuple[float, float]:
     if len(parts) != 2:
         raise argparse.ArgumentTypeError(f"{text.strip()!r} is not X,Y")
     return parse_float(parts[0]), parse_float(parts[1])
+
+
+#: How many STR cases past first yield get a J2 load path unless told.
+STRENGTH_CASES = 3
+
+
+def parse_strength_cases(text: str) -> int | None:
+    """``N`` (0 to 100) or ``all`` (None)."""
+    if text.strip().lower() == "all":
+        return None
+    try:
+        n = int(text)
+    except ValueError:
+        n = -1
+    if not 0 <= n <= 100:
+        raise argparse.ArgumentTypeError(
+            f"must be a whole number 0 to 100 or 'all', got {text.strip()!r}"
+        )
+    return n
 
 
 def loads_parser(prog: str = "onefold") -> FlagParser:
@@ -172,6 +191,15 @@ def loads_parser(prog: str = "onefold") -> FlagParser:
         "--nonlinear-check",
         action="store_true",
         help="solve the governing cases again with the full model (minutes)",
+    )
+    m.add_argument(
+        "--strength-cases",
+        type=parse_strength_cases,
+        default=STRENGTH_CASES,
+        metavar="N|all",
+        help="how many STR cases past first yield a J2 load path checks (EN 1993-1-6 "
+        "GMNA): the permanent one first, then those of the largest elastic peak "
+        f"(default {STRENGTH_CASES}; all: every one; the others do not count as standing)",
     )
     o = p.add_argument_group("output")
     o.add_argument(

@@ -12,7 +12,7 @@ import pytest
 from tests.cli.test_main import refused, run
 
 NAME = "patkau-one-fold"
-FAST = ["--mesh", "coarse", "--directions", "2", "--person-grid", "2"]
+FAST = ["--mesh", "coarse", "--directions", "2", "--person-grid", "2", "--strength-cases", "1"]
 
 
 @pytest.fixture(scope="module")
@@ -38,6 +38,12 @@ def test_o_writes_the_report_the_cases_and_the_picture(written):
         assert float(row[f"foot{k}_z_N"]) == pytest.approx(case["reactions_N"][k - 1][2])
     assert (out / f"{NAME}-loads.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert data["governing"] in [c["name"] for c in data["cases"]]
+    # the STR verdict is the J2 load path's: its ratio in the JSON and the CSV
+    (row,) = [r for r in rows if r["case"] == "STR 1.35G"]
+    (case,) = [c for c in data["cases"] if c["name"] == "STR 1.35G"]
+    assert float(row["load_ratio"]) == pytest.approx(case["strength"]["load_ratio"])
+    assert case["stands"] is (case["strength"]["load_ratio"] >= 1.1)
+    assert data["strength"]["cases_checked"] == ["STR 1.35G"]
 
 
 def test_text_names_every_foot_and_case(tmp_path):
@@ -47,6 +53,9 @@ def test_text_names_every_foot_and_case(tmp_path):
     assert lines[0].startswith(f"{NAME}  outdoors on anchored feet")
     assert any(ln.strip().startswith("total:") for ln in lines)
     assert any("EQU 0.9G + 1.5W-0" in ln for ln in lines)
+    (j2,) = [ln for ln in lines if ln.strip().startswith("STR 1.35G: r_R")]
+    assert "peak elastic stress" in j2 and "(information)" in j2
+    assert "not checked by a J2 load path" in proc.stderr
 
 
 BAD = [
@@ -58,6 +67,8 @@ BAD = [
     (["--wind-speed", "25", "--supports", "glue"], "--supports", "anchored, friction, ballast"),
     (["--wind-speed", "25", "--friction", "0"], "friction", "0.01 to 2"),
     (["--wind-speed", "x"], "--wind-speed", "not a number"),
+    (["--wind-speed", "25", "--strength-cases", "-1"], "--strength-cases", "0 to 100 or 'all'"),
+    (["--wind-speed", "25", "--strength-cases", "some"], "--strength-cases", "0 to 100 or 'all'"),
 ]
 
 

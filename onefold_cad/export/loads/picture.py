@@ -2,8 +2,9 @@
 
 The sheet standing, moved by the governing case's loads (the movement drawn
 to scale, the standing form's outline thin and dashed), each face coloured
-by its utilisation (stress over the yield stress, in %, the scale up to the
-faces' 98th percentile or 100 %), and each foot's reaction drawn as
+by its linear elastic von Mises stress over the yield stress (in %, the
+scale up to the faces' 98th percentile or 100 %; information: the STR
+verdict is the J2 load path's), and each foot's reaction drawn as
 an arrow from the foot (its length proportional to the force, the largest
 labelled in kN). Written atomically; matplotlib is imported only here.
 """
@@ -81,11 +82,12 @@ def render_governing(result: Any, path: str | os.PathLike[str], title: str = "")
     fig.suptitle(f"{title}: {head}" if title else head, fontsize=11, y=0.985)
     bar = fig.add_axes((0.86, 0.2, 0.025, 0.6))
     fig.colorbar(mpl.cm.ScalarMappable(norm=norm, cmap=cmap), cax=bar,
-                 label="utilisation (% of the yield stress)")  # fmt: skip
+                 label="linear elastic stress (% of f_y; information)")  # fmt: skip
     verdict = "stands" if case.stands else f"does NOT stand: {case.reason}"
     caption = (
         f"{verdict}; largest movement {case.max_deflection:.4g} {result.unit} (drawn to scale), "
-        f"utilisation {case.utilisation:.3g}; arrows: the feet's reactions on the sheet"
+        f"peak elastic stress {case.utilisation:.3g} x f_y (information); arrows: the feet's "
+        "reactions on the sheet"
     )
     fig.text(0.02, 0.02, "\n".join(textwrap.wrap(caption, 130)), fontsize=8)
     return save_png(fig, path, "the loads picture")

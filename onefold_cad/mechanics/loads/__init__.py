@@ -9,6 +9,9 @@
 - ``combinations``: EN 1990's combinations (EQU, STR, SLS) as named cases;
 - ``response``: the linear response of a shell state to load vectors
   (tangent stiffness, supports, reactions);
+- ``plastic_limit``: a load ratio ramped on a shell of J2 sections (ideal
+  elastic-plastic): the plastic limit ``r_R`` (EN 1993-1-6 GMNA);
+- ``strength``: the STR cases' verdicts from their J2 load paths;
 - ``feet``: the contacts grouped into feet, and the rigid-body checks
   (sliding, a foot lifting, tipping) and the ballast a foot needs;
 - ``spec``: the load and support parameters, checked;

@@ -88,6 +88,12 @@ def _ballast(feet_react: Array, mu: float) -> Array:
     return np.maximum(h / mu - feet_react[:, 2], 0.0) / favourable
 
 
+def _face_at(act: Actions, face: int) -> Array:
+    """``(2,)`` the centroid of ``face`` on the flat sheet (design unit)."""
+    mesh = act.shell.mesh
+    return mesh.nodes[mesh.triangles[face]].mean(axis=0) / act.scale
+
+
 def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
     """``case`` checked; with its movement ``(n, 3)`` (m) and its faces'
     utilisation ``(m,)`` for the picture."""
@@ -101,10 +107,8 @@ def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
     deflection = float(np.linalg.norm(moved, axis=1).max()) / act.scale
     weight = float(-act.weight_load[:, 2].sum())
     pulls = [i for i, r in enumerate(feet_r) if r[2] < -1e-9 * weight]
-    reason = ""
-    if case.kind == "STR" and util.max() > 1.0:
-        reason = f"its largest stress is {util.max():.3g} x the yield stress"
-    elif case.kind == "EQU" and act.supports == "friction":
+    reason = ""  # STR: the J2 load path's verdict (``strength``), set by the caller
+    if case.kind == "EQU" and act.supports == "friction":
         if rigid.lifts_off:
             reason = f"the wind lifts it off (a net {-rigid.vertical_N / 1e3:.3g} kN up)"
         elif rigid.tips:
@@ -137,6 +141,7 @@ def evaluate_case(act: Actions, case: Case) -> tuple[CaseResult, Array, Array]:
         max_deflection=deflection,
         utilisation=float(util.max()),
         ballast_kg=np.zeros(len(act.feet)),
+        utilisation_at=_face_at(act, int(np.argmax(util))),
     )
     if case.kind == "EQU":
         res = replace(res, ballast_kg=_ballast(feet_r, act.friction))

@@ -12,6 +12,7 @@ is linear about it (:mod:`.response`, one factorisation), and the cases
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable
 from dataclasses import asdict
 from typing import Any
@@ -30,6 +31,7 @@ from onefold_cad.mechanics.loads.response import linear_response, node_dofs
 from onefold_cad.mechanics.loads.results import CaseResult, Foot, Outdoors
 from onefold_cad.mechanics.loads.snow import snow_load
 from onefold_cad.mechanics.loads.spec import LoadSpec
+from onefold_cad.mechanics.loads.strength import STRENGTH_METHOD, str_verdicts
 from onefold_cad.mechanics.loads.wind import peak_velocity_pressure, terrain, wind_load
 from onefold_cad.mechanics.model import GRAVITY, SheetModel, sheet_model
 from onefold_cad.mechanics.shell import director_angles, pack
@@ -50,8 +52,8 @@ ASSUMPTIONS = (
     "person: EN 1991-1-1 Table 6.10, roof category H, Q_k = 1 kN at a point, not combined with "
     "snow or wind (3.3.2(1))",
     "combinations: EN 1990 Annex A1 (EQU Table A1.2(A), STR Eq. 6.10 Table A1.2(B), SLS Eq. "
-    "6.14b; psi_0 wind 0.6, snow 0.5); strength: von Mises stress at the sheet's faces over "
-    "f_y / gamma_M0, gamma_M0 = 1.0 (EN 1993-1-1 6.1), elastic (first yield)",
+    "6.14b; psi_0 wind 0.6, snow 0.5)",
+    STRENGTH_METHOD,
     "response: the designed form stress-free, standing under its weight on its held contacts "
     "(Newton); the other loads linear about it and superposed, their directions fixed",
 )
@@ -88,11 +90,15 @@ def outdoors(
     level: str = "normal",
     h_max: float | None = None,
     nonlinear: bool = False,
+    strength_cases: int | None = 0,
     progress: Progress | None = None,
 ) -> Outdoors:
     """The outdoors check of ``design`` under ``spec``'s loads on its supports;
     with ``nonlinear`` the governing cases solved again with the full model
-    (``nonlinear.solve_case``: seconds to minutes more).
+    (``nonlinear.solve_case``: seconds to minutes more). The STR cases past
+    first yield are checked by their J2 load path (``strength.str_verdicts``):
+    ``strength_cases`` of them (None: all), the permanent one first, then
+    those of the largest elastic peak; the others say they were not checked.
 
     Raises:
         InvalidParameterError: the design cannot be simulated, or a load is
@@ -156,13 +162,16 @@ def outdoors(
         act.strains["P"] = act.strains[person_at[0]]
     cases = combinations(spec.direction_list, snow, bool(person))
     evaluated = [evaluate_case(act, c) for c in cases]
-    results = tuple(e[0] for e in evaluated)
+    start = time.process_time()
+    results = str_verdicts(act, cases, tuple(e[0] for e in evaluated), strength_cases,
+                           node_dofs(contacts), model.size)  # fmt: skip
+    strength_cpu = time.process_time() - start
     governing = _governing(results, spec.supports)
-    strength = max((r for r in results if r.kind == "STR"), key=lambda r: r.utilisation)
+    strength = _governing_strength(results)
     g_index = [r.name for r in results].index(governing)
     checks = tuple(
         solve_case(act, next(c for c in cases if c.name == name), node_dofs(contacts), model.size)
-        for name in dict.fromkeys([governing, strength.name])
+        for name in dict.fromkeys([governing, strength])
         if nonlinear
     )
     return Outdoors(
@@ -176,11 +185,21 @@ def outdoors(
         feet=_feet(act, results),
         cases=results,
         governing=governing,
-        governing_strength=strength.name,
+        governing_strength=strength,
         stands=all(r.stands for r in results),
         person_at=None if person_at is None else person_at[1],
         nonlinear=checks,
-        warnings=tuple(_warnings(act, checks, design.units.value)),
+        strength={
+            "screened_by": "the permanent case first, then the largest linear elastic peak",
+            "cases_checked": [r.name for r in results if r.strength is not None],
+            "cases_not_checked": [
+                r.name
+                for r in results
+                if r.kind == "STR" and r.strength is None and r.utilisation > 1
+            ],
+            "cpu_s": strength_cpu,
+        },  # fmt: skip
+        warnings=tuple(_warnings(act, checks, design.units.value) + _unchecked(results)),
         faces=tri,
         positions=x,
         moves=evaluated[g_index][1],
@@ -197,6 +216,15 @@ def _worst_person(act: Actions, person: dict[str, np.ndarray], points: np.ndarra
         if r.utilisation > worst:
             best, worst = (name, points[i]), r.utilisation
     return best
+
+
+def _governing_strength(results: tuple[CaseResult, ...]) -> str:
+    """The STR case of the lowest J2 load ratio, or of the largest elastic peak
+    when none was checked."""
+    checked = [r for r in results if r.strength is not None]
+    if checked:
+        return min(checked, key=lambda r: r.strength.ratio if r.strength else 0.0).name
+    return max((r for r in results if r.kind == "STR"), key=lambda r: r.utilisation).name
 
 
 def _governing(results: tuple[CaseResult, ...], supports: str) -> str:
@@ -233,6 +261,15 @@ def _inputs(spec: LoadSpec) -> dict[str, Any]:
     return data
 
 
+def _unchecked(results: tuple[CaseResult, ...]) -> list[str]:
+    """A line when STR cases past first yield were not checked by a J2 path."""
+    left = [r for r in results if r.kind == "STR" and r.strength is None and r.utilisation > 1]
+    if not left:
+        return []
+    return [f"{len(left)} STR case(s) past first yield were not checked by a J2 load path and "
+            "do not count as standing (--strength-cases all checks them)"]  # fmt: skip
+
+
 def _warnings(act: Actions, checks: tuple[NonlinearCheck, ...], u: str) -> list[str]:
     """The full model's disagreements with the linear cases, and too few feet."""
     out = []
@@ -251,7 +288,8 @@ def _warnings(act: Actions, checks: tuple[NonlinearCheck, ...], u: str) -> list[
                     f"{c.case}: the full model moves the sheet by {c.max_deflection:.4g} {u} "
                     f"from its standing form, {100 * change:+.3g} % on the linear "
                     f"{c.linear_deflection:.4g} {u} "
-                    f"(utilisation {c.utilisation:.3g}): the linear cases are an estimate"
+                    f"(peak elastic stress {c.utilisation:.3g} x f_y): the linear cases are an "
+                    "estimate"
                 )
     if len(act.feet) < 3:
         out.append(f"it stands on {len(act.feet)} feet: no support polygon to resist tipping")

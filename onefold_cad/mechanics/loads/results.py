@@ -15,11 +15,60 @@ import numpy as np
 
 from onefold_cad.geometry.numeric import Array, Index
 
-__all__ = ["CaseResult", "Foot", "Outdoors"]
+__all__ = ["CaseResult", "Foot", "Outdoors", "StrengthCheck"]
 
 
 def _f(x: float | None) -> float | None:
     return None if x is None else float(x)
+
+
+@dataclass(frozen=True)
+class StrengthCheck:
+    """One STR case's J2 load path.
+
+    Attributes:
+        case: its name.
+        ratio: ``r_R``, the largest ratio of the case's design actions the
+            sheet carries (``R_MAX`` or more when ``capped``).
+        capped: the path reached ``R_MAX`` without a limit.
+        limit: what ended the path (``plastic_limit.LoadRatio.limit``).
+        stands: ``r_R >= gamma_M1``.
+        plastic_at: the ratio the plastic strain is reported at (1, or the
+            last step below ``r_R`` when that is below 1).
+        max_plastic_strain: the largest equivalent plastic strain there (the
+            sheet's surfaces; the increment from the stress-free form).
+        max_plastic_strain_at: ``(2,)`` where (the flat sheet, design unit), or
+            None when nothing yields.
+        plastic_area_share: the share of the sheet's area yielded there.
+        cpu_s: the path's CPU time (s).
+    """
+
+    case: str
+    ratio: float
+    capped: bool
+    limit: str
+    stands: bool
+    plastic_at: float
+    max_plastic_strain: float
+    max_plastic_strain_at: Array | None
+    plastic_area_share: float
+    cpu_s: float
+
+    def to_data(self) -> dict[str, Any]:
+        """The JSON data."""
+        at = self.max_plastic_strain_at
+        return {
+            "case": self.case,
+            "load_ratio": float(self.ratio),
+            "load_ratio_capped": bool(self.capped),
+            "limit": self.limit,
+            "stands": bool(self.stands),
+            "plastic_at_ratio": float(self.plastic_at),
+            "max_plastic_strain": float(self.max_plastic_strain),
+            "max_plastic_strain_at": None if at is None else np.asarray(at).tolist(),
+            "plastic_area_share": float(self.plastic_area_share),
+            "cpu_s": float(self.cpu_s),
+        }
 
 
 @dataclass(frozen=True)
@@ -29,7 +78,9 @@ class CaseResult:
     Attributes:
         name, kind: the case (``EQU``, ``STR``, ``SLS``; see ``combinations``).
         stands: it passes its checks (EQU: the rigid body on its supports;
-            STR: the stress within the yield stress; SLS: always, reported).
+            STR: its J2 load path carries ``gamma_M1`` times its design
+            actions, ``strength``, or its elastic stresses stay below the
+            yield stress; SLS: always, reported).
         reason: why not ('' when it stands).
         reactions_N: ``(k, 3)`` each foot's reaction on the sheet (N, up > 0).
         uplift_N, slide_ratio, tip_margin: the rigid-body checks (the net
@@ -37,8 +88,14 @@ class CaseResult:
             distance inside the feet's polygon in the design's unit).
         max_deflection: the variable loads' largest movement of a node from
             the standing form (design unit).
-        utilisation: the largest von Mises stress over ``f_y / gamma_M0``.
+        utilisation: the peak linear elastic von Mises stress over
+            ``f_y / gamma_M0`` (information: singular at the relief hole's rim
+            and near H; not the STR verdict), ``utilisation_at`` ``(2,)`` its
+            face on the flat sheet (design unit).
         ballast_kg: ``(k,)`` the ballast each foot needs (EQU; zeros else).
+        strength: STR: the J2 load path's answer, or None (not run: the
+            elastic stresses stay below the yield stress, or the case was not
+            among those checked).
     """
 
     name: str
@@ -53,6 +110,8 @@ class CaseResult:
     max_deflection: float
     utilisation: float
     ballast_kg: Array
+    utilisation_at: Array | None = None
+    strength: StrengthCheck | None = None
 
     def to_data(self) -> dict[str, Any]:
         """The JSON data."""
@@ -69,7 +128,11 @@ class CaseResult:
             "tip_margin": _f(self.tip_margin),
             "max_deflection": float(self.max_deflection),
             "utilisation": float(self.utilisation),
+            "utilisation_at": None
+            if self.utilisation_at is None
+            else np.asarray(self.utilisation_at, dtype=float).tolist(),
             "ballast_kg": np.asarray(self.ballast_kg, dtype=float).tolist(),
+            "strength": None if self.strength is None else self.strength.to_data(),
         }
 
 
@@ -127,6 +190,8 @@ class Outdoors:
         person_at: ``(2,)`` where the person stands (flat sheet, design unit), or None.
         nonlinear: the governing cases solved again with the full model
             (``nonlinear.NonlinearCheck``).
+        strength: the STR cases' J2 load paths: ``cases_checked``,
+            ``cases_not_checked`` (past first yield), ``screened_by``, ``cpu_s``.
         warnings: one line each.
         faces, positions, moves, face_utilisation: for the picture: ``(m, 3)``,
             ``(n, 3)`` the standing form (m), the governing case's movement
@@ -148,6 +213,7 @@ class Outdoors:
     person_at: Array | None
     nonlinear: tuple[Any, ...]
     warnings: tuple[str, ...]
+    strength: dict[str, Any] = field(default_factory=dict)
     faces: Index | None = field(default=None, repr=False)
     positions: Array | None = field(default=None, repr=False)
     moves: Array | None = field(default=None, repr=False)
@@ -181,6 +247,7 @@ class Outdoors:
                 "ballast_kg": float(sum(f.ballast_kg for f in self.feet)),
             },
             "nonlinear": [c.to_data() for c in self.nonlinear],
+            "strength": dict(self.strength),
             "cases": [c.to_data() for c in self.cases],
             "warnings": list(self.warnings),
         }
