@@ -1,4 +1,4 @@
-"""The shaded surface of a 3D picture, drawn as one image.
+"""The shaded surface of a 3D picture, drawn in one call.
 
 A matplotlib ``Poly3DCollection`` of the preview's ~9 000 triangles makes a
 ``Path`` per triangle twice per picture and has Agg fill each one: most of a
@@ -7,12 +7,12 @@ that, when the figure is drawn, does what the collection does with the same
 numbers: projects the corners with the axes' projection matrix, orders the
 triangles by their mean depth (the far ones first, ``np.argsort`` of the
 same values, so ties fall the same way), maps them to pixels with the axes'
-``transData`` and paints them as Agg's non-antialiased fill does
-(:func:`~onefold_cad.export.pictures.raster.fill_triangles`); the pixels are
-composited into the canvas as an image, clipped to the axes like the
-collection. The picture is the collection's to a few pixels a thousand at
-the triangles' shared edges (where Agg's and numpy's rounding of a corner
-part ways), with neighbouring triangles of nearly the same shade.
+``transData`` and has Agg paint them all in one call
+(``RendererBase.draw_gouraud_triangles``, each triangle's three corners of
+its one colour), clipped to the axes like the collection. Agg antialiases
+these triangles' outer edges (the collection drew them aliased) and leaves
+no seam at shared ones: the picture differs from the collection's only
+along the surface's outline, by its smoothing.
 
 matplotlib is imported inside :func:`add_surface` only.
 """
@@ -25,7 +25,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from onefold_cad.export.pictures.raster import fill_triangles
 from onefold_cad.geometry.numeric import Array
 
 __all__ = ["add_surface", "painter_order", "project_triangles"]
@@ -51,9 +50,10 @@ def painter_order(projected: Array) -> NDArray[np.int64]:
 def _surface_class() -> Any:
     """The artist class (made once: matplotlib is imported when it is)."""
     from matplotlib.artist import Artist
+    from matplotlib.transforms import IdentityTransform
 
     class Surface(Artist):
-        """Opaque triangles of an ``Axes3D``, painted as one image."""
+        """Opaque triangles of an ``Axes3D``, painted by Agg in one call."""
 
         def __init__(self, tri: Array, rgba: Array) -> None:
             super().__init__()
@@ -67,13 +67,12 @@ def _surface_class() -> Any:
             order = painter_order(projected)
             flat = projected[order, :, :2].reshape(-1, 2)
             pixels = ax.transData.transform(flat).reshape(-1, 3, 2)
-            size = (int(renderer.width), int(renderer.height))
-            image, _ = fill_triangles(pixels, self.rgba[order], size)
+            colors = np.repeat(self.rgba[order, None, :], 3, axis=1)
             gc = renderer.new_gc()
             if self.get_clip_on():  # the axes' patch, as for a collection
                 gc.set_clip_rectangle(self.get_clip_box())
                 gc.set_clip_path(self.get_clip_path())
-            renderer.draw_image(gc, 0, 0, image[::-1])  # Agg takes the rows bottom first
+            renderer.draw_gouraud_triangles(gc, pixels, colors, IdentityTransform())
             gc.restore()
             self.stale = False
 
