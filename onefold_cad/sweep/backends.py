@@ -7,8 +7,11 @@ it finishes; the runner journals them.
 * :func:`pool_rows`: a ``concurrent.futures`` process pool of ``-j N``
   workers, started once (a forkserver that has imported the evaluation
   code, and with thumbnails what they draw with: no worker imports
-  anything per design). Workers ignore Ctrl-C (the
-  sweep stops them) and leave when the sweep's process is gone.
+  anything per design). This process evaluates batches too whenever the
+  workers have theirs (two each) in hand: while they start (a second or two
+  of imports) the sweep is not idle, and a small sweep is done before a
+  pool would have paid off. Workers ignore Ctrl-C (the sweep stops them) and leave
+  when the sweep's process is gone.
 * :func:`dask_rows`: a Dask distributed cluster, ``Client(address)`` with
   futures and ``as_completed``; ``local`` starts a ``LocalCluster`` of ``-j
   N`` worker processes. dask is imported here only.
@@ -134,7 +137,12 @@ def pool_rows(next_batch: NextBatch, workers: int) -> Generator[Rows, None, None
                 pending[pool.submit(evaluate_batch, batch)] = batch
             if not pending:
                 return
-            done, _ = wait(pending, return_when=FIRST_COMPLETED)
+            done, _ = wait(pending, timeout=0, return_when=FIRST_COMPLETED)
+            if not done:  # the workers are busy (or still starting): evaluate here
+                if (batch := next_batch()) is not None:
+                    yield evaluate_batch(batch)
+                    continue
+                done, _ = wait(pending, return_when=FIRST_COMPLETED)
             broken = False
             for fut in done:
                 batch = pending.pop(fut)
