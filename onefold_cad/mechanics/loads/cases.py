@@ -58,6 +58,17 @@ class Actions:
     supports: str
     scale: float
 
+    def variable_load(self, case: Case) -> Array:
+        """``case``'s variable actions (all but ``G``) times their factors, as a
+        shell's external load ``(N,)`` (N on the coordinates, none on the
+        director angles): what a full-model load path ramps."""
+        n = self.x.shape[0]
+        load = np.zeros_like(self.q_standing)
+        for name, f in case.factor.items():
+            if name != "G":
+                load[: 3 * n] += f * self.loads[name].ravel()
+        return load
+
     def combined(self, case: Case) -> tuple[Array, Array, Array, Array]:
         """``case``'s faces' stresses ``(m,)`` (Pa), variable movement ``(N,)``,
         nodal loads and supports' forces ``(n, 3)``."""

@@ -66,10 +66,7 @@ def solve_case(act: Actions, case: Case, fixed: Index, size: float) -> Nonlinear
     fac = case.factor
     g = fac.get("G", 0.0)
     n = act.x.shape[0]
-    load = np.zeros_like(act.q_standing)
-    for name, f in fac.items():
-        if name != "G":
-            load[: 3 * n] += f * act.loads[name].ravel()
+    load = act.variable_load(case)
     weight = float(-act.weight_load[:, 2].sum())
 
     def shell_at(s: float):

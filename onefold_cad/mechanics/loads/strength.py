@@ -54,11 +54,7 @@ def strength_check(act: Actions, case: Case, fixed: Index, size: float) -> Stren
     start = time.process_time()
     fac = case.factor
     g = fac.get("G", 0.0)
-    n = act.x.shape[0]
-    load = np.zeros_like(act.q_placed)
-    for name, f in fac.items():
-        if name != "G":
-            load[: 3 * n] += f * act.loads[name].ravel()
+    load = act.variable_load(case)
     shell = ideal_plastic(act.shell)
     weight = float(-act.weight_load[:, 2].sum())
 
