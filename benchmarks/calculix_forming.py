@@ -36,9 +36,9 @@ The model (SI units; the deck in ``ccx_deck.py``, the driven path in
 * **Mesh convergence**: several ``--h`` of a constant ratio, Richardson's
   extrapolation of each measure.
 * **onefold's side** (``--onefold``): ``onefold simulate TEMPLATE --json``
-  (the public command, whatever law it has) for each ``--onefold-mesh``, and
-  ``scripts/j2_trial.py`` (the J2 stages in progress), as child processes, CPU
-  time from ``getrusage`` of the children.
+  (the public command) for each ``--onefold-mesh``, ``--onefold-crease`` and
+  ``--onefold-law``, as child processes, CPU time from ``getrusage`` of the
+  children.
 
 ``strip`` validates the chain on a wide strip bent to a cylinder of radius R
 and released, against Gardiner's springback in plane strain.
@@ -90,6 +90,16 @@ from kratos_shell import mesh_sheet  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def free_edge_midpoints(tri6: Any, n1: int) -> Any:
+    """The sorted midpoints (below ``n1``: no crease twin) of the S6 edges that
+    one element alone uses: the outline, the relief hole and the hinge's +y
+    side (its -y twins are tied to those)."""
+    t = np.asarray(tri6, dtype=np.int64)
+    mids = np.concatenate([t[:, 3], t[:, 4], t[:, 5]])
+    ids, count = np.unique(mids, return_counts=True)
+    return ids[(count == 1) & (ids < n1)]
+
+
 # -- the template ---------------------------------------------------------------
 def template_setup(
     template: str,
@@ -125,6 +135,9 @@ def template_setup(
     n1, n = len(flat1), len(flat)
     m = design.material
     E, nu, sy, t = m.youngs_modulus * 1e9, m.poisson, m.yield_stress * 1e6, m.thickness * scale
+    hardening = (m.hardening_modulus or 0.0) * 1e6  # Pa, isotropic (as simulate's J2 law)
+    if m.kinematic_hardening:
+        raise SystemExit("calculix_forming: a kinematic hardening share is not modelled here")
     bound = 0.1 * sy / E if bound is None else bound
     weights, area = node_areas(flat, tri6)
 
@@ -133,14 +146,21 @@ def template_setup(
         return fold_design(dataclasses.replace(design, frame=frame)).map_points(flat) * scale
 
     x0 = np.column_stack([flat * scale, np.zeros(n)])
-    edges = corner_edges(tri6) if drive == "corners" else half_edges(tri6)
+    edges = half_edges(tri6) if drive == "all" else corner_edges(tri6)
     path = graded_steps(form, x0, edges, weights, bound=bound, start=start, align=align)
     ends = info["crease_ends"]
     corners = [int(v) for v in info["vertices"] if int(v) not in ends]
     final = path.forms[-1]
     corner = max(corners, key=lambda v: form(1.0)[v, 2])
     support = support_321(final, [int(ends[0]), int(ends[1]), corner])
-    driven = np.arange(len(pts) if drive == "corners" else n1)
+    driven = np.arange(n1 if drive == "all" else len(pts))
+    if drive == "crease":  # and the crease's midpoints: on its straight rulings, exactly
+        size = float(np.ptp(flat1, axis=0).max())
+        mids = np.arange(len(pts), n1)
+        on = (np.abs(flat1[mids, 1]) <= 1e-9 * size) & (np.abs(flat1[mids, 0]) >= 0.5 * hole)
+        driven = np.concatenate([driven, mids[on]])
+    elif drive == "edges":  # and the midpoint of every free edge (outline, hole, hinge)
+        driven = np.concatenate([driven, free_edge_midpoints(tri6, n1)])
     deck = Deck(
         x0,
         tri6,
@@ -151,6 +171,7 @@ def template_setup(
         E,
         nu,
         sy,
+        hardening=hardening,
         twins=partner,
         support=support,
         form_inc=1.0,
@@ -334,9 +355,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--s-max", type=float, default=1.0, help="form only to this s (no release)")
     ap.add_argument(
         "--drive",
-        choices=["corners", "all"],
+        choices=["corners", "crease", "edges", "all"],
         default="corners",
-        help="drive the S6 corners (the midpoints follow) or every node",
+        help="drive the S6 corners (the midpoints follow), the corners and the crease's "
+        "midpoints (the hinge's edges, straight), the corners and every free edge's "
+        "midpoint (outline, hole, hinge: no free edge left to buckle), or every node",
     )
     ap.add_argument("--growth", type=float, help="grade the mesh toward H: size = growth * r")
     ap.add_argument("--no-release", action="store_true", help="form only")

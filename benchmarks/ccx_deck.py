@@ -153,6 +153,9 @@ class Deck:
         first_inc: each forming step's first increment as a share of its
             largest (ccx cut the first increment of every patkau step from 1
             to 1/4 after a failed attempt: the driven motion turns there).
+        hardening: the linear isotropic hardening modulus (Pa): the flow
+            stress sy + hardening * (equivalent plastic strain), the law of
+            ``onefold simulate --law j2`` (0: perfectly plastic).
     """
 
     x0: Array
@@ -172,6 +175,7 @@ class Deck:
     form_inc: float = 0.025
     release_inc: float = 0.05
     first_inc: float = 1.0
+    hardening: float = 0.0
 
     def carrier(self, i: int) -> int:
         """The 1-based node a twin of node ``i`` is tied to: ``i``'s driver
@@ -206,6 +210,8 @@ def write_deck(deck: Deck, path: Path) -> None:
     out += _id_lines(range(1, n + 1))
     out += ["*MATERIAL,NAME=STEEL", "*ELASTIC", f"{deck.E:.10g},{deck.nu:.10g}"]
     out += ["*PLASTIC", f"{deck.sy:.10g},0."]
+    if deck.hardening > 0:  # linear: ccx interpolates between the two rows
+        out.append(f"{deck.sy + deck.hardening:.10g},1.")
     out.append("*SHELL SECTION,ELSET=E,COMPOSITE")
     out += [f"{deck.t / deck.layers:.12g},,STEEL"] * deck.layers
     ties = [(n - n_tw + k + 1, deck.carrier(p)) for k, p in enumerate(deck.twins)]

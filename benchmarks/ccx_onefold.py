@@ -1,13 +1,12 @@
 """onefold's side of the CalculiX forming benchmark (``calculix_forming.py
---onefold``): the public command ``onefold simulate TEMPLATE --json`` (whatever
-law it has when run) and ``scripts/j2_trial.py`` (the J2 stages in progress),
-each a child process timed by its wall and CPU time (``getrusage`` of the
-children), so the numbers and the times sit beside CalculiX's in one run."""
+--onefold``): the public command ``onefold simulate TEMPLATE --json`` for each
+mesh, crease model and law, each a child process timed by its wall and CPU
+time (``getrusage`` of the children), so the numbers and the times sit beside
+CalculiX's in one run."""
 
 from __future__ import annotations
 
 import json
-import re
 import resource
 import subprocess
 import sys
@@ -33,9 +32,9 @@ def onefold_side(
     template: str, meshes: list[str], creases: list[str], laws: tuple[str, ...] = ("moment",)
 ) -> list[dict[str, Any]]:
     """``onefold simulate TEMPLATE --json`` for each mesh, crease model and
-    ``--law`` (``moment`` or ``j2``: the laws of ``onefold simulate``), and
-    ``scripts/j2_trial.py`` on the coarse mesh: the formed plastic share, the
-    springback's max deviation after the best fit, wall and CPU time."""
+    ``--law`` (``moment`` or ``j2``: the laws of ``onefold simulate``): the
+    formed plastic share, the springback's max deviation after the best fit,
+    wall and CPU time."""
     rows: list[dict[str, Any]] = []
     for mesh, crease, law in ((m, c, w) for m in meshes for c in creases for w in laws):
         cmd = [sys.executable, "-m", "onefold_cad", "simulate", template, "--json", "-q"]
@@ -48,23 +47,6 @@ def onefold_side(
                 "plastic_share": sim["formed"]["plastic_area_share"],
                 "springback_max": sim["released"]["max_deviation"],
                 "yields_again_share": sim["released"].get("reloaded_area_share"),
-                "wall_s": wall,
-                "cpu_s": cpu,
-            }
-        )
-    trial = ROOT / "scripts" / "j2_trial.py"
-    if trial.exists():
-        out, wall, cpu = _child([sys.executable, str(trial), template, "--mesh", "coarse"])
-        num = r"([-+0-9.eE]+)"
-        share = re.search(r"formed: plastic share " + num, out)
-        dev = re.search(r"released: deviation max " + num, out)
-        again = re.search(r"yields again " + num, out)
-        rows.append(
-            {
-                "what": "scripts/j2_trial.py --mesh coarse (J2, with the moment law after it)",
-                "plastic_share": float(share.group(1)) if share else None,
-                "springback_max": float(dev.group(1)) if dev else None,
-                "yields_again_share": float(again.group(1)) if again else None,
                 "wall_s": wall,
                 "cpu_s": cpu,
             }

@@ -265,3 +265,41 @@ def test_graded_sheet_grows_its_elements_with_the_distance_from_h():
     assert 0.15 < np.median(edge[r > 0.8]) < 0.45
     on = np.abs(pts[:, 1]) < 1e-12
     assert np.sum(on & (pts[:, 0] > 0.5)) >= 2  # the crease's nodes, not only its ends
+
+
+def test_deck_writes_the_template_s_linear_hardening(tmp_path):
+    """The deck's law is simulate --law j2's: sigma_y at no plastic strain
+    and sigma_y + H at a plastic strain of 1 (ccx interpolates linearly);
+    without hardening, one row (perfectly plastic)."""
+
+    def plastic_rows(deck):
+        cd.write_deck(deck, tmp_path / "d.inp")
+        lines = (tmp_path / "d.inp").read_text().splitlines()
+        i = lines.index("*PLASTIC") + 1
+        rows = []
+        while not lines[i].startswith("*"):
+            rows.append([float(v) for v in lines[i].split(",")])
+            i += 1
+        return rows
+
+    deck, *_ = _deck_of_split_square()
+    assert plastic_rows(deck) == [[2e8, 0.0]]
+    deck.hardening = 507e6
+    assert plastic_rows(deck) == [[2e8, 0.0], [2e8 + 507e6, 1.0]]
+
+
+def test_free_edge_midpoints_are_the_outline_s_and_the_hinge_s_upper_side():
+    """Driven with ``--drive edges``: the midpoints of the square's outline and
+    of the crease's edges on the upper side (the lower side's are twins, tied
+    to those), none inside."""
+    pts, tris = _square_mesh(4, 4)
+    flat1, tri1 = cd.quadratic(pts, tris)
+    flat, tri6, partner = cd.split_crease(flat1, tri1, 0.0)
+    n1 = len(flat1)
+    got = cf.free_edge_midpoints(tri6, n1)
+    mids = np.arange(len(pts), n1)
+    p = flat1[mids]
+    outline = np.isclose(np.abs(p).max(axis=1), 1.0)
+    crease = np.isclose(p[:, 1], 0.0)
+    np.testing.assert_array_equal(got, mids[outline | crease])
+    assert len(got) == 16 + 4  # 4 per side of the square, 4 on the crease

@@ -5,16 +5,18 @@ simulation's mesh, :class:`onefold_cad.mechanics.results.Simulation`) as a
 shell model an engineer re-runs in their own program (``ccx -i NAME``; the
 keywords are Abaqus's too):
 
-- ``*NODE``: the mesh's nodes on the designed form in the resting frame and
-  one node at each edge's midpoint (on the chord: the flat facets the
-  simulation uses too), in metres, each number in at most 20 characters
-  (12 significant digits: ccx 2.20 reads no more of a field, and 15 digits
-  moved nodes of the 6 mm elements by the relief hole enough to invert them,
-  "nonpositive jacobian");
-- ``*ELEMENT, TYPE=S6``: six-node shell triangles (the sheet's mesh, its
-  corners counter-clockwise seen from the sheet's top), element set ``SHEET``;
-  the two sides of the crease share its nodes (a welded crease, as the
-  ``held`` crease model is);
+- ``*NODE``: the mesh's nodes on the designed form in the resting frame
+  (first, in the simulation's order) and the nodes that make each facet
+  four curved six-node triangles
+  (:mod:`onefold_cad.export.simulation.inp_mesh`: on the simulation's flat
+  facets CalculiX's S6 converge slowly, 10 % below ours on the normal mesh),
+  in metres, each number in at most 20 characters (12 significant digits:
+  ccx 2.20 reads no more of a field, and 15 digits moved nodes of the 6 mm
+  elements by the relief hole enough to invert them, "nonpositive jacobian");
+- ``*ELEMENT, TYPE=S6``: six-node shell triangles (four per facet of the
+  sheet's mesh, corners counter-clockwise seen from the sheet's top), element
+  set ``SHEET``; the two sides of the crease share its nodes (a welded
+  crease, as the ``held`` crease model is);
 - ``*MATERIAL``: ``*ELASTIC`` (Pa), ``*DENSITY`` (kg/m^3), ``*PLASTIC`` at the
   yield stress, perfectly plastic; ``*SHELL SECTION`` of the sheet's thickness;
 - node sets ``FEET`` (the designed resting contacts), ``CREASE`` and
@@ -38,6 +40,7 @@ import numpy as np
 
 from onefold_cad.choices import Units
 from onefold_cad.export.atomic import atomic_output
+from onefold_cad.export.simulation.inp_mesh import shell_mesh
 
 __all__ = ["GRAVITY", "structural_model", "write_structural_inp"]
 
@@ -46,28 +49,21 @@ GRAVITY = 9.80665
 
 
 def structural_model(sim: Any) -> dict[str, Any]:
-    """The shell model's arrays in metres: ``nodes`` ``(n + e, 3)`` (corners,
-    then the edges' midpoints), ``elements`` ``(m,
-    6)`` (0-based S6 connectivity), ``feet`` and ``crease`` (node ids)."""
+    """The shell model's arrays in metres: ``nodes`` ``(N, 3)`` (the
+    simulation's corners first, then the nodes
+    :func:`onefold_cad.export.simulation.inp_mesh.shell_mesh` adds),
+    ``elements`` ``(4 m, 6)`` (0-based S6 connectivity), ``feet`` and
+    ``crease`` (node ids)."""
     scale = Units.parse(sim.unit).mm / 1000.0
     flat, faces = np.asarray(sim.flat), np.asarray(sim.faces)
     placed = np.asarray(sim.designed_positions)
-    # one node per edge, numbered in the order the elements first meet them
-    n = len(placed)
-    corner = np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1)
-    keys = np.sort(corner.reshape(-1, 2), axis=1)
-    edges, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    order = np.argsort(first)  # edges in the order the elements first meet them
-    number = np.empty(len(edges), dtype=np.int64)
-    number[order] = n + np.arange(len(edges))
-    mid = 0.5 * (placed[edges[order, 0]] + placed[edges[order, 1]])  # on the chords
-    elements = np.column_stack([faces, number[inverse.reshape(-1)].reshape(-1, 3)])
+    mesh = shell_mesh(placed, faces, flat)
     size = float(np.ptp(placed, axis=0).max())
     feet = np.flatnonzero(placed[:, 2] <= placed[:, 2].min() + 1e-9 * size)
-    on_crease = np.abs(flat[:, 1]) <= 1e-12 * float(np.ptp(flat, axis=0).max())
+    on_crease = np.abs(mesh.flat[:, 1]) <= 1e-12 * float(np.ptp(flat, axis=0).max())
     return {
-        "nodes": np.vstack([placed, mid]) * scale,
-        "elements": elements,
+        "nodes": mesh.nodes * scale,
+        "elements": mesh.elements,
         "feet": feet,
         "crease": np.flatnonzero(on_crease),
     }

@@ -47,13 +47,20 @@ def test_the_mesh_sets_and_material_are_the_simulation_s(sim):
     )
     faces = np.asarray(sim.faces)
     edges = {tuple(sorted(e)) for f in faces for e in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
-    assert len(nodes) == sim.nodes + len(edges)
-    assert np.array_equal(elements[:, :3] - 1, faces)
-    # corners in metres on the designed form; midside nodes on their edges' chords
+    # each facet four S6: its corners, a node per edge, two quarter points per edge, three inside
+    assert len(nodes) == sim.nodes + 3 * len(edges) + 3 * len(faces)
+    assert len(elements) == 4 * len(faces)
+    sub = elements.reshape(len(faces), 4, 6) - 1
+    assert np.array_equal(np.stack([sub[:, 0, 0], sub[:, 1, 1], sub[:, 2, 2]], axis=1), faces)
+    # corners in metres on the designed form; every other node near its facet
+    # (within the facet's size times its turn to the next one: the curved edges)
     assert np.allclose(nodes[: sim.nodes], np.asarray(sim.designed_positions) / 1000, atol=1e-11)
-    for k in (0, 1, 2):
-        a, b = elements[:, k] - 1, elements[:, (k + 1) % 3] - 1
-        assert np.allclose(nodes[elements[:, 3 + k] - 1], (nodes[a] + nodes[b]) / 2, atol=1e-11)
+    x = nodes[faces]
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    off = np.abs(np.einsum("fkd,fd->fk", nodes[sub.reshape(len(faces), -1)] - x[:, :1], normal))
+    size = np.linalg.norm(x[:, 1] - x[:, 0], axis=1)
+    assert np.all(off.max(axis=1) <= 0.25 * size)
     feet = [int(v) for ln in cards["*NSET, NSET=FEET"] for v in ln.split(",")]
     z = nodes[np.array(feet) - 1, 2]
     assert len(feet) == len(sim.standing.contacts) == 3 and np.allclose(z, 0, atol=1e-9)
@@ -109,3 +116,41 @@ def test_calculix_runs_it_and_its_feet_carry_the_weight(sim, tmp_path):
     # (ccx's equilibrium tolerance and its 7-digit print: 1.4e-6 of the weight)
     assert abs(forces[:, 0].sum()) < 1e-5 * sim.weight_N
     assert abs(forces[:, 1].sum()) < 1e-5 * sim.weight_N
+
+
+def _run_ccx(sim, tmp_path):
+    """Write NAME.inp, run ccx on one thread: the feet's reactions ``(3, 3)``
+    (N) and every written node's displacement ``(N, 3)`` (m)."""
+    ccx = shutil.which("ccx")
+    assert ccx is not None, "CalculiX is not installed: make test installs calculix-ccx"
+    write_structural_inp(sim, tmp_path / "check.inp")
+    env = {**os.environ, "OMP_NUM_THREADS": "1"}
+    proc = subprocess.run([ccx, "-i", "check"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=1200)  # fmt: skip
+    assert proc.returncode == 0 and "*ERROR" not in proc.stdout, proc.stdout[-2000:]
+    forces, moves, block = [], [], None
+    for line in (tmp_path / "check.dat").read_text().splitlines():
+        if "forces (fx,fy,fz)" in line:
+            block = forces
+        elif "displacements (vx,vy,vz)" in line:
+            block = moves
+        elif block is not None and line.strip():
+            block.append([float(v) for v in line.split()[1:4]])
+    return np.array(forces), np.array(moves)
+
+
+@pytest.mark.timeout(1800)
+def test_calculix_moves_the_normal_mesh_as_we_do_within_5_percent(tmp_path):
+    """Issue 35's check of NAME.inp: on the normal mesh (the one users run),
+    CalculiX's largest movement of the designed form under its weight is
+    ours within 5 % (ccx on the simulation's flat facets: 10 % below; the
+    written mesh, curved and split, converges faster; docs/mechanics.md).
+    ccx takes one to three minutes of CPU here."""
+    design = load_template("patkau-one-fold")
+    sim = simulate(design, fold_design(design), level="normal", reference="designed",
+                   convergence=False)  # fmt: skip
+    assert sim.designed is not None and sim.designed.max_displacement is not None
+    forces, moves = _run_ccx(sim, tmp_path)
+    assert forces[:, 2].sum() == pytest.approx(sim.weight_N, rel=2e-3)
+    largest = 1000.0 * float(np.linalg.norm(moves, axis=1).max())  # mm, as ours
+    assert largest == pytest.approx(sim.designed.max_displacement, rel=0.05)
