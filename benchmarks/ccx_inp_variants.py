@@ -29,13 +29,13 @@ import numpy as np
 
 from onefold_cad.design import fold_design
 from onefold_cad.export.simulation.inp import inp_text, structural_model
-from onefold_cad.export.simulation.inp_mesh import _edges, curved_midpoints
+from onefold_cad.export.simulation.inp_mesh import curved_midpoints, unique_edges
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
 
 
 def _flat_s6(x, faces, mids):
-    edges, fe = _edges(faces)
+    edges, fe = unique_edges(faces)
     return np.vstack([x, mids]), np.column_stack([faces, len(x) + fe])
 
 
@@ -92,7 +92,7 @@ def deck(sim, variant: str) -> str:
     x = np.asarray(sim.designed_positions) / 1000.0
     faces, flat = np.asarray(sim.faces), np.asarray(sim.flat)
     side = (flat[faces, 1].mean(axis=1) > 0).astype(np.int64)
-    edges, _ = _edges(faces)
+    edges, _ = unique_edges(faces)
     chords = 0.5 * (x[edges[:, 0]] + x[edges[:, 1]])
     etype, extra, pins = "S6", [], []
     if variant in ("flat", "normal", "pinned"):

@@ -1,6 +1,6 @@
 """The README's sweep runs as written (its output folder aside), thumbnails
-and all: the command whose speed issue 37's item 9 is about
-(``benchmarks/bench_readme_sweep.py`` times it)."""
+and all (``benchmarks/bench_readme_sweep.py`` times it against the code
+before its thumbnails were reworked)."""
 
 from __future__ import annotations
 

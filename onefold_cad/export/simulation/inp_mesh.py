@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["ShellMesh", "curved_midpoints", "shell_mesh"]
+__all__ = ["ShellMesh", "curved_midpoints", "shell_mesh", "unique_edges"]
 
 Array = NDArray[np.float64]
 Index = NDArray[np.int64]
@@ -58,7 +58,7 @@ class ShellMesh:
     flat: Array
 
 
-def _edges(faces: Index) -> tuple[Index, Index]:
+def unique_edges(faces: Index) -> tuple[Index, Index]:
     """``(edges (E, 2) sorted pairs in the order the faces first meet them,
     face_edge (m, 3))``: face edge k runs from corner k to corner k + 1."""
     corner = np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1)
@@ -71,7 +71,7 @@ def _edges(faces: Index) -> tuple[Index, Index]:
 
 
 def curved_midpoints(x: Array, faces: Index, side: Index, straight: Array) -> Array:
-    """``(E, 3)`` each edge's midpoint (edges as :func:`_edges` orders them)
+    """``(E, 3)`` each edge's midpoint (edges as :func:`unique_edges` orders them)
     on the Hermite curve of the module docstring.
 
     Args:
@@ -81,7 +81,7 @@ def curved_midpoints(x: Array, faces: Index, side: Index, straight: Array) -> Ar
             one side are averaged apart from the other's).
         straight: ``(E,)`` bool, edges kept straight (their chord midpoint).
     """
-    edges, face_edge = _edges(faces)
+    edges, face_edge = unique_edges(faces)
     normal = np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]])
     acc = np.zeros((len(x), 2, 3))
     for k in range(3):
@@ -113,7 +113,7 @@ def shell_mesh(x: Array, faces: Index, flat: Array) -> ShellMesh:
     x, flat = np.asarray(x, dtype=float), np.asarray(flat, dtype=float)
     faces = np.asarray(faces, dtype=np.int64)
     n, m = len(x), len(faces)
-    edges, fe = _edges(faces)
+    edges, fe = unique_edges(faces)
     e_count = len(edges)
     side = (flat[faces, 1].mean(axis=1) > 0).astype(np.int64)
     tol = 1e-12 * float(np.ptp(flat, axis=0).max())
