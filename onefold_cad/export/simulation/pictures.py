@@ -281,11 +281,18 @@ def _stress_caption(sim: Simulation, scale: StressScale) -> str:
     where = (
         "" if at is None else f" at ({at[0]:.4g}, {at[1]:.4g}) {sim.unit} from H on the flat sheet"
     )
+    hardened = ""
+    if sim.law == "j2" and sim.hardening_modulus_MPa > 0.0 and (s.utilisation or 0.0) > 1.0:
+        # above the initial yield stress only as far as the steel has hardened
+        hardened = (
+            f"hardened: at most the flow stress, yield + {sim.hardening_modulus_MPa:.4g} MPa "
+            "x plastic strain\n"
+        )
     return (
         f"von Mises stress at the sheet's faces as it stands: {cause}\n"
         f"largest {s.max_stress_MPa:.4g} MPa ({s.utilisation:.3g} x the yield stress "
         f"{sim.yield_stress_MPa:.4g} MPa){where}\n"
-        f"colours: {scale.note}"
+        f"{hardened}colours: {scale.note}"
     )
 
 

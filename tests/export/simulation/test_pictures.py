@@ -125,3 +125,20 @@ def test_importing_the_pictures_imports_no_matplotlib():
     code = "import sys, onefold_cad.export.simulation.pictures; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_a_hardened_j2_stress_above_yield_is_called_the_flow_stress(sim):
+    """Under the J2 law with hardening the surfaces reach the flow stress,
+    yield + H x plastic strain: the caption says so rather than leave a
+    stress above the yield stress unexplained; without hardening or under
+    the moment law it says nothing of it."""
+    from dataclasses import replace
+
+    from onefold_cad.export.simulation.pictures import _flat_areas, _stress_caption
+
+    scale = stress_scale(sim.face_stress_MPa, _flat_areas(sim), sim.yield_stress_MPa)
+    above = replace(sim, standing=replace(sim.standing, utilisation=1.7))
+    j2 = replace(above, law="j2", hardening_modulus_MPa=507.0)
+    assert "at most the flow stress, yield + 507 MPa x plastic strain" in _stress_caption(j2, scale)
+    for other in (above, replace(j2, hardening_modulus_MPa=0.0)):
+        assert "flow stress" not in _stress_caption(other, scale)
