@@ -27,6 +27,7 @@ from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
+from calculix_structural import read_dat  # the .dat blocks NAME.inp asks for
 
 from onefold_cad.design import fold_design
 from onefold_cad.export.simulation.inp import inp_text
@@ -35,20 +36,6 @@ from onefold_cad.mechanics.loads.surface import face_vectors, pressure_load
 from onefold_cad.mechanics.model import sheet_model
 from onefold_cad.mechanics.shell import director_angles, moved, pack, unpack
 from onefold_cad.templates import load_template
-
-
-def read_dat(path: Path, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
-    """The feet's reactions ``(k, 3)`` and every node's displacement ``(n, 3)``
-    from ccx's .dat (as ``calculix_structural.read_dat``)."""
-    forces, moves, block = [], [], None
-    for line in path.read_text().splitlines():
-        if "forces (fx,fy,fz)" in line:
-            block = forces
-        elif "displacements (vx,vy,vz)" in line:
-            block = moves
-        elif block is not None and line.strip():
-            block.append([float(v) for v in line.split()[1:4]])
-    return np.array(forces), np.array(moves)[:n_nodes]
 
 
 def ours(design, folded, level: str, pressure: float):

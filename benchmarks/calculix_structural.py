@@ -26,9 +26,10 @@ from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
 
 
-def read_dat(path: Path, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
-    """The feet's reactions ``(k, 3)`` and every node's displacement ``(n, 3)``
-    (m) from ccx's .dat (the *NODE PRINT blocks NAME.inp asks for)."""
+def read_dat(path: Path, n_nodes: int | None) -> tuple[np.ndarray, np.ndarray]:
+    """The feet's reactions ``(k, 3)`` and the first ``n_nodes`` nodes'
+    displacements ``(n, 3)`` (m; None: every node's) from ccx's .dat (the
+    *NODE PRINT blocks NAME.inp asks for)."""
     forces, moves, block = [], [], None
     for line in path.read_text().splitlines():
         if "forces (fx,fy,fz)" in line:

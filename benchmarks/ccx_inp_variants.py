@@ -26,6 +26,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from calculix_structural import read_dat  # the .dat blocks NAME.inp asks for
 
 from onefold_cad.design import fold_design
 from onefold_cad.export.simulation.inp import inp_text, structural_model
@@ -153,17 +154,9 @@ def run(text: str, n: int) -> tuple[float, float, float]:
         subprocess.run([ccx, "-i", "check"], cwd=tmp, check=True, capture_output=True,
                        env={**os.environ, "OMP_NUM_THREADS": "1"})  # fmt: skip
         ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        forces, moves, block = [], [], None
-        for line in Path(tmp, "check.dat").read_text().splitlines():
-            if "forces (fx,fy,fz)" in line:
-                block = forces
-            elif "displacements (vx,vy,vz)" in line:
-                block = moves
-            elif block is not None and line.strip():
-                block.append([float(v) for v in line.split()[1:4]])
+        forces, u = read_dat(Path(tmp, "check.dat"), n)
     cpu = ru1.ru_utime + ru1.ru_stime - ru0.ru_utime - ru0.ru_stime
-    u = np.array(moves)[:n]
-    return 1000 * float(np.linalg.norm(u, axis=1).max()), float(np.array(forces)[:, 2].sum()), cpu
+    return 1000 * float(np.linalg.norm(u, axis=1).max()), float(forces[:, 2].sum()), cpu
 
 
 def main() -> None:

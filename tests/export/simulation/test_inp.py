@@ -9,6 +9,8 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,6 +19,9 @@ from onefold_cad.design import fold_design
 from onefold_cad.export.simulation.inp import inp_text, structural_model, write_structural_inp
 from onefold_cad.mechanics.simulate import simulate
 from onefold_cad.templates import load_template
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "benchmarks"))
+from calculix_structural import read_dat  # noqa: E402  (the .dat blocks NAME.inp asks for)
 
 
 @pytest.fixture(scope="module")
@@ -107,15 +112,7 @@ def _run_ccx(sim, tmp_path):
     proc = subprocess.run([ccx, "-i", "check"], cwd=tmp_path, capture_output=True, text=True,
                           env=env, timeout=1200)  # fmt: skip
     assert proc.returncode == 0 and "*ERROR" not in proc.stdout, proc.stdout[-2000:]
-    forces, moves, block = [], [], None
-    for line in (tmp_path / "check.dat").read_text().splitlines():
-        if "forces (fx,fy,fz)" in line:
-            block = forces
-        elif "displacements (vx,vy,vz)" in line:
-            block = moves
-        elif block is not None and line.strip():
-            block.append([float(v) for v in line.split()[1:4]])
-    return np.array(forces), np.array(moves)
+    return read_dat(tmp_path / "check.dat", None)
 
 
 @pytest.mark.timeout(1800)
