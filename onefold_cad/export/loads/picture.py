@@ -23,8 +23,8 @@ from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
     label_axes,
-    lambert,
     save_png,
+    shaded_surface,
     view_direction,
 )
 
@@ -51,7 +51,7 @@ def area_percentile(values: Any, areas: Any, q: float) -> float:
 def render_governing(result: Any, path: str | os.PathLike[str], title: str = "") -> Path:
     """Draw ``result`` (:class:`~onefold_cad.mechanics.loads.results.Outdoors`)'s
     governing case into the PNG ``path``."""
-    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     scale = {"mm": 1000.0, "in": 1 / 0.0254, "ft": 1 / 0.3048}.get(result.unit, 1.0)
     x0 = np.asarray(result.positions) * scale
@@ -72,13 +72,7 @@ def render_governing(result: Any, path: str | os.PathLike[str], title: str = "")
     top = max(area_percentile(util * 100.0, _areas(x0[faces]), 98.0), 100.0)
     norm = mpl.colors.Normalize(vmin=0.0, vmax=top)
     rgb = cmap(norm(np.clip(util * 100.0, 0.0, None)))[:, :3]
-    tri = moved[faces]
-    _, shade = lambert(tri, view)
-    light = 0.7 + 0.3 * (shade - 0.45) / 0.55
-    rgba = np.concatenate([np.clip(rgb * light[:, None], 0, 1), np.ones((len(tri), 1))], axis=1)
-    surf = Poly3DCollection(tri, facecolors=rgba, edgecolors="none", antialiased=False)
-    surf.set_zorder(3)
-    ax.add_collection3d(surf)
+    shaded_surface(ax, moved[faces], rgb, view)
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     uniq, count = np.unique(edges, axis=0, return_counts=True)
     rim = uniq[count == 1]

@@ -27,6 +27,7 @@ __all__ = [
     "label_axes",
     "lambert",
     "save_png",
+    "shaded_surface",
     "view_direction",
 ]
 
@@ -55,6 +56,20 @@ def lambert(tri: Array, view: Array) -> tuple[Mask, Array]:
     facing_top = (n @ view) > 0.0
     n = np.where(facing_top[:, None], n, -n)
     return facing_top, 0.45 + 0.55 * np.clip(n @ LIGHT, 0.0, 1.0)
+
+
+def shaded_surface(ax: Any, tri: Array, rgb: Array, view: Array, zorder: float = 3.0) -> None:
+    """Add ``(m, 3, 3)`` triangles to the 3D axes ``ax`` in colours ``rgb (m, 3)``,
+    lightly shaded as seen along ``view`` (the colour stays readable against
+    a colour bar). matplotlib is imported here only."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    _, shade = lambert(tri, view)
+    light = 0.7 + 0.3 * (shade - 0.45) / 0.55
+    rgba = np.concatenate([np.clip(rgb * light[:, None], 0, 1), np.ones((len(tri), 1))], axis=1)
+    surface = Poly3DCollection(tri, facecolors=rgba, edgecolors="none", antialiased=False)
+    surface.set_zorder(zorder)
+    ax.add_collection3d(surface)
 
 
 def agg_figure(size_px: tuple[int, int], dpi: int = 100) -> Any:

@@ -33,8 +33,8 @@ from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
     label_axes,
-    lambert,
     save_png,
+    shaded_surface,
     view_direction,
 )
 from onefold_cad.export.simulation.colour_scale import (
@@ -127,20 +127,6 @@ def _new_figure(
     return fig, ax, view_direction(elev, azim), kind, points
 
 
-def _surface(ax: Any, points: Array, faces: Array, rgb: Array, view: Array) -> None:
-    """The form's triangles in colours ``rgb (m, 3)``, lightly shaded (the colour
-    stays readable against the bar)."""
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
-    tri = points[faces]
-    _, shade = lambert(tri, view)
-    light = 0.7 + 0.3 * (shade - 0.45) / 0.55
-    rgba = np.concatenate([np.clip(rgb * light[:, None], 0, 1), np.ones((len(tri), 1))], axis=1)
-    surface = Poly3DCollection(tri, facecolors=rgba, edgecolors="none", antialiased=False)
-    surface.set_zorder(3)
-    ax.add_collection3d(surface)
-
-
 def _legend(fig: Any, handles: list[Any]) -> None:
     fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
 
@@ -156,7 +142,7 @@ def _outline_handle(kind: str) -> list[Any]:
 def _no_equilibrium(fig: Any, ax: Any, sim: Simulation, kind: str, points: Array, view) -> None:
     """Draw ``points`` uncoloured and say in the picture why there are no colours."""
     faces = _faces(sim)
-    _surface(ax, points, faces, np.tile(_NEUTRAL, (len(faces), 1)), view)
+    shaded_surface(ax, points[faces], np.tile(_NEUTRAL, (len(faces), 1)), view)
     drawn = {
         "released": "drawn: the released form (after springback, without gravity), uncoloured",
         "designed": "drawn: the designed form, uncoloured",
@@ -232,7 +218,7 @@ def render_deviation(
         dev = np.asarray(sim.deviation, dtype=float)
         lo, hi = deviation_range(dev)
         faces = _faces(sim)
-        _surface(ax, points, faces, ramp(dev[faces].mean(axis=1), lo, hi), view)
+        shaded_surface(ax, points[faces], ramp(dev[faces].mean(axis=1), lo, hi), view)
         cmap = LinearSegmentedColormap.from_list("deviation", DEVIATION_STOPS)
         cax = fig.add_axes((0.86, 0.2, 0.025, 0.55))
         bar = fig.colorbar(ScalarMappable(Normalize(lo, hi), cmap), cax=cax)
@@ -341,7 +327,7 @@ def render_stress(
         scale = stress_scale(stress, _flat_areas(sim), sim.yield_stress_MPa)
         cmap, norm = _stress_colours(scale)
         faces = _faces(sim)
-        _surface(ax, points, faces, cmap(norm(stress))[:, :3], view)
+        shaded_surface(ax, points[faces], cmap(norm(stress))[:, :3], view)
         k = int(np.argmax(stress))
         spot = points[faces[k]].mean(axis=0)
         ax.scatter(*spot, marker="X", s=70, color=_MARK, edgecolors="white", zorder=6)
