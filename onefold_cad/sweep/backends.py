@@ -9,9 +9,10 @@ it finishes; the runner journals them.
   code, and with thumbnails what they draw with: no worker imports
   anything per design). This process evaluates batches too whenever the
   workers have theirs (two each) in hand: while they start (a second or two
-  of imports) the sweep is not idle, and a small sweep is done before a
-  pool would have paid off. Workers ignore Ctrl-C (the sweep stops them) and leave
-  when the sweep's process is gone.
+  of imports, waited for on a thread of their own) the sweep is not idle,
+  and a small sweep is done before a pool would have paid off. Workers
+  ignore Ctrl-C (the sweep stops them) and leave when the sweep's process
+  is gone.
 * :func:`dask_rows`: a Dask distributed cluster, ``Client(address)`` with
   futures and ``as_completed``; ``local`` starts a ``LocalCluster`` of ``-j
   N`` worker processes. dask is imported here only.
@@ -129,9 +130,28 @@ def pool_rows(next_batch: NextBatch, workers: int) -> Generator[Rows, None, None
             workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),)
         )
 
+    # The first submit starts the first worker, and it waits for the
+    # forkserver's imports (matplotlib's with thumbnails: 1.5 s here): a
+    # thread waits for them while this process evaluates.
     pool = start()
-    pending: dict[Future[Rows], Batch] = {pool.submit(evaluate_batch, first): first}
+    launched: list[Future[Rows]] = []
+    failed: list[BaseException] = []
+
+    def launch() -> None:
+        try:
+            launched.append(pool.submit(evaluate_batch, first))
+        except BaseException as exc:  # handed to the sweep's thread below
+            failed.append(exc)
+
+    launcher = threading.Thread(target=launch, daemon=True, name="onefold-sweep-pool-start")
+    launcher.start()
     try:
+        while launcher.is_alive() and (batch := next_batch()) is not None:
+            yield evaluate_batch(batch)
+        launcher.join()
+        if failed:
+            raise failed[0]
+        pending: dict[Future[Rows], Batch] = {launched[0]: first}
         while True:
             while len(pending) < 2 * workers and (batch := next_batch()) is not None:
                 pending[pool.submit(evaluate_batch, batch)] = batch
@@ -158,6 +178,7 @@ def pool_rows(next_batch: NextBatch, workers: int) -> Generator[Rows, None, None
                 pool.shutdown(wait=False, cancel_futures=True)
                 pool = start()
     finally:
+        launcher.join()  # a shutdown would wait for the worker's start anyway
         pool.shutdown(wait=False, cancel_futures=True)
 
 
