@@ -32,7 +32,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import platform
 import re
 import sys
 import time
@@ -41,11 +40,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import paper_method as pm  # noqa: E402
+from docs_block import machine_info  # noqa: E402
 from interleave import Stats, interleave, paired_ratio  # noqa: E402
 from numpy_floor import floor_solve_fold  # noqa: E402
 
@@ -74,25 +72,6 @@ RADIUS = 100.0
 SPEEDUP_REQUIRED = 10.0
 ERROR_REQUIRED_DEG = 1e-12
 SCALING = [20, 90, 1_000, 10_000]
-
-
-def machine_info() -> dict[str, str]:
-    """CPU model (from /proc/cpuinfo), core count, Python, numpy and OS."""
-    cpu = platform.processor() or "unknown"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return {
-        "cpu": cpu,
-        "cores": str(os.cpu_count()),
-        "python": platform.python_version(),
-        "numpy": np.__version__,
-        "os": f"{platform.system()} {platform.release()}",
-    }
 
 
 def best_of(fn: Callable[[], Any], repeat: int, min_time: float = 0.0) -> tuple[float, Any]:

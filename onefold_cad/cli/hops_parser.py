@@ -3,9 +3,8 @@
 
 from __future__ import annotations
 
-import argparse
-
 from onefold_cad.cli.help_format import formatter
+from onefold_cad.flags.design_flags import parse_int_in
 from onefold_cad.flags.parser import FlagParser
 
 __all__ = ["HOPS_PORT", "hops_parser", "parse_port"]
@@ -16,15 +15,7 @@ HOPS_PORT = 5000
 
 def parse_port(text: str) -> int:
     """A TCP port in [0, 65535] (0: any free port)."""
-    try:
-        port = int(text)
-    except ValueError:
-        port = -1
-    if not 0 <= port <= 65535:
-        raise argparse.ArgumentTypeError(
-            f"must be a whole number in [0, 65535] (0: any free port), got {text.strip()!r}"
-        )
-    return port
+    return parse_int_in(text, 0, 65535, " (0: any free port)")
 
 
 def hops_parser(prog: str = "onefold") -> FlagParser:

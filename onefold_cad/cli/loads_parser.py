@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from onefold_cad.cli.help_format import fill, raw_formatter
-from onefold_cad.flags.design_flags import parse_choice, parse_float, parse_int
+from onefold_cad.flags.design_flags import parse_choice, parse_float, parse_int, parse_int_in
 from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
 
@@ -39,15 +39,7 @@ def parse_strength_cases(text: str) -> int | None:
     """``N`` (0 to 100) or ``all`` (None)."""
     if text.strip().lower() == "all":
         return None
-    try:
-        n = int(text)
-    except ValueError:
-        n = -1
-    if not 0 <= n <= 100:
-        raise argparse.ArgumentTypeError(
-            f"must be a whole number 0 to 100 or 'all', got {text.strip()!r}"
-        )
-    return n
+    return parse_int_in(text, 0, 100, more=" or 'all'")
 
 
 def loads_parser(prog: str = "onefold") -> FlagParser:

@@ -56,6 +56,20 @@ def parse_int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a whole number") from None
 
 
+def parse_int_in(text: str, low: int, high: int, note: str = "", more: str = "") -> int:
+    """A whole number in [``low``, ``high``]; ``note`` says what its values
+    mean, ``more`` names what else the flag takes (its caller parses that)."""
+    try:
+        n = int(text)
+    except ValueError:
+        n = low - 1
+    if not low <= n <= high:
+        raise argparse.ArgumentTypeError(
+            f"must be a whole number in [{low}, {high}]{note}{more}, got {text.strip()!r}"
+        )
+    return n
+
+
 def parse_choice(values: Sequence[str], upper: bool = False) -> Callable[[str], str]:
     def parse(text: str) -> str:
         v = text.strip().upper() if upper else text.strip().lower()

@@ -67,8 +67,8 @@ BAD = [
     (["--wind-speed", "25", "--supports", "glue"], "--supports", "anchored, friction, ballast"),
     (["--wind-speed", "25", "--friction", "0"], "friction", "0.01 to 2"),
     (["--wind-speed", "x"], "--wind-speed", "not a number"),
-    (["--wind-speed", "25", "--strength-cases", "-1"], "--strength-cases", "0 to 100 or 'all'"),
-    (["--wind-speed", "25", "--strength-cases", "some"], "--strength-cases", "0 to 100 or 'all'"),
+    (["--wind-speed", "25", "--strength-cases", "-1"], "--strength-cases", "[0, 100] or 'all'"),
+    (["--wind-speed", "25", "--strength-cases", "some"], "--strength-cases", "[0, 100] or 'all'"),
 ]
 
 
