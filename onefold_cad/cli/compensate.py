@@ -27,7 +27,7 @@ from typing import Any
 
 from onefold_cad.choices import Compensation
 from onefold_cad.cli.build import check_outdir
-from onefold_cad.cli.output import warn
+from onefold_cad.cli.output import warn, wrote
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
@@ -212,9 +212,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     report["compensation"] = result.to_data()
     check_finite(report)
     if ns.outdir is not None:
-        for path in _write(ns.outdir, report, result, job):
-            if not ns.quiet:
-                os.write(2, f"wrote {path}\n".encode())
+        wrote(_write(ns.outdir, report, result, job), ns.quiet)
     if ns.json:
         sys.stdout.write(report_json(report))
     else:

@@ -10,14 +10,13 @@ line naming it (exit status 2) before the model is built.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 from typing import Any
 
 from onefold_cad.cli.build import check_outdir, make_outdir
 from onefold_cad.cli.loads_parser import load_spec_values
-from onefold_cad.cli.output import warn
+from onefold_cad.cli.output import warn, wrote
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
 
@@ -152,9 +151,7 @@ def cmd_loads(ns: argparse.Namespace) -> int:
     for w in result.warnings:
         warn(w)
     if ns.outdir is not None:
-        for path in _write(ns.outdir, design.name, report, result):
-            if not ns.quiet:
-                os.write(2, f"wrote {path}\n".encode())
+        wrote(_write(ns.outdir, design.name, report, result), ns.quiet)
     if ns.json:
         sys.stdout.write(report_json(report))
     else:

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
-__all__ = ["held_warnings", "one_line", "os_message", "Progress", "warn"]
+__all__ = ["held_warnings", "one_line", "os_message", "Progress", "warn", "wrote"]
 
 
 # -- text output --------------------------------------------------------------------
@@ -22,6 +22,14 @@ class Progress:
     def line(self, i: int, n: int, name: str, text: str) -> None:
         if not self.quiet:
             os.write(2, f"[{i}/{n}] {name}: {text}\n".encode())
+
+
+def wrote(paths: Iterable[object], quiet: bool) -> None:
+    """Go through ``paths`` (a writer's generator writes as it yields) with a
+    ``wrote PATH`` line on stderr for each, none when quiet."""
+    for path in paths:
+        if not quiet:
+            os.write(2, f"wrote {path}\n".encode())
 
 
 def warn(text: str) -> None:

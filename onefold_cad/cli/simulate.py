@@ -17,7 +17,7 @@ from typing import Any
 
 from onefold_cad.choices import MeshLevel
 from onefold_cad.cli.build import check_outdir, make_outdir
-from onefold_cad.cli.output import warn
+from onefold_cad.cli.output import warn, wrote
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
 
@@ -229,9 +229,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
     for w in sim.warnings:
         warn(w)
     if ns.outdir is not None:
-        for path in _write(ns.outdir, design.name, report, sim):
-            if not ns.quiet:
-                os.write(2, f"wrote {path}\n".encode())
+        wrote(_write(ns.outdir, design.name, report, sim), ns.quiet)
     if ns.json:
         sys.stdout.write(report_json(report))
     else:
