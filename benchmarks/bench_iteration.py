@@ -4,7 +4,9 @@ the J2 sections (after forming, at the formed state: every face's section
 mixed elastic and plastic through the thickness) and with the moment law
 (the model's elastic shell), and the factorisation of the free-free
 Hessian as ``newton`` does it (``SymmetricFactor.factor``, the symbolic
-analysis once per structure). With ``--baseline COMMIT`` the same calls of
+analysis once per structure), with the factor's fill (QDLDL's ``L`` against
+the matrix's upper triangle, and whether its ordering permutes: AMD). With
+``--baseline COMMIT`` the same calls of
 that commit's package (``git_baseline.py``) run interleaved beside today's
 on the same inputs (CPU medians [quartiles] and the paired ratio). BLAS runs
 on one thread, as ``simulate`` runs it. ``--chunks N ...`` times the J2
@@ -26,6 +28,8 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import qdldl
+import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -110,9 +114,13 @@ def _run(args: argparse.Namespace) -> None:
         for n in args.chunks:
             calls[f"evaluate J2 CHUNK={n}"] = lambda s=j2, q=q, n=n: _chunked(s, q, n)
         stats = interleave(calls, rounds=args.rounds, batch_time=0.0)
+        upper = sp.triu(hf, format="csc")
+        lower, _, perm = qdldl.Solver(upper, upper=True).factors()
         print(
             f"{args.template} {level}: {model.mesh.n_faces} faces, {hf.shape[0]} free "
-            f"unknowns, Hessian nnz {hf.nnz}"
+            f"unknowns, Hessian nnz {hf.nnz}; LDL^T: nnz(L) {lower.nnz} against "
+            f"{upper.nnz} in the upper triangle ({lower.nnz / upper.nnz:.2f} x), "
+            f"ordering {'permuted (AMD)' if np.any(perm != np.arange(len(perm))) else 'natural'}"
         )
         for name, s in stats.items():
             line = f"  {name:20s} {s.fmt(1e3, ' ms')}"
