@@ -4,12 +4,14 @@ an earlier commit (``--baseline``, main before the J2 work, extracted from git
 by ``git_baseline.py``), each on the same design and mesh level, interleaved
 round by round (CPU seconds of ``simulate``, the design's solve excluded),
 with the numbers each reports (formed plastic share, springback, standing
-deviation, largest stress, Newton iterations).
+deviation, largest stress, Newton iterations). ``--before COMMIT`` adds that
+commit's J2 and moment laws (say, main before a speed-up) to the same rounds;
+``--digits`` the significant digits of the numbers.
 
 Run from the repository root::
 
     .venv/bin/python benchmarks/bench_j2_law.py [TEMPLATE] [--levels coarse normal]
-        [--rounds 1] [--baseline 8921478]
+        [--rounds 1] [--baseline 8921478] [--before main] [--digits 4]
 
 The normal level runs with its convergence check (``simulate``'s default), the
 coarse preview without. Prints only.
@@ -48,12 +50,34 @@ def _row(sim) -> dict[str, float | None]:
     }
 
 
+def _before_runs(commit: str, template: str) -> dict:
+    """``commit``'s J2 and moment laws, its own package on its own template."""
+    pkg, why = load(commit)
+    if pkg is None:
+        print(f"no {commit}: {why}")
+        return {}
+    import importlib
+
+    osim = importlib.import_module(pkg.__name__ + ".mechanics.simulate")
+    odes = importlib.import_module(pkg.__name__ + ".design")
+    otpl = importlib.import_module(pkg.__name__ + ".templates")
+    od = otpl.load_template(str(find_template(template)))  # the file as this tree has it
+    of = odes.fold_design(od)
+
+    def law(name: str):
+        return lambda d, f, lvl, chk: osim.simulate(od, of, level=lvl, convergence=chk, law=name)
+
+    return {f"J2 ({commit})": law("j2"), f"moment ({commit})": law("moment")}
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("template", nargs="?", default="patkau-one-fold")
     ap.add_argument("--levels", nargs="*", default=["coarse", "normal"])
     ap.add_argument("--rounds", type=int, default=1)
     ap.add_argument("--baseline", default="8921478")
+    ap.add_argument("--before", default=None)
+    ap.add_argument("--digits", type=int, default=4)
     args = ap.parse_args(argv)
     old, why = load(args.baseline)
     if old is None:
@@ -86,6 +110,8 @@ def main(argv: list[str] | None = None) -> int:
             return osim.simulate(od, of, level=lvl, convergence=chk)
 
         runs[f"moment ({args.baseline})"] = baseline
+    if args.before:
+        runs = {**_before_runs(args.before, args.template), **runs}
     design = load_template(args.template)
     folded = fold_design(design)
     print(f"{args.template}: CPU s of simulate (median of {args.rounds}), interleaved")
@@ -105,7 +131,9 @@ def main(argv: list[str] | None = None) -> int:
         base = statistics.median(times[list(runs)[-1]])
         for name in runs:
             med = statistics.median(times[name])
-            vals = " | ".join("-" if v is None else f"{v:.4g}" for v in rows[name].values())
+            vals = " | ".join(
+                "-" if v is None else f"{v:.{args.digits}g}" for v in rows[name].values()
+            )
             print(f"| {level} | {name} | {med:.2f} | {med / base:.2f} | {vals} |")
     return 0
 

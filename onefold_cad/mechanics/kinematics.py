@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 __all__ = [
     "METRIC_HESSIAN",
+    "SlopeTerms",
     "dihedral",
     "director_slopes",
     "face_heights",
@@ -29,6 +30,8 @@ __all__ = [
 
 F = NDArray[np.float64]
 _I3 = np.eye(3)
+#: eps_ijk, (3, 3, 3).
+_LEVI_CIVITA = np.cross(_I3[:, None, :], _I3[None, :, :])
 
 
 def skew(v: F) -> F:
@@ -55,23 +58,24 @@ METRIC_HESSIAN = _metric_hessian()
 
 def _slope_patterns() -> tuple[F, F, F]:
     """Constant pieces of the Hessians in ``director_slopes`` over ``(x0, x1, x2, d_i)``:
-    ``A = d_i . (x_i - x_{i+1})`` has (3, 12, 12) Hessians ``d2A_i``; ``B = d_i . N`` has
-    ``d2B_i = sum_c d_ic P1[c] + sum_(v, c) E_vc P2[v, c]`` (E_v the edge vectors)."""
-    d2a = np.zeros((3, 12, 12))
+    ``A = d_i . (x_i - x_{i+1})`` has Hessians ``d2A_i`` coupling the coordinates
+    with ``d_i`` only, (3, 9, 3) those blocks; ``B = d_i . N`` has ``d2B_i = sum_c
+    d_ic P1[c] + sum_(v, c) E_vc P2[v, c]`` (E_v the edge vectors): P1's blocks
+    over the coordinates (3, 81), P2's coupling them with ``d_i`` (9, 27). Every
+    block that couples the coordinates with ``d_i`` has its mirror image."""
+    d2a = np.zeros((3, 9, 3))
     for i in range(3):
         for v, sign in ((i, 1.0), ((i + 1) % 3, -1.0)):
-            d2a[i, 3 * v : 3 * v + 3, 9:] += sign * _I3
-            d2a[i, 9:, 3 * v : 3 * v + 3] += sign * _I3
+            d2a[i, 3 * v : 3 * v + 3] += sign * _I3
     basis = skew(_I3)  # [e_c]x
-    p1 = np.zeros((3, 12, 12))
-    p2 = np.zeros((3, 3, 12, 12))
+    p1 = np.zeros((3, 9, 9))
+    p2 = np.zeros((3, 3, 9, 3))
     for v in range(3):
         nxt, prv = 3 * ((v + 2) % 3), 3 * ((v + 1) % 3)
         p1[:, 3 * v : 3 * v + 3, nxt : nxt + 3] += basis
         p1[:, 3 * v : 3 * v + 3, prv : prv + 3] -= basis
-        p2[v, :, 3 * v : 3 * v + 3, 9:] -= basis
-        p2[v, :, 9:, 3 * v : 3 * v + 3] -= basis.transpose(0, 2, 1)
-    return d2a, p1, p2.reshape(9, 144)
+        p2[v, :, 3 * v : 3 * v + 3] -= basis
+    return d2a, p1.reshape(3, 81), p2.reshape(9, 27)
 
 
 _SLOPE_PATTERNS = _slope_patterns()
@@ -110,12 +114,16 @@ def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
     ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
     m = len(edge)
     gram = edge @ edge.transpose(0, 2, 1)
-    blocks = gram[:, :, :, None, None] * _I3 - edge[:, None, :, :, None] * edge[:, :, None, None, :]
+    # blocks[m, j, a, l, b], so that the (m, 9, 9) is a view: - E_l[a] E_j[b] first
+    blocks = -edge.transpose(0, 2, 1)[:, None, :, :, None] * edge[:, :, None, None, :]
+    for a in range(3):
+        blocks[:, :, a, :, a] += gram
     wn = skew(normal)
     for j in range(3):
-        blocks[:, j, (j + 2) % 3] += wn
-        blocks[:, j, (j + 1) % 3] -= wn
-    d2f = blocks.transpose(0, 1, 3, 2, 4).reshape(m, 9, 9) / nn[:, None, None]
+        blocks[:, j, :, (j + 2) % 3] += wn
+        blocks[:, j, :, (j + 1) % 3] -= wn
+    d2f = blocks.reshape(m, 9, 9)
+    d2f /= nn[:, None, None]
     return d2f - 2 * df[:, :, None] * df[:, None, :]
 
 
@@ -252,16 +260,13 @@ def unit_derivatives(e: F) -> tuple[F, F, F]:
     length = np.linalg.norm(e, axis=1)
     t = e / length[:, None]
     dt = (_I3 - t[:, :, None] * t[:, None, :]) / length[:, None, None]
-    tt = t[:, :, None, None]
-    d2t = (
-        -(
-            _I3[None, :, :, None] * t[:, None, None, :]
-            + _I3[None, :, None, :] * t[:, None, :, None]
-            + _I3[None, None, :, :] * tt
-            - 3 * tt * t[:, None, :, None] * t[:, None, None, :]
-        )
-        / (length**2)[:, None, None, None]
-    )
+    # -(delta_ij t_k + delta_ik t_j + delta_jk t_i - 3 t_i t_j t_k) / |e|^2
+    d2t = 3 * t[:, :, None, None] * (t[:, :, None] * t[:, None, :])[:, None]
+    for i in range(3):
+        d2t[:, i, i, :] -= t
+        d2t[:, i, :, i] -= t
+        d2t[:, :, i, i] -= t
+    d2t /= (length**2)[:, None, None, None]
     return t, dt, d2t
 
 
@@ -307,16 +312,18 @@ def transported_director(
     )
     big_a += (2 * s * w**3)[:, None, None] * t0[:, :, None] * t0[:, None, :]
     r2 = -plus[:, :, None, None] * big_a[:, None, :, :]
-    r2 -= _I3[None, :, :, None] * a[:, None, None, :] + _I3[None, :, None, :] * a[:, None, :, None]
-    # q2_ijk = (e_j x dr/dt_k + e_k x dr/dt_j + t x d2r/dt_j dt_k)_i
-    cross_jk = np.stack([np.cross(_I3[j], r1.transpose(0, 2, 1)) for j in range(3)], axis=2)
-    cross_jk = cross_jk.transpose(0, 3, 2, 1)  # (k, i, j, k')
-    t_r2 = np.cross(t[:, None, None, :], r2.transpose(0, 2, 3, 1)).transpose(0, 3, 1, 2)
-    q2 = cross_jk + cross_jk.transpose(0, 1, 3, 2) + t_r2
+    for i in range(3):  # - delta_ij a_k - delta_ik a_j
+        r2[:, i, i, :] -= a
+        r2[:, i, :, i] -= a
+    # q2_ijk = (e_j x dr/dt_k + e_k x dr/dt_j + t x d2r/dt_j dt_k)_i, (e_j x v)_i = eps_ija v_a
+    cross_jk = (_LEVI_CIVITA.reshape(9, 3) @ r1).reshape(k, 3, 3, 3)  # (k, i, j, k')
+    q2 = (skew(t) @ r2.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
+    q2 += cross_jk
+    q2 += cross_jk.transpose(0, 1, 3, 2)
     d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
     d2d = np.zeros((k, 3, 4, 4))
     dtt = dt.transpose(0, 2, 1)[:, None]
-    d2d[:, :, :3, :3] = dtt @ d_tt @ dt[:, None] + np.einsum("nib,nbjk->nijk", d_t, d2t)
+    d2d[:, :, :3, :3] = dtt @ d_tt @ dt[:, None] + (d_t @ d2t.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
     mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
     d2d[:, :, :3, 3] = mixed
     d2d[:, :, 3, :3] = mixed
@@ -334,8 +341,27 @@ def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
 
     Returns:
         u: (m, 3); du: (m, 3, 12) and d2u: (m, 3, 12, 12) in ``(x0, x1, x2, d_i)``.
+        (:class:`SlopeTerms` gives ``sum_i w_i d2u_i`` without the (m, 3, 12, 12).)
     """
+    if order == 0:
+        return _slope_values(x, d)[-1], None, None
+    terms = SlopeTerms(x, d)
+    if order == 1:
+        return terms.u, terms.du, None
     m = len(x)
+    d2u = np.zeros((m, 3, 12, 12))
+    _, hxd, hdd = terms.hessian(np.ones((m, 3)))
+    for i in range(3):
+        d2u[:, i, :9, :9] = terms.hessian(np.eye(3)[i][None, :].repeat(m, 0))[0]
+    d2u[:, :, :9, 9:] = hxd
+    d2u[:, :, 9:, :9] = hxd.transpose(0, 1, 3, 2)
+    d2u[:, :, 9:, 9:] = hdd
+    return terms.u, terms.du, d2u
+
+
+def _slope_values(x: F, d: F) -> tuple[F, F, F, F, F, F, F, F]:
+    """``director_slopes``' values: edges, normal, ``|N|^2``, ``|N|``, ``x_i -
+    x_{i+1}``, ``A_i``, ``B_i`` and ``u``."""
     edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
     normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
     nn = np.einsum("ij,ij->i", normal, normal)
@@ -343,50 +369,76 @@ def director_slopes(x: F, d: F, order: int = 2) -> tuple[F, F | None, F | None]:
     f = x - x[:, [1, 2, 0]]  # x_i - x_{i+1}
     num = np.einsum("mij,mij->mi", d, f)
     den = np.einsum("mij,mj->mi", d, normal)
-    u = norm[:, None] * num / den
-    if order == 0:
-        return u, None, None
-    # |N| = M: dM = M dF (F = ln|N|), d2M = M (d2F + dF dF^T).
-    dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]
-    df = dfx.reshape(m, 9)
-    dm = norm[:, None] * df
-    da = np.zeros((m, 3, 12))
-    db = np.zeros((m, 3, 12))
-    for i in range(3):
-        j = (i + 1) % 3
-        da[:, i, 3 * i : 3 * i + 3] += d[:, i]
-        da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
-        da[:, i, 9:] = f[:, i]
-        for col in range(3):
-            db[:, i, 3 * col : 3 * col + 3] = np.cross(d[:, i], edge[:, col])
-        db[:, i, 9:] = normal
-    g = norm[:, None] / den  # G = M / B
-    dg = dm[:, None, :] / den[:, :, None]
-    dg = (
-        np.concatenate([dg, np.zeros((m, 3, 3))], axis=2)
-        - (norm[:, None] / den**2)[:, :, None] * db
-    )
-    du = g[:, :, None] * da + num[:, :, None] * dg
-    if order == 1:
-        return u, du, None
-    d2f = log_area_hessian(edge, normal, nn, df)
-    d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
-    # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
-    #   + dA dG^T + dG dA^T - (A / B^2)(dM dB^T + dB dM^T) + (2 A M / B^3) dB dB^T.
-    ab2 = num / den**2
-    # The dense part as V^T C V, V = (dA, dG, dM, dB): one batched product.
-    v = np.zeros((m, 3, 4, 12))
-    v[:, :, 0], v[:, :, 1], v[:, :, 3] = da, dg, db
-    v[:, :, 2, :9] = dm[:, None, :]
-    c = np.zeros((m, 3, 4, 4))
-    c[:, :, 0, 1] = c[:, :, 1, 0] = 1.0
-    c[:, :, 2, 3] = c[:, :, 3, 2] = -ab2
-    c[:, :, 3, 3] = 2 * ab2 * norm[:, None] / den
-    d2u = v.transpose(0, 1, 3, 2) @ c @ v
-    d2u[:, :, :9, :9] += (num / den)[:, :, None, None] * d2m[:, None]
-    # The constant-pattern parts: G d2A - (A M / B^2) d2B, d2B linear in d_i and in x.
-    d2b = (d @ _SLOPE_PATTERNS[1].reshape(3, 144)) + (edge.reshape(m, 1, 9) @ _SLOPE_PATTERNS[2])
-    d2u += g[:, :, None, None] * _SLOPE_PATTERNS[0] - (ab2 * norm[:, None])[:, :, None, None] * (
-        d2b.reshape(m, 3, 12, 12)
-    )
-    return u, du, d2u
+    return edge, normal, nn, norm, f, num, den, norm[:, None] * num / den
+
+
+class SlopeTerms:
+    """:func:`director_slopes` to first order, and its Hessians contracted
+    with weights per edge (:meth:`hessian`) without the (m, 3, 12, 12) blocks.
+
+    Args:
+        x: (m, 3, 3) vertex positions; d: (m, 3, 3) the edges' directors.
+
+    Attributes:
+        u: (m, 3); du: (m, 3, 12) in ``(x0, x1, x2, d_i)``.
+    """
+
+    def __init__(self, x: F, d: F) -> None:
+        m = len(x)
+        edge, normal, nn, norm, f, num, den, u = _slope_values(x, d)
+        # |N| = M: dM = M dF (F = ln|N|), d2M = M (d2F + dF dF^T).
+        dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]
+        df = dfx.reshape(m, 9)
+        dm = norm[:, None] * df
+        da = np.zeros((m, 3, 12))
+        db = np.zeros((m, 3, 12))
+        for i in range(3):
+            j = (i + 1) % 3
+            da[:, i, 3 * i : 3 * i + 3] += d[:, i]
+            da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
+            da[:, i, 9:] = f[:, i]
+        db[:, :, :9] = np.cross(d[:, :, None, :], edge[:, None, :, :]).reshape(m, 3, 9)
+        db[:, :, 9:] = normal[:, None, :]
+        g = norm[:, None] / den  # G = M / B
+        dg = -(norm[:, None] / den**2)[:, :, None] * db
+        dg[:, :, :9] += dm[:, None, :] / den[:, :, None]
+        self.u: F = u
+        self.du: F = g[:, :, None] * da + num[:, :, None] * dg
+        self._x = (edge, normal, nn, norm, num, den, d, df)
+        self._v = (da, dg, dm, db, g)
+
+    def hessian(self, w: F) -> tuple[F, F, F]:
+        """``sum_i w_i d2u_i`` ((m, 3) weights) in blocks: over the coordinates
+        (m, 9, 9) (summed), coordinates by ``d_i`` (m, 3, 9, 3) and ``d_i`` by
+        ``d_i`` (m, 3, 3, 3) (each edge's own, times ``w_i``)."""
+        edge, normal, nn, norm, num, den, d, df = self._x
+        da, dg, dm, db, g = self._v
+        m = len(w)
+        # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
+        #   + dA dG^T + dG dA^T - (A / B^2)(dM dB^T + dB dM^T) + (2 A M / B^3) dB dB^T.
+        ab2 = num / den**2
+        # The dense part as V^T C V, V = (dA, dG, dM, dB), weighted per edge.
+        v = np.zeros((m, 3, 4, 12))
+        v[:, :, 0], v[:, :, 1], v[:, :, 3] = da, dg, db
+        v[:, :, 2, :9] = dm[:, None, :]
+        c = np.zeros((m, 3, 4, 4))
+        c[:, :, 0, 1] = c[:, :, 1, 0] = w
+        c[:, :, 2, 3] = c[:, :, 3, 2] = -w * ab2
+        c[:, :, 3, 3] = 2 * w * ab2 * norm[:, None] / den
+        cv = c @ v  # (m, 3, 4, 12)
+        vx = v[..., :9]
+        hxx = vx.reshape(m, 12, 9).transpose(0, 2, 1) @ cv[..., :9].reshape(m, 12, 9)
+        hxd = vx.transpose(0, 1, 3, 2) @ cv[..., 9:]
+        hdd = v[..., 9:].transpose(0, 1, 3, 2) @ cv[..., 9:]
+        # + (A / B) d2M over the coordinates
+        d2f = log_area_hessian(edge, normal, nn, df)
+        d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
+        hxx += np.einsum("mi,mi->m", w, num / den)[:, None, None] * d2m
+        # The constant-pattern parts: G d2A - (A M / B^2) d2B; d2A and the d_i part of
+        # d2B couple the coordinates with d_i, d2B's x part the coordinates alone.
+        d2a, p1, p2 = _SLOPE_PATTERNS
+        coef = w * ab2 * norm[:, None]
+        hxx -= ((coef[:, None, :] @ d)[:, 0] @ p1).reshape(m, 9, 9)
+        p2e = (edge.reshape(m, 9) @ p2).reshape(m, 1, 9, 3)
+        hxd += (w * g)[:, :, None, None] * d2a - coef[:, :, None, None] * p2e
+        return hxx, hxd, hdd

@@ -65,6 +65,24 @@ def test_gradient_and_hessian_against_finite_differences(random_state):
     assert ev.hessian.nnz == pattern_of(shell.mesh).nnz
 
 
+def test_chunks_of_faces_add_up_to_the_whole(random_state, monkeypatch):
+    """The face terms in runs of a few faces (``energy.CHUNK``, the last run shorter) give what one
+    run of all the faces gives, to rounding."""
+    from onefold_cad.mechanics import energy
+
+    shell, q = random_state
+    whole = evaluate(shell, q)
+    monkeypatch.setattr(energy, "CHUNK", 9)
+    assert shell.mesh.n_faces > 3 * 9 and shell.mesh.n_faces % 9
+    runs = evaluate(shell, q)
+    assert runs.energy == pytest.approx(whole.energy, rel=1e-13)
+    np.testing.assert_allclose(
+        runs.gradient, whole.gradient, rtol=0, atol=1e-13 * abs(whole.gradient).max()
+    )
+    diff = abs(runs.hessian - whole.hessian).max()
+    assert diff <= 1e-13 * abs(whole.hessian).max()
+
+
 def _random_rigid(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     rot = Rotation.from_rotvec([0.4, -0.7, 0.5]).as_matrix()
     return x @ rot.T + np.array([0.3, -1.2, 2.0]), rot

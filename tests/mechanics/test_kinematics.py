@@ -10,6 +10,7 @@ import numpy as np
 
 from onefold_cad.mechanics.kinematics import (
     METRIC_HESSIAN,
+    SlopeTerms,
     dihedral,
     director_slopes,
     face_heights,
@@ -148,3 +149,38 @@ def test_director_slopes():
             hh = central_difference(partial(_slopes, x, d, f, i, 1), y, 1e-4)
             _close(g, du[f, i])
             _close(hh, d2u[f, i])
+
+
+def _weighted_slope_gradient(x, d, w, f, y):
+    """The gradient of ``sum_i w_i u_i`` of face ``f`` over its coordinates and its
+    three directors (18), at ``y`` (the same 18)."""
+    xx, dd = x.copy(), d.copy()
+    xx[f], dd[f] = y[:9].reshape(3, 3), y[9:].reshape(3, 3)
+    du = director_slopes(xx, dd, 1)[1][f]
+    grad = np.zeros(18)
+    grad[:9] = w[f] @ du[:, :9]
+    grad[9:] = (w[f][:, None] * du[:, 9:]).ravel()
+    return grad
+
+
+def test_weighted_slope_hessians_are_the_derivative_of_the_weighted_gradient():
+    """``SlopeTerms.hessian(w)``: the blocks of ``sum_i w_i d2u_i`` over the
+    coordinates and each edge's director, against central differences of the
+    weighted gradient (each ``d_i`` its own variables: no ``d_i d_j`` block)."""
+    m = 6
+    x = RNG.normal(size=(m, 3, 3))
+    d = RNG.normal(size=(m, 3, 3))
+    w = RNG.normal(size=(m, 3))
+    hxx, hxd, hdd = SlopeTerms(x, d).hessian(w)
+    assert hxx.shape == (m, 9, 9) and hxd.shape == (m, 3, 9, 3) and hdd.shape == (m, 3, 3, 3)
+    for f in range(m):
+        y = np.concatenate([x[f].ravel(), d[f].ravel()])
+        h = central_difference(partial(_weighted_slope_gradient, x, d, w, f), y, 1e-5)
+        full = np.zeros((18, 18))
+        full[:9, :9] = hxx[f]
+        for i in range(3):
+            s = slice(9 + 3 * i, 12 + 3 * i)
+            full[:9, s] = hxd[f, i]
+            full[s, :9] = hxd[f, i].T
+            full[s, s] = hdd[f, i]
+        _close(h, full)
