@@ -12,8 +12,9 @@ never the files' writers or the CLI above it.
   faces' states;
 - ``j2/``: J2 plasticity at points, through the thickness, on every face,
   and ``simulate --law j2``'s stages and measures;
-- ``newton``, ``equilibrium``: Newton's method (QDLDL's LDL^T), supports,
-  ground contact, continuation, forming and the plastic re-solve;
+- ``newton``, ``equilibrium``, ``predictor``: Newton's method (QDLDL's
+  LDL^T), supports, ground contact, continuation and its predicted starts,
+  forming and the plastic re-solve;
 - ``model``, ``stages``, ``simulate``: a design as a sheet model and
   ``onefold simulate``'s stages with either law; ``standing_measures``,
   ``deviation``, ``stress``, ``reserve``, ``results``: what the stages say;

@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.mechanics.energy import evaluate
 from onefold_cad.mechanics.newton import NewtonResult, Progress, minimize
+from onefold_cad.mechanics.predictor import extrapolate
 from onefold_cad.mechanics.shell import Shell, unpack
 
 __all__ = [
@@ -33,6 +34,12 @@ __all__ = [
 ]
 
 F = NDArray[np.float64]
+
+#: The fewest equilibria a predicted start is drawn through: not a line
+#: through two (a J2 strip released at R sigma_y / (E t) = 0.3,
+#: tests/mechanics/j2/test_layered.py: 95 Newton iterations with the line's
+#: start against 61 from the last state, 61 from the third step on).
+_PREDICT_FROM = 3
 
 
 @dataclass(frozen=True)
@@ -105,6 +112,7 @@ def _newton(
     max_iter: int,
     force_scale: float | None,
     length_scale: float | None,
+    start_scales: bool,
     callback: Progress | None,
 ) -> NewtonResult:
     def fun(state: F, order: int):
@@ -125,6 +133,7 @@ def _newton(
         rtol=rtol,
         atol=atol,
         max_iter=max_iter,
+        start_scales=start_scales,
         callback=callback,
     )
 
@@ -141,6 +150,7 @@ def solve_equilibrium(
     max_passes: int = 30,
     force_scale: float | None = None,
     length_scale: float | None = None,
+    start_scales: bool = True,
     callback: Progress | None = None,
 ) -> Equilibrium:
     """The equilibrium nearest ``q0`` (Newton from it), with supports and ground.
@@ -156,6 +166,8 @@ def solve_equilibrium(
         rtol: residual tolerance relative to ``force_scale`` (default: the weight,
             or the start's residual when that is larger).
         length_scale: turns director moments into forces (default: mean edge length).
+        start_scales: whether ``q0``'s residual may raise the tolerance
+            (``newton.minimize``; False for a predicted start).
         callback: progress, ``callback(iteration, residual N, energy J)``.
 
     Raises:
@@ -194,6 +206,7 @@ def solve_equilibrium(
             max_iter=max_iter,
             force_scale=force_scale,
             length_scale=length_scale,
+            start_scales=start_scales,
             callback=callback,
         )
         total_iter += result.iterations
@@ -270,6 +283,8 @@ def solve_path(
     step_iter: int = 25,
     max_move: float | None = None,
     max_solves: int = 64,
+    grow_iter: int = 6,
+    predict: int = 0,
     callback: Progress | None = None,
     accepted: Callable[[float, Equilibrium], None] | None = None,
     **options: object,
@@ -280,9 +295,16 @@ def solve_path(
     The step in ``s`` halves when a solve fails, or when its equilibrium lies
     more than ``max_move`` (m) from the last one at some node (Newton jumped to
     another branch: the path is followed, so a limit point stalls it instead of
-    snapping through), and grows after quick ones; every solve (``solve_equilibrium``'s
-    ``options``) gets at most ``step_iter`` Newton iterations (a step that
-    needs more is halved); at most ``max_solves`` solves in all.
+    snapping through), and doubles after one that took at most ``grow_iter``
+    iterations; every solve (``solve_equilibrium``'s ``options``) gets at most
+    ``step_iter`` Newton iterations (a step that needs more is halved); at
+    most ``max_solves`` solves in all. With ``predict`` = k > 0 each solve
+    once the path has three equilibria (the start among them) starts from the
+    polynomial through the last k + 1 of them (fewer while there are fewer;
+    ``predictor.extrapolate``) at the step's end, the fixed unknowns and the
+    nodes on the ground (the last equilibrium's and the starting
+    ``contacts``) held, and its tolerance is ``rtol`` times ``force_scale``
+    alone (not raised by the predicted start's residual).
     ``accepted(s, equilibrium)`` is called after each step the path keeps
     (a path-dependent material moves its internal variables on there, so
     ``shell_at`` gives the next step's shell with them).
@@ -295,14 +317,21 @@ def solve_path(
     q = np.asarray(q0, dtype=float)
     s, ds, total, failed = 0.0, first_step, 0, float("nan")
     last: Equilibrium | None = None
+    passed: list[tuple[float, F]] = [(s, q)]
     for _ in range(max_solves):
         target = min(1.0, s + ds)
         opts: dict[str, Any] = dict(options)
         # every solve, the last one too, gets at most step_iter iterations: a step
         # Newton cannot finish quickly is halved, never ground through
         opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)
+        start = q
+        if predict > 0 and len(passed) >= _PREDICT_FROM:
+            assert last is not None
+            held = _held(shell_at(target), options, last)
+            start = extrapolate(passed[-(predict + 1) :], target, held)
+            opts["start_scales"] = False
         try:
-            eq = solve_equilibrium(shell_at(target), q, callback=callback, **opts)
+            eq = solve_equilibrium(shell_at(target), start, callback=callback, **opts)
             n = shell_at(target).mesh.n_nodes
             moved = float(np.max(np.linalg.norm((eq.q - q)[: 3 * n].reshape(n, 3), axis=1)))
             if max_move is not None and moved > max_move:
@@ -327,11 +356,12 @@ def solve_path(
             continue
         total += eq.iterations
         q, s, last = eq.q, target, eq
+        passed.append((s, q))
         if accepted is not None:
             accepted(s, eq)
         if s >= 1.0:
             return replace(eq, iterations=total)
-        if eq.iterations <= 6:
+        if eq.iterations <= grow_iter:
             ds = min(2 * ds, 1.0)
     raise PathStalled(
         f"continuation did not reach the end in {max_solves} solves (at s = {s:.4g}; the last "
@@ -341,6 +371,18 @@ def solve_path(
         reached=s,
         last=last,
     )
+
+
+def _held(shell: Shell, options: dict[str, object], last: Equilibrium) -> NDArray[np.bool_]:
+    """The unknowns a predicted start keeps at ``last``'s values: the fixed
+    ones and every coordinate of a node on the ground there or among the
+    solves' starting ``contacts`` (anchored feet stay where they stand)."""
+    held = _dof_mask(shell, np.asarray(options.get("fixed", ()), dtype=np.int64))
+    on = last.contacts.copy()
+    if options.get("contacts") is not None:
+        on |= np.asarray(options["contacts"], dtype=bool)
+    held[: 3 * shell.mesh.n_nodes] |= np.repeat(on, 3)
+    return held
 
 
 def solve_directors(shell: Shell, q0: ArrayLike, **options: object) -> Equilibrium:

@@ -140,6 +140,7 @@ def minimize(
     atol: float = 0.0,
     max_iter: int = 60,
     watchdog: int = 6,
+    start_scales: bool = True,
     callback: Progress | None = None,
 ) -> NewtonResult:
     """Minimise ``fun`` over the free unknowns, starting from ``q0``.
@@ -157,6 +158,9 @@ def minimize(
             energy below the last reference point before going back to it for a
             line search (the watchdog technique: thin shells' stiff membranes make
             a monotone search crawl at steps of about a thickness).
+        start_scales: whether a start's residual above ``force_scale`` raises the
+            tolerance (False for a start predicted along a load path: its
+            residual measures the prediction's error, not the load).
         callback: ``callback(iteration, residual, energy)`` before every step.
 
     Raises:
@@ -175,7 +179,7 @@ def minimize(
         return float(np.max(np.abs(g[free] * scale[free]), initial=0.0))
 
     res = residual(grad)
-    tol = max(rtol * max(force_scale, res), atol)
+    tol = max(rtol * (max(force_scale, res) if start_scales else force_scale), atol)
     shift_start, relaxed = 0, 0
     before = (math.inf, math.inf)  # residual and energy before the last full step
     ref: tuple[F, float, F, sp.csc_matrix, float] | None = None

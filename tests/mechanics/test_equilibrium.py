@@ -125,3 +125,60 @@ def test_crease_folds_flat_panels(degrees):
     ce = mesh.crease_edges
     psi = dihedral(p[np.concatenate([mesh.edges[ce], mesh.edge_opposite[ce]], axis=1)], 0)[0]
     np.testing.assert_allclose(psi, angle, atol=1e-8)
+
+
+def test_a_predicted_path_takes_fewer_iterations_to_the_same_equilibrium(strip):
+    """The heavy elastica's gravity ramp in eight fixed steps: started from the
+    cubic through the last equilibria (``predict=3``) the solves take fewer
+    Newton iterations than from the last one, end at the same state, and hold
+    the same tolerance (the predicted start's residual does not raise it)."""
+    shell, fixed = cantilever(strip, STEEL0, _gravity_for(2.0))
+    runs = {}
+    for k in (0, 3):
+        seen: list[int] = []
+        runs[k] = solve_path(
+            lambda s: shell.with_changes(gravity=s * shell.gravity),
+            _start(strip),
+            fixed=fixed,
+            first_step=0.125,
+            grow_iter=0,
+            predict=k,
+            callback=lambda it, res, e, seen=seen: seen.append(it),
+        )
+        assert seen.count(0) == 8  # eight solves, none failed
+    assert runs[3].iterations < runs[0].iterations
+    np.testing.assert_allclose(runs[3].positions, runs[0].positions, atol=1e-9)
+    assert runs[3].tolerance == runs[0].tolerance
+
+
+def test_a_predicted_path_keeps_anchored_feet_where_they_stand(strip):
+    """The propped cantilever (see above) loaded in steps of 1/4, with and
+    without ``predict=2``: the same nodes end on the ground, where the
+    unpredicted path anchored them (a prediction moves only the free
+    unknowns), and the same equilibrium."""
+    g = _gravity_for(1e-3)
+    q = STEEL0.density * g * STEEL0.thickness
+    h0 = q * LENGTH**4 / (16 * STEEL0.bending_stiffness)
+    shell, fixed = cantilever(strip, STEEL0, g, height=h0)
+    start = _start(strip)
+    start[2 : 3 * strip.n_nodes : 3] = h0
+    touching = strip.nodes[:, 0] > 0.9 * LENGTH
+    runs = [
+        solve_path(
+            lambda s: shell.with_changes(gravity=s * shell.gravity),
+            start,
+            fixed=fixed,
+            ground=Ground("anchored"),
+            contacts=touching,
+            first_step=0.25,
+            grow_iter=0,
+            predict=k,
+        )
+        for k in (0, 2)
+    ]
+    at_tip = strip.nodes[:, 0] > LENGTH - 1e-12
+    assert np.array_equal(runs[0].contacts, at_tip) and np.array_equal(runs[1].contacts, at_tip)
+    np.testing.assert_allclose(runs[1].positions[at_tip], runs[0].positions[at_tip], atol=1e-12)
+    np.testing.assert_allclose(runs[1].positions, runs[0].positions, atol=1e-9)
+    ground = runs[1].reactions[runs[1].contacts, 2].sum()
+    assert abs(ground / (3 * q * LENGTH * WIDTH / 16) - 1) < 0.01

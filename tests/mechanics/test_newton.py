@@ -48,3 +48,19 @@ def test_indefinite_start_and_a_fixed_unknown():
     held = minimize(_rosenbrock, [0.5, 4.0], np.array([False, True]), rtol=0, atol=1e-10)
     assert held.q[1] == 4.0
     assert abs(held.gradient[0]) < 1e-10 and held.gradient[1] != 0
+
+
+def test_a_predicted_start_does_not_loosen_the_tolerance():
+    """The tolerance is rtol times the larger of force_scale and the start's
+    residual; with ``start_scales=False`` (a start predicted along a load path)
+    force_scale's alone, however far the start."""
+    start = [-2.0, 5.0]  # Rosenbrock's gradient there: (794, 200)
+    res0 = float(np.abs(_rosenbrock(np.array(start), 1)[1]).max())
+    assert res0 == 794.0
+    loose = minimize(_rosenbrock, start, np.zeros(2, bool), force_scale=1.0, rtol=1e-6,
+                     max_iter=100)  # fmt: skip
+    assert loose.tolerance == pytest.approx(1e-6 * res0)
+    strict = minimize(_rosenbrock, start, np.zeros(2, bool), force_scale=1.0, rtol=1e-6,
+                      max_iter=100, start_scales=False)  # fmt: skip
+    assert strict.tolerance == 1e-6
+    assert strict.residual <= 1e-6

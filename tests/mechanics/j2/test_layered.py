@@ -84,6 +84,12 @@ def _strip_springback(x: float) -> tuple[float, float]:
     cylinder, every director along its normal) with the yield stress that
     makes R_i sigma_y / (E t) = x, released on a 3-2-1 restraint through the
     law: (R_i / R_f, the formed plastic share of the surfaces)."""
+    ratio, share, _ = _strip_release(x)
+    return ratio, share
+
+
+def _strip_release(x: float):
+    """:func:`_strip_springback` and the released stage."""
     from onefold_cad.mechanics import director_angles
     from onefold_cad.mechanics.j2.stages import form_to, release_from
     from tests.mechanics.helpers import circle_radius, cylinder
@@ -103,7 +109,7 @@ def _strip_springback(x: float) -> tuple[float, float]:
     released = release_from(shell, formed, fixed, force_scale=1.0)
     p = released.equilibrium.positions
     share = float(np.mean(formed.surface_plastic_strain() > 0))
-    return radius / circle_radius(p[:, 0], p[:, 2]), share
+    return radius / circle_radius(p[:, 0], p[:, 2]), share, released
 
 
 @pytest.mark.parametrize("x", [0.1, 0.3])
@@ -119,3 +125,19 @@ def test_a_strip_formed_and_released_springs_back_as_its_sections_say(x):
     wide = 4 * xw**3 - 3 * xw + 1
     assert min(narrow, wide) - 0.01 <= ratio <= max(narrow, wide) + 0.01
     assert share == 1.0  # every face's surface yielded (x < 1/2)
+
+
+def test_the_release_s_predicted_steps_take_fewer_iterations_to_the_same_strip(monkeypatch):
+    """The strip at x = 0.1 released with each step started from the
+    polynomial through the last equilibria (``RELEASE_PREDICTOR``) and from
+    the last equilibrium alone (0): the same released form, in fewer Newton
+    iterations (22 against 39 when measured)."""
+    from onefold_cad.mechanics.j2 import stages as j2_stages
+
+    assert j2_stages.RELEASE_PREDICTOR >= 2
+    ratio, _, predicted = _strip_release(0.1)
+    monkeypatch.setattr(j2_stages, "RELEASE_PREDICTOR", 0)
+    ratio0, _, plain = _strip_release(0.1)
+    assert predicted.equilibrium.iterations < plain.equilibrium.iterations
+    assert ratio == pytest.approx(ratio0, rel=1e-6)
+    np.testing.assert_allclose(predicted.q, plain.q, atol=1e-9)
