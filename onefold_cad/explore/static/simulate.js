@@ -164,11 +164,13 @@ export function createSimulation({ scene, form, render, query }) {
     box.classList.toggle('off', sim.warnings.length === 0);
   }
 
-  function finish(ok) {
+  function finish(ok, sim = null) {
     requestAnimationFrame(() => {
       count += 1;
       document.body.dataset.simulations = String(count);
-      window.dispatchEvent(new CustomEvent('explore:simulated', { detail: { ok } }));
+      window.dispatchEvent(new CustomEvent('explore:simulated', {
+        detail: { ok, server_ms: sim?.server_ms ?? null, cpu_ms: sim?.cpu_ms ?? null },
+      }));
     });
   }
 
@@ -183,9 +185,10 @@ export function createSimulation({ scene, form, render, query }) {
     setStatus('simulating (coarse mesh)…');
     const started = performance.now();
     let ok = false;
+    let sim = null;
     try {
       const res = await fetch(`/api/simulate?${q}`);
-      const sim = await res.json();
+      sim = await res.json();
       if (mine !== token) return; // the design changed meanwhile
       if (!sim.ok) {
         setStatus(sim.error || `simulation failed (HTTP ${res.status})`, true);
@@ -203,7 +206,7 @@ export function createSimulation({ scene, form, render, query }) {
     } finally {
       running = false;
       updateButton();
-      if (mine === token) finish(ok);
+      if (mine === token) finish(ok, sim);
     }
   }
 
