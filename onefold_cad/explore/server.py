@@ -87,7 +87,8 @@ DEFAULT_PORT = 8765
 MAX_TARGET = 8192
 #: Seconds a connection may stay silent (a slow or half-sent request).
 TIMEOUT = 30.0
-#: Designs kept by their query (each with what derives from it: a few MB).
+#: Designs kept by their query, each with what derives from it (about 50 kB each
+#: for the default template with its state, measured with tracemalloc).
 RECENT_DESIGNS = 8
 
 _TEXT = "text/plain; charset=utf-8"

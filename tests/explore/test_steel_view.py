@@ -1,6 +1,7 @@
 """The Steel view in Chromium: toggled on, every slider release shows the steel
 of the NEW design (its numbers those of simulate() called here), a fast second
-release supersedes the first, an error is one line, off is the paper view."""
+release supersedes the first, an error or a busy server is one line, off is
+the paper view."""
 
 from __future__ import annotations
 
@@ -81,15 +82,29 @@ def test_the_steel_view_follows_the_sliders(browser, server):
         assert "error" in (page.locator("#sim-status").get_attribute("class") or "")
         assert page.locator("#sim-legend").is_hidden()
 
-        # off: the paper view, Simulate again
+        # a busy server (the bounded server's 503, plain text): its line, in red
+        busy = "the server is busy: too many connections at once, try again"
+        page.route(
+            "**/api/steel?**",
+            lambda route: route.fulfill(
+                status=503, body=busy + "\n", content_type="text/plain; charset=utf-8"
+            ),
+        )
         tab.change("#thickness-num", "3")
+        assert _wait_steel(page, 5) == ""
+        assert tab.text("#sim-status") == busy
+        assert "error" in (page.locator("#sim-status").get_attribute("class") or "")
+        page.unroute("**/api/steel?**")
+
+        # off: the paper view, Simulate again
         toggle.click()
         assert toggle.get_attribute("aria-pressed") == "false"
         assert page.locator("#simulate").is_enabled() and page.locator("#sim-legend").is_hidden()
         assert tab.text("#sim-deviation") == "–"
         assert tab.text("#sim-status").startswith("steel under its own weight")
         page.screenshot(path="/tmp/steelview-off.png")
-        assert tab.errors == [] and tab.foreign == []
+        # the browser logs the 503 it was given, nothing else
+        assert [e for e in tab.errors if "status of 503" not in e] == [] and tab.foreign == []
     finally:
         context.close()
 
