@@ -459,8 +459,8 @@ for (const name of SLIDERS) {
   });
   $(name).addEventListener('change', () => {
     quality.endSlide();
-    sliding = false; // the release: the Steel view simulates the design it settles on
-    if (!inflight && !pending) steel.settled(settledOn.q, settledOn.ok);
+    sliding = false; // the release: the Steel view asks for its design's steel at once,
+    steel.released(query()); // beside the state on its way (an error: the state's line)
   });
   $(`${name}-num`).addEventListener('input', () => {
     $(name).value = $(`${name}-num`).value;

@@ -1,14 +1,14 @@
 // onefold explore: the Steel view. While the "Steel" toggle is on, every design the
-// page settles on (a slider's release, a typed value, a template) is simulated as
-// steel without a press: /api/steel (the query of /api/state) answers what
-// /api/simulate answers, drawn by simulate.js (the standing steel coloured by its
-// deviation over the translucent design, the numbers). Only the latest design
-// counts: each request is sent at once, the server gives up the older ones
-// (steel.py) and an answer for a design the page has left is dropped (token). Until
-// the new steel arrives the last one stays, marked stale (faint, its numbers
-// greyed) over the new design's paper form: the user keeps the form they are
-// shaping in view and sees where the steel of the last design stood. Off: the
-// paper view again.
+// page settles on (a slider's release, at once; a typed value or a template, once
+// its state arrived) is simulated as steel without a press: /api/steel (the query
+// of /api/state) answers what /api/simulate answers, drawn by simulate.js (the
+// standing steel coloured by its deviation over the translucent design, the
+// numbers). Only the latest design counts: each request is sent at once, the
+// server gives up the older ones (steel.py) and an answer for a design the page
+// has left is dropped (token). Until the new steel arrives the last one stays,
+// marked stale (faint, its numbers greyed) over the new design's paper form: the
+// user keeps the form they are shaping in view and sees where the steel of the
+// last design stood. Off: the paper view again.
 const $ = (id) => document.getElementById(id);
 
 const NAMES = { alpha: 'α', beta: 'β', hc_fraction: 'H on f-line', apex_fraction: 'apex at' };
@@ -128,6 +128,10 @@ export function createSteelView({ simulation, render }) {
         simulation.markStale(true);
         simulation.setStatus('the design changed: the steel shown is stale');
       }
+    },
+    // a slider's release: its design's steel at once (its state may be on its way)
+    released(q) {
+      if (on) ask(q);
     },
     // the page settled on a design (its state arrived, no drag on): its steel next
     settled(q, ok) {
