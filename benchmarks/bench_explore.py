@@ -34,12 +34,14 @@ round, in alternating order, the same state is fetched over HTTP from Python
 beside this tree's, round by round in alternating order, and the paired
 ratios (this tree / baseline, round by round) are printed. Prints medians with
 their spread (25th and 75th percentile); asserts nothing; ``--write-docs``
-pastes the tables into docs/benchmarks.md.
+pastes the tables into docs/benchmarks.md. ``--steel ROUNDS`` adds the Steel
+view's slider release beside today's Simulate press, measured in the same run
+(:mod:`steel_view_timing`; ``--only`` with no name: that table alone).
 
 Run from the repository root::
 
     .venv/bin/python benchmarks/bench_explore.py [--moves 40] [--only NAME ...]
-        [--baseline COMMIT] [--write-docs]
+        [--baseline COMMIT] [--steel ROUNDS] [--write-docs]
 """
 
 from __future__ import annotations
@@ -63,6 +65,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from docs_block import ROOT, machine_line, write_block  # noqa: E402
 from interleave import stats_of  # noqa: E402
+from steel_view_timing import STEEL_HEADER, bench_steel, write_steel_docs  # noqa: E402
 
 CHROMIUM_ARGS = [
     "--headless",
@@ -356,6 +359,9 @@ def main(argv: list[str] | None = None) -> int:
         metavar="COMMIT",
         help="also time the explorer of COMMIT (its package from git), interleaved",
     )
+    ap.add_argument(
+        "--steel", type=int, default=0, metavar="ROUNDS", help="Steel view and Simulate rounds"
+    )
     ap.add_argument("--write-docs", action="store_true", help="update docs/benchmarks.md")
     args = ap.parse_args(argv)
     load0 = os.getloadavg()[0]  # the machine's other work: these times scale with it
@@ -376,17 +382,20 @@ def main(argv: list[str] | None = None) -> int:
         f"HTTP state alone: median [q1, q3] | drag <= {c} | full <= {c} |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    print("\n".join(header), flush=True)
+    templates = TEMPLATES if args.only is None else args.only
+    if templates:
+        print("\n".join(header), flush=True)
     rows, parts, ratios = [], [], []
     with sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
         try:
-            for template in args.only or TEMPLATES:
+            for template in templates:
                 r, p, q = bench_template(browser, template, args.moves, versions)
                 rows += r
                 parts += p
                 ratios += q
                 print("\n".join(r), flush=True)
+            steel = bench_steel(browser, args.steel, start_server) if args.steel else []
         finally:
             browser.close()
             home.cleanup()
@@ -412,8 +421,13 @@ def main(argv: list[str] | None = None) -> int:
             "|---|---|---|---|---|---|",
             *ratios,
         ]
-    print("\n".join(table2), flush=True)
-    if args.write_docs:
+    if rows:
+        print("\n".join(table2), flush=True)
+    if steel:
+        print("\n".join(["", *STEEL_HEADER, *steel]), flush=True)
+    if args.write_docs and steel:
+        write_steel_docs(steel, args.steel, load0)
+    if args.write_docs and rows:
         only = f" --only {' '.join(args.only)}" if args.only else ""
         only += f" --baseline {args.baseline}" if args.baseline else ""
         load = (

@@ -11,7 +11,11 @@ Debian's Chromium (playwright, software WebGL) at 1500 x 880 and saves:
   message, the marked control, the last good form dimmed);
 - ``explore-simulate.png``: the default template after Simulate (the standing
   steel sheet coloured by its deviation over the translucent design, the
-  legend and the numbers).
+  legend and the numbers);
+- ``explore-steel-stale.png``: then the Steel view on and alpha's slider
+  released at 33, while its steel is simulated (the steel of alpha 30 marked
+  stale over the new design);
+- ``explore-steel.png``: the steel of alpha 33 when it arrives.
 """
 
 from __future__ import annotations
@@ -74,12 +78,22 @@ def main(argv: list[str] | None = None) -> int:
             page.locator("#simulate").click()
             page.locator("body[data-simulations='1']").wait_for(state="attached", timeout=300_000)
             page.screenshot(path=args.outdir / "explore-simulate.png")
+
+            page.locator("#steel").click()
+            steel = page.locator("body[data-steel='1']")
+            steel.wait_for(state="attached", timeout=300_000)
+            page.locator("#alpha").fill("33")
+            page.locator("#sim-panel.stale").wait_for(state="attached", timeout=60_000)
+            page.screenshot(path=args.outdir / "explore-steel-stale.png")
+            steel = page.locator("body[data-steel='2']")
+            steel.wait_for(state="attached", timeout=300_000)
+            page.screenshot(path=args.outdir / "explore-steel.png")
             browser.close()
     finally:
         server.shutdown()
         server.server_close()
-    for name in ("explore.png", "explore-star.png", "explore-error.png", "explore-simulate.png"):
-        print(args.outdir / name)
+    for name in ("", "-star", "-error", "-simulate", "-steel-stale", "-steel"):
+        print(args.outdir / f"explore{name}.png")
     return 0
 
 

@@ -13,7 +13,15 @@ It listens on 127.0.0.1 and answers GET requests only:
   mesh, standing under its weight
   (:func:`onefold_cad.explore.simulation.simulation_state`; seconds: each
   request has its own thread, so the page's other requests go on meanwhile);
+- ``/api/steel?...`` (the same query): the same, for the page's Steel view:
+  only the latest of these is simulated (:mod:`onefold_cad.explore.steel`);
 - ``/download/{dxf,step,3dm,json,toml}?...``: the design's file.
+
+The last :data:`RECENT_DESIGNS` designs asked for are kept by their query
+(``functools.lru_cache``): a design's fold, resting placement and flat pattern
+are computed once per design object (:func:`onefold_cad.design.derived`), so
+the steel view's request for the design a state request just built, or a
+slider moved back, reuses them.
 
 Requests whose ``Host`` is not this server's own address (DNS rebinding),
 that come from another site (``Sec-Fetch-Site`` / ``Origin``), that carry a
@@ -32,6 +40,7 @@ derives from too).
 from __future__ import annotations
 
 import base64
+import functools
 import hashlib
 import json
 import re
@@ -39,6 +48,7 @@ import sys
 import threading
 import traceback
 import webbrowser
+from collections.abc import Callable
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler
 from importlib.resources import files
@@ -57,11 +67,13 @@ from onefold_cad.explore.controls import (
 from onefold_cad.explore.downloads import KINDS, make_download
 from onefold_cad.explore.simulation import simulation_state
 from onefold_cad.explore.state import design_state, problem_state
+from onefold_cad.explore.steel import LatestOnly
 
 __all__ = [
     "DEFAULT_PORT",
     "MAX_CONNECTIONS",
     "MAX_TARGET",
+    "RECENT_DESIGNS",
     "TIMEOUT",
     "ExploreServer",
     "load_templates",
@@ -75,6 +87,9 @@ DEFAULT_PORT = 8765
 MAX_TARGET = 8192
 #: Seconds a connection may stay silent (a slow or half-sent request).
 TIMEOUT = 30.0
+#: Designs kept by their query, each with what derives from it (about 50 kB each
+#: for the default template with its state, measured with tracemalloc).
+RECENT_DESIGNS = 8
 
 _TEXT = "text/plain; charset=utf-8"
 _JS = "text/javascript; charset=utf-8"
@@ -83,6 +98,7 @@ STATIC: dict[str, tuple[str, str]] = {
     "/": ("index.html", "text/html; charset=utf-8"),
     "/static/explore.js": ("explore.js", _JS),
     "/static/simulate.js": ("simulate.js", _JS),
+    "/static/steel_view.js": ("steel_view.js", _JS),
     "/static/quality.js": ("quality.js", _JS),
     "/static/explore.css": ("explore.css", "text/css; charset=utf-8"),
     "/static/three/three.module.js": ("three/three.module.js", _JS),
@@ -172,6 +188,12 @@ class ExploreServer(BoundedServer):
         self.static = _static_files()
         self.csp = _csp(self.static["/"])
         self.verbose = False
+        self.steel = LatestOnly()
+        self.design_of = functools.lru_cache(maxsize=RECENT_DESIGNS)(self._design_of)
+
+    def _design_of(self, params: tuple[tuple[str, str], ...]) -> Any:
+        """The design of the page's controls (sorted ``(name, text)`` pairs)."""
+        return design_from_params(dict(params), self.templates, self.initial)
 
 
 class ExploreHandler(BaseHTTPRequestHandler):
@@ -253,6 +275,8 @@ class ExploreHandler(BaseHTTPRequestHandler):
                 self._state(query)
             elif path == "/api/simulate":
                 self._simulate(query)
+            elif path == "/api/steel":
+                self._simulate(query, self.server.steel.ticket())
             elif path.startswith("/download/") and path[len("/download/") :] in KINDS:
                 self._download(path[len("/download/") :], query)
             else:
@@ -280,7 +304,8 @@ class ExploreHandler(BaseHTTPRequestHandler):
 
     def _design(self, query: str) -> Any:
         params = parse_query(query)
-        return design_from_params(params, self.server.templates, self.server.initial)
+        params.pop("mesh", None)  # the page's triangles: not a design value
+        return self.server.design_of(tuple(sorted(params.items())))
 
     def _state(self, query: str) -> None:
         try:
@@ -311,9 +336,9 @@ class ExploreHandler(BaseHTTPRequestHandler):
             return
         self._json(HTTPStatus.OK, state)
 
-    def _simulate(self, query: str) -> None:
+    def _simulate(self, query: str, cancelled: Callable[[], bool] | None = None) -> None:
         try:
-            state = simulation_state(self._design(query))
+            state = simulation_state(self._design(query), cancelled)
         except ParameterProblem as exc:
             state = {"ok": False, "error": " ".join(exc.message.split())}
         except QueryError:

@@ -12,8 +12,11 @@ computes nothing.
 
 One simulation runs at a time (the machine's cores are the solver's); the
 server answers each request on its own thread, so the page's other requests
-are answered meanwhile. A design that cannot be simulated (the paper model,
-no thickness, no elastic data, ...) answers ``ok: false`` with the one-line
+are answered meanwhile. A request may say when its answer is no longer
+wanted (``cancelled``, the steel view's :mod:`onefold_cad.explore.steel`): it
+is then given up before it starts and at the simulation's next Newton step.
+A design that cannot be simulated (the paper model, no thickness, no elastic
+data, ...) answers ``ok: false`` with the one-line
 message ``onefold simulate`` would print.
 """
 
@@ -22,6 +25,7 @@ from __future__ import annotations
 import base64
 import threading
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -37,12 +41,19 @@ from onefold_cad.export.simulation.colour_scale import (
 )
 from onefold_cad.mechanics.results import Simulation
 
-__all__ = ["LEVEL", "simulation_numbers", "simulation_state"]
+__all__ = ["LEVEL", "SUPERSEDED", "simulation_numbers", "simulation_state"]
 
 #: The mesh level the page simulates on.
 LEVEL = "coarse"
 
+#: The answer's ``error`` for a request given up for a newer one.
+SUPERSEDED = "superseded: a newer design was asked for"
+
 _ONE_AT_A_TIME = threading.Lock()
+
+
+class _GivenUp(Exception):
+    """Raised at a Newton step of a simulation whose answer is no longer wanted."""
 
 
 def _b64(a: np.ndarray, dtype: str) -> str:
@@ -111,25 +122,52 @@ def _scale(sim: Simulation) -> dict[str, Any] | None:
     return {"label": deviation_label(sim.unit), "min": lo, "max": hi, "stops": DEVIATION_STOPS}
 
 
-def simulation_state(design: Design) -> dict[str, Any]:
+def simulation_state(design: Design, cancelled: Callable[[], bool] | None = None) -> dict[str, Any]:
     """Simulate ``design`` coarsely for the page.
 
+    Args:
+        design: the design.
+        cancelled: asked before the simulation starts (after the one before it
+            ended) and at each of its Newton steps; True gives it up (None:
+            never given up).
+
     Returns:
-        A JSON-ready dict: ``ok``; without it ``error`` (one line); with it
-        ``units``, ``level``, ``mesh`` (``form`` 'standing', 'released' or
+        A JSON-ready dict: ``ok``; without it ``error`` (one line; a request
+        given up also has ``superseded: true``); with it ``units``,
+        ``level``, ``mesh`` (``form`` 'standing', 'released' or
         None, the ``designed`` and shown ``positions`` as base64 float32 on
         one triangle list ``indices``, ``colours`` as base64 sRGB bytes per
         vertex or None), ``scale`` (the deviation legend: ``label``, ``min``,
         ``max`` in the design unit, ``stops``) or None, ``numbers``
-        (:func:`simulation_numbers`), ``warnings`` and ``server_ms``.
+        (:func:`simulation_numbers`), ``warnings``, ``server_ms`` (ms from
+        the call to the answer), ``queued_ms`` (of them, ms before the
+        simulation started: the fold, and the wait for the one before it)
+        and ``cpu_ms`` (the simulation's CPU time, ms: the server's work,
+        whatever else the machine runs).
     """
     from onefold_cad.mechanics.simulate import simulate
+
+    def progress(stage: str, iteration: int, residual: float) -> None:
+        if cancelled is not None and cancelled():
+            raise _GivenUp
 
     t0 = time.perf_counter()
     try:
         folded = fold_design(design)
         with _ONE_AT_A_TIME:
-            sim = simulate(design, folded, level=LEVEL, convergence=False)
+            t1, cpu = time.perf_counter(), time.thread_time()
+            if cancelled is not None and cancelled():
+                raise _GivenUp
+            sim = simulate(
+                design,
+                folded,
+                level=LEVEL,
+                convergence=False,
+                progress=None if cancelled is None else progress,
+            )
+            cpu = time.thread_time() - cpu
+    except _GivenUp:
+        return {"ok": False, "superseded": True, "error": SUPERSEDED}
     except OneFoldError as exc:
         return {"ok": False, "error": f"cannot simulate this design: {_line(exc)}"}
     return {
@@ -141,4 +179,6 @@ def simulation_state(design: Design) -> dict[str, Any]:
         "numbers": simulation_numbers(sim),
         "warnings": [_line(w) for w in sim.warnings],
         "server_ms": 1e3 * (time.perf_counter() - t0),
+        "queued_ms": 1e3 * (t1 - t0),
+        "cpu_ms": 1e3 * cpu,
     }

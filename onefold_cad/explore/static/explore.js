@@ -1,12 +1,14 @@
 // onefold explore: the page draws what the server computes; it computes no geometry.
 // Each control change asks /api/state for the design's new state (the Python
 // solver is the one source of truth) and draws the form, the flat pattern, the
-// numbers and the messages it returns. The Simulate button is simulate.js's; the
-// reduced frames of a drag on a slow GPU are quality.js's.
+// numbers and the messages it returns. The Simulate button is simulate.js's, the
+// Steel view (every settled design simulated) steel_view.js's; the reduced frames
+// of a drag on a slow GPU are quality.js's.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/OrbitControls.js';
 import { createSimulation } from './simulate.js';
 import { createQuality } from './quality.js';
+import { createSteelView } from './steel_view.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -300,6 +302,7 @@ resizer.observe(canvas.parentElement);
 resizer.observe(canvas); // the simulation panel below it grows and shrinks
 
 const simulation = createSimulation({ scene, form, render, query: () => query() });
+const steel = createSteelView({ simulation, render });
 
 // -- numbers and messages ---------------------------------------------------
 function fmt(x, digits = 5) {
@@ -370,9 +373,11 @@ const MARKS = ['explore:request', 'explore:answer', 'explore:parsed', 'explore:f
 let inflight = false;
 let pending = null; // {templateOnly, fit}
 let frameQuality = null; // the quality of the frame the last update drew
+let sliding = false; // a slider is held (its input events, until its change)
+let settledOn = { q: '', ok: false }; // the design of the last state drawn
 
 function request(templateOnly = false, fit = false) {
-  simulation.clear(); // a simulation shows the design it was asked for only
+  steel.changing(); // a simulation shows the design it was asked for only
   pending = { templateOnly: templateOnly || pending?.templateOnly || false, fit: fit || pending?.fit || false };
   if (!inflight) run();
 }
@@ -405,7 +410,10 @@ async function run() {
   } finally {
     inflight = false;
     if (pending) run();
-    else quality.settle(); // a drag that ended while this update was on its way
+    else {
+      quality.settle(); // a drag that ended while this update was on its way
+      if (!sliding) steel.settled(settledOn.q, settledOn.ok);
+    }
   }
 }
 
@@ -416,6 +424,7 @@ function apply(state, job, q) {
   showMessages(state.messages || []);
   document.body.classList.toggle('has-error', !state.ok);
   simulation.setEnabled(state.ok && !pending);
+  settledOn = { q: query(), ok: state.ok };
   if (!state.ok) {
     setDownloads(q || '', false);
     return;
@@ -445,9 +454,14 @@ for (const name of SLIDERS) {
   $(name).addEventListener('input', () => {
     $(`${name}-num`).value = $(name).value;
     quality.slide(); // a drag of the slider goes on until its change event
+    sliding = true;
     request();
   });
-  $(name).addEventListener('change', () => quality.endSlide());
+  $(name).addEventListener('change', () => {
+    quality.endSlide();
+    sliding = false; // the release: the Steel view asks for its design's steel at once,
+    steel.released(query()); // beside the state on its way (an error: the state's line)
+  });
   $(`${name}-num`).addEventListener('input', () => {
     $(name).value = $(`${name}-num`).value;
     request();

@@ -2,7 +2,8 @@
 // /api/state) for the design as steel on a coarse mesh, then draws the standing
 // form coloured by its deviation from the design over the designed form
 // (translucent, with its edges), and prints the numbers. The server computes
-// everything, colours included; a change of the design clears it.
+// everything, colours included; a change of the design clears it. The Steel view
+// (steel_view.js) shows its answers with the same drawing (show, markStale).
 import * as THREE from 'three';
 
 const $ = (id) => document.getElementById(id);
@@ -29,7 +30,9 @@ export function createSimulation({ scene, form, render, query }) {
   let token = 0; // bumped by every clear: a late answer for an old design is dropped
   let running = false;
   let enabled = false;
+  let steel = false; // the Steel view is on: it simulates every design itself
   let count = 0;
+  let ghosts = []; // the design drawn on the simulation's mesh: hidden while stale
 
   const standingMaterial = new THREE.MeshStandardMaterial({
     vertexColors: true, side: THREE.DoubleSide, metalness: 0.0, roughness: 0.8,
@@ -50,7 +53,22 @@ export function createSimulation({ scene, form, render, query }) {
   }
 
   function updateButton() {
-    button.disabled = running || !enabled;
+    button.disabled = running || !enabled || steel;
+  }
+
+  // what is shown is for a design the page has left (the Steel view waits for
+  // the new one's): the steel faint, its design hidden, the new design's paper
+  // form shown, the numbers greyed
+  function markStale(stale) {
+    for (const m of [standingMaterial, plainMaterial]) {
+      m.transparent = stale;
+      m.opacity = stale ? 0.35 : 1;
+      m.depthWrite = !stale;
+      m.needsUpdate = true;
+    }
+    for (const g of ghosts) g.visible = !stale;
+    if (group.children.length) form.visible = stale;
+    $('sim-panel').classList.toggle('stale', stale && group.children.length > 0);
   }
 
   function empty() {
@@ -59,6 +77,8 @@ export function createSimulation({ scene, form, render, query }) {
       child.geometry?.dispose();
       if (!materials.includes(child.material)) child.material?.dispose();
     }
+    ghosts = [];
+    markStale(false);
     form.visible = true;
     $('sim-legend').classList.add('off');
     $('sim-warnings').classList.add('off');
@@ -94,7 +114,8 @@ export function createSimulation({ scene, form, render, query }) {
     const designed = geometry(decode(m.designed, Float32Array), indices);
     const ghost = new THREE.Mesh(designed, designedMaterial);
     ghost.renderOrder = 1; // after the opaque form: seen through
-    group.add(ghost, new THREE.LineSegments(new THREE.EdgesGeometry(designed, 40), designedEdges));
+    ghosts = [ghost, new THREE.LineSegments(new THREE.EdgesGeometry(designed, 40), designedEdges)];
+    group.add(...ghosts);
     if (m.positions) {
       const shown = geometry(decode(m.positions, Float32Array), indices);
       let material = plainMaterial;
@@ -143,11 +164,13 @@ export function createSimulation({ scene, form, render, query }) {
     box.classList.toggle('off', sim.warnings.length === 0);
   }
 
-  function finish(ok) {
+  function finish(ok, sim = null) {
     requestAnimationFrame(() => {
       count += 1;
       document.body.dataset.simulations = String(count);
-      window.dispatchEvent(new CustomEvent('explore:simulated', { detail: { ok } }));
+      window.dispatchEvent(new CustomEvent('explore:simulated', {
+        detail: { ok, server_ms: sim?.server_ms ?? null, cpu_ms: sim?.cpu_ms ?? null },
+      }));
     });
   }
 
@@ -162,9 +185,10 @@ export function createSimulation({ scene, form, render, query }) {
     setStatus('simulating (coarse mesh)…');
     const started = performance.now();
     let ok = false;
+    let sim = null;
     try {
       const res = await fetch(`/api/simulate?${q}`);
-      const sim = await res.json();
+      sim = await res.json();
       if (mine !== token) return; // the design changed meanwhile
       if (!sim.ok) {
         setStatus(sim.error || `simulation failed (HTTP ${res.status})`, true);
@@ -182,7 +206,7 @@ export function createSimulation({ scene, form, render, query }) {
     } finally {
       running = false;
       updateButton();
-      if (mine === token) finish(ok);
+      if (mine === token) finish(ok, sim);
     }
   }
 
@@ -193,7 +217,21 @@ export function createSimulation({ scene, form, render, query }) {
     clear() {
       token += 1;
       empty();
-      setStatus(IDLE);
+      setStatus(steel ? '' : IDLE);
+    },
+    // the Steel view's answer: drawn and numbered as a press's
+    show(sim) {
+      token += 1;
+      empty();
+      draw(sim);
+      showNumbers(sim);
+    },
+    markStale,
+    setStatus,
+    // the Steel view is on (the button waits) or off
+    setSteel(on) {
+      steel = on;
+      updateButton();
     },
     // the current design can be simulated only when it solved
     setEnabled(on) {

@@ -1,0 +1,148 @@
+"""The steel view's server side: /api/steel simulates only the latest design,
+and the designs the page asks for are kept by their query."""
+
+from __future__ import annotations
+
+import json
+import threading
+from urllib.parse import urlencode
+
+import pytest
+
+import onefold_cad.design as design_module
+import onefold_cad.mechanics.simulate as mechanics_simulate
+from onefold_cad.design import fold_design
+from onefold_cad.explore.controls import design_from_params
+from onefold_cad.explore.server import RECENT_DESIGNS
+from onefold_cad.explore.simulation import SUPERSEDED
+from onefold_cad.explore.steel import LatestOnly
+from tests.explore.conftest import get
+
+
+def _ask(server, route: str, params: dict[str, str]) -> tuple[int, dict]:
+    status, headers, body = get(server, f"/api/{route}?{urlencode(params)}")
+    assert headers["content-type"] == "application/json"
+    return status, json.loads(body)
+
+
+class Watched:
+    """``simulate`` of the mechanics, recording each call's alpha (deg) and
+    setting ``started`` when one begins (the next request then finds it running)."""
+
+    def __init__(self, monkeypatch) -> None:
+        self.real = mechanics_simulate.simulate
+        self.alphas: list[float] = []
+        self.started = threading.Event()
+        monkeypatch.setattr(mechanics_simulate, "simulate", self)
+
+    def __call__(self, design, folded, **kwargs):
+        self.alphas.append(round(design.frame.alpha, 6))
+        self.started.set()
+        return self.real(design, folded, **kwargs)
+
+
+def _in_thread(fn, *args) -> tuple[threading.Thread, list]:
+    out: list = []
+    thread = threading.Thread(target=lambda: out.append(fn(*args)), daemon=True)
+    thread.start()
+    return thread, out
+
+
+def test_a_ticket_is_stale_once_a_newer_one_is_issued():
+    latest = LatestOnly()
+    first = latest.ticket()
+    assert first() is False
+    second = latest.ticket()
+    assert first() is True and second() is False
+
+
+def test_a_running_steel_simulation_is_given_up_for_a_newer_design(server, monkeypatch):
+    """alpha 31 runs; alpha 32 is asked meanwhile: 31 answers 'superseded' (it
+    stops at its next Newton step), 32 is simulated and answered."""
+    watched = Watched(monkeypatch)
+    first, out = _in_thread(_ask, server, "steel", {"alpha": "31"})
+    assert watched.started.wait(60)
+    status, second = _ask(server, "steel", {"alpha": "32"})
+    first.join(60)
+    assert out[0] == (200, {"ok": False, "superseded": True, "error": SUPERSEDED})
+    assert status == 200 and second["ok"] is True
+    assert watched.alphas == [31.0, 32.0]
+
+
+def test_only_the_latest_waiting_steel_request_runs_and_simulate_is_never_given_up(
+    server, monkeypatch
+):
+    """The Simulate button's alpha 33 runs; steel requests for 34 and then 35
+    come meanwhile: 33 is answered in full, 34 never starts, 35 is simulated,
+    and its numbers are those of simulate() called here for that design."""
+    watched = Watched(monkeypatch)
+    button, button_out = _in_thread(_ask, server, "simulate", {"alpha": "33"})
+    assert watched.started.wait(60)
+    issued = threading.Event()
+    ticket = server.steel.ticket
+
+    def watched_ticket():
+        out = ticket()
+        issued.set()
+        return out
+
+    monkeypatch.setattr(server.steel, "ticket", watched_ticket)
+    stale, stale_out = _in_thread(_ask, server, "steel", {"alpha": "34"})
+    assert issued.wait(60)  # 34 is asked (and waits for 33's run) before 35
+    status, latest = _ask(server, "steel", {"alpha": "35"})
+    button.join(60)
+    stale.join(60)
+    assert button_out[0][0] == 200 and button_out[0][1]["ok"] is True
+    assert stale_out[0][1] == {"ok": False, "superseded": True, "error": SUPERSEDED}
+    assert status == 200 and latest["ok"] is True
+    assert watched.alphas == [33.0, 35.0]  # 34 was never simulated
+
+    design = design_from_params({"alpha": "35"}, server.templates, server.initial)
+    sim = watched.real(design, fold_design(design), level="coarse", convergence=False)
+    n = latest["numbers"]
+    assert n["max_deviation"] == pytest.approx(sim.standing.max_deviation, rel=1e-9)
+    assert n["height"] == pytest.approx(sim.standing.height, rel=1e-9)
+    assert n["nodes"] == sim.nodes
+    assert latest["queued_ms"] <= latest["server_ms"]
+    assert 0 < latest["cpu_ms"]
+
+
+def test_the_design_a_state_request_built_is_reused_and_the_memory_bounded(server, monkeypatch):
+    """/api/state then /api/steel of one design fold it once (the steel request
+    is given up before it simulates: a newer ticket is taken first); at most
+    RECENT_DESIGNS designs are kept; a bad value is never kept."""
+    folds: list[int] = []
+    real_fold = design_module.fold
+
+    def counted(solution, sheet):
+        folds.append(1)
+        return real_fold(solution, sheet)
+
+    monkeypatch.setattr(design_module, "fold", counted)
+    server.design_of.cache_clear()
+    assert _ask(server, "state", {"alpha": "36.5"})[1]["ok"] is True
+    assert len(folds) == 1
+    ticket = server.steel.ticket
+    monkeypatch.setattr(server.steel, "ticket", lambda: (ticket(), ticket())[0])
+    assert _ask(server, "steel", {"alpha": "36.5"})[1]["superseded"] is True
+    assert len(folds) == 1  # the same design object: its fold was kept
+    monkeypatch.undo()
+
+    for k in range(RECENT_DESIGNS + 3):
+        assert _ask(server, "state", {"alpha": str(40 + k)})[1]["ok"] is True
+    assert server.design_of.cache_info().currsize == RECENT_DESIGNS
+    for _ in range(2):
+        _, bad = _ask(server, "state", {"alpha": "95"})
+        assert (
+            bad["ok"] is False and "--alpha: must be in (0, 90) deg" in bad["messages"][0]["text"]
+        )
+    assert server.design_of.cache_info().currsize == RECENT_DESIGNS
+
+
+def test_steel_is_refused_like_every_route(server):
+    assert get(server, "/api/steel", {"Host": "evil.example"})[0] == 403
+    assert get(server, "/api/steel", method="POST")[0] == 405
+    assert get(server, "/api/steel?nonsense=1")[0] == 400
+    status, data = _ask(server, "steel", {"model": "paper"})
+    assert status == 200 and data["ok"] is False
+    assert data["error"].startswith("cannot simulate this design: model: simulate needs the exact")
