@@ -63,21 +63,11 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from chromium import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
 from docs_block import ROOT, machine_line, write_block  # noqa: E402
 from interleave import stats_of  # noqa: E402
 from steel_view_timing import STEEL_HEADER, bench_steel, write_steel_docs  # noqa: E402
 
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-]
 TEMPLATES = ["patkau-one-fold", "table1-row4", "star-polygon"]
 #: Issue 24: the default template's page update in at most 50 ms (median of the
 #: drag frames: what a user waits for while dragging a slider).
@@ -387,7 +377,7 @@ def main(argv: list[str] | None = None) -> int:
         print("\n".join(header), flush=True)
     rows, parts, ratios = [], [], []
     with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
         try:
             for template in templates:
                 r, p, q = bench_template(browser, template, args.moves, versions)

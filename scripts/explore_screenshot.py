@@ -21,23 +21,16 @@ Debian's Chromium (playwright, software WebGL) at 1500 x 880 and saves:
 from __future__ import annotations
 
 import argparse
+import sys
 import threading
 from pathlib import Path
 
 from onefold_cad.explore.server import make_server
 
 ROOT = Path(__file__).resolve().parents[1]
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+from chromium import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
 
 
 def _wait(page, n: int) -> None:
@@ -55,7 +48,7 @@ def main(argv: list[str] | None = None) -> int:
     thread.start()
     try:
         with sync_playwright() as pw:
-            browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
             page = browser.new_page(viewport={"width": 1500, "height": 880})
             page.goto(server.url)
             _wait(page, 1)

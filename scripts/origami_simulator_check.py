@@ -62,21 +62,12 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-CHROMIUM = "/usr/bin/chromium"
-#: As tests/explore/conftest.py starts it (root: no sandbox; closed network;
-#: software WebGL), plus SwiftShader allowed for WebGL 1 contexts.
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-    "--enable-unsafe-swiftshader",
-]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from chromium import CHROMIUM  # noqa: E402
+from chromium import CHROMIUM_ARGS as _ARGS  # noqa: E402
+
+#: As the explorer's tests start it, plus SwiftShader allowed for WebGL 1 contexts.
+CHROMIUM_ARGS = [*_ARGS, "--enable-unsafe-swiftshader"]
 DOCS = ROOT / "docs" / "formats.md"
 BEGIN, END = "<!-- origami-simulator:begin -->", "<!-- origami-simulator:end -->"
 #: Positions this many sheet sizes from the origin count as NaN (the solver blew up).

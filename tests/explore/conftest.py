@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import http.client
 import io
+import sys
 import threading
 from collections.abc import Iterator
 from pathlib import Path
@@ -14,20 +15,8 @@ from PIL import Image
 
 from onefold_cad.explore.server import ExploreServer, make_server
 
-CHROMIUM = Path("/usr/bin/chromium")
-#: How the explorer's tests start Debian's Chromium (as root: no sandbox; the
-#: machine's network is closed: no background connections; software WebGL).
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--use-angle=swiftshader",
-]
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+from chromium import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +55,7 @@ def browser(server: ExploreServer) -> Iterator[object]:
     """Debian's Chromium driven by playwright (never skipped: `make test` installs it)."""
     from playwright.sync_api import sync_playwright
 
-    assert CHROMIUM.is_file(), (
+    assert Path(CHROMIUM).is_file(), (
         "the browser tests need Debian's Chromium: run `make test` as root, "
         "or `sudo apt-get install -y chromium`"
     )
