@@ -287,6 +287,7 @@ def solve_path(
     predict: int = 0,
     callback: Progress | None = None,
     accepted: Callable[[float, Equilibrium], None] | None = None,
+    may_grow: Callable[[], bool] | None = None,
     **options: object,
 ) -> Equilibrium:
     """Continuation: equilibria of ``shell_at(s)`` for ``s`` from 0 to 1, each solve
@@ -296,7 +297,8 @@ def solve_path(
     more than ``max_move`` (m) from the last one at some node (Newton jumped to
     another branch: the path is followed, so a limit point stalls it instead of
     snapping through), and doubles after one that took at most ``grow_iter``
-    iterations; every solve (``solve_equilibrium``'s ``options``) gets at most
+    iterations (and for which ``may_grow()``, asked after ``accepted``, is
+    true, when given); every solve (``solve_equilibrium``'s ``options``) gets at most
     ``step_iter`` Newton iterations (a step that needs more is halved); at
     most ``max_solves`` solves in all. With ``predict`` = k > 0 each solve
     once the path has three equilibria (the start among them) starts from the
@@ -361,7 +363,7 @@ def solve_path(
             accepted(s, eq)
         if s >= 1.0:
             return replace(eq, iterations=total)
-        if eq.iterations <= grow_iter:
+        if eq.iterations <= grow_iter and (may_grow is None or may_grow()):
             ds = min(2 * ds, 1.0)
     raise PathStalled(
         f"continuation did not reach the end in {max_solves} solves (at s = {s:.4g}; the last "

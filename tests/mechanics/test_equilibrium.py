@@ -182,3 +182,24 @@ def test_a_predicted_path_keeps_anchored_feet_where_they_stand(strip):
     np.testing.assert_allclose(runs[1].positions, runs[0].positions, atol=1e-9)
     ground = runs[1].reactions[runs[1].contacts, 2].sum()
     assert abs(ground / (3 * q * LENGTH * WIDTH / 16) - 1) < 0.01
+
+
+def test_a_step_grows_only_when_may_grow_says_so(strip):
+    """The heavy elastica's ramp from steps of 1/8 that converge quickly: they
+    double unless ``may_grow()`` (asked after each accepted step) says no."""
+    shell, fixed = cantilever(strip, STEEL0, _gravity_for(2.0))
+    solves = {}
+    for answer in (True, False):
+        seen: list[int] = []
+        solve_path(
+            lambda s: shell.with_changes(gravity=s * shell.gravity),
+            _start(strip),
+            fixed=fixed,
+            first_step=0.125,
+            grow_iter=100,
+            may_grow=lambda answer=answer: answer,
+            callback=lambda it, res, e, seen=seen: seen.append(it),
+        )
+        solves[answer] = seen.count(0)
+    assert solves[False] == 8
+    assert solves[True] == 4  # 1/8, 1/4, 1/2 and the rest (1/8)

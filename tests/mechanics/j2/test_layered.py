@@ -141,3 +141,25 @@ def test_the_release_s_predicted_steps_take_fewer_iterations_to_the_same_strip(m
     assert predicted.equilibrium.iterations < plain.equilibrium.iterations
     assert ratio == pytest.approx(ratio0, rel=1e-6)
     np.testing.assert_allclose(predicted.q, plain.q, atol=1e-9)
+
+
+def test_the_release_s_steps_grow_only_while_few_points_change_yielding(monkeypatch):
+    """The strip at x = 0.1 unloads elastically (no point changes between
+    yielding and unloading), so its quick steps of 1/8 double; with
+    ``GROW_CHANGE`` below 0 they stay at 1/8 (eight accepted steps)."""
+    from onefold_cad.mechanics.j2 import stages as j2_stages
+
+    accepted: list[int] = []
+    real = j2_stages.section_response
+
+    def counted(shell, q):
+        accepted.append(1)
+        return real(shell, q)
+
+    monkeypatch.setattr(j2_stages, "section_response", counted)
+    _strip_release(0.1)
+    grown = len(accepted)
+    accepted.clear()
+    monkeypatch.setattr(j2_stages, "GROW_CHANGE", -1.0)
+    _strip_release(0.1)
+    assert len(accepted) == 8 and grown < 8

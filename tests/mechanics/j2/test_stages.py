@@ -99,3 +99,26 @@ def test_the_release_gives_its_eighth_steps_the_iterations_they_take(formed, mon
         j2_stages.release(model, shell, stage)
     assert seen["first_step"] == pytest.approx(0.125)
     assert seen["step_iter"] >= 15
+
+
+def test_the_stand_s_steps_are_predicted_as_the_release_s(formed, monkeypatch):
+    """The stand's load steps start from the polynomial through the last
+    equilibria and grow as the release's do (``RELEASE_PREDICTOR``,
+    ``RELEASE_GROW``): on patkau (coarse) its steps of 1/4 then take 4 to 6
+    Newton iterations."""
+    from onefold_cad.mechanics.stages import place
+
+    design, folded, shell, stage = formed
+    model = sheet_model(design, folded, h_max=0.3)
+    seen: dict[str, object] = {}
+
+    def first_call(shell_at, q0, **options):
+        seen.update(options)
+        raise _Stop
+
+    monkeypatch.setattr(j2_stages, "solve_path", first_call)
+    monkeypatch.setattr(j2_stages, "RELEASE_PREDICTOR", 2)
+    monkeypatch.setattr(j2_stages, "RELEASE_GROW", 5)
+    with pytest.raises(_Stop):
+        j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored")
+    assert (seen["predict"], seen["grow_iter"]) == (2, 5)
