@@ -163,12 +163,14 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
     a = 2.0 / 3.0 * hk + law.c_eigen * _P_EIGEN  # xi_i = xt_i / (1 + dgamma a_i)
     root23 = math.sqrt(2.0 / 3.0)
 
+    pa = -2.0 * _P_EIGEN * a
+
     def g(dg: F, xt: F, alpha: F) -> tuple[F, F]:
         den = 1.0 + dg[:, None] * a
         xi = xt / den
-        phi2 = np.sum(_P_EIGEN * xi**2, axis=1)
+        phi2 = xi**2 @ _P_EIGEN
         phi = np.sqrt(phi2)
-        dphi2 = np.sum(-2.0 * _P_EIGEN * xt**2 * a / den**3, axis=1)
+        dphi2 = (xi**2 / den) @ pa
         dphi = dphi2 / (2.0 * np.maximum(phi, 1e-300))
         kappa = sy + hi * (alpha + root23 * dg * phi)
         dkappa = hi * root23 * (phi + dg * dphi)
@@ -180,11 +182,13 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
     k = len(xt)
     scale = root23 * (sy + hi * alpha)  # the yield surface's size in phi
     hi_ = np.ones(k) / np.min(a)
-    for _ in range(200):  # hi: a point where g < 0
-        ghi, _ = g(hi_, xt, alpha)
-        if np.all(ghi < 0):
+    open_ = np.arange(k)
+    for _ in range(200):  # hi: a point where g < 0, doubled where not yet
+        ghi, _ = g(hi_[open_], xt[open_], alpha[open_])
+        open_ = open_[ghi >= 0]
+        if len(open_) == 0:
             break
-        hi_ = np.where(ghi < 0, hi_, 2.0 * hi_)
+        hi_[open_] *= 2.0
     dg, lo = np.zeros(k), np.zeros(k)
     todo = np.arange(k)
     for _ in range(MAX_ITERATIONS):
@@ -227,7 +231,7 @@ def update(law: J2Law, strain: F, state: J2State) -> J2Response:
     c = elastic_matrix(law)
     sigma = (eps - ep) @ c  # the trial (C symmetric)
     xi_t = sigma - beta
-    phi2 = np.einsum("ki,ij,kj->k", xi_t, P, xi_t)
+    phi2 = np.sum((xi_t @ P) * xi_t, axis=1)
     kappa = law.yield_stress + law.hardening_iso * alpha
     trial = 0.5 * phi2 - kappa**2 / 3.0
     flows = trial > TOLERANCE * kappa**2
@@ -245,9 +249,9 @@ def update(law: J2Law, strain: F, state: J2State) -> J2Response:
         beta_new[k] = beta[k] + (2.0 / 3.0 * law.hardening_kin) * dg[:, None] * xi
         alpha_new[k] = alpha[k] + math.sqrt(2.0 / 3.0) * dg * phi
         sigma[k] = xi + beta_new[k]
-        tangent[k] = _consistent_tangent(law, c, xi, pxi, phi, dg, alpha_new[k])
+        tangent[k] = _consistent_tangent(law, xi, pxi, phi, dg)
     d = eps - ep_new
-    energy = 0.5 * np.einsum("ki,ij,kj->k", d, c, d) + _kinematic_energy(law, ep_new)
+    energy = 0.5 * np.sum((d @ c) * d, axis=1) + _kinematic_energy(law, ep_new)
     energy += law.hardening_iso * alpha_new**2 / 2.0
     energy[flows] += law.yield_stress * (alpha_new[flows] - alpha[flows])  # the dissipation
     new = J2State(ep_new.reshape(shape + (3,)), beta_new.reshape(shape + (3,)),
@@ -261,27 +265,31 @@ def update(law: J2Law, strain: F, state: J2State) -> J2Response:
     )
 
 
-def _consistent_tangent(law: J2Law, c: F, xi: F, pxi: F, phi: F, dg: F, alpha: F) -> F:
+def _consistent_tangent(law: J2Law, xi: F, pxi: F, phi: F, dg: F) -> F:
     """(k, 3, 3) d sigma / d eps of flowing points, by implicit differentiation
     of the projection's equations in ``(xi, dgamma)``::
 
         theta xi + dgamma C P xi - xi_trial(eps) = 0,   theta = 1 + 2/3 H_kin dgamma
         phi(xi) - sqrt(2/3) kappa(alpha_n + sqrt(2/3) dgamma phi(xi)) = 0
 
-    and ``sigma = theta xi + beta_n``.
+    and ``sigma = theta xi + beta_n``. The linear system ``[[A, b], [r^T, d]]
+    (dxi, ddgamma) = (C, 0) deps`` is solved in closed form: ``A = theta I +
+    dgamma C P = Q diag(l) Q^T`` in the frame ``Q`` where ``C`` and ``P`` are
+    diagonal, so ``ddgamma = -r^T A^-1 C / (d - r^T A^-1 b)`` and ``dxi =
+    A^-1 C - A^-1 b ddgamma``.
     """
-    k = len(xi)
     hk, hi = law.hardening_kin, law.hardening_iso
     r23 = math.sqrt(2.0 / 3.0)
     theta = 1.0 + 2.0 / 3.0 * hk * dg
-    jac = np.zeros((k, 4, 4))
-    cp = c @ P
-    jac[:, :3, :3] = theta[:, None, None] * np.eye(3) + dg[:, None, None] * cp
-    jac[:, :3, 3] = 2.0 / 3.0 * hk * xi + xi @ cp.T
-    dphi = pxi / phi[:, None]  # d phi / d xi
-    jac[:, 3, :3] = dphi * (1.0 - r23 * hi * r23 * dg)[:, None]
-    jac[:, 3, 3] = -r23 * hi * r23 * phi
-    rhs = np.zeros((k, 4, 3))
-    rhs[:, :3, :] = c
-    sol = np.linalg.solve(jac, rhs)  # d(xi, dgamma) / d eps
-    return theta[:, None, None] * sol[:, :3, :] + 2.0 / 3.0 * hk * xi[:, :, None] * sol[:, 3:4, :]
+    c_eig = law.c_eigen
+    lam = theta[:, None] + dg[:, None] * (c_eig * _P_EIGEN)  # A's eigenvalues (k, 3)
+    b = 2.0 / 3.0 * hk * xi + pxi @ elastic_matrix(law)  # d/ddgamma of the first equations
+    r = pxi / phi[:, None] * (1.0 - r23 * hi * r23 * dg)[:, None]  # dphi/dxi (1 - ...)
+    d = -r23 * hi * r23 * phi
+    rq = r @ _Q
+    a_inv_b = ((b @ _Q) / lam) @ _Q.T
+    ca = c_eig / lam  # A^-1 C's eigenvalues
+    row = (rq * ca) @ _Q.T  # r^T A^-1 C (k, 3)
+    ds = -row / (d - np.sum(r * a_inv_b, axis=1))[:, None]  # d dgamma / d eps
+    dxi = (_Q * ca[:, None, :]) @ _Q.T - a_inv_b[:, :, None] * ds[:, None, :]
+    return theta[:, None, None] * dxi + 2.0 / 3.0 * hk * xi[:, :, None] * ds[:, None, :]

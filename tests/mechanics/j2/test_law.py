@@ -159,3 +159,35 @@ def test_simulate_says_when_its_return_mapping_fails(monkeypatch, capfd):
     assert rc == 2 and out == ""
     lines = [ln for ln in err.splitlines() if not ln.startswith("onefold: warning: ")]
     assert len(lines) == 1 and "return mapping" in lines[0] and "residual" in lines[0], err
+
+
+@pytest.mark.parametrize(("hi", "hk"), [(0.0, 0.0), (5e8, 0.0), (0.0, 5e8), (2e9, 5e9)])
+def test_the_closed_form_tangent_solves_the_projection_s_linearised_equations(hi, hk):
+    """The flowing points' tangent against the 4 x 4 system of the closest-point
+    projection's equations in ``(xi, dgamma)`` solved directly (``theta xi +
+    dgamma C P xi = xi_trial``, ``phi(xi) = sqrt(2/3) kappa``), from a state
+    that flowed before: ``d sigma = theta dxi + 2/3 H_kin xi ddgamma``."""
+    law = J2Law(E, NU, SY, hi, hk)
+    rng = np.random.default_rng(9)
+    e1 = rng.normal(size=(200, 3)) * 4 * EY
+    first = update(law, e1, J2State.virgin((200,)))
+    r = update(law, 0.7 * e1 + rng.normal(size=(200, 3)) * 1.5 * EY, first.state)
+    k = np.flatnonzero(r.plastic)
+    assert 20 < len(k) < 180  # some points unload, the rest flow on or reverse
+    c = elastic_matrix(law)
+    xi = r.stress[k] - r.state.back_stress[k]  # sigma = xi + beta_(n+1)
+    pxi = xi @ j2.P
+    phi = np.sqrt(np.sum(xi * pxi, axis=1))
+    # alpha grows by sqrt(2/3) dgamma phi
+    dg = (r.state.equivalent[k] - first.state.equivalent[k]) / (math.sqrt(2 / 3) * phi)
+    theta = 1 + 2 / 3 * hk * dg
+    jac = np.zeros((len(k), 4, 4))
+    jac[:, :3, :3] = theta[:, None, None] * np.eye(3) + dg[:, None, None] * (c @ j2.P)
+    jac[:, :3, 3] = 2 / 3 * hk * xi + pxi @ c
+    jac[:, 3, :3] = pxi / phi[:, None] * (1 - 2 / 3 * hi * dg)[:, None]
+    jac[:, 3, 3] = -2 / 3 * hi * phi
+    rhs = np.zeros((len(k), 4, 3))
+    rhs[:, :3] = c
+    sol = np.linalg.solve(jac, rhs)
+    expected = theta[:, None, None] * sol[:, :3] + 2 / 3 * hk * xi[:, :, None] * sol[:, 3:]
+    np.testing.assert_allclose(r.tangent[k], expected, rtol=1e-9, atol=1e-9 * abs(c).max())
