@@ -92,7 +92,9 @@ class _Batches:
         if not self.timed:
             return 1
         per = max(self.seconds / self.timed, 1e-4)
-        share = -(-left // self.workers)  # no worker waits for another's long batch
+        # No worker waits for another's long batch: the rest shared among the
+        # batches in flight (two a worker) and the one this process evaluates.
+        share = -(-left // (2 * self.workers + 1))
         return max(1, min(int(BATCH_SECONDS / per), MAX_BATCH, share))
 
     def __call__(self) -> Batch | None:

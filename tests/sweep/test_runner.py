@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from onefold_cad.sweep import runner
 from onefold_cad.sweep.journal import JOURNAL, read_journal
 from onefold_cad.sweep.plan import make_plan
 from onefold_cad.sweep.runner import is_finished, run_sweep
@@ -159,3 +160,15 @@ def test_ctrl_c_keeps_the_rows_rebuilds_the_files_and_says_so(tmp_path):
     kept = read_journal(journal)
     assert 3 <= len(kept) < 48
     assert sorted(r["key"] for r in table_rows(tmp_path)) == sorted(kept)
+
+
+def test_the_last_batches_are_shared_among_every_batch_in_flight():
+    # -j 2: two batches a worker in flight and one in the sweep's own process,
+    # so 10 designs left go out two at a time, never five (a worker would
+    # then finish its long last batch alone while the others wait)
+    batches = runner._Batches(plan=None, todo=list(range(10)), workers=2)  # type: ignore[arg-type]
+    assert batches.size() == 1  # nothing timed yet
+    batches.record([{"seconds": 0.01}])
+    assert batches.size() == 2
+    batches.next = 8  # two left
+    assert batches.size() == 1
