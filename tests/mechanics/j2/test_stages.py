@@ -62,13 +62,8 @@ class _Stop(Exception):
     """Ends the standing path at its first call."""
 
 
-def test_the_stand_starts_its_weight_ramp_at_a_quarter(formed, monkeypatch):
-    """The J2 stand carries a quarter of the weight first (a whole first step
-    spends the path's iteration budget and is halved twice on patkau)."""
-    from onefold_cad.mechanics.stages import place
-
-    design, folded, shell, stage = formed
-    model = sheet_model(design, folded, h_max=0.3)
+def _path_options(monkeypatch, run) -> dict[str, object]:
+    """The options ``run()`` gives its stage's ``solve_path`` (stopped there)."""
     seen: dict[str, object] = {}
 
     def first_call(shell_at, q0, **options):
@@ -77,7 +72,21 @@ def test_the_stand_starts_its_weight_ramp_at_a_quarter(formed, monkeypatch):
 
     monkeypatch.setattr(j2_stages, "solve_path", first_call)
     with pytest.raises(_Stop):
-        j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored")
+        run()
+    return seen
+
+
+def test_the_stand_starts_its_weight_ramp_at_a_quarter(formed, monkeypatch):
+    """The J2 stand carries a quarter of the weight first (a whole first step
+    spends the path's iteration budget and is halved twice on patkau)."""
+    from onefold_cad.mechanics.stages import place
+
+    design, folded, shell, stage = formed
+    model = sheet_model(design, folded, h_max=0.3)
+    seen = _path_options(
+        monkeypatch,
+        lambda: j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored"),
+    )
     assert seen["first_step"] == pytest.approx(0.25)
 
 
@@ -88,15 +97,7 @@ def test_the_release_gives_its_eighth_steps_the_iterations_they_take(formed, mon
     iterations in all against 100)."""
     design, folded, shell, stage = formed
     model = sheet_model(design, folded, h_max=0.3)
-    seen: dict[str, object] = {}
-
-    def first_call(shell_at, q0, **options):
-        seen.update(options)
-        raise _Stop
-
-    monkeypatch.setattr(j2_stages, "solve_path", first_call)
-    with pytest.raises(_Stop):
-        j2_stages.release(model, shell, stage)
+    seen = _path_options(monkeypatch, lambda: j2_stages.release(model, shell, stage))
     assert seen["first_step"] == pytest.approx(0.125)
     assert seen["step_iter"] >= 15
 
@@ -110,15 +111,10 @@ def test_the_stand_s_steps_are_predicted_as_the_release_s(formed, monkeypatch):
 
     design, folded, shell, stage = formed
     model = sheet_model(design, folded, h_max=0.3)
-    seen: dict[str, object] = {}
-
-    def first_call(shell_at, q0, **options):
-        seen.update(options)
-        raise _Stop
-
-    monkeypatch.setattr(j2_stages, "solve_path", first_call)
     monkeypatch.setattr(j2_stages, "RELEASE_PREDICTOR", 2)
     monkeypatch.setattr(j2_stages, "RELEASE_GROW", 5)
-    with pytest.raises(_Stop):
-        j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored")
+    seen = _path_options(
+        monkeypatch,
+        lambda: j2_stages.stand(model, shell, place(model, stage.q), stage.plasticity, "anchored"),
+    )
     assert (seen["predict"], seen["grow_iter"]) == (2, 5)
