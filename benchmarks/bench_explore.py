@@ -53,7 +53,6 @@ import math
 import os
 import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 from pathlib import Path
@@ -65,6 +64,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from chromium import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
 from docs_block import ROOT, machine_line, write_block  # noqa: E402
+from git_baseline import extract  # noqa: E402
 from interleave import stats_of  # noqa: E402
 from steel_view_timing import STEEL_HEADER, bench_steel, write_steel_docs  # noqa: E402
 
@@ -176,18 +176,6 @@ def start_server(
         raise SystemExit(f"onefold explore did not start: {line}")
     port = int(line.split("http://127.0.0.1:")[1].split("/")[0])
     return proc, port
-
-
-def baseline_package(commit: str, into: Path) -> Path:
-    """``onefold_cad/`` and ``templates/`` of ``commit`` (``git archive``) under ``into``."""
-    tar = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", commit, "onefold_cad", "templates"],
-        capture_output=True,
-        check=True,
-    ).stdout
-    with tarfile.open(fileobj=io.BytesIO(tar)) as t:
-        t.extractall(into, filter="data")
-    return into
 
 
 def fetch_state(port: int, query: str) -> float:
@@ -358,7 +346,7 @@ def main(argv: list[str] | None = None) -> int:
     home = tempfile.TemporaryDirectory(prefix="bench_explore_")
     versions: list[tuple[str, Path | None]] = [("this tree", None)]
     if args.baseline:
-        versions.append((args.baseline, baseline_package(args.baseline, Path(home.name))))
+        versions.append((args.baseline, extract(args.baseline, Path(home.name))))
     rounds = max(1, args.moves // DRAG)
     c = f"{CRITERION_MS:.0f} ms"
     header = [

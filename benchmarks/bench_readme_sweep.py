@@ -27,14 +27,13 @@ import argparse
 import shlex
 import subprocess
 import sys
-import tarfile
 import tempfile
-from io import BytesIO
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from docs_block import ROOT, machine_line, write_block  # noqa: E402
+from git_baseline import extract  # noqa: E402
 from interleave import ProcessRun, Stats, run_process, stats_of  # noqa: E402
 
 #: Issue 37's target: the README's sweep this much faster than the baseline.
@@ -71,17 +70,6 @@ def with_output(args: list[str], out: Path, jobs: int | None) -> list[str]:
     i = out_args.index("-o")
     out_args[i + 1] = str(out)
     return [*out_args, *(["-j", str(jobs)] if jobs else []), "--quiet"]
-
-
-def extract(commit: str, dest: Path) -> None:
-    """``onefold_cad/`` and ``templates/`` of ``commit`` into ``dest``."""
-    tar = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", commit, "onefold_cad", "templates"],
-        capture_output=True,
-        check=True,
-    ).stdout
-    with tarfile.open(fileobj=BytesIO(tar)) as archive:
-        archive.extractall(dest, filter="data")
 
 
 def _ratio(runs: dict[str, list[ProcessRun]], base: str, ours: str, what: str) -> Stats:

@@ -5,7 +5,9 @@
 with its own imports rewritten, and imports it: a benchmark can then time the
 old code and the new interleaved in one process, on the same inputs. Returns
 None (and the reason) when git or the commit is not there (a shallow clone, a
-source tarball). Nothing here is part of the package.
+source tarball). ``extract(commit, dest)`` puts ``onefold_cad/`` and ``templates/`` of
+``commit`` under ``dest`` as they are, for a benchmark that runs the old
+package in a process of its own. Nothing here is part of the package.
 """
 
 from __future__ import annotations
@@ -22,9 +24,22 @@ from types import ModuleType
 
 ROOT = Path(__file__).resolve().parent.parent
 
-__all__ = ["load"]
+__all__ = ["extract", "load"]
 
 _HOME: list[tempfile.TemporaryDirectory[str]] = []  # kept alive with the process
+
+
+def extract(commit: str, dest: Path) -> Path:
+    """``onefold_cad/`` and ``templates/`` of ``commit`` (``git archive``)
+    under ``dest``; returns ``dest``."""
+    tar = subprocess.run(
+        ["git", "-C", str(ROOT), "archive", commit, "onefold_cad", "templates"],
+        capture_output=True,
+        check=True,
+    ).stdout
+    with tarfile.open(fileobj=BytesIO(tar)) as archive:
+        archive.extractall(dest, filter="data")
+    return dest
 
 
 def load(commit: str) -> tuple[ModuleType | None, str]:
