@@ -326,15 +326,15 @@ def solve_path(
         # every solve, the last one too, gets at most step_iter iterations: a step
         # Newton cannot finish quickly is halved, never ground through
         opts["max_iter"] = min(int(opts.get("max_iter", 60)), step_iter)
-        start = q
+        shell, start = shell_at(target), q
         if predict > 0 and len(passed) >= _PREDICT_FROM:
             assert last is not None
-            held = _held(shell_at(target), options, last)
+            held = _held(shell, options, last)
             start = extrapolate(passed[-(predict + 1) :], target, held)
             opts["start_scales"] = False
         try:
-            eq = solve_equilibrium(shell_at(target), start, callback=callback, **opts)
-            n = shell_at(target).mesh.n_nodes
+            eq = solve_equilibrium(shell, start, callback=callback, **opts)
+            n = shell.mesh.n_nodes
             moved = float(np.max(np.linalg.norm((eq.q - q)[: 3 * n].reshape(n, 3), axis=1)))
             if max_move is not None and moved > max_move:
                 raise ConvergenceError(

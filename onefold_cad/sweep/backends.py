@@ -131,8 +131,9 @@ def pool_rows(next_batch: NextBatch, workers: int) -> Generator[Rows, None, None
         )
 
     # The first submit starts the first worker, and it waits for the
-    # forkserver's imports (matplotlib's with thumbnails: 1.5 s here): a
-    # thread waits for them while this process evaluates.
+    # forkserver's imports (matplotlib's with thumbnails: 0.7 s on a quiet
+    # machine, 1.5 s under load): a thread waits for them while this
+    # process evaluates.
     pool = start()
     launched: list[Future[Rows]] = []
     failed: list[BaseException] = []
