@@ -39,7 +39,7 @@ from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.numeric import Array
 
-__all__ = ["KNOBS", "Candidate", "Search", "search"]
+__all__ = ["KNOBS", "Candidate", "Search", "knob_strengths", "search"]
 
 #: The knobs: name, unit, forward-difference step, lower and upper bound
 #: (h_c as a fraction of R cos(alpha)).
@@ -285,11 +285,13 @@ def search(
             max_nfev=NORMAL_STEPS, **done,
         )  # fmt: skip
     if "J" in jac_kept:
-        sv = np.linalg.svd(jac_kept["J"] / x_scale[None, :], compute_uv=False)
-        rel = ", ".join(f"{v / sv[0]:.2g}" for v in sv)
+        rel = ", ".join(f"{v:.2g}" for v in knob_strengths(jac_kept["J"], steps))
         found.limits.append(
             f"the {len(names)} knobs ({', '.join(names)}) move the residual along directions of "
-            f"relative strength {rel} (the last coarse Jacobian's singular values)"
+            f"relative strength {rel} (the singular values of the last Jacobian on the "
+            f"{coarse} mesh, each knob moved by its step: "
+            + ", ".join(f"{n} {spec[n][2]:g} {spec[n][1]}" for n in names)
+            + ")"
         )
     found.limits.append(f"the {fine} least squares stopped: {fit.message.rstrip('.')}")
     for i, n in enumerate(names):
@@ -299,6 +301,17 @@ def search(
     if not any(c.level == fine and math.isfinite(c.cost) for c in found.candidates):
         found.limits.append(f"no candidate stands on the {fine} mesh")
     return found
+
+
+def knob_strengths(jac: Array, steps: Array) -> Array:
+    """How independently the knobs move the residual: the singular values of
+    the Jacobian ``jac`` (residual per unit of each knob) with each column
+    taken per knob ``steps`` (the forward difference's step, so a degree of
+    alpha and a hundredth of h_c's range weigh as the search moves them),
+    relative to the largest (1 first; 0 for a knob whose move the others
+    repeat)."""
+    sv = np.asarray(np.linalg.svd(jac * steps[None, :], compute_uv=False), dtype=float)
+    return sv / sv[0] if sv[0] > 0 else sv
 
 
 def _key(y: Array) -> tuple[float, ...]:

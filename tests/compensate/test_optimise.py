@@ -110,3 +110,20 @@ def test_a_start_that_stands_on_no_mesh_is_refused_in_one_line(monkeypatch) -> N
     design = load_template(find_template("broken-vault"))
     with Evaluator(1) as ev, pytest.raises(InvalidParameterError, match="does not stand on the"):
         compensate(design, make_target(design, "design"), ev, lambda s: None)
+
+
+def test_knob_strengths_weigh_each_knob_by_its_step() -> None:
+    import numpy as np
+
+    from onefold_cad.compensate.optimise import knob_strengths
+
+    # per unit: alpha moves residual 1, beta residual 2, h_c (a fraction of its
+    # range) residual 2 a hundred times as fast; per step (0.5 deg, 0.5 deg, 0.01)
+    # the columns are (0.5, 0), (0, 0.5), (0, 1): A A^T = diag(0.25, 1.25), so
+    # the singular values are sqrt(1.25) and 0.5, and the third is absent
+    jac = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 100.0]])
+    got = knob_strengths(jac, np.array([0.5, 0.5, 0.01]))
+    assert got == pytest.approx([1.0, 0.5 / np.sqrt(1.25)])
+    # two knobs that repeat each other per step leave a zero direction
+    same = knob_strengths(np.array([[2.0, 1.0], [4.0, 2.0]]), np.array([0.5, 1.0]))
+    assert same == pytest.approx([1.0, 0.0], abs=1e-12)
