@@ -1,0 +1,35 @@
+"""benchmarks/compensate_family.py's grid and summary (no simulation)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+
+import compensate_family as cf  # noqa: E402
+
+
+def test_grid_includes_its_stop_and_reads_lists() -> None:
+    assert cf.grid("30:40:2") == pytest.approx([30, 32, 34, 36, 38, 40])
+    assert cf.grid("30:31:0.5") == pytest.approx([30, 30.5, 31])
+    assert cf.grid("26,29.5") == pytest.approx([26, 29.5])
+
+
+def test_summary_names_the_smallest_max_and_a_fifth_of_the_start() -> None:
+    start = (30.0, 30.0, 300.0, 100.0, 2.0)
+    rows = [
+        (30.0, 32.0, 250.0, 60.0, 1.0),
+        (32.0, 30.0, 180.0, 70.0, 1.0),  # the smallest max
+        (32.0, 32.0, None, None, 1.0),  # falls
+    ]
+    text = cf.summary("t", "coarse", "mm", start, rows)
+    row = text.splitlines()[2]
+    assert "| 2 |" in row  # two of three stand
+    assert "60 mm |" in row  # a fifth of 300
+    assert "180 mm (32, 30)" in row
+    assert "60 mm (30, 32)" in row  # the smallest rms
+    assert row.endswith("| 5 s |")
+    assert "falls" in cf.summary("t", "coarse", "mm", (30.0, 30.0, None, None, 1.0), rows)
