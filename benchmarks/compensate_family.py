@@ -1,12 +1,13 @@
-"""How close any fold of the family comes to the design: a grid of alpha and
-beta simulated as ``onefold compensate`` simulates a candidate, and each
+"""How close any fold of the family comes to the design: a grid of alpha,
+beta and h_c simulated as ``onefold compensate`` simulates a candidate, and each
 standing steel measured against the template's own design.
 
 ``onefold compensate`` stops where its least squares stops; this scan asks
-the family itself: over a grid of folds (alpha, beta; h_c as the template
-has it), the standing steel's largest and rms distance from the design,
-each simulated by :func:`onefold_cad.compensate.evaluate.simulate_standing`
-(``onefold simulate`` on the given mesh) and measured by
+the family itself: over a grid of folds (alpha, beta and h_c, the last as a
+fraction of R cos(alpha) as the command's knob), the standing steel's
+largest and rms distance from the design, each simulated by
+:func:`onefold_cad.compensate.evaluate.simulate_standing` (``onefold
+simulate`` on the given mesh) and measured by
 :func:`onefold_cad.compensate.evaluate.standing_measures` (the distance the
 command reports). The smallest largest distance on the grid against a fifth
 of the uncompensated one (the template's own fold, measured the same way)
@@ -16,13 +17,14 @@ mesh. Prints the grid and a markdown summary (docs/compensate.md's block
 root::
 
     .venv/bin/python benchmarks/compensate_family.py [TEMPLATE] [--alpha 30:40:2]
-        [--beta 26:36:2] [--mesh coarse] [-j 2] [--write-docs]
+        [--beta 26:36:2] [--hc=0] [--mesh coarse] [--polish N] [-j 2] [--write-docs]
 """
 
 from __future__ import annotations
 
 import argparse
 import itertools
+import math
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -37,52 +39,90 @@ ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "compensate.md"
 BLOCK = "compensate-family"
 
-Row = tuple[float, float, float | None, float | None, float]
+Row = tuple[float, float, float, float | None, float | None, float]
 
 
 def grid(text: str) -> list[float]:
-    """``START:STOP:STEP`` (STOP included) or ``A,B,C`` as a list of degrees."""
+    """``START:STOP:STEP`` (STOP included) or ``A,B,C`` as a list."""
     if ":" in text:
         a, b, s = (float(v) for v in text.split(":"))
         return [float(v) for v in np.arange(a, b + s / 2, s)]
     return [float(v) for v in text.split(",")]
 
 
-def one(args: tuple[str, str, float, float]) -> Row:
-    """Simulate the template folded to (alpha, beta) and measure it against
-    the template's design: (alpha, beta, max, rms or None, CPU s)."""
-    name, mesh, alpha, beta = args
+def one(args: tuple[str, str, float, float, float]) -> Row:
+    """Simulate the template folded to (alpha, beta, h_c as a fraction of
+    R cos(alpha)) and measure it against the template's design: (alpha,
+    beta, h_c fraction, max, rms or None, CPU s)."""
+    name, mesh, alpha, beta, hc = args
     design = load_template(find_template(name))
-    fold = design.with_changes(frame=design.frame.with_changes(alpha=alpha, beta=beta))
-    s = simulate_standing(fold, mesh)
+    half = design.frame.radius * math.cos(math.radians(alpha))
+    frame = design.frame.with_changes(alpha=alpha, beta=beta, h_c=hc * half)
+    s = simulate_standing(design.with_changes(frame=frame), mesh)
     if not s.stands or s.positions is None:
-        return alpha, beta, None, None, s.cpu_s
+        return alpha, beta, hc, None, None, s.cpu_s
     m = standing_measures(design, s.flat, node_weights(s.flat, s.faces), s)
-    return alpha, beta, m.max_deviation, m.rms_deviation, s.cpu_s
+    return alpha, beta, hc, m.max_deviation, m.rms_deviation, s.cpu_s
 
 
-def summary(name: str, mesh: str, unit: str, start: Row, rows: list[Row]) -> str:
+def polish(name: str, mesh: str, best: Row, evaluations: int) -> Row:
+    """Nelder-Mead on the largest distance itself (not its least squares) from
+    the grid's best fold, ``evaluations`` simulations at most: the family's
+    local floor near it (h_c kept inside the command's bounds)."""
+    from scipy.optimize import minimize
+
+    seen: dict[tuple[float, ...], Row] = {}
+
+    def cost(y: np.ndarray) -> float:
+        a, b, h = float(y[0]), float(y[1]), float(np.clip(y[2], -0.95, 0.95))
+        row = seen.setdefault((a, b, h), one((name, mesh, a, b, h)))
+        return math.inf if row[3] is None else float(row[3])
+
+    x0 = np.array(best[:3])
+    simplex = np.vstack([x0, x0 + [1.0, 0, 0], x0 + [0, 1.0, 0], x0 + [0, 0, 0.15]])
+    minimize(cost, x0, method="Nelder-Mead",
+             options={"maxfev": evaluations, "initial_simplex": simplex})  # fmt: skip
+    rows = list(seen.values())
+    top = min((r for r in rows if r[3] is not None), key=lambda r: r[3])  # type: ignore[arg-type,return-value]
+    return (*top[:5], sum(r[5] for r in rows))
+
+
+def summary(
+    name: str, mesh: str, unit: str, start: Row, rows: list[Row], polished: Row | None = None
+) -> str:
     """The markdown table of the scan's result."""
-    standing = [r for r in rows if r[2] is not None]
-    if start[2] is None or not standing:
+    standing = [r for r in rows if r[3] is not None]
+    if start[3] is None or not standing:
         return f"{name} ({mesh} mesh): the template's own fold or every fold scanned falls."
-    best = min(standing, key=lambda r: r[2])  # type: ignore[arg-type,return-value]
-    best_rms = min(standing, key=lambda r: r[3])  # type: ignore[arg-type,return-value]
-    alphas = sorted({r[0] for r in rows})
-    betas = sorted({r[1] for r in rows})
-    fifth = start[2] / 5
+    best = min(standing, key=lambda r: r[3])  # type: ignore[arg-type,return-value]
+    best_rms = min(standing, key=lambda r: r[4])  # type: ignore[arg-type,return-value]
+    span = [sorted({r[k] for r in rows}) for k in range(3)]
+    ranges = ", ".join(
+        f"{n} {v[0]:g}..{v[-1]:g}" if len(v) > 1 else f"{n} {v[0]:g}"
+        for n, v in zip(("alpha", "beta", "h_c"), span, strict=True)
+    )
+    assert start[4] is not None
     return "\n".join(
         [
-            "| template, mesh | grid (deg) | folds standing | uncompensated max / rms | a fifth "
-            "of it | smallest max on the grid (alpha, beta) | smallest rms (alpha, beta) | "
-            "CPU |",
+            "| template, mesh | grid (alpha, beta deg; h_c of R cos(alpha)) | folds standing | "
+            "uncompensated max / rms | a fifth of it | smallest max on the grid (alpha, beta, "
+            "h_c) | smallest rms (alpha, beta, h_c) | CPU |",
             "|---|---|---|---|---|---|---|---|",
-            f"| {name}, {mesh} | alpha {alphas[0]:g}..{alphas[-1]:g}, beta {betas[0]:g}.."
-            f"{betas[-1]:g} ({len(rows)}) | {len(standing)} | {start[2]:.4g} / {start[3]:.4g} "
-            f"{unit} | {fifth:.4g} {unit} | {best[2]:.4g} {unit} ({best[0]:g}, {best[1]:g}) | "
-            f"{best_rms[3]:.4g} {unit} ({best_rms[0]:g}, {best_rms[1]:g}) | "
-            f"{sum(r[4] for r in rows) + start[4]:.0f} s |",
+            f"| {name}, {mesh} | {ranges} ({len(rows)}) | {len(standing)} | {start[3]:.4g} / "
+            f"{start[4]:.4g} {unit} | {start[3] / 5:.4g} {unit} | {best[3]:.4g} {unit} "
+            f"({best[0]:g}, {best[1]:g}, {best[2]:g}) | {best_rms[4]:.4g} {unit} ({best_rms[0]:g}, "
+            f"{best_rms[1]:g}, {best_rms[2]:g}) | {sum(r[5] for r in rows) + start[5]:.0f} s |",
         ]
+        + (
+            []
+            if polished is None or polished[3] is None
+            else [
+                "",
+                f"Polished from the grid's best by Nelder-Mead on the largest distance itself: "
+                f"{polished[3]:.4g} {unit} at alpha {polished[0]:.4g}, beta {polished[1]:.4g} deg, "
+                f"h_c {polished[2]:.3g} ({polished[5]:.0f} s CPU).",
+            ]
+        )
     )
 
 
@@ -91,30 +131,39 @@ def main() -> None:
     ap.add_argument("template", nargs="?", default="patkau-one-fold")
     ap.add_argument("--alpha", default="30:40:2", help="START:STOP:STEP or A,B,.. (deg)")
     ap.add_argument("--beta", default="26:36:2", help="START:STOP:STEP or A,B,.. (deg)")
+    ap.add_argument("--hc", default="0", help="h_c as a fraction of R cos(alpha), as --alpha")
     ap.add_argument("--mesh", default="coarse", choices=("coarse", "normal"))
+    ap.add_argument(
+        "--polish", type=int, default=0, metavar="N", help="then Nelder-Mead, N simulations"
+    )
     ap.add_argument("-j", "--jobs", type=int, default=2)
     ap.add_argument("--write-docs", action="store_true")
     ns = ap.parse_args()
     design = load_template(find_template(ns.template))
     f = design.frame
-    tasks = [
-        (ns.template, ns.mesh, a, b) for a, b in itertools.product(grid(ns.alpha), grid(ns.beta))
-    ]
+    knobs = itertools.product(grid(ns.alpha), grid(ns.beta), grid(ns.hc))
+    tasks = [(ns.template, ns.mesh, a, b, h) for a, b, h in knobs]
+    own_hc = f.h_c / (f.radius * math.cos(math.radians(f.alpha)))
     t0 = time.monotonic()
     with ProcessPoolExecutor(ns.jobs) as ex:
-        start = ex.submit(one, (ns.template, ns.mesh, f.alpha, f.beta))
+        start = ex.submit(one, (ns.template, ns.mesh, f.alpha, f.beta, own_hc))
         rows = list(ex.map(one, tasks))
-    for a, b, mx, rms, cpu in rows:
+    for a, b, h, mx, rms, cpu in rows:
         got = "falls" if mx is None else f"max {mx:8.4g}  rms {rms:8.4g}"
-        print(f"alpha {a:5.1f}  beta {b:5.1f}  {got}  ({cpu:.1f} s CPU)")
-    text = summary(ns.template, ns.mesh, design.units.value, start.result(), rows)
+        print(f"alpha {a:5.1f}  beta {b:5.1f}  h_c {h:+.2f}  {got}  ({cpu:.1f} s CPU)")
+    standing = [r for r in rows if r[3] is not None]
+    polished = None
+    if ns.polish and standing:
+        best = min(standing, key=lambda r: r[3])  # type: ignore[arg-type,return-value]
+        polished = polish(ns.template, ns.mesh, best, ns.polish)
+    text = summary(ns.template, ns.mesh, design.units.value, start.result(), rows, polished)
     print(f"\n{text}\n\nwall {time.monotonic() - t0:.0f} s")
     if ns.write_docs:
         from docs_block import machine_line, write_block  # type: ignore[import-not-found]
 
         command = (
             f".venv/bin/python benchmarks/compensate_family.py {ns.template} --alpha {ns.alpha} "
-            f"--beta {ns.beta} --mesh {ns.mesh} --write-docs"
+            f"--beta {ns.beta} --hc={ns.hc} --mesh {ns.mesh} --polish {ns.polish} --write-docs"
         )
         write_block(BLOCK, f"{text}\n\n{machine_line()}", command, path=DOC)
 

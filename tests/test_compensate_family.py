@@ -19,17 +19,19 @@ def test_grid_includes_its_stop_and_reads_lists() -> None:
 
 
 def test_summary_names_the_smallest_max_and_a_fifth_of_the_start() -> None:
-    start = (30.0, 30.0, 300.0, 100.0, 2.0)
+    start = (30.0, 30.0, 0.0, 300.0, 100.0, 2.0)
     rows = [
-        (30.0, 32.0, 250.0, 60.0, 1.0),
-        (32.0, 30.0, 180.0, 70.0, 1.0),  # the smallest max
-        (32.0, 32.0, None, None, 1.0),  # falls
+        (30.0, 32.0, 0.0, 250.0, 60.0, 1.0),
+        (32.0, 30.0, 0.5, 180.0, 70.0, 1.0),  # the smallest max
+        (32.0, 32.0, 0.0, None, None, 1.0),  # falls
     ]
     text = cf.summary("t", "coarse", "mm", start, rows)
     row = text.splitlines()[2]
     assert "| 2 |" in row  # two of three stand
     assert "60 mm |" in row  # a fifth of 300
-    assert "180 mm (32, 30)" in row
-    assert "60 mm (30, 32)" in row  # the smallest rms
+    assert "180 mm (32, 30, 0.5)" in row
+    assert "60 mm (30, 32, 0)" in row  # the smallest rms
+    assert "alpha 30..32, beta 30..32, h_c 0..0.5 (3)" in row
     assert row.endswith("| 5 s |")
-    assert "falls" in cf.summary("t", "coarse", "mm", (30.0, 30.0, None, None, 1.0), rows)
+    fell = (30.0, 30.0, 0.0, None, None, 1.0)
+    assert "falls" in cf.summary("t", "coarse", "mm", fell, rows)
