@@ -15,9 +15,10 @@ normal mesh.
 
 ``/api/compensate/progress?job=N`` answers the lines the compensation said
 so far, its ETA, the simulations done and, once finished, its result (the
-report's ``compensation`` section, :meth:`Compensation.to_data`, with the
-compensated and the start design's alpha, beta and hc_fraction as the page's
-control texts) or its error line. ``/api/compensate/cancel?job=N`` stops it
+report's ``compensation`` section, :meth:`Compensation.to_data`, with
+``values`` and ``start_values``: the page's control texts of the compensated
+and the start design, the job's query with alpha, beta and hc_fraction
+replaced) or its error line. ``/api/compensate/cancel?job=N`` stops it
 at its next simulation at the latest.
 
 The simulations run in the server's process, one at a time
@@ -235,8 +236,9 @@ class Compensations:
                 c = compensate(design, target, evaluator, self._say(job), coarse=LEVEL,
                                fine=LEVEL, check=False)  # fmt: skip
             result = _plain(c.to_data())
-            result["values"] = _knobs(c.compensated)
-            result["start_values"] = _knobs(c.start)
+            start = {k: v for k, v in job.params.items() if k != "template"}
+            result["values"] = {**start, **_knobs(c.compensated)}
+            result["start_values"] = {**start, **_knobs(c.start)}
         except _Cancelled:
             state, error = "cancelled", "cancelled"
         except OneFoldError as exc:

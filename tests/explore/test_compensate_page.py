@@ -80,8 +80,11 @@ def test_compensate_in_the_page(browser, server):
         page.locator("#comp-status", has_text="ETA").wait_for(timeout=TIMEOUT_MS)
         progress = tab.text("#comp-status")
         assert progress.startswith("compensating (coarse preview) patkau-one-fold α 30, β 30")
-        assert page.locator("#alpha-num").is_enabled()  # the sliders stay usable
         page.screenshot(path="/tmp/compaction-progress.png")
+        # the sliders stay usable and do not cancel: the job is the design as pressed
+        tab.change("#width-num", "3000")
+        running = page.locator("body").get_attribute("data-compensation-job")
+        assert _json(server, f"/api/compensate/progress?job={running}")["state"] != "cancelled"
         n = tab.updates()
         page.locator("body[data-compensation='done']").wait_for(
             state="attached", timeout=4 * TIMEOUT_MS
@@ -114,8 +117,13 @@ def test_compensate_in_the_page(browser, server):
 
         # the page: the sliders hold the compensated values, the panel before -> after
         values = r["values"]
-        for k in ("alpha", "beta", "hc_fraction"):
-            assert page.locator(f"#{k}-num").input_value() == values[k]
+        start = {k: v for k, v in params.items() if k != "template"}
+        assert values == {**start, **{k: values[k] for k in ("alpha", "beta", "hc_fraction")}}
+        assert r["start_values"] == start
+        for k, text in values.items():  # the job's design (width 3048), the compensated fold
+            plain = k in ("model", "divisions", "radius", "polygon")
+            assert page.locator(f"#{k}" if plain else f"#{k}-num").input_value() == text
+        assert values["width"] == "3048"
         assert float(values["alpha"]) == pytest.approx(f.alpha, rel=1e-12)
         assert float(values["beta"]) == pytest.approx(f.beta, rel=1e-12)
         half = f.radius * math.cos(math.radians(f.alpha))
@@ -129,6 +137,7 @@ def test_compensate_in_the_page(browser, server):
         assert c.verdict in panel
         assert "coarse preview: onefold compensate's search and checks on the coarse mesh" in panel
         assert tab.text("#comp-status").startswith("compensated (coarse preview) in ")
+        assert tab.text("#comp-status").endswith("the sliders hold the compensated values")
 
         # back to the uncompensated values, and again to the compensated ones
         n = tab.updates()
@@ -137,6 +146,7 @@ def test_compensate_in_the_page(browser, server):
         assert page.locator("#alpha-num").input_value() == "30"
         assert page.locator("#hc_fraction-num").input_value() == "0"
         assert tab.text("#comp-back") == "Load compensated"
+        assert tab.text("#comp-status").endswith("the sliders hold the uncompensated values")
         page.screenshot(path="/tmp/compaction-back.png")
         n = tab.updates()
         _press(page, "#comp-back")

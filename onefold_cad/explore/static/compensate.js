@@ -2,10 +2,11 @@
 // query as /api/state) to compensate the design shown for springback and weight
 // (a coarse preview: `onefold compensate`'s search and checks on the coarse mesh),
 // polls /api/compensate/progress every second for the progress line and its ETA,
-// and when done shows before -> after and loads the compensated alpha, beta and
-// H on f-line into the sliders (the view, and the Steel view if on, follow). The
-// sliders stay usable while it runs: the job goes on for the design as it was when
-// pressed (the progress line says which); only Cancel stops it. The server
+// and when done shows before -> after and loads the compensated design into the
+// controls: the design as pressed with the compensated alpha, beta and H on f-line
+// (the view, and the Steel view if on, follow). The sliders stay usable while it
+// runs: the job goes on for the design as it was when pressed (the progress line
+// says which; its result replaces what was moved meanwhile); only Cancel stops it. The server
 // computes everything.
 
 const $ = (id) => document.getElementById(id);
@@ -16,7 +17,8 @@ function fmt(x, digits = 4) {
 }
 
 // query: the current design's query string; load(values): set these controls'
-// texts ({alpha, beta, hc_fraction}) and ask for the design's state
+// texts ({alpha: '31.1', ...}: the job's design, compensated or not) and ask for
+// the design's state
 export function createCompensation({ query, load }) {
   const button = $('compensate');
   const cancel = $('comp-cancel');
@@ -87,8 +89,16 @@ export function createCompensation({ query, load }) {
 
   function swap(which) {
     showing = which;
-    back.textContent = which === 'compensated' ? 'Back to uncompensated' : 'Load compensated';
-    load(which === 'compensated' ? result.result.values : result.result.start_values);
+    const done = `compensated (coarse preview) in ${fmt(result.elapsed_s, 3)} s; the sliders hold `;
+    if (which === 'compensated') {
+      back.textContent = 'Back to uncompensated';
+      setStatus(`${done}the compensated values`);
+      load(result.result.values);
+    } else {
+      back.textContent = 'Load compensated';
+      setStatus(`${done}the uncompensated values`);
+      load(result.result.start_values);
+    }
   }
 
   async function get(url) {
@@ -109,8 +119,6 @@ export function createCompensation({ query, load }) {
         setStatus(`compensated (coarse preview) for template ${p.design.template}: switch back to it `
           + 'to load its values', true);
       } else {
-        setStatus(`compensated (coarse preview) in ${fmt(p.elapsed_s, 3)} s; the sliders hold `
-          + 'the compensated values');
         back.hidden = false;
         swap('compensated');
       }
