@@ -187,10 +187,12 @@ def compensate(
     *,
     coarse: str = "coarse",
     fine: str = "normal",
+    check: bool = True,
 ) -> Compensation:
     """Compensate ``design`` for ``target``: the search, then the best fold and
-    the uncompensated one simulated on ``fine`` with the convergence check,
-    side by side.
+    the uncompensated one simulated on ``fine`` with the convergence check
+    (``check``; False: without it, as the explorer's coarse preview runs, and
+    the reports' ``convergence`` is None), side by side.
 
     Raises:
         ConvergenceError: neither the start nor any candidate stands on ``fine``.
@@ -208,7 +210,7 @@ def compensate(
     frame = start.frame.with_changes(alpha=k["alpha"], beta=k["beta"], h_c=k["h_c"])
     compensated = start.with_changes(frame=frame, name=f"{design.name}-compensated")
     say(f"checking the compensated fold and the uncompensated one on the {fine} mesh")
-    before_sim, after_sim = evaluator.map([start, compensated], fine, check=True)
+    before_sim, after_sim = evaluator.map([start, compensated], fine, check=check)
     for s in (before_sim, after_sim):
         if isinstance(s, str):
             raise ConvergenceError(

@@ -15,6 +15,8 @@ It listens on 127.0.0.1 and answers GET requests only:
   request has its own thread, so the page's other requests go on meanwhile);
 - ``/api/steel?...`` (the same query): the same, for the page's Steel view:
   only the latest of these is simulated (:mod:`onefold_cad.explore.steel`);
+- ``/api/compensate/{start,progress,cancel}?...``: the Compensate action's
+  background job (:mod:`onefold_cad.explore.compensation`);
 - ``/download/{dxf,step,3dm,json,toml}?...``: the design's file.
 
 The last :data:`RECENT_DESIGNS` designs asked for are kept by their query
@@ -58,6 +60,7 @@ from urllib.parse import urlsplit
 
 from onefold_cad.errors import InvalidParameterError, OneFoldError, memory_message
 from onefold_cad.explore.bounded import MAX_CONNECTIONS, BoundedServer
+from onefold_cad.explore.compensation import Compensations
 from onefold_cad.explore.controls import (
     ParameterProblem,
     QueryError,
@@ -100,6 +103,7 @@ STATIC: dict[str, tuple[str, str]] = {
     "/static/simulate.js": ("simulate.js", _JS),
     "/static/steel_view.js": ("steel_view.js", _JS),
     "/static/quality.js": ("quality.js", _JS),
+    "/static/compensate.js": ("compensate.js", _JS),
     "/static/explore.css": ("explore.css", "text/css; charset=utf-8"),
     "/static/three/three.module.js": ("three/three.module.js", _JS),
     "/static/three/three.core.js": ("three/three.core.js", _JS),
@@ -178,6 +182,7 @@ class ExploreServer(BoundedServer):
         port: int = DEFAULT_PORT,
         max_connections: int = MAX_CONNECTIONS,
     ) -> None:
+        self.compensations = Compensations()  # before the bind: a failed one closes
         super().__init__(("127.0.0.1", port), ExploreHandler, max_connections)
         self.templates = templates
         self.initial = initial
@@ -190,6 +195,11 @@ class ExploreServer(BoundedServer):
         self.verbose = False
         self.steel = LatestOnly()
         self.design_of = functools.lru_cache(maxsize=RECENT_DESIGNS)(self._design_of)
+
+    def server_close(self) -> None:
+        """Stop listening; a running compensation stops at its next simulation."""
+        self.compensations.close()
+        super().server_close()
 
     def _design_of(self, params: tuple[tuple[str, str], ...]) -> Any:
         """The design of the page's controls (sorted ``(name, text)`` pairs)."""
@@ -277,6 +287,9 @@ class ExploreHandler(BaseHTTPRequestHandler):
                 self._simulate(query)
             elif path == "/api/steel":
                 self._simulate(query, self.server.steel.ticket())
+            elif path.startswith("/api/compensate/"):
+                action = path[len("/api/compensate/") :]
+                self._json(*self.server.compensations.answer(action, query, self._design))
             elif path.startswith("/download/") and path[len("/download/") :] in KINDS:
                 self._download(path[len("/download/") :], query)
             else:

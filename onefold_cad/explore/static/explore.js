@@ -2,13 +2,14 @@
 // Each control change asks /api/state for the design's new state (the Python
 // solver is the one source of truth) and draws the form, the flat pattern, the
 // numbers and the messages it returns. The Simulate button is simulate.js's, the
-// Steel view (every settled design simulated) steel_view.js's; the reduced frames
-// of a drag on a slow GPU are quality.js's.
+// Steel view (every settled design simulated) steel_view.js's, the Compensate
+// button compensate.js's; the reduced frames of a drag on a slow GPU are quality.js's.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/OrbitControls.js';
 import { createSimulation } from './simulate.js';
 import { createQuality } from './quality.js';
 import { createSteelView } from './steel_view.js';
+import { createCompensation } from './compensate.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -303,6 +304,14 @@ resizer.observe(canvas); // the simulation panel below it grows and shrinks
 
 const simulation = createSimulation({ scene, form, render, query: () => query() });
 const steel = createSteelView({ simulation, render });
+// a compensation's values go into the controls as typed ones would
+createCompensation({
+  query: () => query(),
+  load: (values) => {
+    for (const [k, text] of Object.entries(values)) setValue(k, text);
+    request();
+  },
+});
 
 // -- numbers and messages ---------------------------------------------------
 function fmt(x, digits = 5) {
