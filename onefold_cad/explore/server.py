@@ -14,7 +14,8 @@ It listens on 127.0.0.1 and answers GET requests only:
   (:func:`onefold_cad.explore.simulation.simulation_state`; seconds: each
   request has its own thread, so the page's other requests go on meanwhile);
 - ``/api/steel?...`` (the same query): the same, for the page's Steel view:
-  only the latest of these is simulated (:mod:`onefold_cad.explore.steel`);
+  only the latest of these is simulated, its form first, its "stands" on
+  ``/api/steel/check?...`` (:mod:`onefold_cad.explore.steel`);
 - ``/download/{dxf,step,3dm,json,toml}?...``: the design's file.
 
 The last :data:`RECENT_DESIGNS` designs asked for are kept by their query
@@ -67,7 +68,7 @@ from onefold_cad.explore.controls import (
 from onefold_cad.explore.downloads import KINDS, make_download
 from onefold_cad.explore.simulation import simulation_state
 from onefold_cad.explore.state import design_state, problem_state
-from onefold_cad.explore.steel import LatestOnly
+from onefold_cad.explore.steel import LastSteel, LatestOnly
 
 __all__ = [
     "DEFAULT_PORT",
@@ -189,6 +190,7 @@ class ExploreServer(BoundedServer):
         self.csp = _csp(self.static["/"])
         self.verbose = False
         self.steel = LatestOnly()
+        self.last_steel = LastSteel(self.steel)
         self.design_of = functools.lru_cache(maxsize=RECENT_DESIGNS)(self._design_of)
 
     def _design_of(self, params: tuple[tuple[str, str], ...]) -> Any:
@@ -274,9 +276,11 @@ class ExploreHandler(BaseHTTPRequestHandler):
             elif path == "/api/state":
                 self._state(query)
             elif path == "/api/simulate":
-                self._simulate(query)
+                self._simulate(query, lambda _, design: simulation_state(design))
             elif path == "/api/steel":
-                self._simulate(query, self.server.steel.ticket())
+                self._simulate(query, self.server.last_steel.simulate)
+            elif path == "/api/steel/check":
+                self._simulate(query, self.server.last_steel.check)
             elif path.startswith("/download/") and path[len("/download/") :] in KINDS:
                 self._download(path[len("/download/") :], query)
             else:
@@ -302,10 +306,13 @@ class ExploreHandler(BaseHTTPRequestHandler):
         ]
         self._json(HTTPStatus.OK, {"initial": self.server.initial, "templates": items})
 
-    def _design(self, query: str) -> Any:
+    def _key(self, query: str) -> tuple[tuple[str, str], ...]:
         params = parse_query(query)
         params.pop("mesh", None)  # the page's triangles: not a design value
-        return self.server.design_of(tuple(sorted(params.items())))
+        return tuple(sorted(params.items()))
+
+    def _design(self, query: str) -> Any:
+        return self.server.design_of(self._key(query))
 
     def _state(self, query: str) -> None:
         try:
@@ -336,9 +343,9 @@ class ExploreHandler(BaseHTTPRequestHandler):
             return
         self._json(HTTPStatus.OK, state)
 
-    def _simulate(self, query: str, cancelled: Callable[[], bool] | None = None) -> None:
+    def _simulate(self, query: str, answer: Callable[[Any, Any], dict[str, Any]]) -> None:
         try:
-            state = simulation_state(self._design(query), cancelled)
+            state = answer(self._key(query), self._design(query))
         except ParameterProblem as exc:
             state = {"ok": False, "error": " ".join(exc.message.split())}
         except QueryError:
