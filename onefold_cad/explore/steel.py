@@ -85,13 +85,14 @@ class LastSteel:
 
     def check(self, key: object, design: Design | None = None) -> dict[str, Any]:
         """The reserve check of the last steel simulation if it is of ``key``'s
-        design (``superseded`` otherwise, or when a steel request comes
-        meanwhile: it takes no ticket itself)."""
+        design (otherwise ``superseded`` and ``gone``: the page asks for
+        its steel again), given up (``superseded``) when a steel request
+        comes meanwhile (it takes no ticket itself)."""
         cancelled = self._latest.watch()
         with self._lock:
             last = self._last
         if last is None or last[0] != key:
-            return {"ok": False, "superseded": True, "error": NOT_LAST}
+            return {"ok": False, "superseded": True, "gone": True, "error": NOT_LAST}
         state = check_state(last[1], cancelled)
         if state["ok"]:
             with self._lock:

@@ -162,6 +162,7 @@ def test_the_form_comes_first_and_its_check_gives_the_verdict_of_simulate(server
     assert _ask(server, "steel/check", {"alpha": "33"})[1] == {
         "ok": False,
         "superseded": True,
+        "gone": True,
         "error": NOT_LAST,
     }
     status, check = _ask(server, "steel/check", {"alpha": "34"})

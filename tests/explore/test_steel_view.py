@@ -13,7 +13,7 @@ import pytest
 from onefold_cad.design import fold_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.mechanics.simulate import simulate
-from tests.explore.conftest import TIMEOUT_MS, Page
+from tests.explore.conftest import TIMEOUT_MS, Page, get
 from tests.explore.test_simulate import _fmt
 
 
@@ -147,3 +147,36 @@ def test_the_steel_view_follows_the_sliders(browser, server):
 @pytest.fixture(autouse=True)
 def _fresh_designs(server):
     server.design_of.cache_clear()
+
+
+def test_a_check_the_server_no_longer_holds_asks_for_the_steel_again(browser, server):
+    """The steel of alpha 30 is shown, its check held (a Playwright route);
+    meanwhile another client's steel request (alpha 31) makes 31 the server's
+    last steel simulation; let go, the check answers ``gone`` and the page
+    asks for 30's steel again, then shows its verdict: never a verdict of
+    another design, never "checking…" for good."""
+    context = browser.new_context(viewport={"width": 1400, "height": 860})
+    try:
+        tab = Page(context.new_page(), server.url)
+        page = tab.page
+        held: list = []
+        page.route("**/api/steel/check?**", lambda route: held.append(route))
+        page.locator("#steel").click()
+        assert dict(parse_qsl(_wait_steel(page, 1)))["alpha"] == "30"
+        for _ in range(500):  # the page asked for the check at once (the route holds it)
+            if held:
+                break
+            page.wait_for_timeout(20)
+        page.unroute("**/api/steel/check?**")
+        assert tab.text("#sim-stands").startswith("checking…")
+        status, _, _ = get(server, "/api/steel?alpha=31")  # another client
+        assert status == 200
+        held[0].continue_()
+        assert dict(parse_qsl(_wait_steel(page, 2)))["alpha"] == "30"  # asked again
+        page.locator("body[data-steel-checked='1']").wait_for(
+            state="attached", timeout=4 * TIMEOUT_MS
+        )
+        assert tab.text("#sim-stands") == _stands_text(server, "30")
+        assert tab.errors == [] and tab.foreign == []
+    finally:
+        context.close()

@@ -34,6 +34,8 @@ export function createSteelView({ simulation, render }) {
   let count = 0;
   let said = ''; // the status line of the steel shown
   let checks = 0;
+  let verdictDue = false; // the steel shown waits for its reserve check's verdict
+  let checkingQ = null; // the design whose check is on its way
   const CHECKING = '; checking whether it stands…';
 
   function finish(ok, detail) {
@@ -60,21 +62,34 @@ export function createSteelView({ simulation, render }) {
   // the verdict of the steel shown (design q): applied while that steel is shown
   async function check(q) {
     const started = performance.now();
+    checkingQ = q;
     try {
       const res = await fetch(`/api/steel/check?${q}`);
       const json = (res.headers.get('Content-Type') || '').startsWith('application/json');
       const c = json ? await res.json() : { ok: false, error: (await res.text()).trim() };
+      if (checkingQ === q) checkingQ = null;
       if (!on || shown !== q) return; // another design's steel is shown meanwhile
+      if (c.gone && asked === q) { // the server simulated another design since: ask again
+        shown = null;
+        asked = null;
+        ask(q);
+        return;
+      }
+      if (c.superseded && asked === q) { // given up for a steel request since: check again
+        check(q);
+        return;
+      }
       if (c.ok) {
+        verdictDue = false;
         simulation.verdict(c);
         said = said.replace(CHECKING, `; verdict ${((performance.now() - started) / 1000).toFixed(1)} s later`);
         if (asked === q) simulation.setStatus(said);
       } else if (asked === q) {
-        simulation.setStatus(c.superseded ? `steel view: ${c.error} (another page of this explorer)`
-          : c.error || `steel view's check failed (HTTP ${res.status})`, true);
+        simulation.setStatus(c.error || `steel view's check failed (HTTP ${res.status})`, true);
       }
       checked(c.ok, { started, server_ms: c.server_ms ?? null, cpu_ms: c.cpu_ms ?? null });
     } catch (err) {
+      if (checkingQ === q) checkingQ = null;
       if (on && shown === q && asked === q) {
         simulation.setStatus(`steel view's check failed: no answer from the server (${err})`, true);
       }
@@ -89,6 +104,7 @@ export function createSteelView({ simulation, render }) {
       simulation.markStale(false);
       simulation.setStatus(said);
       render();
+      if (verdictDue && checkingQ === null) check(q); // its check was given up meanwhile
       return;
     }
     if (q === asked) return; // on its way
@@ -113,7 +129,8 @@ export function createSteelView({ simulation, render }) {
         said = `steel of this design in ${s} s (server ${(sim.server_ms / 1000).toFixed(1)} s, `
           + `${sim.level} mesh, ${sim.numbers.nodes} nodes)${form}${sim.numbers.checking ? CHECKING : ''}`;
         simulation.setStatus(said);
-        if (sim.numbers.checking) check(q);
+        verdictDue = sim.numbers.checking;
+        if (verdictDue) check(q);
       } else {
         simulation.clear();
         shown = null;
