@@ -87,7 +87,8 @@ class LastSteel:
         """The reserve check of the last steel simulation if it is of ``key``'s
         design (otherwise ``superseded`` and ``gone``: the page asks for
         its steel again), given up (``superseded``) when a steel request
-        comes meanwhile (it takes no ticket itself)."""
+        comes meanwhile (it takes no ticket itself). ``design`` (the
+        route's) is not needed: the check is of the simulation kept."""
         cancelled = self._latest.watch()
         with self._lock:
             last = self._last
