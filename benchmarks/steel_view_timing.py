@@ -2,16 +2,21 @@
 (``bench_explore.py --steel ROUNDS``).
 
 On one page of the default template in Chromium, round by round in rotated
-order (the same load for each), with alpha moved to a new value every time:
+order (the same load for each), with alpha moved by 1 to 3 degrees from the design
+shown every time (up, and down past 40 degrees):
 
 * **Simulate press**: the value typed (its state drawn first), then a click of
   Simulate, to the frame that shows the steel (``explore:simulated``);
 * **Steel view release**: the Steel view on, alpha's slider moved and released
   (``input``, ``change``) to the frame that shows the new design's steel
   (``explore:steel``; the state's update comes first, then the simulation);
+  the form comes first, then (**its verdict**) the "stands" of its reserve
+  check (``explore:steel-checked``; ``/api/steel/check``), timed from the
+  same release;
 * **second release**: two releases 0.5 s apart (the first design's simulation
-  running when the second comes), from the second release to its steel shown:
-  the stale run is given up at its next Newton step, not finished.
+  running when the second comes, 1 degree apart), from the second release to
+  its steel shown: the stale run is given up at its next Newton step, not
+  finished.
 
 Each row gives, per press or release, the time to the frame shown, the
 server's ``server_ms`` (the request's time on the server, including waiting
@@ -52,15 +57,20 @@ ACT = """async ([action, value, second, gap]) => {
     slider.dispatchEvent(new Event('change', { bubbles: true }));
   };
   let t0 = performance.now();
-  const done = new Promise((resolve) => {
+  const next = (name) => new Promise((resolve) => {
     const timer = setTimeout(() => resolve(null), 180000);
-    window.addEventListener(event, (e) => {
+    window.addEventListener(name, (e) => {
       clearTimeout(timer);
       setTimeout(() => {
         gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
         resolve({ detail: e.detail, shown: performance.now() - t0 });
       }, 0);
     }, { once: true });
+  });
+  const done = next(event).then(async (r) => {
+    if (r === null || !r.detail.checking) return r;
+    const c = await next('explore:steel-checked'); // its verdict, from the same release
+    return { ...r, checked: c };
   });
   if (action === 'simulate') {
     document.getElementById('simulate').click();
@@ -103,11 +113,14 @@ def steel_rows(page, rounds: int) -> list[str]:
     rotated order, each at alpha values of its own (30.5, 31, ... degrees)."""
     actions = ["simulate", "release", "twice"]
     got: dict[str, list[dict]] = {a: [] for a in actions}
-    value = 30.0
+    shown, k = 30.0, 0  # the alpha of the steel (or state) shown
     for i in range(rounds):
         for action in actions[i % 3 :] + actions[: i % 3]:
-            value += 0.5
-            first, second = f"{value:g}", f"{value + 0.25:g}"
+            step = 1 + k % 3
+            k += 1
+            value = shown + step if shown + step <= 40 else shown - step
+            first, second = f"{value:g}", f"{value + 1:g}"
+            shown = value + 1 if action == "twice" else value
             if action == "simulate":
                 _steel(page, False)
                 _typed(page, first)
@@ -124,14 +137,21 @@ def steel_rows(page, rounds: int) -> list[str]:
     }
     rows = []
     for action in actions:
-        rs = got[action]
-        server = [r["detail"]["server_ms"] for r in rs]
-        rows.append(
-            f"| {names[action]} | {_cell([r['shown'] for r in rs])} | {_cell(server)} | "
-            f"{_cell([r['detail']['cpu_ms'] for r in rs])} | "
-            f"{'PASS' if stats_of(server).median <= 1000 else 'FAIL'} |"
-        )
+        rows.append(_row(names[action], got[action]))
+        checked = [r["checked"] for r in got[action] if r.get("checked")]
+        if action == "release" and checked:
+            rows.append(_row(f"{names[action]}: its verdict (reserve check)", checked, "–"))
     return rows
+
+
+def _row(name: str, rs: list[dict], verdict: str | None = None) -> str:
+    """A table row: to the frame shown, the request's server_ms and cpu_ms."""
+    server = [r["detail"]["server_ms"] for r in rs]
+    passed = verdict or ("PASS" if stats_of(server).median <= 1000 else "FAIL")
+    return (
+        f"| {name} | {_cell([r['shown'] for r in rs])} | {_cell(server)} | "
+        f"{_cell([r['detail']['cpu_ms'] for r in rs])} | {passed} |"
+    )
 
 
 def bench_steel(browser, rounds: int, start_server) -> list[str]:

@@ -1,9 +1,10 @@
 """``onefold explore``: the paper's interactive design tool, in the browser.
 
 A local server (:mod:`onefold_cad.explore.server`, 127.0.0.1 only) serves one
-page: sliders for the frame curve, the apex position, the sheet and the
-material; the folded form in 3D (three.js, vendored: works offline); the flat
-pattern; the numbers and every message; and downloads of the current design.
+page (its files and policy: :mod:`~onefold_cad.explore.page`): sliders for
+the frame curve, the apex position, the sheet and the material; the folded
+form in 3D (three.js, vendored: works offline); the flat pattern; the numbers
+and every message; and downloads of the current design.
 The Python solver is the one source of truth: each control change asks the
 server for the new state (:func:`onefold_cad.explore.state.design_state`),
 and the page only draws what it gets. Its Simulate button and Steel view

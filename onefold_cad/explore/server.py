@@ -14,7 +14,8 @@ It listens on 127.0.0.1 and answers GET requests only:
   (:func:`onefold_cad.explore.simulation.simulation_state`; seconds: each
   request has its own thread, so the page's other requests go on meanwhile);
 - ``/api/steel?...`` (the same query): the same, for the page's Steel view:
-  only the latest of these is simulated (:mod:`onefold_cad.explore.steel`);
+  only the latest of these is simulated, its form first, its "stands" on
+  ``/api/steel/check?...`` (:mod:`onefold_cad.explore.steel`);
 - ``/api/compensate/{start,progress,cancel}?...``: the Compensate action's
   background job (:mod:`onefold_cad.explore.compensation`);
 - ``/download/{dxf,step,3dm,json,toml}?...``: the design's file.
@@ -41,11 +42,8 @@ derives from too).
 
 from __future__ import annotations
 
-import base64
 import functools
-import hashlib
 import json
-import re
 import sys
 import threading
 import traceback
@@ -53,7 +51,6 @@ import webbrowser
 from collections.abc import Callable
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler
-from importlib.resources import files
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
@@ -68,9 +65,10 @@ from onefold_cad.explore.controls import (
     parse_query,
 )
 from onefold_cad.explore.downloads import KINDS, make_download
+from onefold_cad.explore.page import STATIC, TEXT, csp, static_files
 from onefold_cad.explore.simulation import simulation_state
 from onefold_cad.explore.state import design_state, problem_state
-from onefold_cad.explore.steel import LatestOnly
+from onefold_cad.explore.steel import LastSteel, LatestOnly
 
 __all__ = [
     "DEFAULT_PORT",
@@ -94,24 +92,6 @@ TIMEOUT = 30.0
 #: for the default template with its state, measured with tracemalloc).
 RECENT_DESIGNS = 8
 
-_TEXT = "text/plain; charset=utf-8"
-_JS = "text/javascript; charset=utf-8"
-#: URL path -> (file under static/, MIME type). Nothing else is ever served.
-STATIC: dict[str, tuple[str, str]] = {
-    "/": ("index.html", "text/html; charset=utf-8"),
-    "/static/explore.js": ("explore.js", _JS),
-    "/static/simulate.js": ("simulate.js", _JS),
-    "/static/steel_view.js": ("steel_view.js", _JS),
-    "/static/quality.js": ("quality.js", _JS),
-    "/static/compensate.js": ("compensate.js", _JS),
-    "/static/explore.css": ("explore.css", "text/css; charset=utf-8"),
-    "/static/three/three.module.js": ("three/three.module.js", _JS),
-    "/static/three/three.core.js": ("three/three.core.js", _JS),
-    "/static/three/OrbitControls.js": ("three/OrbitControls.js", _JS),
-    "/static/three/LICENSE": ("three/LICENSE", _TEXT),
-}
-_IMPORTMAP = re.compile(rb'<script type="importmap">(.*?)</script>', re.S)
-
 
 def _out_of_memory(exc: MemoryError) -> str:
     """The one line of a request the machine cannot afford (also in the
@@ -119,24 +99,6 @@ def _out_of_memory(exc: MemoryError) -> str:
     text = memory_message(exc)
     print(f"onefold explore: {text}", file=sys.stderr)
     return text
-
-
-def _static_files() -> dict[str, bytes]:
-    root = files("onefold_cad.explore").joinpath("static")
-    return {url: root.joinpath(*rel.split("/")).read_bytes() for url, (rel, _) in STATIC.items()}
-
-
-def _csp(index_html: bytes) -> str:
-    """The page's Content-Security-Policy: its own scripts and the inline import map only."""
-    hashes = " ".join(
-        "'sha256-" + base64.b64encode(hashlib.sha256(m).digest()).decode() + "'"
-        for m in _IMPORTMAP.findall(index_html)
-    )
-    return (
-        f"default-src 'self'; script-src 'self' {hashes}; style-src 'self'; "
-        "img-src 'self' data: blob:; connect-src 'self'; object-src 'none'; "
-        "base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
-    )
 
 
 def load_templates(ref: str | None) -> tuple[dict[str, dict[str, Any]], str]:
@@ -190,10 +152,11 @@ class ExploreServer(BoundedServer):
         self.url = f"http://127.0.0.1:{self.port}/"
         self.hosts = {f"127.0.0.1:{self.port}", f"localhost:{self.port}"}
         self.origins = {f"http://{h}" for h in self.hosts}
-        self.static = _static_files()
-        self.csp = _csp(self.static["/"])
+        self.static = static_files()
+        self.csp = csp(self.static["/"])
         self.verbose = False
         self.steel = LatestOnly()
+        self.last_steel = LastSteel(self.steel)
         self.design_of = functools.lru_cache(maxsize=RECENT_DESIGNS)(self._design_of)
 
     def server_close(self) -> None:
@@ -236,7 +199,7 @@ class ExploreHandler(BaseHTTPRequestHandler):
 
     def _refuse(self, status: int, reason: str) -> None:
         self.close_connection = True
-        self._send(status, (reason + "\n").encode("utf-8"), _TEXT, {"Connection": "close"})
+        self._send(status, (reason + "\n").encode("utf-8"), TEXT, {"Connection": "close"})
 
     def _json(self, status: int, data: dict[str, Any]) -> None:
         body = json.dumps(data, allow_nan=False, separators=(",", ":")).encode("utf-8")
@@ -284,9 +247,11 @@ class ExploreHandler(BaseHTTPRequestHandler):
             elif path == "/api/state":
                 self._state(query)
             elif path == "/api/simulate":
-                self._simulate(query)
+                self._simulate(query, lambda _, design: simulation_state(design))
             elif path == "/api/steel":
-                self._simulate(query, self.server.steel.ticket())
+                self._simulate(query, self.server.last_steel.simulate)
+            elif path == "/api/steel/check":
+                self._simulate(query, self.server.last_steel.check)
             elif path.startswith("/api/compensate/"):
                 action = path[len("/api/compensate/") :]
                 self._json(*self.server.compensations.answer(action, query, self._design))
@@ -315,10 +280,13 @@ class ExploreHandler(BaseHTTPRequestHandler):
         ]
         self._json(HTTPStatus.OK, {"initial": self.server.initial, "templates": items})
 
-    def _design(self, query: str) -> Any:
+    def _key(self, query: str) -> tuple[tuple[str, str], ...]:
         params = parse_query(query)
         params.pop("mesh", None)  # the page's triangles: not a design value
-        return self.server.design_of(tuple(sorted(params.items())))
+        return tuple(sorted(params.items()))
+
+    def _design(self, query: str) -> Any:
+        return self.server.design_of(self._key(query))
 
     def _state(self, query: str) -> None:
         try:
@@ -349,9 +317,9 @@ class ExploreHandler(BaseHTTPRequestHandler):
             return
         self._json(HTTPStatus.OK, state)
 
-    def _simulate(self, query: str, cancelled: Callable[[], bool] | None = None) -> None:
+    def _simulate(self, query: str, answer: Callable[[Any, Any], dict[str, Any]]) -> None:
         try:
-            state = simulation_state(self._design(query), cancelled)
+            state = answer(self._key(query), self._design(query))
         except ParameterProblem as exc:
             state = {"ok": False, "error": " ".join(exc.message.split())}
         except QueryError:
@@ -372,18 +340,18 @@ class ExploreHandler(BaseHTTPRequestHandler):
             file = make_download(kind, self._design(query))
         except (ParameterProblem, OneFoldError) as exc:
             text = " ".join(str(exc).split())
-            self._send(HTTPStatus.UNPROCESSABLE_ENTITY, text.encode("utf-8"), _TEXT)
+            self._send(HTTPStatus.UNPROCESSABLE_ENTITY, text.encode("utf-8"), TEXT)
             return
         except QueryError:
             raise
         except MemoryError as exc:
             text = _out_of_memory(exc)
-            self._send(HTTPStatus.SERVICE_UNAVAILABLE, text.encode("utf-8"), _TEXT)
+            self._send(HTTPStatus.SERVICE_UNAVAILABLE, text.encode("utf-8"), TEXT)
             return
         except Exception as exc:  # the page shows this line instead of a broken download
             traceback.print_exc(file=sys.stderr)
             text = f"internal error ({type(exc).__name__}: {' '.join(str(exc).split())})"
-            self._send(HTTPStatus.INTERNAL_SERVER_ERROR, text.encode("utf-8"), _TEXT)
+            self._send(HTTPStatus.INTERNAL_SERVER_ERROR, text.encode("utf-8"), TEXT)
             return
         disposition = f'attachment; filename="{file.filename}"'
         self._send(

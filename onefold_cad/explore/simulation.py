@@ -18,6 +18,12 @@ is then given up before it starts and at the simulation's next Newton step.
 A design that cannot be simulated (the paper model, no thickness, no elastic
 data, ...) answers ``ok: false`` with the one-line
 message ``onefold simulate`` would print.
+
+The Steel view asks for the form first (``check_later``): the coarse
+preview's reserve check (:mod:`onefold_cad.mechanics.reserve`, about a third
+of the coarse simulation) is left for :func:`check_state`, which the page asks
+for once the form is drawn; until then the numbers say ``checking: true`` and
+the page says "checking…", never a plain "stands".
 """
 
 from __future__ import annotations
@@ -41,7 +47,7 @@ from onefold_cad.export.simulation.colour_scale import (
 )
 from onefold_cad.mechanics.results import Simulation
 
-__all__ = ["LEVEL", "SUPERSEDED", "simulation_numbers", "simulation_state"]
+__all__ = ["LEVEL", "SUPERSEDED", "check_state", "simulation_numbers", "simulation_state"]
 
 #: The mesh level the page simulates on.
 LEVEL = "coarse"
@@ -66,9 +72,11 @@ def _line(text: object) -> str:
 
 def simulation_numbers(sim: Simulation) -> dict[str, Any]:
     """The numbers the page prints (design unit, MPa, shares 0..1); None where
-    the simulation has none (no standing equilibrium, reference 'designed')."""
+    the simulation has none (no standing equilibrium, reference 'designed');
+    ``checking``: its reserve check is still to come (:func:`check_state`)."""
     s = sim.standing
     return {
+        "checking": sim.pending_reserve is not None,
         "stands": bool(s.stands),
         "uncertain": s.uncertain,
         "reason": s.reason,
@@ -122,7 +130,17 @@ def _scale(sim: Simulation) -> dict[str, Any] | None:
     return {"label": deviation_label(sim.unit), "min": lo, "max": hi, "stops": DEVIATION_STOPS}
 
 
-def simulation_state(design: Design, cancelled: Callable[[], bool] | None = None) -> dict[str, Any]:
+def _stages_ms(sim: Simulation) -> dict[str, float]:
+    return {stage: 1e3 * seconds for stage, seconds in sim.timings_s.items()}
+
+
+def simulation_state(
+    design: Design,
+    cancelled: Callable[[], bool] | None = None,
+    *,
+    check_later: bool = False,
+    keep: Callable[[Simulation], None] | None = None,
+) -> dict[str, Any]:
     """Simulate ``design`` coarsely for the page.
 
     Args:
@@ -130,6 +148,10 @@ def simulation_state(design: Design, cancelled: Callable[[], bool] | None = None
         cancelled: asked before the simulation starts (after the one before it
             ended) and at each of its Newton steps; True gives it up (None:
             never given up).
+        check_later: leave the reserve check for :func:`check_state` (the
+            answer's ``numbers.checking`` says whether there is one).
+        keep: called with the simulation when it is done (its check, if
+            left for later, is ``Simulation.pending_reserve``).
 
     Returns:
         A JSON-ready dict: ``ok``; without it ``error`` (one line; a request
@@ -143,7 +165,8 @@ def simulation_state(design: Design, cancelled: Callable[[], bool] | None = None
         the call to the answer), ``queued_ms`` (of them, ms before the
         simulation started: the fold, and the wait for the one before it)
         and ``cpu_ms`` (the simulation's CPU time, ms: the server's work,
-        whatever else the machine runs).
+        whatever else the machine runs), ``stages_ms`` (CPU ms per stage:
+        ``mesh``, ``formed``, ``released``, ``standing``).
     """
     from onefold_cad.mechanics.simulate import simulate
 
@@ -164,12 +187,15 @@ def simulation_state(design: Design, cancelled: Callable[[], bool] | None = None
                 level=LEVEL,
                 convergence=False,
                 progress=None if cancelled is None else progress,
+                reserve=not check_later,
             )
             cpu = time.thread_time() - cpu
     except _GivenUp:
         return {"ok": False, "superseded": True, "error": SUPERSEDED}
     except OneFoldError as exc:
         return {"ok": False, "error": f"cannot simulate this design: {_line(exc)}"}
+    if keep is not None:
+        keep(sim)
     return {
         "ok": True,
         "units": sim.unit,
@@ -181,4 +207,46 @@ def simulation_state(design: Design, cancelled: Callable[[], bool] | None = None
         "server_ms": 1e3 * (time.perf_counter() - t0),
         "queued_ms": 1e3 * (t1 - t0),
         "cpu_ms": 1e3 * cpu,
+        "stages_ms": _stages_ms(sim),
+    }
+
+
+def check_state(sim: Simulation, cancelled: Callable[[], bool] | None = None) -> dict[str, Any]:
+    """The reserve check ``sim`` left for later (``check_later``), for the page.
+
+    Args:
+        sim: the simulation, its ``pending_reserve`` set.
+        cancelled: as :func:`simulation_state`'s.
+
+    Returns:
+        A JSON-ready dict: ``ok``; without it ``error`` (and ``superseded``);
+        with it ``units``, ``numbers`` (:func:`simulation_numbers`: the
+        verdict, ``checking`` false), ``warnings``, ``server_ms``,
+        ``cpu_ms`` and ``stages_ms`` (with ``reserve``, the check's).
+    """
+    from onefold_cad.mechanics.verdicts import settle_reserve
+
+    def progress(iteration: int, residual: float, energy: float) -> None:
+        if cancelled is not None and cancelled():
+            raise _GivenUp
+
+    assert sim.pending_reserve is not None
+    t0 = time.perf_counter()
+    try:
+        with _ONE_AT_A_TIME:
+            cpu = time.thread_time()
+            if cancelled is not None and cancelled():
+                raise _GivenUp
+            done = settle_reserve(sim, sim.pending_reserve, progress)
+            cpu = time.thread_time() - cpu
+    except _GivenUp:
+        return {"ok": False, "superseded": True, "error": SUPERSEDED}
+    return {
+        "ok": True,
+        "units": done.unit,
+        "numbers": simulation_numbers(done),
+        "warnings": [_line(w) for w in done.warnings],
+        "server_ms": 1e3 * (time.perf_counter() - t0),
+        "cpu_ms": 1e3 * cpu,
+        "stages_ms": _stages_ms(done),
     }

@@ -18,6 +18,7 @@ never the files' writers or the CLI above it.
 - ``model``, ``stages``, ``simulate``: a design as a sheet model and
   ``onefold simulate``'s stages with either law; ``standing_measures``,
   ``deviation``, ``stress``, ``reserve``, ``results``: what the stages say;
+  ``verdicts``: the warnings, and a reserve check left for later;
 - ``loads``: outdoor loads on the standing sheet and what anchors it.
 """
 

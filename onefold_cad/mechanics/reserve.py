@@ -13,14 +13,17 @@ weight; below that, or where the check cannot show it, the answer is
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled, solve_path
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
+from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.stages import Placed, standing_path
 
-__all__ = ["COARSE_RESERVE", "carried"]
+__all__ = ["COARSE_RESERVE", "ReserveCheck", "carried"]
 
 #: The multiple of its weight a coarse sheet must carry for a plain "stands":
 #: the coarse-to-normal ratio of the load carried (1.875 / 0.906 = 2.07,
@@ -35,6 +38,7 @@ def carried(
     rest_curvature: Array,
     supports: str,
     up_to: float = COARSE_RESERVE,
+    progress: Progress | None = None,
 ) -> float:
     """A multiple of its weight the standing sheet is shown to carry: ``up_to``
     when it does, else 1 (its weight, carried already). Its gravity goes from
@@ -42,7 +46,8 @@ def carried(
     check, not the load path, so a sheet it cannot show to carry ``up_to``
     may carry more (the answer is then "uncertain", which asks for the
     normal mesh, never a wrong yes).
-    The moment law's shell, contacts and step limits of the standing stage."""
+    The moment law's shell, contacts and step limits of the standing stage;
+    ``progress`` hears its Newton steps."""
     base = placed.shell.with_changes(rest_curvature=rest_curvature)
     g = np.array([0.0, 0.0, -GRAVITY])
     options = standing_path(model, placed, supports)
@@ -51,8 +56,33 @@ def carried(
         solve_path(
             lambda s: base.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
             standing.q,
+            callback=progress,
             **options,
         )
     except PathStalled:
         return 1.0
     return up_to
+
+
+@dataclass(frozen=True, eq=False)
+class ReserveCheck:
+    """A coarse standing's reserve check left for later
+    (``simulate.run(..., reserve=False)``; ``verdicts.settle_reserve`` runs it).
+
+    Attributes:
+        model: the sheet model.
+        placed: the form stood on the ground before it carried its weight.
+        standing: the standing equilibrium.
+        rest_curvature: ``(m, 3)`` the faces' rest form.
+        supports: 'anchored' or 'frictionless'.
+        law: the run's law ('moment'; its warnings' wording).
+        size: the sheet's size (design unit; its warnings' wording).
+    """
+
+    model: SheetModel
+    placed: Placed
+    standing: Equilibrium
+    rest_curvature: Array
+    supports: str
+    law: str
+    size: float

@@ -10,11 +10,14 @@ are in metres and stay out of the JSON.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from onefold_cad.geometry.numeric import Array, Index
+
+if TYPE_CHECKING:
+    from onefold_cad.mechanics.reserve import ReserveCheck
 
 __all__ = ["Designed", "FormedResult", "Released", "Simulation", "Standing"]
 
@@ -248,6 +251,8 @@ class Simulation:
         fields: per stage (J2 law) the faces' surface stresses, plastic
             strains and resultants (:class:`~onefold_cad.mechanics.j2.measures.Surfaces`),
             and ``stage_positions`` its nodes (m), for the VTU file.
+        pending_reserve: a coarse standing's reserve check left for later
+            (``run(..., reserve=False)``; ``verdicts.settle_reserve``), else None.
     """
 
     unit: str
@@ -283,6 +288,7 @@ class Simulation:
     kinematic_hardening: float = 0.0
     fields: dict[str, Any] | None = field(default=None, repr=False)
     stage_positions: dict[str, Array] | None = field(default=None, repr=False)
+    pending_reserve: ReserveCheck | None = field(default=None, repr=False)
 
     def to_data(self) -> dict[str, Any]:
         """The report's ``simulation`` section."""

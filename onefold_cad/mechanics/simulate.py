@@ -17,7 +17,6 @@ Progress goes to ``progress(stage, iteration, residual_N)``.
 from __future__ import annotations
 
 import functools
-import math
 import time
 from collections.abc import Callable
 from dataclasses import replace
@@ -31,8 +30,8 @@ from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.mechanics.equilibrium import PathStalled
 from onefold_cad.mechanics.j2.simulate import form_j2, run_j2
 from onefold_cad.mechanics.model import FINER, SheetModel, sheet_model
-from onefold_cad.mechanics.reserve import COARSE_RESERVE, carried
-from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation, Standing
+from onefold_cad.mechanics.reserve import ReserveCheck, carried
+from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation
 from onefold_cad.mechanics.shell import director_angles, pack, unpack
 from onefold_cad.mechanics.stages import Placed, form, place, release, stand
 from onefold_cad.mechanics.standing_measures import (
@@ -42,6 +41,7 @@ from onefold_cad.mechanics.standing_measures import (
     standing_result,
 )
 from onefold_cad.mechanics.stress import face_stress
+from onefold_cad.mechanics.verdicts import RESERVE_PENDING, simulation_warnings, with_reserve
 
 __all__ = [
     "CONVERGED",
@@ -111,15 +111,20 @@ def _standing(
     progress,
     unit: str,
     coarse: bool = False,
+    reserve: bool = True,
 ):
     """The standing stage of the moment law (or of the designed reference) and
     its measures (a stall is an answer: it does not stand). On the ``coarse``
-    preview mesh a sheet that stands must carry :data:`COARSE_RESERVE` times
-    its weight to be a plain yes (:mod:`onefold_cad.mechanics.reserve`)."""
+    preview mesh a sheet that stands must carry
+    :data:`~onefold_cad.mechanics.reserve.COARSE_RESERVE` times its weight to
+    be a plain yes (:mod:`onefold_cad.mechanics.reserve`); with ``reserve``
+    False that check is left for later (the standing "uncertain":
+    :data:`~onefold_cad.mechanics.verdicts.RESERVE_PENDING`): the last item
+    returned is then its standing equilibrium (else None)."""
     try:
         stage = stand(model, placed, rest_curvature, state, supports, progress)
     except PathStalled as err:
-        return stalled(model, placed, err, supports, unit), None, None
+        return stalled(model, placed, err, supports, unit), None, None, None
     eq = stage.equilibrium
     loaded = placed.shell.with_changes(rest_curvature=rest_curvature)
     stress = face_stress(loaded, eq.q, state if state is not None else None) / 1e6
@@ -133,49 +138,10 @@ def _standing(
         reloaded_area_share=area_share(model, stage.reloaded),
     )
     if coarse and standing.stands:
-        reserve = carried(model, placed, eq, rest_curvature, supports)
-        uncertain = ""
-        if reserve < COARSE_RESERVE:
-            uncertain = (
-                f"the coarse preview does not carry {COARSE_RESERVE:g} times its weight, the "
-                "margin its stiff mesh calls for: run --mesh normal"
-            )
-        standing = replace(standing, reserve=reserve, uncertain=uncertain)
-    return standing, stress, dev
-
-
-def _law_warnings(law: str, released: Released | None, standing: Standing, reverse: int
-                  ) -> list[str]:  # fmt: skip
-    """What the law could not honour (the moment law: elastic unloading and
-    membrane) or what the steel does that a user must know (J2: its weight
-    makes it yield)."""
-    out = []
-    if law == "j2":
-        if standing.reloaded_area_share > 0:
-            out.append(
-                f"standing, its weight makes {100 * standing.reloaded_area_share:.3g} % of the "
-                "sheet's area yield again (largest plastic strain "
-                f"{standing.max_plastic_strain or 0:.3g})"
-            )
-        return out
-    if released is not None and released.reloaded_area_share > 0:
-        out.append(
-            f"in springback {100 * released.reloaded_area_share:.3g} % of the sheet's area bends "
-            "past its elastic range; the moment law unloads every face elastically, so the "
-            "springback there is underestimated (--law j2 follows the law)"
-        )
-    if standing.reloaded_area_share > 0:
-        out.append(
-            f"standing, {100 * standing.reloaded_area_share:.3g} % of the sheet's area is bent "
-            "past its elastic range (springback and weight together; taken elastically, so the "
-            "form there is an estimate)"
-        )
-    if reverse:
-        out.append(
-            f"{reverse} faces unload in springback by more than 2 M_y, past a rectangular "
-            "section's reverse yield (kept elastic: the springback there is an estimate)"
-        )
-    return out
+        if not reserve:
+            return replace(standing, uncertain=RESERVE_PENDING), stress, dev, eq
+        standing = with_reserve(standing, carried(model, placed, eq, rest_curvature, supports))
+    return standing, stress, dev, None
 
 
 def _one_blas_thread(fn: Callable[..., Simulation]) -> Callable[..., Simulation]:
@@ -204,10 +170,15 @@ def run(
     refine: float = 1.0,
     progress: Progress | None = None,
     stage_done: StageDone | None = None,
+    reserve: bool = True,
 ) -> Simulation:
     """The stages on one mesh (see the module docstring); no convergence check.
     ``progress`` hears every Newton step, ``stage_done`` every stage's end
     (``mesh``, ``formed``, ``released``, ``standing``) with its CPU time.
+
+    With ``reserve`` False the coarse preview's reserve check is left for later
+    (``Simulation.pending_reserve``; ``verdicts.settle_reserve`` runs it):
+    until then a standing sheet is "uncertain" (``verdicts.RESERVE_PENDING``).
 
     BLAS runs on one thread meanwhile (``threadpoolctl``): the model's dense
     algebra is thousands of tiny products, where OpenBLAS's threads only spin
@@ -241,6 +212,7 @@ def run(
     formed_result = released = designed = released_at = None
     fields = stage_positions = None
     reverse = 0
+    pending = None
     if reference == "flat" and law == "j2":
         j2 = run_j2(
             model, folded, supports, design.units.value,
@@ -275,7 +247,7 @@ def run(
             q = pack(model.designed, director_angles(model.shell, model.designed, model.normals))
             placed = place(model, q)
             rest_curvature, state = model.shell.rest_curvature, None
-        standing, stress, dev = _standing(
+        standing, stress, dev, left = _standing(
             model,
             folded,
             placed,
@@ -285,36 +257,25 @@ def run(
             _stage_progress(progress, "standing"),
             design.units.value,
             coarse=MeshLevel.parse(level) is MeshLevel.COARSE and refine == 1.0,
+            reserve=reserve,
         )
+        if left is not None:
+            pending = ReserveCheck(
+                model, placed, left, rest_curvature, supports, law, design.sheet.size
+            )
         lap("standing")
     if reference == "designed":
         designed = Designed(standing.max_displacement, standing.max_stress_MPa)
-    warnings = _law_warnings(law, released, standing, reverse)
-    if standing.uncertain:
-        warnings.append(f"whether it stands is uncertain: {standing.uncertain}")
-    if not standing.stands:
-        hint = ""
-        if standing.max_deviation is None and MeshLevel.parse(level) is MeshLevel.COARSE:
-            hint = " (found on the coarse preview mesh: --mesh normal is the run to trust)"
-        warnings.append(f"it does not stand: {standing.reason}{hint}")
-    elif (
-        standing.max_displacement is not None
-        and standing.max_displacement > 0.05 * design.sheet.size
-    ):
-        warnings.append(
-            f"it stands only after its weight moved it by up to {standing.max_displacement:.4g} "
-            f"{design.units.value} ({100 * standing.max_displacement / design.sheet.size:.2g} % of "
-            "the sheet's size): a form far from the design"
-        )
-    elif law == "moment" and standing.utilisation is not None and standing.utilisation >= 1.0:
-        at = standing.max_stress_at
-        where = "" if at is None else f" {math.hypot(at[0], at[1]):.4g} {design.units.value} from H"
-        warnings.append(
-            f"standing, the largest stress {standing.max_stress_MPa:.4g} MPa{where} reaches the "
-            f"yield stress {mat.yield_stress / 1e6:.4g} MPa (residual bending and membrane "
-            "stress, both taken elastic by the moment law: past yield it is an estimate; "
-            "--law j2 gives the stress the steel can be in)"
-        )
+    warnings = simulation_warnings(
+        law,
+        released,
+        standing,
+        reverse,
+        coarse=MeshLevel.parse(level) is MeshLevel.COARSE,
+        size=design.sheet.size,
+        unit=design.units.value,
+        yield_stress_MPa=mat.yield_stress / 1e6,
+    )
     return Simulation(
         unit=design.units.value,
         supports=supports,
@@ -344,7 +305,7 @@ def run(
         ),
         fields=fields,
         stage_positions=stage_positions,
-        warnings=tuple(warnings),
+        warnings=warnings,
         timings_s=times,
         face_stress_MPa=stress,
         deviation=dev,
@@ -356,6 +317,7 @@ def run(
         / s,
         standing_positions=None if standing.positions is None else standing.positions / s,
         released_positions=released_at,
+        pending_reserve=pending,
     )
 
 

@@ -13,7 +13,8 @@ import ezdxf
 import pytest
 
 from onefold_cad.errors import InvalidParameterError
-from onefold_cad.explore.server import MAX_TARGET, STATIC, make_server
+from onefold_cad.explore.page import STATIC
+from onefold_cad.explore.server import MAX_TARGET, make_server
 from tests.explore.conftest import get
 from tests.processes import interruptible
 from tests.served import Served

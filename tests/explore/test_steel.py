@@ -1,5 +1,6 @@
 """The steel view's server side: /api/steel simulates only the latest design,
-and the designs the page asks for are kept by their query."""
+the form first and its verdict on /api/steel/check, and the designs the page
+asks for are kept by their query."""
 
 from __future__ import annotations
 
@@ -11,11 +12,12 @@ import pytest
 
 import onefold_cad.design as design_module
 import onefold_cad.mechanics.simulate as mechanics_simulate
+import onefold_cad.mechanics.verdicts as mechanics_verdicts
 from onefold_cad.design import fold_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.server import RECENT_DESIGNS
 from onefold_cad.explore.simulation import SUPERSEDED
-from onefold_cad.explore.steel import LatestOnly
+from onefold_cad.explore.steel import NOT_LAST, LatestOnly
 from tests.explore.conftest import get
 
 
@@ -146,3 +148,62 @@ def test_steel_is_refused_like_every_route(server):
     status, data = _ask(server, "steel", {"model": "paper"})
     assert status == 200 and data["ok"] is False
     assert data["error"].startswith("cannot simulate this design: model: simulate needs the exact")
+
+
+def test_the_form_comes_first_and_its_check_gives_the_verdict_of_simulate(server):
+    """/api/steel answers the standing form with ``checking: true`` (never a
+    plain "stands" yet); /api/steel/check of that design then answers the
+    verdict and warnings simulate() gives with the check in line; a check of
+    another design than the last steel one is refused as superseded."""
+    status, form = _ask(server, "steel", {"alpha": "34"})
+    assert status == 200 and form["ok"] is True
+    assert form["numbers"]["checking"] is True and form["numbers"]["uncertain"]
+    assert set(form["stages_ms"]) == {"mesh", "formed", "released", "standing"}
+    assert _ask(server, "steel/check", {"alpha": "33"})[1] == {
+        "ok": False,
+        "superseded": True,
+        "gone": True,
+        "error": NOT_LAST,
+    }
+    status, check = _ask(server, "steel/check", {"alpha": "34"})
+    assert status == 200 and check["ok"] is True
+    design = design_from_params({"alpha": "34"}, server.templates, server.initial)
+    sim = mechanics_simulate.simulate(
+        design, fold_design(design), level="coarse", convergence=False
+    )
+    n = check["numbers"]
+    assert n["checking"] is False
+    assert (n["stands"], n["uncertain"]) == (sim.standing.stands, sim.standing.uncertain)
+    assert check["warnings"] == [" ".join(w.split()) for w in sim.warnings]
+    assert n["max_deviation"] == form["numbers"]["max_deviation"] == sim.standing.max_deviation
+    assert "reserve" in check["stages_ms"] and check["cpu_ms"] > 0
+    # done: the server keeps no check of it any more
+    assert _ask(server, "steel/check", {"alpha": "34"})[1]["error"] == NOT_LAST
+
+
+def test_a_running_check_is_given_up_for_a_newer_steel_request(server, monkeypatch):
+    """alpha 31's check runs; a steel request for 32 comes: the check answers
+    superseded at its next Newton step, 32 is simulated (the check took no
+    ticket: it made no steel request stale)."""
+    assert _ask(server, "steel", {"alpha": "31"})[1]["numbers"]["checking"] is True
+    started, issued = threading.Event(), threading.Event()
+    real, ticket = mechanics_verdicts.carried, server.steel.ticket
+
+    def watched(*args, **kwargs):  # the check starts once 32's ticket is issued
+        started.set()
+        assert issued.wait(60)
+        return real(*args, **kwargs)
+
+    def watched_ticket():
+        out = ticket()
+        issued.set()
+        return out
+
+    monkeypatch.setattr(mechanics_verdicts, "carried", watched)
+    monkeypatch.setattr(server.steel, "ticket", watched_ticket)
+    checking, out = _in_thread(_ask, server, "steel/check", {"alpha": "31"})
+    assert started.wait(60)
+    status, second = _ask(server, "steel", {"alpha": "32"})
+    checking.join(60)
+    assert out[0] == (200, {"ok": False, "superseded": True, "error": SUPERSEDED})
+    assert status == 200 and second["ok"] is True and second["numbers"]["checking"] is True

@@ -13,7 +13,7 @@ import pytest
 from onefold_cad.design import fold_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.mechanics.simulate import simulate
-from tests.explore.conftest import TIMEOUT_MS, Page
+from tests.explore.conftest import TIMEOUT_MS, Page, get
 from tests.explore.test_simulate import _fmt
 
 
@@ -22,6 +22,18 @@ def _deviation_text(server, alpha: str) -> str:
     design = design_from_params({"alpha": alpha}, server.templates, server.initial)
     s = simulate(design, fold_design(design), level="coarse", convergence=False).standing
     return f"max {_fmt(s.max_deviation)} mm, rms {_fmt(s.rms_deviation)} mm"
+
+
+def _stands_text(server, alpha: str) -> str:
+    """#sim-stands for the default template at ``alpha`` once its check is done,
+    from simulate() here (with its reserve check in line)."""
+    design = design_from_params({"alpha": alpha}, server.templates, server.initial)
+    s = simulate(design, fold_design(design), level="coarse", convergence=False).standing
+    if s.uncertain:
+        return f"uncertain: {s.uncertain}"
+    return (
+        f"yes (tipping margin {_fmt(s.tipping_margin_deg, 3)}°)" if s.stands else f"no: {s.reason}"
+    )
 
 
 def _wait_steel(page, n: int) -> str:
@@ -48,7 +60,15 @@ def test_the_steel_view_follows_the_sliders(browser, server):
         assert page.locator("#sim-legend").is_visible()
         first = tab.text("#sim-deviation")
 
-        # a slider's release: the page says what it simulates, the steel shown is stale
+        # a slider's release: the page says what it simulates, the steel shown is stale;
+        # its steel comes first, "checking…" until its check (held here) answers
+        held: list = []
+        page.route(
+            "**/api/steel/check?**",
+            lambda route: (
+                held.append(route) if "alpha=33" in route.request.url else route.continue_()
+            ),
+        )
         with page.expect_response("**/api/steel?**", timeout=4 * TIMEOUT_MS) as answer:
             tab.change("#alpha", "33")
             assert tab.text("#sim-status").startswith("simulating… α 33 (the steel shown")
@@ -58,7 +78,22 @@ def test_the_steel_view_follows_the_sliders(browser, server):
         assert answer.value.json()["ok"] is True
         assert "stale" not in (page.locator("#sim-panel").get_attribute("class") or "")
         assert tab.text("#sim-deviation") == _deviation_text(server, "33") != first
+        assert tab.text("#sim-stands").startswith("checking…")
+        assert tab.text("#sim-status").endswith("checking whether it stands…")
         page.screenshot(path="/tmp/steelview-on.png")
+        for _ in range(500):  # the page asked for the check at once (the route holds it)
+            if held:
+                break
+            page.wait_for_timeout(20)
+        checks = int(page.locator("body").get_attribute("data-steel-checked") or 0)
+        held[0].continue_()
+        page.locator(f"body[data-steel-checked='{checks + 1}']").wait_for(
+            state="attached", timeout=4 * TIMEOUT_MS
+        )
+        page.unroute("**/api/steel/check?**")
+        assert tab.text("#sim-stands") == _stands_text(server, "33")
+        assert "verdict" in tab.text("#sim-status")
+        page.screenshot(path="/tmp/steelview-checked.png")
         steel = tab.canvas()
         h, w = min(paper.shape[0], steel.shape[0]), min(paper.shape[1], steel.shape[1])
         assert np.any(np.abs(steel[:h, :w] - paper[:h, :w]) > 8, axis=-1).mean() > 0.01
@@ -112,3 +147,36 @@ def test_the_steel_view_follows_the_sliders(browser, server):
 @pytest.fixture(autouse=True)
 def _fresh_designs(server):
     server.design_of.cache_clear()
+
+
+def test_a_check_the_server_no_longer_holds_asks_for_the_steel_again(browser, server):
+    """The steel of alpha 30 is shown, its check held (a Playwright route);
+    meanwhile another client's steel request (alpha 31) makes 31 the server's
+    last steel simulation; let go, the check answers ``gone`` and the page
+    asks for 30's steel again, then shows its verdict: never a verdict of
+    another design, never "checking…" for good."""
+    context = browser.new_context(viewport={"width": 1400, "height": 860})
+    try:
+        tab = Page(context.new_page(), server.url)
+        page = tab.page
+        held: list = []
+        page.route("**/api/steel/check?**", lambda route: held.append(route))
+        page.locator("#steel").click()
+        assert dict(parse_qsl(_wait_steel(page, 1)))["alpha"] == "30"
+        for _ in range(500):  # the page asked for the check at once (the route holds it)
+            if held:
+                break
+            page.wait_for_timeout(20)
+        page.unroute("**/api/steel/check?**")
+        assert tab.text("#sim-stands").startswith("checking…")
+        status, _, _ = get(server, "/api/steel?alpha=31")  # another client
+        assert status == 200
+        held[0].continue_()
+        assert dict(parse_qsl(_wait_steel(page, 2)))["alpha"] == "30"  # asked again
+        page.locator("body[data-steel-checked='1']").wait_for(
+            state="attached", timeout=4 * TIMEOUT_MS
+        )
+        assert tab.text("#sim-stands") == _stands_text(server, "30")
+        assert tab.errors == [] and tab.foreign == []
+    finally:
+        context.close()

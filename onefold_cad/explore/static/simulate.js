@@ -142,7 +142,8 @@ export function createSimulation({ scene, form, render, query }) {
     const len = (x) => (x === null || x === undefined ? '–' : `${fmt(x)} ${u}`);
     $('sim-deviation').textContent = n.max_deviation === null ? '– (no standing equilibrium)'
       : `max ${len(n.max_deviation)}, rms ${len(n.rms_deviation)}`;
-    $('sim-stands').textContent = n.uncertain ? `uncertain: ${n.uncertain}`
+    $('sim-stands').textContent = n.checking ? 'checking… (the coarse preview\'s reserve)'
+      : n.uncertain ? `uncertain: ${n.uncertain}`
       : n.stands
         ? `yes${n.tipping_margin_deg === null ? '' : ` (tipping margin ${fmt(n.tipping_margin_deg, 3)}°)`}`
         : `no: ${n.reason}`;
@@ -225,6 +226,10 @@ export function createSimulation({ scene, form, render, query }) {
       empty();
       draw(sim);
       showNumbers(sim);
+    },
+    // the Steel view's reserve check of the steel shown: its verdict and warnings
+    verdict(check) {
+      showNumbers(check);
     },
     markStale,
     setStatus,

@@ -8,7 +8,9 @@
 // has left is dropped (token). Until the new steel arrives the last one stays,
 // marked stale (faint, its numbers greyed) over the new design's paper form: the
 // user keeps the form they are shaping in view and sees where the steel of the
-// last design stood. Off: the paper view again.
+// last design stood. Off: the paper view again. The steel comes first, its verdict
+// after: while the server's reserve check runs (/api/steel/check, the design of the
+// steel shown) "stands" reads "checking…", never a plain yes before the check.
 const $ = (id) => document.getElementById(id);
 
 const NAMES = { alpha: 'α', beta: 'β', hc_fraction: 'H on f-line', apex_fraction: 'apex at' };
@@ -31,6 +33,10 @@ export function createSteelView({ simulation, render }) {
   let shown = null; // the query of the steel shown
   let count = 0;
   let said = ''; // the status line of the steel shown
+  let checks = 0;
+  let verdictDue = false; // the steel shown waits for its reserve check's verdict
+  let checkingQ = null; // the design whose check is on its way
+  const CHECKING = '; checking whether it stands…';
 
   function finish(ok, detail) {
     requestAnimationFrame(() => {
@@ -43,6 +49,54 @@ export function createSteelView({ simulation, render }) {
     });
   }
 
+  function checked(ok, detail) {
+    requestAnimationFrame(() => {
+      checks += 1;
+      document.body.dataset.steelChecked = String(checks);
+      window.dispatchEvent(new CustomEvent('explore:steel-checked', {
+        detail: { ok, done: performance.now(), ...detail },
+      }));
+    });
+  }
+
+  // the verdict of the steel shown (design q): applied while that steel is shown
+  async function check(q) {
+    const started = performance.now();
+    checkingQ = q;
+    try {
+      const res = await fetch(`/api/steel/check?${q}`);
+      const json = (res.headers.get('Content-Type') || '').startsWith('application/json');
+      const c = json ? await res.json() : { ok: false, error: (await res.text()).trim() };
+      if (checkingQ === q) checkingQ = null;
+      if (!on || shown !== q) return; // another design's steel is shown meanwhile
+      if (c.gone && asked === q) { // the server simulated another design since: ask again
+        shown = null;
+        asked = null;
+        ask(q);
+        return;
+      }
+      if (c.superseded && asked === q) { // given up for a steel request since: check again
+        check(q);
+        return;
+      }
+      if (c.ok) {
+        verdictDue = false;
+        simulation.verdict(c);
+        said = said.replace(CHECKING, `; verdict ${((performance.now() - started) / 1000).toFixed(1)} s later`);
+        if (asked === q) simulation.setStatus(said);
+      } else if (asked === q) {
+        simulation.setStatus(c.error || `steel view's check failed (HTTP ${res.status})`, true);
+      }
+      checked(c.ok, { started, server_ms: c.server_ms ?? null, cpu_ms: c.cpu_ms ?? null });
+    } catch (err) {
+      if (checkingQ === q) checkingQ = null;
+      if (on && shown === q && asked === q) {
+        simulation.setStatus(`steel view's check failed: no answer from the server (${err})`, true);
+      }
+      checked(false, { started });
+    }
+  }
+
   async function ask(q) {
     if (q === shown) { // back to the design shown: fresh again, nothing to ask
       token += 1;
@@ -50,6 +104,7 @@ export function createSteelView({ simulation, render }) {
       simulation.markStale(false);
       simulation.setStatus(said);
       render();
+      if (verdictDue && checkingQ === null) check(q); // its check was given up meanwhile
       return;
     }
     if (q === asked) return; // on its way
@@ -72,8 +127,10 @@ export function createSteelView({ simulation, render }) {
         const s = ((performance.now() - started) / 1000).toFixed(1);
         const form = sim.mesh.form === 'released' ? '; no standing equilibrium: the released form shown' : '';
         said = `steel of this design in ${s} s (server ${(sim.server_ms / 1000).toFixed(1)} s, `
-          + `${sim.level} mesh, ${sim.numbers.nodes} nodes)${form}`;
+          + `${sim.level} mesh, ${sim.numbers.nodes} nodes)${form}${sim.numbers.checking ? CHECKING : ''}`;
         simulation.setStatus(said);
+        verdictDue = sim.numbers.checking;
+        if (verdictDue) check(q);
       } else {
         simulation.clear();
         shown = null;
@@ -82,7 +139,10 @@ export function createSteelView({ simulation, render }) {
           : sim.error || `steel view failed (HTTP ${res.status})`, true);
       }
       render();
-      finish(sim.ok, { started, server_ms: sim.server_ms ?? null, cpu_ms: sim.cpu_ms ?? null });
+      finish(sim.ok, {
+        started, server_ms: sim.server_ms ?? null, cpu_ms: sim.cpu_ms ?? null,
+        checking: Boolean(sim.ok && sim.numbers.checking),
+      });
     } catch (err) {
       if (mine !== token) return;
       asked = null;

@@ -1,0 +1,58 @@
+"""The coarse preview's reserve check left for later (``run(..., reserve=False)``,
+the explorer's Steel view shows the form first) gives, once
+``settle_reserve`` ran it, the simulation ``run`` gives with the check in
+line: every number, the verdict and the warnings equal (the same solves on
+the same states); until then the standing is never a plain "stands"."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from onefold_cad.design import fold_design
+from onefold_cad.mechanics.reserve import COARSE_RESERVE
+from onefold_cad.mechanics.simulate import run
+from onefold_cad.mechanics.verdicts import RESERVE_PENDING, settle_reserve
+from onefold_cad.templates import load_template
+
+
+def _patkau(thickness: float):
+    design = load_template("patkau-one-fold")
+    design = replace(design, material=design.material.with_changes(thickness=thickness))
+    return design, fold_design(design)
+
+
+def _report(sim) -> dict:
+    data = sim.to_data()
+    data.pop("timings_s")
+    return data
+
+
+@pytest.mark.parametrize(
+    ("thickness", "reference", "verdict", "reserve"),
+    [
+        (3.0, "flat", "uncertain", 1.0),  # tests/mechanics/test_reserve.py
+        (6.0, "flat", "stands", COARSE_RESERVE),
+        (6.0, "designed", "stands", COARSE_RESERVE),  # the structural check stands too
+    ],
+)
+def test_a_check_left_for_later_settles_to_the_run_with_it(thickness, reference, verdict, reserve):
+    design, folded = _patkau(thickness)
+    inline = run(design, folded, level="coarse", reference=reference)
+    later = run(design, folded, level="coarse", reference=reference, reserve=False)
+    assert later.pending_reserve is not None and inline.pending_reserve is None
+    assert later.standing.verdict == "uncertain" and later.standing.uncertain == RESERVE_PENDING
+    assert later.standing.reserve is None
+    settled = settle_reserve(later, later.pending_reserve)
+    assert settled.pending_reserve is None and "reserve" in settled.timings_s
+    assert settled.standing.verdict == inline.standing.verdict == verdict
+    assert settled.standing.reserve == inline.standing.reserve == reserve
+    assert settled.warnings == inline.warnings
+    assert _report(settled) == _report(inline)
+    # a warning added after the run (simulate()'s convergence check) stays, last
+    extra = replace(later, warnings=(*later.warnings, "not mesh-converged: ..."))
+    assert settle_reserve(extra, later.pending_reserve).warnings == (
+        *inline.warnings,
+        "not mesh-converged: ...",
+    )
