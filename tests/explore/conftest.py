@@ -7,6 +7,7 @@ import io
 import sys
 import threading
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -111,3 +112,16 @@ class Page:
 
     def text(self, selector: str) -> str:
         return self.page.locator(selector).inner_text()
+
+
+@contextmanager
+def open_page(
+    browser, server: ExploreServer, height: int = 860, **options: object
+) -> Iterator[Page]:
+    """A fresh tab on ``server`` in a browser context of its own (1400 px wide,
+    ``height`` high; ``options`` to ``new_context``), closed after."""
+    context = browser.new_context(viewport={"width": 1400, "height": height}, **options)
+    try:
+        yield Page(context.new_page(), server.url)
+    finally:
+        context.close()

@@ -16,7 +16,7 @@ from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.run import compensate
 from onefold_cad.compensate.target import make_target
 from onefold_cad.explore.controls import design_from_params
-from tests.explore.conftest import TIMEOUT_MS, Page, get
+from tests.explore.conftest import TIMEOUT_MS, get, open_page
 from tests.explore.test_simulate import _fmt
 
 pytestmark = pytest.mark.browser
@@ -49,9 +49,7 @@ def _same(got, want) -> None:
 
 
 def test_compensate_in_the_page(browser, server):
-    context = browser.new_context(viewport={"width": 1400, "height": 980})
-    try:
-        tab = Page(context.new_page(), server.url)
+    with open_page(browser, server, height=980) as tab:
         page = tab.page
         tab.change("#thickness-num", "20")
         button = page.locator("#compensate")
@@ -153,8 +151,6 @@ def test_compensate_in_the_page(browser, server):
         tab.wait_for_update(n + 1)
         assert page.locator("#alpha-num").input_value() == values["alpha"]
         assert tab.errors == [] and tab.foreign == []
-    finally:
-        context.close()
 
 
 def _json(server, target: str) -> dict:
@@ -164,9 +160,7 @@ def _json(server, target: str) -> dict:
 
 
 def test_a_design_without_steel_data_is_one_line_in_the_page(browser, server):
-    context = browser.new_context(viewport={"width": 1400, "height": 900})
-    try:
-        tab = Page(context.new_page(), server.url)
+    with open_page(browser, server, height=900) as tab:
         page = tab.page
         n = tab.updates()
         page.locator("#model").select_option("paper")
@@ -178,5 +172,3 @@ def test_a_design_without_steel_data_is_one_line_in_the_page(browser, server):
         assert "error" in (page.locator("#comp-status").get_attribute("class") or "")
         assert page.locator("#compensate").is_enabled()
         page.screenshot(path="/tmp/compaction-refused.png")
-    finally:
-        context.close()

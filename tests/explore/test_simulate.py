@@ -16,7 +16,7 @@ from onefold_cad.export.simulation.colour_scale import (
     ramp,
     to_uint8,
 )
-from tests.explore.conftest import TIMEOUT_MS, Page, get
+from tests.explore.conftest import TIMEOUT_MS, get, open_page
 
 
 def _fmt(x: float, digits: int = 4) -> str:
@@ -107,9 +107,7 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
     """The round trip: click Simulate, the page asks /api/simulate with the state's
     query, draws the coloured standing form over the design with its legend and
     numbers; a control change clears it; a paper model answers one error line."""
-    context = browser.new_context(viewport={"width": 1400, "height": 860})
-    try:
-        tab = Page(context.new_page(), server.url)
+    with open_page(browser, server) as tab:
         page = tab.page
         assert page.locator("#simulate").is_enabled()
         assert page.locator("#sim-legend").is_hidden()
@@ -160,5 +158,3 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
         assert "error" in (page.locator("#sim-status").get_attribute("class") or "")
         assert page.locator("#sim-legend").is_hidden()
         assert tab.errors == [] and tab.foreign == []
-    finally:
-        context.close()

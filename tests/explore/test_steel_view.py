@@ -13,7 +13,7 @@ import pytest
 from onefold_cad.design import fold_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.mechanics.simulate import simulate
-from tests.explore.conftest import TIMEOUT_MS, Page, get
+from tests.explore.conftest import TIMEOUT_MS, get, open_page
 from tests.explore.test_simulate import _fmt
 
 
@@ -43,9 +43,7 @@ def _wait_steel(page, n: int) -> str:
 
 
 def test_the_steel_view_follows_the_sliders(browser, server):
-    context = browser.new_context(viewport={"width": 1400, "height": 860})
-    try:
-        tab = Page(context.new_page(), server.url)
+    with open_page(browser, server) as tab:
         page = tab.page
         paper = tab.canvas()
         toggle = page.locator("#steel")
@@ -140,8 +138,6 @@ def test_the_steel_view_follows_the_sliders(browser, server):
         page.screenshot(path="/tmp/steelview-off.png")
         # the browser logs the 503 it was given, nothing else
         assert [e for e in tab.errors if "status of 503" not in e] == [] and tab.foreign == []
-    finally:
-        context.close()
 
 
 @pytest.fixture(autouse=True)
@@ -155,9 +151,7 @@ def test_a_check_the_server_no_longer_holds_asks_for_the_steel_again(browser, se
     last steel simulation; let go, the check answers ``gone`` and the page
     asks for 30's steel again, then shows its verdict: never a verdict of
     another design, never "checking…" for good."""
-    context = browser.new_context(viewport={"width": 1400, "height": 860})
-    try:
-        tab = Page(context.new_page(), server.url)
+    with open_page(browser, server) as tab:
         page = tab.page
         held: list = []
         page.route("**/api/steel/check?**", lambda route: held.append(route))
@@ -178,5 +172,3 @@ def test_a_check_the_server_no_longer_holds_asks_for_the_steel_again(browser, se
         )
         assert tab.text("#sim-stands") == _stands_text(server, "30")
         assert tab.errors == [] and tab.foreign == []
-    finally:
-        context.close()
