@@ -52,6 +52,10 @@ def _form_line(label: str, f: dict[str, Any], u: str) -> str:
     )
 
 
+#: How the text names each bending law.
+_LAWS = {"moment": "the moment law", "j2": "J2 through the thickness"}
+
+
 def compensation_lines(name: str, c: dict[str, Any]) -> list[str]:
     """The text ``compensate`` prints, from the report's ``compensation`` section."""
     u = c["units"]
@@ -63,7 +67,8 @@ def compensation_lines(name: str, c: dict[str, Any]) -> list[str]:
         aim = ", ".join(f"{k} {_length(v, u)}" for k, v in t.items() if k != "kind")
     s, k = c["start"], c["compensated"]
     out = [
-        f"{name}  compensated for springback and weight: target {aim}",
+        f"{name}  compensated for springback and weight ({_LAWS[c.get('law', 'moment')]}): "
+        f"target {aim}",
         _form_line("uncompensated", c["before"], u),
         _form_line("compensated", c["after"], u),
         f"  {'fold to':<14} alpha {k['alpha']:.5g} deg (was {s['alpha']:.5g}), beta "
@@ -196,7 +201,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     say = _Say(design.name, ns.quiet)
     t0 = time.monotonic()
     workers = ns.jobs if ns.jobs is not None else min(4, default_workers())
-    with Evaluator(workers, ns.scheduler) as evaluator:
+    with Evaluator(workers, ns.scheduler, ns.law) as evaluator:
         result = compensate(design, target, evaluator, say)
     say(f"done in {time.monotonic() - t0:.0f} s ({result.cpu_s:.0f} s CPU in simulations)")
     if target.kind == "size" and not result.reached:
@@ -209,7 +214,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     comp = result.compensated
     report = design_report(comp, fold_design(comp), sources=job.sources)
     report["name"] = design.name
-    report["compensation"] = result.to_data()
+    report["compensation"] = result.to_data() | {"law": evaluator.law}
     check_finite(report)
     if ns.outdir is not None:
         wrote(_write(ns.outdir, report, result, job), ns.quiet)

@@ -46,6 +46,12 @@ def compensate_parser(prog: str) -> FlagParser:
                        help=f"{text}, in the design's unit")  # fmt: skip
     r = p.add_argument_group("evaluations")
     r.add_argument(
+        "--law", type=parse_choice(("moment", "j2")), default="moment", metavar="moment|j2",
+        help="the bending law of every simulation, as onefold simulate's --law: the 1D moment "
+        "law (default) or J2 plasticity through the thickness (the springback CalculiX "
+        "supports, docs/mechanics.md; 3 to 5 times the CPU)",
+    )  # fmt: skip
+    r.add_argument(
         "-j", "--jobs", type=parse_int, default=None, metavar="N",
         help="simulations side by side in a local process pool (default: the cores this "
         "process may use, at most 4)",

@@ -75,10 +75,13 @@ class Standing:
     warnings: tuple[str, ...]
 
 
-def simulate_standing(design: Design, level: str, check: bool = False) -> Standing:
+def simulate_standing(
+    design: Design, level: str, check: bool = False, law: str = "moment"
+) -> Standing:
     """Simulate ``design`` (forming, springback, standing; reference 'flat',
-    anchored, held crease) on mesh ``level``; with ``check`` also on the finer
-    mesh (the convergence check). The worker's task.
+    anchored, held crease) on mesh ``level`` with the bending ``law``
+    (``simulate``'s: 'moment' or 'j2'); with ``check`` also on the finer mesh
+    (the convergence check). The worker's task.
 
     Raises:
         OneFoldError: the simulation refused or did not converge.
@@ -86,7 +89,7 @@ def simulate_standing(design: Design, level: str, check: bool = False) -> Standi
     from onefold_cad.mechanics.simulate import simulate
 
     t0 = time.process_time()
-    sim = simulate(design, fold_design(design), level=level, convergence=check)
+    sim = simulate(design, fold_design(design), level=level, convergence=check, law=law)
     st = sim.standing
     x = sim.standing_positions
     conv = None if sim.convergence is None else sim.convergence.get("max_deviation_change")

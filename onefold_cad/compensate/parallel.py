@@ -26,11 +26,12 @@ from onefold_cad.errors import OneFoldError
 __all__ = ["Evaluator", "run_one"]
 
 
-def run_one(design: Design, level: str, check: bool = False) -> Standing | str:
-    """Simulate one candidate; a refused or unconverged one gives its error's
-    one line instead (the optimiser steps back from it)."""
+def run_one(design: Design, level: str, check: bool = False, law: str = "moment") -> Standing | str:
+    """Simulate one candidate with the bending ``law``; a refused or
+    unconverged one gives its error's one line instead (the optimiser steps
+    back from it)."""
     try:
-        return simulate_standing(design, level, check)
+        return simulate_standing(design, level, check, law)
     except OneFoldError as exc:
         return " ".join(str(exc).split())
 
@@ -67,9 +68,13 @@ class Evaluator:
     Args:
         workers: processes side by side (1: in this process).
         scheduler: a Dask scheduler's address, 'local', or None.
+        law: the bending law of every simulation (``simulate``'s ``law``).
     """
 
-    def __init__(self, workers: int = 1, scheduler: str | None = None) -> None:
+    def __init__(self, workers: int = 1, scheduler: str | None = None, law: str = "moment") -> None:
+        from onefold_cad.choices import Law
+
+        self.law = Law.parse(law).value
         self.workers = max(1, int(workers))
         self.scheduler = scheduler
         self._pool: Any = None
@@ -116,9 +121,11 @@ class Evaluator:
         """Simulate ``designs`` (side by side when there are workers), in order."""
         if self._dask is not None:
             client = self._dask.client
-            futures = [client.submit(run_one, d, level, check, pure=False) for d in designs]
+            futures = [
+                client.submit(run_one, d, level, check, self.law, pure=False) for d in designs
+            ]
             return list(client.gather(futures))
-        if self._pool is not None and len(designs) > 1:
-            return list(self._pool.map(run_one, designs, [level] * len(designs),
-                                       [check] * len(designs)))  # fmt: skip
-        return [run_one(d, level, check) for d in designs]
+        n = len(designs)
+        if self._pool is not None and n > 1:
+            return list(self._pool.map(run_one, designs, [level] * n, [check] * n, [self.law] * n))
+        return [run_one(d, level, check, self.law) for d in designs]

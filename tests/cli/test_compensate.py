@@ -15,7 +15,7 @@ import trimesh
 
 from onefold_cad.compensate import parallel
 from onefold_cad.templates import find_template, load_template
-from tests.compensate.fake_steel import SPRING, fake_standing
+from tests.compensate.fake_steel import LAWS, SPRING, fake_standing
 
 NAME = "broken-vault"
 
@@ -33,6 +33,7 @@ def _never(*args: object, **kwargs: object) -> None:
         (["--target", "design", "--height", "50", "--span", "100"], "--target: design takes no"),
         (["--youngs-modulus", "nan"], "--youngs-modulus"),
         (["-j", "0"], "--jobs: must be >= 1, got 0"),
+        (["--law", "plastic"], "--law"),
     ],
 )
 def test_bad_input_exits_2_in_one_line_before_any_simulation(
@@ -224,7 +225,9 @@ def test_the_text_report_says_before_after_the_fold_and_the_creases(cli, monkeyp
     rc, out, err = cli("compensate", NAME, "-j", "1")
     assert rc == 0, err
     lines = out.splitlines()
-    assert lines[0].startswith(f"{NAME}  compensated for springback and weight: target its own")
+    assert lines[0].startswith(
+        f"{NAME}  compensated for springback and weight (the moment law): target its own"
+    )
     assert lines[1].lstrip().startswith("uncompensated  deviation max")
     assert lines[2].lstrip().startswith("compensated    deviation max")
     base = load_template(find_template(NAME)).frame
@@ -232,3 +235,29 @@ def test_the_text_report_says_before_after_the_fold_and_the_creases(cli, monkeyp
     assert sum(line.lstrip().startswith("crease ") for line in lines) == 2
     assert "ETA" in err  # progress on stderr
     assert lines[-1].lstrip().startswith("simulations") and "met:" in lines[-1]
+
+
+def test_law_j2_reaches_every_simulation_and_the_report(cli, monkeypatch) -> None:
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    LAWS.clear()
+    rc, out, err = cli("compensate", NAME, "--law", "j2", "-j", "1", "--json")
+    assert rc == 0, err
+    assert json.loads(out)["compensation"]["law"] == "j2"
+    assert LAWS and set(LAWS) == {"j2"}
+    rc, out, err = cli("compensate", NAME, "--law", "j2", "-j", "1")
+    assert out.splitlines()[0].startswith(
+        f"{NAME}  compensated for springback and weight (J2 through the thickness): target"
+    )
+
+
+def test_the_pool_hands_the_law_to_its_workers(monkeypatch) -> None:
+    from concurrent.futures import ThreadPoolExecutor
+
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    design = load_template(find_template(NAME))
+    LAWS.clear()
+    with parallel.Evaluator(2, law="j2") as ev:
+        ev._pool.shutdown()
+        ev._pool = ThreadPoolExecutor(2)  # the pool's own map, in this process
+        out = ev.map([design, design], "coarse")
+    assert len(out) == 2 and LAWS == ["j2", "j2"]

@@ -42,8 +42,14 @@ def flat_mesh(design: Design, n: int = 12) -> tuple[np.ndarray, np.ndarray]:
     return p, np.concatenate(faces)
 
 
-def fake_standing(design: Design, level: str, check: bool = False) -> Standing:
-    """The known "steel" of ``design`` (see the module docstring)."""
+#: The bending law of every fake simulation, in order (a test may clear it).
+LAWS: list[str] = []
+
+
+def fake_standing(design: Design, level: str, check: bool = False, law: str = "moment") -> Standing:
+    """The known "steel" of ``design`` (see the module docstring); ``law``
+    is recorded in :data:`LAWS` and changes nothing."""
+    LAWS.append(law)
     f = design.frame
     opened = design.with_changes(
         frame=f.with_changes(alpha=f.alpha - SPRING[0], beta=f.beta - SPRING[1])

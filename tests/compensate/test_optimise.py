@@ -61,8 +61,8 @@ def test_a_target_out_of_the_family_s_reach_says_what_limits_it(monkeypatch) -> 
     # (the measure allows a turn and shift on the ground, no lift)
     from dataclasses import replace
 
-    def lifted(design, level, check=False):
-        s = fake_standing(design, level, check)
+    def lifted(design, level, check=False, law="moment"):
+        s = fake_standing(design, level, check, law)
         return replace(s, positions=s.positions + [0.0, 0.0, 2.0])
 
     monkeypatch.setattr(parallel, "simulate_standing", lifted)
@@ -80,8 +80,8 @@ def test_a_target_out_of_the_family_s_reach_says_what_limits_it(monkeypatch) -> 
 def _not_standing_on(levels: tuple[str, ...]):
     from dataclasses import replace
 
-    def steel(design, level, check=False):
-        s = fake_standing(design, level, check)
+    def steel(design, level, check=False, law="moment"):
+        s = fake_standing(design, level, check, law)
         if level in levels:
             return replace(s, stands=False, reason="no equilibrium", positions=None)
         return s
