@@ -9,11 +9,13 @@ cones without membrane strain on a mesh this machine can run: see
 
 * **Model** (``ccx_release.py``): onefold's mesh of the sheet (``sheet_model``
   at ``--mesh``), each face a column of ``--layers`` ``C3D15`` wedges
-  extruded along the designed normals, the crease welded (at each crease
-  node and edge midpoint the two sides' columns one ``*RIGID BODY``: it
-  keeps its angle, as ``--crease held``); ``*ELASTIC`` E, nu, ``*PLASTIC`` sigma_y, 0 (the
-  perfectly plastic variant of the template: ``--hardening-modulus 0`` on
-  both sides), ``NLGEOM``.
+  extruded along the designed normals (``--split 4``: four columns per
+  face, on its curved patch as ``NAME.inp`` splits its facets), the crease
+  welded (its nodes shared by both sides, moved along the mitre of their
+  normals: :func:`node_moves`; it keeps its angle, as ``--crease held``);
+  ``*ELASTIC`` E, nu, ``*PLASTIC`` sigma_y, 0 (the perfectly plastic
+  variant of the template: ``--hardening-modulus 0`` on both sides),
+  ``NLGEOM``.
 * **Formed state**: at each of the 9 integration points of every wedge the
   stress of onefold's imposed forming at that point's height (the J2 law's
   response to the membrane-free strain ``h`` times the face's designed
@@ -23,9 +25,10 @@ cones without membrane strain on a mesh this machine can run: see
 * **Held run**: every node fixed; the printed stresses must be the initial
   ones (``held_stress_error``, relative to sigma_y) and no point may yield
   (``held_peeq_max``); its reactions are the forming tool's forces.
-* **Release**: a 3-2-1 support on the mid-surface (both crease ends and the
-  highest corner), every other node loaded by its held reaction as
-  ``*CLOAD`` ramped from 1 to 0 (``*AMPLITUDE``; ``ccx_deck``'s release).
+* **Release**: a 3-2-1 support on three mid-surface nodes off the crease
+  (next to its ends, and the highest), every other node loaded by its held
+  reaction as ``*CLOAD`` ramped from 1 to 0 (``*AMPLITUDE``; ``ccx_deck``'s
+  release); ``--field R_n C_n``: ccx's residual and correction bounds.
 * **Measures**: the mid-surface's released nodes (the middle level of the
   corner columns, onefold's mesh nodes) after the best rigid fit
   (``standing_measures.aligned_deviation``: weighted by the nodes' mass, the
@@ -81,15 +84,15 @@ MARGIN = 5e-3
 
 
 def setup(
-    template: str, level: str, layers: int, weld: str = "mitre", margin: float = 0.0
+    template: str, level: str, layers: int, split: int = 1, margin: float = 0.0
 ) -> dict[str, Any]:
     """The pure-numpy part: the perfectly plastic variant's model, its solid
-    mesh, the formed stresses at the integration points (global, Pa) and
-    their eigenstrains (of the stresses times ``1 - margin``), the 3-2-1
-    support; ``weld``: the crease's columns tied as rigid bodies (``rigid``)
-    or shared along the mitre (``mitre``)."""
+    mesh (each face one column, or with ``split`` 4 four, on the face's curved
+    patch as ``NAME.inp`` splits it), the formed stresses at the integration
+    points (global, Pa) and their eigenstrains (of the stresses times ``1 -
+    margin``), the 3-2-1 support."""
     from onefold_cad.design import fold_design
-    from onefold_cad.export.simulation.inp_mesh import curved_midpoints, unique_edges
+    from onefold_cad.export.simulation.inp_mesh import curved_midpoints, shell_mesh, unique_edges
     from onefold_cad.mechanics.energy import second_fundamental_form
     from onefold_cad.mechanics.j2.stages import FORMING_STEPS, j2_shell
     from onefold_cad.mechanics.model import sheet_model
@@ -106,56 +109,42 @@ def setup(
     folded = fold_design(design)
     model = sheet_model(design, folded, level=level)
     mesh, x = model.mesh, model.designed
-    tri = mesh.triangles
+    tri, flat, n = mesh.triangles, mesh.nodes, len(model.designed)
     shell = j2_shell(model)
     q = pack(x, director_angles(shell, x, model.normals))
     curvature = np.einsum("mij,mj->mi", shell.cartesian, second_fundamental_form(shell, q))
-    # the top normal of each side at each node (0: y < 0, 1: y > 0)
-    flat = mesh.nodes
-    side = (flat[tri].mean(axis=1)[:, 1] > 0).astype(np.int64)
-    centre = flat[tri].mean(axis=1)
-    acc = np.zeros((len(x), 2, 3))
-    sides = np.zeros((len(x), 2), dtype=bool)
-    for k in range(3):
-        p = flat[tri[:, k]]
-        np.add.at(acc, (tri[:, k], side), folded.normals((p + 1e-6 * (centre - p)) / model.scale))
-        sides[tri[:, k], side] = True
-    normals = acc / np.maximum(np.linalg.norm(acc, axis=2, keepdims=True), 1e-300)
-    crease = sides[:, 0] & sides[:, 1]
-    # the crease welded by rigid columns: the y < 0 side gets its own column
-    # (a twin) of every crease node, along its own normal
-    cid = np.flatnonzero(crease)
-    twin = np.full(len(x), -1)
-    twin[cid] = len(x) + np.arange(len(cid))
-    split = crease & (weld == "rigid")
-    cid = np.flatnonzero(split)
-    tri2 = tri.copy()
-    sub = tri2[side == 0]
-    sub[split[sub]] = twin[sub[split[sub]]]
-    tri2[side == 0] = sub
-    x2 = np.concatenate([x, x[cid]])
-    own = np.where(sides[:, 1, None], normals[:, 1], normals[:, 0])
-    if weld == "mitre":
-        own = mitred(own, normals, crease, flat, model.material.thickness)
-    move = np.concatenate([own, normals[cid, 0]])
-    edges, face_edge = unique_edges(tri2)
-    on = np.concatenate([crease, np.ones(len(cid), dtype=bool)])  # the crease's edges: straight
-    straight = on[edges[:, 0]] & on[edges[:, 1]]
-    mids = curved_midpoints(x2, tri2, side, straight)
-    mid_move = move[edges[:, 0]] + move[edges[:, 1]]
-    mid_move /= np.linalg.norm(mid_move, axis=1)[:, None]
     t = model.material.thickness
-    solid = solid_mesh(x2, tri2, move, mids, mid_move, face_edge, t, layers)
+    if split == 4:
+        sm = shell_mesh(x, tri, flat)
+        pts, tri6, where = sm.nodes, sm.elements, sm.flat
+    else:
+        side = (flat[tri].mean(axis=1)[:, 1] > 0).astype(np.int64)
+        edges, face_edge = unique_edges(tri)
+        on = np.abs(flat[:, 1]) <= 1e-12 * float(np.ptp(flat, axis=0).max())
+        mids = curved_midpoints(x, tri, side, on[edges[:, 0]] & on[edges[:, 1]])
+        pts, tri6 = np.concatenate([x, mids]), np.concatenate([tri, n + face_edge], axis=1)
+        where = np.concatenate([flat, 0.5 * (flat[edges[:, 0]] + flat[edges[:, 1]])])
+    move, crease = node_moves(folded, where, model.scale, t)
+    if split == 1:  # the midpoints along the mean of their ends' directions, normalised
+        mean = move[edges[:, 0]] + move[edges[:, 1]]
+        move[n:] = mean / np.linalg.norm(mean, axis=1)[:, None]
+    corner, middle = np.unique(tri6[:, :3]), np.unique(tri6[:, 3:])
+    assert np.array_equal(corner[:n], np.arange(n))  # onefold's nodes first
+    solid = solid_mesh(
+        pts[corner], np.searchsorted(corner, tri6[:, :3]), move[corner],
+        pts[middle], move[middle], np.searchsorted(middle, tri6[:, 3:]), t, layers,
+    )  # fmt: skip
     vol = wedge_volumes(solid)
     assert plastic_law(shell).hardening_iso == 0.0
     heights = point_heights(t, layers)  # (L, 9)
     plane, plastic = formed_stress(plastic_law(shell), curvature, heights.ravel(), FORMING_STEPS)
-    frames = face_frames(x, tri)
-    stress = to_global(plane, frames) * (1.0 - margin)  # (m, L * 9, 6)
+    frames = np.repeat(face_frames(x, tri), split, axis=0)
+    plane = np.repeat(plane, split, axis=0) * (1.0 - margin)  # sub-element c of face c // split
+    stress = to_global(plane, frames)  # (m split, L * 9, 6)
     mat = model.material
-    # the support off the crease (its nodes are tied): next to its two ends, the highest corner
-    free = np.flatnonzero(~crease)
-    on_crease = np.flatnonzero(crease)
+    # the support off the crease: next to its two ends, and the highest node
+    on_crease = np.flatnonzero(crease[:n])
+    free = np.flatnonzero(~crease[:n])
     tips = [x[on_crease[np.argmax(x[on_crease, 0])]], x[on_crease[np.argmin(x[on_crease, 0])]]]
     ends = [int(free[np.argmin(np.linalg.norm(x[free] - p, axis=1))]) for p in tips]
     top = int(free[np.argmax(x[free, 2])])
@@ -166,16 +155,16 @@ def setup(
         "solid": solid,
         "volume_min": float(vol.min()),
         "volume_sum": float(vol.sum()),
-        "plane": plane * (1.0 - margin),
-        "margin": margin,
+        "plane": plane,
         "plastic": plastic,
         "frames": frames,
         "stress": stress,
         "eigen": initial_strain(stress, mat.youngs_modulus, mat.poisson),
         "support": support_321(x, [ends[0], ends[1], top]),
         "layers": layers,
-        "n": len(x),
-        "stations": stations(solid, cid, twin[cid], edges, len(x)),
+        "split": split,
+        "margin": margin,
+        "n": n,
     }
 
 
@@ -183,50 +172,34 @@ def setup(
 MITRE_FADE = 3.0
 
 
-def mitred(own, normals, crease, flat, t: float):
-    """``(n, 3)`` the nodes' offset directions with the crease mitred: on the
-    crease (a ruling of both cones: each half's two normals constant along
-    it) the mitre ``m = (n_a + n_b) / (1 + n_a . n_b)`` of its two sides'
-    normals, a unit height from either side's plane; beside it each node's
-    own normal plus the slant ``m - n_side`` of its crease half, fading to
-    0 at ``MITRE_FADE`` t (so a face narrower than the slant is not turned
-    inside out)."""
+def node_moves(folded, where: np.ndarray, scale: float, t: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(move (N, 3), crease (N,) bool)``: the direction each node at flat
+    ``where`` ``(N, 2)`` (m) moves per unit of height: the designed top
+    normal of its side; on the crease (a ruling of both cones: each half's
+    two normals constant along it) the mitre ``m = (n_a + n_b) / (1 + n_a .
+    n_b)`` of its two sides' normals (a unit height from either side's
+    plane); beside it the node's own normal plus the slant ``m - n_side`` of
+    its crease half, fading to 0 at ``MITRE_FADE`` t (a face narrower than
+    the slant is not turned inside out)."""
+    size = float(np.ptp(where, axis=0).max())
+    crease = np.abs(where[:, 1]) <= 1e-12 * size
+    eps = np.array([0.0, 1e-7 * size])
+    up, down = folded.normals((where + eps) / scale), folded.normals((where - eps) / scale)
+    own = np.where((where[:, 1] > 0)[:, None], up, down)
     out = own.copy()
-    for half in (flat[:, 0] > 0, flat[:, 0] < 0):
+    w = np.clip(1.0 - np.abs(where[:, 1]) / (MITRE_FADE * t), 0.0, 1.0)
+    for half in (where[:, 0] > 0, where[:, 0] < 0):
         c = np.flatnonzero(crease & half)
         if len(c) == 0:
             continue
-        a, b = normals[c, 0].mean(axis=0), normals[c, 1].mean(axis=0)
+        a, b = down[c].mean(axis=0), up[c].mean(axis=0)
         a, b = a / np.linalg.norm(a), b / np.linalg.norm(b)
         m = (a + b) / (1.0 + a @ b)
-        w = np.clip(1.0 - np.abs(flat[:, 1]) / (MITRE_FADE * t), 0.0, 1.0)
-        slant = np.where((flat[:, 1] > 0)[:, None], m - b, m - a)
+        slant = np.where((where[:, 1] > 0)[:, None], m - b, m - a)
         near = half & ~crease & (w > 0)
         out[near] = own[near] + w[near, None] * slant[near]
         out[c] = m
-    return out
-
-
-def stations(solid, crease: np.ndarray, twins: np.ndarray, edges: np.ndarray, n: int) -> list:
-    """The welded crease's rigid columns (0-based node ids): at every crease
-    node (``crease``, its twin ``twins``) both sides' corner columns, at every
-    crease edge both sides' midpoint columns."""
-    size, levels = solid.n_corners, 2 * solid.layers + 1
-    out = [[j * size + i for j in range(levels)] + [j * size + k for j in range(levels)]
-           for i, k in zip(crease, twins, strict=True)]  # fmt: skip
-    original = np.arange(size)
-    original[twins] = crease
-    on = np.zeros(size, dtype=bool)
-    on[crease], on[twins] = True, True
-    base, e_count = levels * size, len(edges)
-    groups: dict[tuple[int, int], list[int]] = {}
-    for e in np.flatnonzero(on[edges[:, 0]] & on[edges[:, 1]]):
-        a, b = sorted(original[edges[e]].tolist())
-        groups.setdefault((a, b), []).append(int(e))
-    for pair in groups.values():
-        assert len(pair) == 2, "a crease edge has one side's face only"
-        out.append([base + lev * e_count + e for lev in range(solid.layers + 1) for e in pair])
-    return out
+    return out, crease
 
 
 def plastic_law(shell):
@@ -238,14 +211,16 @@ def plastic_law(shell):
 def _model_lines(st: dict[str, Any]) -> list[str]:
     """Nodes, elements, material, section and the initial strains."""
     solid, mat = st["solid"], st["model"].material
+    used = np.unique(solid.elements)  # not the edge midpoints' odd levels
     out = ["*HEADING", "onefold calculix_release", "*NODE"]
-    out += [f"{i + 1},{p[0]:.12g},{p[1]:.12g},{p[2]:.12g}" for i, p in enumerate(solid.nodes)]
+    xs = solid.nodes
+    out += [f"{i + 1},{xs[i, 0]:.12g},{xs[i, 1]:.12g},{xs[i, 2]:.12g}" for i in used]
     out.append("*ELEMENT,TYPE=C3D15,ELSET=E")
     out += [
         f"{j + 1}," + ",".join(str(int(v) + 1) for v in e) for j, e in enumerate(solid.elements)
     ]
     out.append("*NSET,NSET=ALL")
-    out += id_lines(range(1, len(solid.nodes) + 1))
+    out += id_lines(used + 1)
     mid = solid.layers * solid.n_corners
     out.append("*NSET,NSET=MID")
     out += id_lines(range(mid + 1, mid + st["n"] + 1))
@@ -253,7 +228,7 @@ def _model_lines(st: dict[str, Any]) -> list[str]:
     if not st.get("elastic"):
         out += ["*PLASTIC", f"{mat.yield_stress:.10g},0."]
     out += ["*SOLID SECTION,ELSET=E,MATERIAL=STEEL", "*INITIAL CONDITIONS,TYPE=PLASTIC STRAIN"]
-    eigen = st["eigen"].reshape(-1, solid.layers, 9, 6)  # face, layer, point
+    eigen = st["eigen"].reshape(-1, solid.layers, 9, 6)  # column, layer, point
     for f in range(len(eigen)):
         for k in range(solid.layers):
             elem = f * solid.layers + k + 1
@@ -271,22 +246,24 @@ def write_held(st: dict[str, Any], path: Path) -> None:
     path.write_text("\n".join(out) + "\n")
 
 
-def write_release(st: dict[str, Any], rf: np.ndarray, path: Path, inc: float) -> None:
+def write_release(
+    st: dict[str, Any], rf: np.ndarray, path: Path, inc: float, field: tuple[float, ...] = ()
+) -> None:
     """The 3-2-1 support on the mid-surface, every other node's held reaction
-    ``rf`` ``(N, 3)`` ramped from 1 to 0 over the step."""
+    ``rf`` ``(N, 3)`` ramped from 1 to 0 over the step; ``field``: ccx's
+    ``*CONTROLS, PARAMETERS=FIELD`` (R_n, C_n: the residual's and the
+    correction's bounds, defaults 0.005 and 0.01), none: ccx's."""
     solid = st["solid"]
     mid = solid.layers * solid.n_corners
     fixed = {mid + node: dirs for node, dirs in st["support"].items()}
     out = _model_lines(st)
-    for k, nodes in enumerate(st["stations"]):
-        out.append(f"*NSET,NSET=RB{k + 1}")
-        out += id_lines(v + 1 for v in nodes)
-        out.append(f"*RIGID BODY,NSET=RB{k + 1}")
     out += ["*AMPLITUDE,NAME=DOWN", "0.,1.,1.,0.", "*BOUNDARY"]
     for node, dirs in fixed.items():
         out += [f"{node + 1},{d},{d},0." for d in dirs]
     first = min(inc, FIRST_INC)
     out += ["*STEP,NLGEOM,INC=10000", "*STATIC", f"{first:.6g},1.,1e-7,{inc:.6g}"]
+    if field:
+        out += ["*CONTROLS,PARAMETERS=FIELD", ",".join(f"{v:g}" for v in field)]
     out.append("*CLOAD,AMPLITUDE=DOWN")
     for i, f in enumerate(rf):
         for d in (1, 2, 3):
@@ -312,32 +289,35 @@ def run(
     workdir: Path,
     inc: float,
     elastic: bool = False,
-    weld: str = "mitre",
+    split: int = 1,
     margin: float = 0.0,
+    field: tuple[float, ...] = (),
 ) -> dict[str, Any]:
     """The held and the released runs and their measures; ``elastic``: the
     release without ``*PLASTIC`` (the formed stresses unloaded elastically)."""
     from onefold_cad.mechanics.standing_measures import aligned_deviation, area_share
 
-    st = setup(template, level, layers, weld, margin) | {"elastic": elastic}
+    st = setup(template, level, layers, split, margin) | {"elastic": elastic}
     solid, model, mat = st["solid"], st["model"], st["model"].material
     m, n_pts = len(model.mesh.triangles), layers * 9
-    name = f"{template}_{level}_L{layers}_{weld}" + ("_elastic" if elastic else "")
+    cols = m * split
+    name = f"{template}_{level}_L{layers}_x{split}" + ("_elastic" if elastic else "")
     write_held(st, workdir / f"{name}_held.inp")
     held, wall1, cpu1 = run_inp(workdir, f"{name}_held")
-    s_ccx = held[("stresses", 1.0)][:, 2:8].reshape(m, n_pts, 6)
-    none = np.zeros((m * n_pts, 3))  # an elastic run prints no PEEQ
+    s_ccx = held[("stresses", 1.0)][:, 2:8].reshape(cols, n_pts, 6)
+    none = np.zeros((cols * n_pts, 3))  # an elastic run prints no PEEQ
     peeq1 = held.get(("equivalent plastic strain", 1.0), none)[:, 2]
     rf = np.zeros((len(solid.nodes), 3))
     f = held[("forces", 1.0)]
     rf[f[:, 0].astype(int) - 1] = f[:, 1:4]
-    write_release(st, rf, workdir / f"{name}.inp", inc)
+    write_release(st, rf, workdir / f"{name}.inp", inc, field)
     out: dict[str, Any] = {
         "template": template,
         "mesh": level,
         "layers": layers,
         "law": "elastic" if elastic else "perfectly plastic",
-        "weld": weld,
+        "columns_per_face": split,
+        "controls_field": list(field),
         "margin": margin,
         "faces": m,
         "nodes": len(solid.nodes),
@@ -368,7 +348,7 @@ def run(
     u = displacements(rel, end, len(solid.nodes))[mid : mid + st["n"]]
     dmax, drms = aligned_deviation(model, st["folded"], model.designed + u)
     peeq2 = rel.get(("equivalent plastic strain", end), none)[:, 2]
-    grew = _outer(peeq2, layers) > _outer(peeq1, layers) + 1e-9
+    grew = (_outer(peeq2, layers) > _outer(peeq1, layers) + 1e-9).reshape(m, -1)
     out.update(
         released_to=end,
         springback_max=dmax,
@@ -383,7 +363,7 @@ def run(
 def _print(r: dict[str, Any]) -> None:
     u = r["unit"]
     line = (
-        f"{r['template']} {r['mesh']} L={r['layers']} {r['law']}, {r['weld']} crease: "
+        f"{r['template']} {r['mesh']} x{r['columns_per_face']} L={r['layers']} {r['law']}: "
         f"{r['faces']} faces, {r['nodes']} nodes, {r['elements']} C3D15; held: stress error "
         f"{r['held_stress_error']:.2g} sigma_y "
         f"(in plane {r['held_in_plane_error']:.2g}), peeq {r['held_peeq_max']:.2g}, "
@@ -413,7 +393,16 @@ def main(argv: list[str] | None = None) -> int:
         default=MARGIN,
         help="the formed stresses scaled by 1 - MARGIN (points on the yield surface inside it)",
     )
-    ap.add_argument("--weld", choices=["rigid", "mitre"], default="mitre", help="the crease")
+    ap.add_argument(
+        "--field",
+        type=float,
+        nargs="+",
+        default=[],
+        help="ccx's *CONTROLS, PARAMETERS=FIELD for the release (R_n C_n ...)",
+    )
+    ap.add_argument(
+        "--split", type=int, choices=[1, 4], default=1, help="columns of wedges per face"
+    )
     ap.add_argument("--onefold", action="store_true", help="onefold's side, timed in this run")
     ap.add_argument("--no-ccx", action="store_true", help="onefold's side only")
     ap.add_argument("--json", action="store_true")
@@ -441,8 +430,8 @@ def main(argv: list[str] | None = None) -> int:
     for level in [] if args.no_ccx else args.mesh:
         for layers in args.layers:
             r = run(
-                args.template, level, layers, workdir, args.inc, args.elastic, args.weld,
-                args.margin,
+                args.template, level, layers, workdir, args.inc, args.elastic, args.split,
+                args.margin, tuple(args.field),
             )  # fmt: skip
             out["runs"].append(r)
             if not args.json:

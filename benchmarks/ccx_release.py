@@ -9,12 +9,13 @@ units: m, Pa, N).
   midpoints lifted onto the curved surface (``inp_mesh.curved_midpoints``),
   every node moved ``h`` along the designed top normal at ``2 layers + 1``
   heights ``h`` from ``-t/2`` to ``t/2`` (the odd levels are the wedges'
-  vertical midpoints). The crease is welded (``calculix_release.py``): each
-  side its own column of nodes along its own normal there, the two columns
-  one ``*RIGID BODY``, so the two sides keep their angle, as ``onefold
-  simulate``'s ``held`` crease. (Shared nodes along the mitre of the two
-  normals turn the wedges inside out near H, where onefold's faces are
-  narrower than the mitre's slant, ``tan(psi / 2) t / 2``.)
+  vertical midpoints). The crease is welded (``calculix_release.node_moves``):
+  its nodes are shared by both sides and moved along the mitre of the two
+  sides' normals, the slant faded beside it, so the two sides keep their
+  angle, as ``onefold simulate``'s ``held`` crease. (Shared mitre nodes
+  alone turn wedges inside out near H, where onefold's faces are narrower
+  than the slant ``tan(psi / 2) t / 2``; a ``*RIGID BODY`` per crease
+  station kept even the elastic release from converging.)
 * **Integration points** (:data:`GAUSS_WEDGE`, ccx's ``gauss3d8``): three in
   the plane times three through each layer at ``zeta = -sqrt(3/5), 0,
   sqrt(3/5)``; a point's height is ``h = (k + 1/2) t / L - t/2 + zeta t /

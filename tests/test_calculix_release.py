@@ -159,3 +159,29 @@ def test_onefolds_section_heights_run_against_the_top_normal():
     offset = np.einsum("mij,mj->mi", shell.cartesian, cov)
     ratio = np.sum(ours * offset, axis=1) / np.sum(offset * offset, axis=1)
     assert np.median(ratio) == pytest.approx(-1.0, abs=0.02)
+
+
+class _Roof:
+    """A fold along the x axis: the y > 0 side's top normal turned by ``a``
+    about x one way, the y < 0 side's the other (``folded.normals``' shape)."""
+
+    def __init__(self, a: float) -> None:
+        self.up = np.array([0.0, -math.sin(a), math.cos(a)])
+        self.down = np.array([0.0, math.sin(a), math.cos(a)])
+
+    def normals(self, xy: np.ndarray) -> np.ndarray:
+        return np.where((np.asarray(xy)[:, 1] > 0)[:, None], self.up, self.down)
+
+
+def test_the_crease_moves_along_the_mitre_and_its_slant_fades():
+    import calculix_release as rel
+
+    roof = _Roof(math.radians(41.4))
+    where = np.array([[1.0, 0.0], [-1.0, 0.0], [1.0, 1.5 * T], [1.0, -4 * T], [2.0, 1e-9]])
+    move, crease = rel.node_moves(roof, where, 1.0, T)
+    assert crease.tolist() == [True, True, False, False, False]
+    for m in move[:2]:  # a unit height from either side's plane
+        assert m @ roof.up == pytest.approx(1.0) and m @ roof.down == pytest.approx(1.0)
+    fade = 1.0 - 1.5 / rel.MITRE_FADE
+    np.testing.assert_allclose(move[2], roof.up + fade * (move[0] - roof.up), atol=1e-12)
+    np.testing.assert_allclose(move[3], roof.down, atol=1e-12)  # beyond the fade
