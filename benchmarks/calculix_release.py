@@ -247,12 +247,19 @@ def write_held(st: dict[str, Any], path: Path) -> None:
 
 
 def write_release(
-    st: dict[str, Any], rf: np.ndarray, path: Path, inc: float, field: tuple[float, ...] = ()
+    st: dict[str, Any],
+    rf: np.ndarray,
+    path: Path,
+    inc: float,
+    field: tuple[float, ...] = (),
+    iterations: tuple[int, ...] = (),
 ) -> None:
     """The 3-2-1 support on the mid-surface, every other node's held reaction
     ``rf`` ``(N, 3)`` ramped from 1 to 0 over the step; ``field``: ccx's
     ``*CONTROLS, PARAMETERS=FIELD`` (R_n, C_n: the residual's and the
-    correction's bounds, defaults 0.005 and 0.01), none: ccx's."""
+    correction's bounds, defaults 0.005 and 0.01), none: ccx's;
+    ``iterations``: its ``TIME INCREMENTATION`` (I_0, I_R: the iterations
+    before it checks for divergence and at most, defaults 4 and 8)."""
     solid = st["solid"]
     mid = solid.layers * solid.n_corners
     fixed = {mid + node: dirs for node, dirs in st["support"].items()}
@@ -264,6 +271,8 @@ def write_release(
     out += ["*STEP,NLGEOM,INC=10000", "*STATIC", f"{first:.6g},1.,1e-7,{inc:.6g}"]
     if field:
         out += ["*CONTROLS,PARAMETERS=FIELD", ",".join(f"{v:g}" for v in field)]
+    if iterations:
+        out += ["*CONTROLS,PARAMETERS=TIME INCREMENTATION", ",".join(map(str, iterations))]
     out.append("*CLOAD,AMPLITUDE=DOWN")
     for i, f in enumerate(rf):
         for d in (1, 2, 3):
@@ -292,6 +301,7 @@ def run(
     split: int = 1,
     margin: float = 0.0,
     field: tuple[float, ...] = (),
+    iterations: tuple[int, ...] = (),
 ) -> dict[str, Any]:
     """The held and the released runs and their measures; ``elastic``: the
     release without ``*PLASTIC`` (the formed stresses unloaded elastically)."""
@@ -310,7 +320,7 @@ def run(
     rf = np.zeros((len(solid.nodes), 3))
     f = held[("forces", 1.0)]
     rf[f[:, 0].astype(int) - 1] = f[:, 1:4]
-    write_release(st, rf, workdir / f"{name}.inp", inc, field)
+    write_release(st, rf, workdir / f"{name}.inp", inc, field, iterations)
     out: dict[str, Any] = {
         "template": template,
         "mesh": level,
@@ -318,6 +328,7 @@ def run(
         "law": "elastic" if elastic else "perfectly plastic",
         "columns_per_face": split,
         "controls_field": list(field),
+        "controls_iterations": list(iterations),
         "margin": margin,
         "faces": m,
         "nodes": len(solid.nodes),
@@ -401,6 +412,13 @@ def main(argv: list[str] | None = None) -> int:
         help="ccx's *CONTROLS, PARAMETERS=FIELD for the release (R_n C_n ...)",
     )
     ap.add_argument(
+        "--iterations",
+        type=int,
+        nargs="+",
+        default=[],
+        help="ccx's *CONTROLS, PARAMETERS=TIME INCREMENTATION for the release (I_0 I_R ...)",
+    )
+    ap.add_argument(
         "--split", type=int, choices=[1, 4], default=1, help="columns of wedges per face"
     )
     ap.add_argument("--onefold", action="store_true", help="onefold's side, timed in this run")
@@ -431,7 +449,7 @@ def main(argv: list[str] | None = None) -> int:
         for layers in args.layers:
             r = run(
                 args.template, level, layers, workdir, args.inc, args.elastic, args.split,
-                args.margin, tuple(args.field),
+                args.margin, tuple(args.field), tuple(args.iterations),
             )  # fmt: skip
             out["runs"].append(r)
             if not args.json:
