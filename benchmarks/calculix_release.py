@@ -227,8 +227,10 @@ def _model_lines(st: dict[str, Any]) -> list[str]:
     out += ["*MATERIAL,NAME=STEEL", "*ELASTIC", f"{mat.youngs_modulus:.10g},{mat.poisson:.10g}"]
     if not st.get("elastic"):
         out += ["*PLASTIC", f"{mat.yield_stress:.10g},0."]
-    out += ["*SOLID SECTION,ELSET=E,MATERIAL=STEEL", "*INITIAL CONDITIONS,TYPE=PLASTIC STRAIN"]
-    eigen = st["eigen"].reshape(-1, solid.layers, 9, 6)  # column, layer, point
+    # small strains (no NLGEOM): ccx's small-strain plasticity reads the stress itself
+    kind, values = ("STRESS", st["stress"]) if st.get("linear") else ("PLASTIC STRAIN", st["eigen"])
+    out += ["*SOLID SECTION,ELSET=E,MATERIAL=STEEL", f"*INITIAL CONDITIONS,TYPE={kind}"]
+    eigen = values.reshape(-1, solid.layers, 9, 6)  # column, layer, point
     for f in range(len(eigen)):
         for k in range(solid.layers):
             elem = f * solid.layers + k + 1
@@ -241,7 +243,8 @@ def _model_lines(st: dict[str, Any]) -> list[str]:
 def write_held(st: dict[str, Any], path: Path) -> None:
     """Every node held: the stresses printed (the initial ones?) and the
     reactions (the forming tool's forces)."""
-    out = _model_lines(st) + ["*BOUNDARY", "ALL,1,3", "*STEP,NLGEOM", "*STATIC", "1.,1."]
+    step = "*STEP" if st.get("linear") else "*STEP,NLGEOM"
+    out = _model_lines(st) + ["*BOUNDARY", "ALL,1,3", step, "*STATIC", "1.,1."]
     out += ["*NODE PRINT,NSET=ALL", "RF", "*EL PRINT,ELSET=E", "S,PEEQ", "*END STEP"]
     path.write_text("\n".join(out) + "\n")
 
@@ -268,7 +271,8 @@ def write_release(
     for node, dirs in fixed.items():
         out += [f"{node + 1},{d},{d},0." for d in dirs]
     first = min(inc, FIRST_INC)
-    out += ["*STEP,NLGEOM,INC=10000", "*STATIC", f"{first:.6g},1.,1e-7,{inc:.6g}"]
+    step = "*STEP,INC=10000" if st.get("linear") else "*STEP,NLGEOM,INC=10000"
+    out += [step, "*STATIC", f"{first:.6g},1.,1e-7,{inc:.6g}"]
     if field:
         out += ["*CONTROLS,PARAMETERS=FIELD", ",".join(f"{v:g}" for v in field)]
     if iterations:
@@ -298,20 +302,23 @@ def run(
     workdir: Path,
     inc: float,
     elastic: bool = False,
+    linear: bool = False,
     split: int = 1,
     margin: float = 0.0,
     field: tuple[float, ...] = (),
     iterations: tuple[int, ...] = (),
 ) -> dict[str, Any]:
     """The held and the released runs and their measures; ``elastic``: the
-    release without ``*PLASTIC`` (the formed stresses unloaded elastically)."""
+    release without ``*PLASTIC`` (the formed stresses unloaded elastically);
+    ``linear``: no ``NLGEOM`` (the stresses as ``TYPE=STRESS``)."""
     from onefold_cad.mechanics.standing_measures import aligned_deviation, area_share
 
-    st = setup(template, level, layers, split, margin) | {"elastic": elastic}
+    st = setup(template, level, layers, split, margin) | {"elastic": elastic, "linear": linear}
     solid, model, mat = st["solid"], st["model"], st["model"].material
     m, n_pts = len(model.mesh.triangles), layers * 9
     cols = m * split
     name = f"{template}_{level}_L{layers}_x{split}" + ("_elastic" if elastic else "")
+    name += "_linear" if linear else ""
     write_held(st, workdir / f"{name}_held.inp")
     held, wall1, cpu1 = run_inp(workdir, f"{name}_held")
     s_ccx = held[("stresses", 1.0)][:, 2:8].reshape(cols, n_pts, 6)
@@ -326,6 +333,7 @@ def run(
         "mesh": level,
         "layers": layers,
         "law": "elastic" if elastic else "perfectly plastic",
+        "nlgeom": not linear,
         "columns_per_face": split,
         "controls_field": list(field),
         "controls_iterations": list(iterations),
@@ -399,6 +407,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--inc", type=float, default=RELEASE_INC, help="largest release increment")
     ap.add_argument("--elastic", action="store_true", help="ccx without *PLASTIC")
     ap.add_argument(
+        "--linear", action="store_true", help="no NLGEOM: small strains, TYPE=STRESS read as is"
+    )
+    ap.add_argument(
         "--margin",
         type=float,
         default=MARGIN,
@@ -448,8 +459,8 @@ def main(argv: list[str] | None = None) -> int:
     for level in [] if args.no_ccx else args.mesh:
         for layers in args.layers:
             r = run(
-                args.template, level, layers, workdir, args.inc, args.elastic, args.split,
-                args.margin, tuple(args.field), tuple(args.iterations),
+                args.template, level, layers, workdir, args.inc, args.elastic, args.linear,
+                args.split, args.margin, tuple(args.field), tuple(args.iterations),
             )  # fmt: skip
             out["runs"].append(r)
             if not args.json:

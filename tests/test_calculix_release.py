@@ -185,3 +185,41 @@ def test_the_crease_moves_along_the_mitre_and_its_slant_fades():
     fade = 1.0 - 1.5 / rel.MITRE_FADE
     np.testing.assert_allclose(move[2], roof.up + fade * (move[0] - roof.up), atol=1e-12)
     np.testing.assert_allclose(move[3], roof.down, atol=1e-12)  # beyond the fade
+
+
+def _state(linear: bool) -> dict:
+    """A one-wedge model as ``calculix_release.setup`` returns it."""
+    from types import SimpleNamespace
+
+    x = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    mids = 0.5 * (x + x[[1, 2, 0]])
+    up = np.tile([0.0, 0, 1], (3, 1))
+    solid = cr.solid_mesh(x, np.array([[0, 1, 2]]), up, mids, up, np.array([[0, 1, 2]]), T, 1)
+    stress = np.arange(54.0).reshape(1, 9, 6) * 1e6
+    material = SimpleNamespace(youngs_modulus=E, poisson=NU, yield_stress=SY)
+    return {
+        "solid": solid,
+        "model": SimpleNamespace(material=material),
+        "stress": stress,
+        "eigen": cr.initial_strain(stress, E, NU),
+        "n": 3,
+        "linear": linear,
+    }
+
+
+@pytest.mark.parametrize("linear", [False, True])
+def test_held_deck_hands_over_the_stress_the_way_its_law_reads_it(tmp_path, linear):
+    """With NLGEOM the eigenstrain (TYPE=PLASTIC STRAIN), without it the
+    stress itself (TYPE=STRESS); point 2 of element 1 carries row 2."""
+    import calculix_release as rel
+
+    st = _state(linear)
+    rel.write_held(st, tmp_path / "held.inp")
+    lines = (tmp_path / "held.inp").read_text().splitlines()
+    kind = "STRESS" if linear else "PLASTIC STRAIN"
+    at = lines.index(f"*INITIAL CONDITIONS,TYPE={kind}")
+    row = [float(v) for v in lines[at + 2].split(",")]
+    expected = (st["stress"] if linear else st["eigen"])[0, 1]
+    assert row[:2] == [1, 2]
+    np.testing.assert_allclose(row[2:], expected, rtol=1e-9)
+    assert ("*STEP" in lines) == linear and ("*STEP,NLGEOM" in lines) != linear
