@@ -12,7 +12,7 @@ cones without membrane strain on a mesh this machine can run: see
   extruded along the designed normals (``--split 4``: four columns per
   face, on its curved patch as ``NAME.inp`` splits its facets), the crease
   welded (its nodes shared by both sides, moved along the mitre of their
-  normals: :func:`node_moves`; it keeps its angle, as ``--crease held``);
+  normals: ``ccx_release.node_moves``; it keeps its angle, as ``--crease held``);
   ``*ELASTIC`` E, nu, ``*PLASTIC`` sigma_y, 0 (the perfectly plastic
   variant of the template: ``--hardening-modulus 0`` on both sides),
   ``NLGEOM``.
@@ -63,6 +63,7 @@ from ccx_release import (  # noqa: E402
     face_frames,
     formed_stress,
     initial_strain,
+    node_moves,
     point_heights,
     solid_mesh,
     to_frame,
@@ -166,40 +167,6 @@ def setup(
         "margin": margin,
         "n": n,
     }
-
-
-#: The mitred crease's slant fades over this many thicknesses from it.
-MITRE_FADE = 3.0
-
-
-def node_moves(folded, where: np.ndarray, scale: float, t: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(move (N, 3), crease (N,) bool)``: the direction each node at flat
-    ``where`` ``(N, 2)`` (m) moves per unit of height: the designed top
-    normal of its side; on the crease (a ruling of both cones: each half's
-    two normals constant along it) the mitre ``m = (n_a + n_b) / (1 + n_a .
-    n_b)`` of its two sides' normals (a unit height from either side's
-    plane); beside it the node's own normal plus the slant ``m - n_side`` of
-    its crease half, fading to 0 at ``MITRE_FADE`` t (a face narrower than
-    the slant is not turned inside out)."""
-    size = float(np.ptp(where, axis=0).max())
-    crease = np.abs(where[:, 1]) <= 1e-12 * size
-    eps = np.array([0.0, 1e-7 * size])
-    up, down = folded.normals((where + eps) / scale), folded.normals((where - eps) / scale)
-    own = np.where((where[:, 1] > 0)[:, None], up, down)
-    out = own.copy()
-    w = np.clip(1.0 - np.abs(where[:, 1]) / (MITRE_FADE * t), 0.0, 1.0)
-    for half in (where[:, 0] > 0, where[:, 0] < 0):
-        c = np.flatnonzero(crease & half)
-        if len(c) == 0:
-            continue
-        a, b = down[c].mean(axis=0), up[c].mean(axis=0)
-        a, b = a / np.linalg.norm(a), b / np.linalg.norm(b)
-        m = (a + b) / (1.0 + a @ b)
-        slant = np.where((where[:, 1] > 0)[:, None], m - b, m - a)
-        near = half & ~crease & (w > 0)
-        out[near] = own[near] + w[near, None] * slant[near]
-        out[c] = m
-    return out, crease
 
 
 def plastic_law(shell):

@@ -9,7 +9,7 @@ units: m, Pa, N).
   midpoints lifted onto the curved surface (``inp_mesh.curved_midpoints``),
   every node moved ``h`` along the designed top normal at ``2 layers + 1``
   heights ``h`` from ``-t/2`` to ``t/2`` (the odd levels are the wedges'
-  vertical midpoints). The crease is welded (``calculix_release.node_moves``):
+  vertical midpoints). The crease is welded (:func:`node_moves`):
   its nodes are shared by both sides and moved along the mitre of the two
   sides' normals, the slant faded beside it, so the two sides keep their
   angle, as ``onefold simulate``'s ``held`` crease. (Shared mitre nodes
@@ -250,3 +250,37 @@ def _shape15_derivatives(xi: float, et: float, ze: float) -> Array:
         -2 * a * ze, -2 * xi * ze, -2 * et * ze,
     ]  # fmt: skip
     return d
+
+
+#: The mitred crease's slant fades over this many thicknesses from it.
+MITRE_FADE = 3.0
+
+
+def node_moves(folded, where: Array, scale: float, t: float) -> tuple[Array, NDArray[np.bool_]]:
+    """``(move (N, 3), crease (N,) bool)``: the direction each node at flat
+    ``where`` ``(N, 2)`` (m) moves per unit of height: the designed top
+    normal of its side; on the crease (a ruling of both cones: each half's
+    two normals constant along it) the mitre ``m = (n_a + n_b) / (1 + n_a .
+    n_b)`` of its two sides' normals (a unit height from either side's
+    plane); beside it the node's own normal plus the slant ``m - n_side`` of
+    its crease half, fading to 0 at ``MITRE_FADE`` t (a face narrower than
+    the slant is not turned inside out)."""
+    size = float(np.ptp(where, axis=0).max())
+    crease = np.abs(where[:, 1]) <= 1e-12 * size
+    eps = np.array([0.0, 1e-7 * size])
+    up, down = folded.normals((where + eps) / scale), folded.normals((where - eps) / scale)
+    own = np.where((where[:, 1] > 0)[:, None], up, down)
+    out = own.copy()
+    w = np.clip(1.0 - np.abs(where[:, 1]) / (MITRE_FADE * t), 0.0, 1.0)
+    for half in (where[:, 0] > 0, where[:, 0] < 0):
+        c = np.flatnonzero(crease & half)
+        if len(c) == 0:
+            continue
+        a, b = down[c].mean(axis=0), up[c].mean(axis=0)
+        a, b = a / np.linalg.norm(a), b / np.linalg.norm(b)
+        m = (a + b) / (1.0 + a @ b)
+        slant = np.where((where[:, 1] > 0)[:, None], m - b, m - a)
+        near = half & ~crease & (w > 0)
+        out[near] = own[near] + w[near, None] * slant[near]
+        out[c] = m
+    return out, crease

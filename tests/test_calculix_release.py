@@ -174,15 +174,13 @@ class _Roof:
 
 
 def test_the_crease_moves_along_the_mitre_and_its_slant_fades():
-    import calculix_release as rel
-
     roof = _Roof(math.radians(41.4))
     where = np.array([[1.0, 0.0], [-1.0, 0.0], [1.0, 1.5 * T], [1.0, -4 * T], [2.0, 1e-9]])
-    move, crease = rel.node_moves(roof, where, 1.0, T)
+    move, crease = cr.node_moves(roof, where, 1.0, T)
     assert crease.tolist() == [True, True, False, False, False]
     for m in move[:2]:  # a unit height from either side's plane
         assert m @ roof.up == pytest.approx(1.0) and m @ roof.down == pytest.approx(1.0)
-    fade = 1.0 - 1.5 / rel.MITRE_FADE
+    fade = 1.0 - 1.5 / cr.MITRE_FADE
     np.testing.assert_allclose(move[2], roof.up + fade * (move[0] - roof.up), atol=1e-12)
     np.testing.assert_allclose(move[3], roof.down, atol=1e-12)  # beyond the fade
 
