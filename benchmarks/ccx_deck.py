@@ -207,7 +207,7 @@ def write_deck(deck: Deck, path: Path) -> None:
     out.append("*ELEMENT,TYPE=S6,ELSET=E")
     out += [f"{j + 1}," + ",".join(str(int(v) + 1) for v in e) for j, e in enumerate(deck.tri6)]
     out.append("*NSET,NSET=SH")
-    out += _id_lines(range(1, n + 1))
+    out += id_lines(range(1, n + 1))
     out += ["*MATERIAL,NAME=STEEL", "*ELASTIC", f"{deck.E:.10g},{deck.nu:.10g}"]
     out += ["*PLASTIC", f"{deck.sy:.10g},0."]
     if deck.hardening > 0:  # linear: ccx interpolates between the two rows
@@ -290,7 +290,8 @@ def _xyz(p: Array) -> str:
     return f"{p[0]:.12g},{p[1]:.12g},{p[2]:.12g}"
 
 
-def _id_lines(ids: Any) -> list[str]:
+def id_lines(ids: Any) -> list[str]:
+    """``*NSET`` data lines: the ids ``ids``, twelve to a line."""
     ids = [str(i) for i in ids]
     return [",".join(ids[k : k + 12]) for k in range(0, len(ids), 12)]
 
@@ -311,6 +312,13 @@ def run_ccx(deck: Deck, workdir: Path, name: str) -> tuple[dict[Any, Array], flo
     """Write and run the deck with one thread; ``(blocks, wall seconds, CPU
     seconds)`` (:func:`read_dat`; CPU from ``getrusage`` of the children)."""
     write_deck(deck, workdir / f"{name}.inp")
+    return run_inp(workdir, name)
+
+
+def run_inp(workdir: Path, name: str) -> tuple[dict[Any, Array], float, float]:
+    """Run the written ``workdir/name.inp`` with one thread: ``(blocks, wall
+    seconds, CPU seconds)`` (:func:`read_dat`; CPU from ``getrusage`` of the
+    children); its output in ``name.log``."""
     env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_STIFFNESS="1", CCX_NPROC_RESULTS="1")
     t0, c0 = time.perf_counter(), _child_cpu()
     proc = subprocess.run(

@@ -29,23 +29,31 @@ def _child(cmd: list[str]) -> tuple[str, float, float]:
 
 
 def onefold_side(
-    template: str, meshes: list[str], creases: list[str], laws: tuple[str, ...] = ("moment",)
+    template: str,
+    meshes: list[str],
+    creases: list[str],
+    laws: tuple[str, ...] = ("moment",),
+    extra: tuple[str, ...] = (),
 ) -> list[dict[str, Any]]:
-    """``onefold simulate TEMPLATE --json`` for each mesh, crease model and
-    ``--law`` (``moment`` or ``j2``: the laws of ``onefold simulate``): the
-    formed plastic share, the springback's max deviation after the best fit,
-    wall and CPU time."""
+    """``onefold simulate TEMPLATE --json`` (and the flags ``extra``) for each
+    mesh, crease model and ``--law`` (``moment`` or ``j2``: the laws of
+    ``onefold simulate``): the formed plastic share, the springback's max and
+    rms deviation after the best fit, the share that yields again, wall and
+    CPU time."""
     rows: list[dict[str, Any]] = []
     for mesh, crease, law in ((m, c, w) for m in meshes for c in creases for w in laws):
         cmd = [sys.executable, "-m", "onefold_cad", "simulate", template, "--json", "-q"]
-        cmd += ["--mesh", mesh, "--crease", crease, "--law", law]
+        cmd += ["--mesh", mesh, "--crease", crease, "--law", law, *extra]
         out, wall, cpu = _child(cmd)
         sim = json.loads(out)["simulation"]
         rows.append(
             {
-                "what": f"onefold simulate --mesh {mesh} --crease {crease} --law {law}",
+                "what": " ".join(
+                    ["onefold simulate --mesh", mesh, "--crease", crease, "--law", law, *extra]
+                ),
                 "plastic_share": sim["formed"]["plastic_area_share"],
                 "springback_max": sim["released"]["max_deviation"],
+                "springback_rms": sim["released"]["rms_deviation"],
                 "yields_again_share": sim["released"].get("reloaded_area_share"),
                 "wall_s": wall,
                 "cpu_s": cpu,
