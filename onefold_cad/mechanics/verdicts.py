@@ -59,7 +59,8 @@ def _law_warnings(law: str, released: Released | None, standing: Standing, rever
         out.append(
             f"in springback {100 * released.reloaded_area_share:.3g} % of the sheet's area bends "
             "past its elastic range; the moment law unloads every face elastically, so the "
-            "springback there is underestimated (--law j2 follows the law)"
+            "springback is underestimated (on the steel templates by a third to two fifths "
+            "against CalculiX, docs/mechanics.md; --law j2 follows the law)"
         )
     if standing.reloaded_area_share > 0:
         out.append(
