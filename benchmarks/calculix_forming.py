@@ -59,7 +59,6 @@ import argparse
 import dataclasses
 import json
 import math
-import shutil
 import sys
 import tempfile
 from pathlib import Path
@@ -74,6 +73,7 @@ from ccx_deck import (  # noqa: E402
     Array,
     Deck,
     displacements,
+    finish,
     form_and_release,
     node_areas,
     quadratic,
@@ -431,11 +431,7 @@ def main(argv: list[str] | None = None) -> int:
                 if val is not None and not args.json:
                     order = f"order {p:.2g}" if p else "order 2 assumed"
                     print(f"Richardson {key}: {val:.4g} ({order})")
-    if args.json:
-        print(json.dumps(out, indent=1))
-    if not args.keep:
-        shutil.rmtree(workdir, ignore_errors=True)
-    return 0
+    return finish(out, args.json, bool(args.keep), workdir)
 
 
 if __name__ == "__main__":

@@ -46,8 +46,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
-import shutil
 import sys
 import tempfile
 from pathlib import Path
@@ -57,7 +55,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from ccx_deck import CCX, displacements, id_lines, run_inp, support_321  # noqa: E402
+from ccx_deck import CCX, displacements, finish, id_lines, run_inp, support_321  # noqa: E402
 from ccx_onefold import onefold_side  # noqa: E402
 from ccx_release import (  # noqa: E402
     face_frames,
@@ -432,11 +430,7 @@ def main(argv: list[str] | None = None) -> int:
             out["runs"].append(r)
             if not args.json:
                 _print(r)
-    if args.json:
-        print(json.dumps(out, indent=1))
-    if not args.keep:
-        shutil.rmtree(workdir, ignore_errors=True)
-    return 0
+    return finish(out, args.json, bool(args.keep), workdir)
 
 
 if __name__ == "__main__":

@@ -31,6 +31,7 @@ one run, running ccx and reading its ``.dat`` (SI units: m, Pa, N).
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import os
 import re
@@ -428,3 +429,13 @@ def form_and_release(
         b2, wall2, cpu2 = run_ccx(dataclasses.replace(deck, loads=loads), workdir, name)
         out.update(release=b2, wall_release_s=wall2, cpu_release_s=cpu2, loads=loads)
     return out
+
+
+def finish(out: dict[str, Any], as_json: bool, keep: bool, workdir: Path) -> int:
+    """A command's end: ``out`` printed as JSON when asked, ``workdir``
+    removed unless kept; the exit status (0)."""
+    if as_json:
+        print(json.dumps(out, indent=1))
+    if not keep:
+        shutil.rmtree(workdir, ignore_errors=True)
+    return 0
