@@ -18,6 +18,7 @@ from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.server import RECENT_DESIGNS
 from onefold_cad.explore.simulation import SUPERSEDED
 from onefold_cad.explore.steel import NOT_LAST, LatestOnly
+from tests.counting import count_calls
 from tests.explore.conftest import get
 
 
@@ -113,14 +114,7 @@ def test_the_design_a_state_request_built_is_reused_and_the_memory_bounded(serve
     """/api/state then /api/steel of one design fold it once (the steel request
     is given up before it simulates: a newer ticket is taken first); at most
     RECENT_DESIGNS designs are kept; a bad value is never kept."""
-    folds: list[int] = []
-    real_fold = design_module.fold
-
-    def counted(solution, sheet):
-        folds.append(1)
-        return real_fold(solution, sheet)
-
-    monkeypatch.setattr(design_module, "fold", counted)
+    folds = count_calls(monkeypatch, design_module, "fold")
     server.design_of.cache_clear()
     assert _ask(server, "state", {"alpha": "36.5"})[1]["ok"] is True
     assert len(folds) == 1

@@ -13,6 +13,7 @@ from onefold_cad.mechanics.j2.law import J2Law
 from onefold_cad.mechanics.j2.layered import Plasticity, cartesian_map
 from onefold_cad.mechanics.j2.section import ThicknessRule
 from onefold_cad.mechanics.material import strain_form
+from tests.counting import count_calls
 from tests.mechanics.helpers import central_difference, rectangle
 
 RNG = np.random.default_rng(7)
@@ -149,14 +150,7 @@ def test_the_release_s_steps_grow_only_while_few_points_change_yielding(monkeypa
     ``GROW_CHANGE`` below 0 they stay at 1/8 (eight accepted steps)."""
     from onefold_cad.mechanics.j2 import stages as j2_stages
 
-    accepted: list[int] = []
-    real = j2_stages.section_response
-
-    def counted(shell, q):
-        accepted.append(1)
-        return real(shell, q)
-
-    monkeypatch.setattr(j2_stages, "section_response", counted)
+    accepted = count_calls(monkeypatch, j2_stages, "section_response")
     _strip_release(0.1)
     grown = len(accepted)
     accepted.clear()
