@@ -32,7 +32,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.flags.jobs import load_jobs
 from onefold_cad.flags.parser import design_flag_values
 
-__all__ = ["cmd_compensate", "compensation_lines"]
+__all__ = ["cmd_compensate", "compensation_lines", "picture_title"]
 
 
 def _length(value: float | None, unit: str) -> str:
@@ -54,6 +54,11 @@ def _form_line(label: str, f: dict[str, Any], u: str) -> str:
 
 #: How the text names each bending law.
 _LAWS = {"moment": "the moment law", "j2": "J2 through the thickness"}
+
+
+def picture_title(name: str, c: dict[str, Any]) -> str:
+    """The compensation picture's heading: what was compensated, by which law."""
+    return f"{name}: springback and weight compensated ({_LAWS[c.get('law', 'moment')]})"
 
 
 def compensation_lines(name: str, c: dict[str, Any]) -> list[str]:
@@ -145,7 +150,7 @@ def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[
                 f"max {form.max_deviation:.4g}, rms {form.rms_deviation:.4g} {u}\n"
                 f"height {form.height:.5g}, span {form.span:.5g} {u}",
             ))  # fmt: skip
-        render_compensation(panels, u, paths[3], title=f"{base}: springback and weight compensated")
+        render_compensation(panels, u, paths[3], title=picture_title(base, c))
         paths[4].write_text(report_json(report))
         ctx = BuildContext(design, fold_design(design), None, Compensation.SHARP, job.sources, ())
         built = write_design(ctx, stage.path / "build", formats)

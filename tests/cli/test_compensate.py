@@ -250,6 +250,26 @@ def test_law_j2_reaches_every_simulation_and_the_report(cli, monkeypatch) -> Non
     )
 
 
+def test_the_picture_names_the_law_it_was_compensated_by(cli, monkeypatch, tmp_path) -> None:
+    from onefold_cad.export import compensation_picture
+
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    titles: list[str] = []
+    real = compensation_picture.render_compensation
+
+    def seen(*args, **kwargs):
+        titles.append(kwargs["title"])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(compensation_picture, "render_compensation", seen)
+    for law, words in (("j2", "(J2 through the thickness)"), ("moment", "(the moment law)")):
+        rc, _, err = cli("compensate", NAME, "--law", law, "-j", "1", "-q", "-o",
+                         str(tmp_path / law))  # fmt: skip
+        assert rc == 0, err
+        assert titles[-1] == f"{NAME}: springback and weight compensated {words}"
+    assert len(titles) == 2
+
+
 def test_the_pool_hands_the_law_to_its_workers(monkeypatch) -> None:
     from concurrent.futures import ThreadPoolExecutor
 
