@@ -19,6 +19,7 @@ __all__ = [
     "Choice",
     "Compensation",
     "Crease",
+    "Knob",
     "Law",
     "MeshLevel",
     "Model",
@@ -186,6 +187,20 @@ class Law(Choice):
 
     J2 = "j2"
     MOMENT = "moment"
+
+
+class Knob(Choice):
+    """What ``onefold compensate`` may change in the fold it forms.
+
+    ALPHA, BETA: the frame curve's angles (deg). H_C: its height h_c.
+    OVERBEND: the crease set past the fold angle (``crease_overbend``, deg),
+    the cones formed as designed.
+    """
+
+    ALPHA = "alpha"
+    BETA = "beta"
+    H_C = "h_c"
+    OVERBEND = "overbend"
 
 
 class MeshLevel(Choice):

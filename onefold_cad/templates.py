@@ -99,6 +99,7 @@ _MATERIAL: dict[str, str] = {
     "poisson": _NUMBER,
     "yield_stress": _NUMBER,
     **{k: _NUMBER for k in ("hardening_modulus", "kinematic_hardening")},
+    "crease_overbend": _NUMBER,
 }
 _HARDENING = ("hardening_modulus", "kinematic_hardening")
 _SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
@@ -433,7 +434,8 @@ def design_to_data(design: Design) -> dict[str, Any]:
         "kerf": m.kerf,
         "sheet_surface": m.sheet_surface.value,
     }
-    optional = ("relief_hole", "density", "youngs_modulus", "poisson", "yield_stress", *_HARDENING)
+    optional = ("relief_hole", "density", "youngs_modulus", "poisson", "yield_stress", *_HARDENING,
+                "crease_overbend")  # fmt: skip
     material |= {k: getattr(m, k) for k in optional if getattr(m, k) is not None}  # unset: left out
     return {
         "name": design.name,

@@ -78,7 +78,8 @@ def compensation_lines(name: str, c: dict[str, Any]) -> list[str]:
         _form_line("compensated", c["after"], u),
         f"  {'fold to':<14} alpha {k['alpha']:.5g} deg (was {s['alpha']:.5g}), beta "
         f"{k['beta']:.5g} deg (was {s['beta']:.5g}), h_c {k['h_c']:.5g} {u} (was "
-        f"{s['h_c']:.5g})",
+        f"{s['h_c']:.5g}), crease overbend {k.get('overbend', 0.0):.3g} deg (was "
+        f"{s.get('overbend', 0.0):.3g})",
     ]
     for cr in c["crease"]:
         out.append(
@@ -167,10 +168,11 @@ def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
 
     f0, f1 = result.start.frame, result.compensated.frame
     u = result.compensated.units.value
+    ob = result.compensated.material.crease_overbend or 0.0
     lines = [
         f"springback compensated (onefold compensate): formed to alpha {f1.alpha:.4f}, beta "
         f"{f1.beta:.4f} deg, h_c {f1.h_c:.4g} {u} (design: alpha {f0.alpha:.4g}, beta "
-        f"{f0.beta:.4g} deg, h_c {f0.h_c:.4g} {u})",
+        f"{f0.beta:.4g} deg, h_c {f0.h_c:.4g} {u}); the crease set {ob:.2f} deg past the fold",
     ]
     for c in result.crease:
         lines.append(
@@ -181,7 +183,7 @@ def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
     if f"{stem}.dxf" in by_name:
         add_dxf_notes(by_name[f"{stem}.dxf"], lines)
     if f"{stem}-bends.csv" in by_name:
-        angles = {c["half"]: (c["fold_to_deg"], c["after_springback_deg"]) for c in result.crease}
+        angles = {c["half"]: c["after_springback_deg"] for c in result.crease}
         add_bend_columns(by_name[f"{stem}-bends.csv"], angles)
 
 
@@ -207,7 +209,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     t0 = time.monotonic()
     workers = ns.jobs if ns.jobs is not None else min(4, default_workers())
     with Evaluator(workers, ns.scheduler, ns.law) as evaluator:
-        result = compensate(design, target, evaluator, say)
+        result = compensate(design, target, evaluator, say, knobs=ns.knobs)
     say(f"done in {time.monotonic() - t0:.0f} s ({result.cpu_s:.0f} s CPU in simulations)")
     if target.kind == "size" and not result.reached:
         raise InvalidParameterError(

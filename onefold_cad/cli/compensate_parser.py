@@ -3,14 +3,30 @@ starts in milliseconds)."""
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
+from onefold_cad.choices import Knob
 from onefold_cad.cli.help_format import fill, raw_formatter
 from onefold_cad.flags.design_flags import parse_choice, parse_float, parse_int
 from onefold_cad.flags.parser import FlagParser, add_design_flags
 from onefold_cad.templates import DEFAULT_TEMPLATE
 
-__all__ = ["compensate_parser"]
+__all__ = ["compensate_parser", "parse_knobs"]
+
+KNOB_NAMES = tuple(k.value for k in Knob)
+
+
+def parse_knobs(text: str) -> tuple[str, ...]:
+    """``--knobs``: a comma-separated subset of the knobs, at least one, in
+    :class:`~onefold_cad.choices.Knob`'s order."""
+    names = [t.strip().lower() for t in text.split(",") if t.strip()]
+    bad = [n for n in names if n not in KNOB_NAMES]
+    if bad or not names:
+        raise argparse.ArgumentTypeError(
+            f"must be one or more of {', '.join(KNOB_NAMES)}, comma-separated, got {text!r}"
+        )
+    return tuple(k for k in KNOB_NAMES if k in names)
 
 
 def compensate_parser(prog: str) -> FlagParser:
@@ -45,6 +61,12 @@ def compensate_parser(prog: str) -> FlagParser:
         t.add_argument(f"--{name}", type=parse_float, metavar="LENGTH",
                        help=f"{text}, in the design's unit")  # fmt: skip
     r = p.add_argument_group("evaluations")
+    r.add_argument(
+        "--knobs", type=parse_knobs, default=None, metavar="K[,K...]",
+        help="what the search may change, of " + ", ".join(KNOB_NAMES) + " (default: all): "
+        "the fold's angles and height, and the crease set past its fold angle (overbend; "
+        "leave it out where the crease cannot be set apart from the cones)",
+    )  # fmt: skip
     r.add_argument(
         "--law", type=parse_choice(("moment", "j2")), default="moment", metavar="moment|j2",
         help="the bending law of every simulation, as onefold simulate's --law: the 1D moment "

@@ -62,6 +62,12 @@ def _hardening(m: dict[str, Any]) -> str:
     return f", hardening {h:g} MPa ({100 * m.get('kinematic_hardening', 0.0):.3g} % kinematic)"
 
 
+def _overbend(sim: dict[str, Any]) -> str:
+    """', set 6 deg past its fold' or ''."""
+    ob = sim.get("crease_overbend_deg") or 0.0
+    return f", set {ob:g} deg past its fold" if ob else ""
+
+
 def _peeq(value: float | None, at: list[float] | None, unit: str) -> str:
     """'; largest plastic strain 0.17 at (x, y) unit' or ''."""
     if value is None:
@@ -78,7 +84,7 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
         f"{name}  simulated as steel (E {m['youngs_modulus_GPa']:g} GPa, nu {m['poisson']:g}, "
         f"yield stress {m['yield_stress_MPa']:g} MPa{_hardening(m)}, t {m['thickness']:g} {u}; "
         f"law {sim.get('law', 'moment')}, reference {sim['reference']}, supports "
-        f"{sim['supports']}, crease {sim['crease']})",
+        f"{sim['supports']}, crease {sim['crease']}{_overbend(sim)})",
         f"  {'weight':<24} {sim['weight_N']:.6g} N",
     ]
     mesh = sim["mesh"]

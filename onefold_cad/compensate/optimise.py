@@ -1,9 +1,11 @@
 """The compensation loop: which fold to form so that the steel stands as the target.
 
 The knobs are the fold the sheet is formed to: alpha and beta (deg) and h_c
-(as a fraction of its limit R cos(alpha)). alpha and beta move the standing
-form along nearly one direction (higher and narrower together); h_c adds
-another, which a height and span together need. Each evaluation is
+(as a fraction of its limit R cos(alpha)), and the crease's set angle past
+the fold angle (``overbend``, deg: the cones formed as designed, the crease
+set further). alpha and beta move the standing form along nearly one
+direction (higher and narrower together); h_c adds another, which a height
+and span together need; the overbend closes the crease alone. Each evaluation is
 ``onefold simulate`` of the candidate (forming, springback, standing).
 
 1. coarse mesh: ``scipy.optimize.least_squares`` (trust-region reflective,
@@ -24,10 +26,11 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from onefold_cad.choices import Knob
 from onefold_cad.compensate.evaluate import (
     Standing,
     node_weights,
@@ -44,9 +47,10 @@ __all__ = ["KNOBS", "Candidate", "Search", "knob_strengths", "search"]
 #: The knobs: name, unit, forward-difference step, lower and upper bound
 #: (h_c as a fraction of R cos(alpha)).
 KNOBS = (
-    ("alpha", "deg", 0.5, 0.5, 89.5),
-    ("beta", "deg", 0.5, 0.5, 89.5),
-    ("h_c", "of R cos(alpha)", 0.01, -0.95, 0.95),
+    (Knob.ALPHA.value, "deg", 0.5, 0.5, 89.5),
+    (Knob.BETA.value, "deg", 0.5, 0.5, 89.5),
+    (Knob.H_C.value, "of R cos(alpha)", 0.01, -0.95, 0.95),
+    (Knob.OVERBEND.value, "deg", 0.5, -30.0, 30.0),
 )
 #: Steps of the least squares on each mesh (function evaluations).
 COARSE_STEPS = 8
@@ -62,7 +66,7 @@ class Candidate:
     """One simulated candidate.
 
     Attributes:
-        knobs: ``{alpha, beta, h_c}`` (deg, deg, design unit).
+        knobs: ``{alpha, beta, h_c, overbend}`` (deg, deg, design unit, deg).
         level: the mesh level.
         standing: the simulation, or the error's line that refused it.
         cost: half the squared residual (inf when it does not stand).
@@ -113,14 +117,16 @@ def _design_at(base: Design, names: tuple[str, ...], y: Array, fixed: dict[str, 
     v.update(dict(zip(names, (float(a) for a in y), strict=True)))
     half = base.frame.radius * math.cos(math.radians(v["alpha"]))
     frame = base.frame.with_changes(alpha=v["alpha"], beta=v["beta"], h_c=v["h_c"] * half)
-    return base.with_changes(frame=frame)
+    material = replace(base.material, crease_overbend=v["overbend"] or None)
+    return base.with_changes(frame=frame, material=material)
 
 
 def knob_values(design: Design) -> dict[str, float]:
     """The knobs of ``design`` (h_c as a fraction of R cos(alpha))."""
     f = design.frame
     half = f.radius * math.cos(math.radians(f.alpha))
-    return {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c / half}
+    overbend = design.material.crease_overbend or 0.0
+    return {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c / half, "overbend": overbend}
 
 
 class _Problem:
@@ -165,7 +171,8 @@ class _Problem:
             cost = math.inf if r is None else 0.5 * float(r @ r)
             if not isinstance(s, str):
                 self.found.cpu_s += s.cpu_s
-            knobs = {"alpha": d.frame.alpha, "beta": d.frame.beta, "h_c": d.frame.h_c}
+            knobs = {"alpha": d.frame.alpha, "beta": d.frame.beta, "h_c": d.frame.h_c,
+                     "overbend": d.material.crease_overbend or 0.0}  # fmt: skip
             self.found.candidates.append(Candidate(knobs, level, s, cost, mx, rms))
             out.append(np.full(self.size_r, self.penalty) if r is None else r)
         self.report(level)
@@ -202,6 +209,7 @@ def search(
     *,
     coarse: str = "coarse",
     fine: str = "normal",
+    knobs: tuple[str, ...] | None = None,
 ) -> Search:
     """Search the knobs from ``start`` (see the module docstring).
 
@@ -211,11 +219,13 @@ def search(
         evaluator: where the simulations run.
         say: one progress line at a time (stderr).
         coarse, fine: the mesh levels of the two stages.
+        knobs: the knobs moved, in :data:`KNOBS`'s order (None: all); the
+            others stay at ``start``'s values.
     """
     from scipy.optimize import least_squares
 
     found = Search()
-    names = ("alpha", "beta", "h_c")
+    names = tuple(k[0] for k in KNOBS if knobs is None or k[0] in knobs)
     found.knobs = names
     fixed = knob_values(start)
     spec = {k[0]: k for k in KNOBS}
@@ -276,7 +286,9 @@ def search(
     )  # fmt: skip
     y1 = fit.x
     if fine != coarse:
-        say(f"to the {fine} mesh from alpha {y1[0]:.4g}, beta {y1[1]:.4g} deg")
+        say(f"to the {fine} mesh from " + ", ".join(
+            f"{n} {v:.4g}" for n, v in zip(names, y1, strict=True)
+        ))  # fmt: skip
         if "J" not in jac_kept:
             coarse_jac(y1)
         jac = jac_kept["J"]

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -90,7 +90,8 @@ class Compensation:
         before, after: their standing steel against the target (normal mesh).
         before_sim, after_sim: their simulations (mesh, nodes, faces).
         crease: per crease half: name, bend, fold_to_deg (the compensated
-            fold's angle) and after_springback_deg (as the steel stands).
+            fold's angle plus its crease overbend: the angle the crease is
+            set to) and after_springback_deg (as the steel stands).
         found: the search (candidates, knobs, sensitivity, limits).
         reached: the target is met; ``verdict``: one sentence.
     """
@@ -128,8 +129,18 @@ class Compensation:
             "designed": self.designed,
             "before": self.before.to_data(),
             "after": self.after.to_data(),
-            "start": {"alpha": f0.alpha, "beta": f0.beta, "h_c": f0.h_c},
-            "compensated": {"alpha": f1.alpha, "beta": f1.beta, "h_c": f1.h_c},
+            "start": {
+                "alpha": f0.alpha,
+                "beta": f0.beta,
+                "h_c": f0.h_c,
+                "overbend": self.start.material.crease_overbend or 0.0,
+            },
+            "compensated": {
+                "alpha": f1.alpha,
+                "beta": f1.beta,
+                "h_c": f1.h_c,
+                "overbend": self.compensated.material.crease_overbend or 0.0,
+            },
             "knobs": list(self.found.knobs),
             "sensitivity": self.found.sensitivity,
             "crease": [dict(c) for c in self.crease],
@@ -188,17 +199,19 @@ def compensate(
     coarse: str = "coarse",
     fine: str = "normal",
     check: bool = True,
+    knobs: tuple[str, ...] | None = None,
 ) -> Compensation:
     """Compensate ``design`` for ``target``: the search, then the best fold and
     the uncompensated one simulated on ``fine`` with the convergence check
     (``check``; False: without it, as the explorer's coarse preview runs, and
-    the reports' ``convergence`` is None), side by side.
+    the reports' ``convergence`` is None), side by side. ``knobs``: the knobs
+    the search moves (None: all of :data:`~onefold_cad.compensate.optimise.KNOBS`).
 
     Raises:
         ConvergenceError: neither the start nor any candidate stands on ``fine``.
     """
     start = target.form if target.kind == "size" else design
-    found = search(start, target, evaluator, say, coarse=coarse, fine=fine)
+    found = search(start, target, evaluator, say, coarse=coarse, fine=fine, knobs=knobs)
     best = found.best(fine) or found.best(coarse)
     if best is None:
         raise ConvergenceError(
@@ -208,7 +221,10 @@ def compensate(
         )
     k = best.knobs
     frame = start.frame.with_changes(alpha=k["alpha"], beta=k["beta"], h_c=k["h_c"])
-    compensated = start.with_changes(frame=frame, name=f"{design.name}-compensated")
+    material = replace(start.material, crease_overbend=k["overbend"] or None)
+    compensated = start.with_changes(
+        frame=frame, material=material, name=f"{design.name}-compensated"
+    )
     say(f"checking the compensated fold and the uncompensated one on the {fine} mesh")
     before_sim, after_sim = evaluator.map([start, compensated], fine, check=check)
     for s in (before_sim, after_sim):
@@ -233,7 +249,7 @@ def compensate(
         {
             "half": c.name,
             "bend": c.bend,
-            "fold_to_deg": c.fold_angle_deg,
+            "fold_to_deg": compensated.material.crease_set_angle(c.fold_angle_deg),
             "after_springback_deg": c.fold_angle_deg
             + back.get("+x" if c.name == "plus_x" else "-x", np.nan),
         }

@@ -62,6 +62,9 @@ KEEP_JOBS = 4
 MAX_LINES = 200
 #: The page's controls a compensation changes.
 KNOBS = ("alpha", "beta", "hc_fraction")
+#: What the search moves: the sliders' knobs only (the page has no crease
+#: overbend to load an answer's into).
+SEARCHED = ("alpha", "beta", "h_c")
 
 _ETA = re.compile(r"ETA (.+)$")
 
@@ -234,7 +237,7 @@ class Compensations:
         try:
             with _Watched(job, self._lock) as evaluator:
                 c = compensate(design, target, evaluator, self._say(job), coarse=LEVEL,
-                               fine=LEVEL, check=False)  # fmt: skip
+                               fine=LEVEL, check=False, knobs=SEARCHED)  # fmt: skip
             result = _plain(c.to_data())
             start = {k: v for k, v in job.params.items() if k != "template"}
             result["values"] = {**start, **_knobs(c.compensated)}

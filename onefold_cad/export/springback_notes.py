@@ -4,8 +4,9 @@ to fold each crease half to and the angle it stands at after springback
 
 :func:`add_dxf_notes` appends TEXT lines on layer NOTES under the notes
 already there (same column and height), audits and rewrites the file
-atomically; :func:`add_bend_columns` adds the columns ``fold_to_deg`` and
-``after_springback_deg`` to ``NAME-bends.csv``, by crease half.
+atomically; :func:`add_bend_columns` adds the column ``after_springback_deg``
+to ``NAME-bends.csv`` (which has the angle to fold to, ``fold_to_deg``), by
+crease half.
 """
 
 from __future__ import annotations
@@ -48,11 +49,9 @@ def add_dxf_notes(path: str | os.PathLike[str], lines: Sequence[str]) -> Path:
     return Path(path)
 
 
-def add_bend_columns(
-    path: str | os.PathLike[str], angles: Mapping[str, tuple[float, float]]
-) -> Path:
-    """Add ``fold_to_deg`` and ``after_springback_deg`` to the bend sheet:
-    ``angles`` maps a crease half's name (the ``half`` column) to the pair."""
+def add_bend_columns(path: str | os.PathLike[str], angles: Mapping[str, float]) -> Path:
+    """Add ``after_springback_deg`` to the bend sheet: ``angles`` maps a
+    crease half's name (the ``half`` column) to it."""
     rows = list(csv.reader(Path(path).read_text(encoding="utf-8").splitlines()))
     head = rows[0]
     if "half" not in head:
@@ -60,12 +59,11 @@ def add_bend_columns(
     key = head.index("half")
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
-    writer.writerow([*head, "fold_to_deg", "after_springback_deg"])
+    writer.writerow([*head, "after_springback_deg"])
     for r in rows[1:]:
         if r[key] not in angles:
             raise ExportError(f"{Path(path).name}: no springback for crease half {r[key]!r}")
-        fold_to, after = angles[r[key]]
-        writer.writerow([*r, f"{fold_to:.4f}", f"{after:.4f}"])
+        writer.writerow([*r, f"{angles[r[key]]:.4f}"])
     with atomic_output(path) as tmp:
         tmp.write_text(out.getvalue(), encoding="utf-8")
     return Path(path)

@@ -36,6 +36,10 @@ class BendRow:
             (top: the face the DXF shows).
         fold_angle_deg: the bend angle from flat (deg).
         included_angle_deg: the angle between the flanges after bending (deg).
+        fold_to_deg: the angle the bend is set to (deg): a crease half's fold
+            angle plus the material's crease overbend
+            (:meth:`~onefold_cad.geometry.material.Material.crease_set_angle`);
+            a ruling fold's own fold angle.
         start_x, start_y: where the bend line starts on the blank: the relief
             hole's edge (H when there is no hole).
         end_x, end_y: where it meets the blank's outline.
@@ -63,6 +67,7 @@ class BendRow:
     inside_face: str
     fold_angle_deg: float
     included_angle_deg: float
+    fold_to_deg: float
     start_x: float
     start_y: float
     end_x: float
@@ -85,7 +90,7 @@ class BendRow:
 
 def _row(
     name: str, start: np.ndarray, end: np.ndarray, b: BendValues, used: float, comp: Compensation,
-    pattern: FlatPattern,
+    pattern: FlatPattern, fold_to: float,
 ) -> BendRow:  # fmt: skip
     return BendRow(
         half=name,
@@ -93,6 +98,7 @@ def _row(
         inside_face=b.inside_face,
         fold_angle_deg=b.angle_deg,
         included_angle_deg=b.included_deg,
+        fold_to_deg=fold_to,
         start_x=float(start[0]),
         start_y=float(start[1]),
         end_x=float(end[0]),
@@ -124,10 +130,11 @@ def bend_rows(pattern: FlatPattern) -> tuple[BendRow, ...]:
         start = half.start + d * (min(pattern.hole_diameter / 2.0, full) / full)
         rows.append(
             _row(half.name, start, half.end, half.values, pattern.shift, pattern.move.compensation,
-                 pattern)
+                 pattern, pattern.material.crease_set_angle(half.values.angle_deg))
         )  # fmt: skip
     for f in pattern.fold_rulings:
-        rows.append(_row(f.name, f.start, f.end, f.values, 0.0, Compensation.NONE, pattern))
+        rows.append(_row(f.name, f.start, f.end, f.values, 0.0, Compensation.NONE, pattern,
+                         f.values.angle_deg))  # fmt: skip
     return tuple(rows)
 
 
@@ -144,10 +151,12 @@ def bend_table(pattern: FlatPattern, *, rulings: bool = True) -> str:
     rows = bend_rows(pattern)
     folds = rows[2:]
     for r in rows[:2]:
+        over = r.fold_to_deg - r.fold_angle_deg
+        set_to = f" (the cones), set to {r.fold_to_deg:.2f} (overbend {over:+.2f})" if over else ""
         lines.append(
-            f"{r.half}: {r.direction} ({r.inside_face} face inside), fold {r.fold_angle_deg:.2f}, "
-            f"included {r.included_angle_deg:.2f}; line ({r.start_x:.3f}, {r.start_y:.3f}) -> "
-            f"({r.end_x:.3f}, {r.end_y:.3f}), length {r.length:.3f}"
+            f"{r.half}: {r.direction} ({r.inside_face} face inside), fold {r.fold_angle_deg:.2f}"
+            f"{set_to}, included {r.included_angle_deg:.2f}; line ({r.start_x:.3f}, "
+            f"{r.start_y:.3f}) -> ({r.end_x:.3f}, {r.end_y:.3f}), length {r.length:.3f}"
         )
         lines.append(
             f"  {r.reference} reference: SB {r.setback:.4f}, BA {r.allowance:.4f}, "

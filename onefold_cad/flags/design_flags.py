@@ -155,6 +155,9 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
          "MPa, >= 0 and below the modulus (0: perfectly plastic; for `simulate`)", _MAT, "MPA"),
     Flag("kinematic_hardening", "--kinematic-hardening", parse_float, "the share of the "
          "hardening that is kinematic (Bauschinger), in [0, 1] (for `simulate`)", _MAT, "SHARE"),
+    Flag("crease_overbend", "--crease-overbend", parse_float, "how much further than its fold "
+         "angle each crease half is set, in degrees, in [-45, 45] (the cones formed as designed; "
+         "for `simulate` and the bend sheet)", _MAT, "DEG"),
     Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
          "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
 )  # fmt: skip

@@ -35,6 +35,7 @@ MATERIAL_KEYS = (
     "yield_stress",
     "hardening_modulus",
     "kinematic_hardening",
+    "crease_overbend",
 )
 
 

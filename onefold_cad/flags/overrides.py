@@ -37,6 +37,7 @@ class Overrides:
         "material.yield_stress": "--yield-stress",
         "material.hardening_modulus": "--hardening-modulus",
         "material.kinematic_hardening": "--kinematic-hardening",
+        "material.crease_overbend": "--crease-overbend",
     }
     _QUAD = {
         "x_plus": "--x-plus",
@@ -195,7 +196,7 @@ _SHORT = {"hc": "hc", "hc_fraction": "hcf", "radius": "r", "divisions": "div",
           "x_plus": "xp", "x_minus": "xm",
           "y_plus": "yp", "y_minus": "ym", "thickness": "t", "density": "rho",
           "youngs_modulus": "E", "poisson": "nu", "yield_stress": "sy", "hardening_modulus": "H",
-          "kinematic_hardening": "kin"}  # fmt: skip
+          "kinematic_hardening": "kin", "crease_overbend": "ob"}  # fmt: skip
 
 
 def derived_name(base: str, flags: dict[str, Any]) -> str:

@@ -19,6 +19,7 @@ __all__ = [
     "MAX_MODULUS_GPA",
     "MIN_MODULUS_GPA",
     "MIN_YIELD_MPA",
+    "OVERBEND_MAX",
     "Material",
     "default_relief_hole",
     "sheet_offsets",
@@ -37,6 +38,9 @@ MIN_MODULUS_GPA, MIN_YIELD_MPA = 1e-6, 1e-3
 #: (:data:`onefold_cad.fabrication.rules.PLAUSIBLE_DENSITY`), narrow enough that
 #: a sheet's mass and weight neither underflow nor overflow.
 DENSITY_RANGE = (1e-15, 1e15)
+#: The largest crease overbend either way (deg): a crease set half a right
+#: angle past the cones it joins is a different fold, not an overbend.
+OVERBEND_MAX = 45.0
 
 
 @dataclass(frozen=True)
@@ -68,6 +72,12 @@ class Material:
             plastic), or None (perfectly plastic).
         kinematic_hardening: the share of H that is kinematic (moves the yield
             surface: the Bauschinger effect), in [0, 1], or None (0: isotropic).
+        crease_overbend: how much further than the design's fold angle each
+            crease half is set (deg, in [-OVERBEND_MAX, OVERBEND_MAX]; > 0
+            folds it more), or None (0: set to the fold angle). The cones are
+            formed as designed; the crease alone is set past them (a press
+            brake on the crease line), so the steel stands between the two:
+            ``onefold compensate``'s fourth knob.
 
     The elastic-plastic values are what ``onefold simulate`` needs
     (:mod:`onefold_cad.mechanics`); nothing else reads them.
@@ -86,6 +96,7 @@ class Material:
     yield_stress: float | None = None
     hardening_modulus: float | None = None
     kinematic_hardening: float | None = None
+    crease_overbend: float | None = None
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -112,7 +123,16 @@ class Material:
             set_(self, "density", v)
         set_(self, "sheet_surface", SheetSurface.parse(self.sheet_surface))
         set_(self, "name", str(self.name))
+        if self.crease_overbend is not None:
+            set_(self, "crease_overbend", closed_interval(
+                "crease_overbend", self.crease_overbend, -OVERBEND_MAX, OVERBEND_MAX, " deg"
+            ))  # fmt: skip
         self._check_elastic_plastic()
+
+    def crease_set_angle(self, fold_angle_deg: float) -> float:
+        """The angle (deg) a crease half of fold angle ``fold_angle_deg`` is set
+        to: the fold angle plus :attr:`crease_overbend`."""
+        return fold_angle_deg + (self.crease_overbend or 0.0)
 
     def _check_elastic_plastic(self) -> None:
         """Validate Young's modulus, Poisson's ratio and the yield stress (each

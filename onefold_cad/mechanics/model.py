@@ -27,6 +27,7 @@ from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_
 from onefold_cad.fabrication.rules import PLAUSIBLE_DENSITY
 from onefold_cad.geometry.checks import shown
 from onefold_cad.geometry.folding import FoldedSheet
+from onefold_cad.geometry.material import Material
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.geometry.resting.placement import RestingPlacement
 from onefold_cad.mechanics.energy import second_fundamental_form
@@ -213,15 +214,27 @@ def _director_normals(folded: FoldedSheet, mesh: SheetMesh, scale: float) -> Arr
     return folded.normals((mid + 1e-6 * (centre - mid)) / scale)
 
 
-def _crease_angles(folded: FoldedSheet, mesh: SheetMesh) -> Array:
+def _crease_angles(folded: FoldedSheet, mesh: SheetMesh, material: Material) -> Array:
     """``(kc,)`` each crease edge's set angle (rad; > 0 where the bend is UP, the
-    top faces turning towards each other): its crease half's fold angle."""
+    top faces turning towards each other): its crease half's fold angle plus
+    the material's crease overbend (:meth:`Material.crease_set_angle`).
+
+    Raises:
+        InvalidParameterError: a half's set angle outside (0, 180) deg.
+    """
     plus, minus = folded.crease
     x = mesh.nodes[mesh.edges[mesh.crease_edges]].mean(axis=1)[:, 0]
     out = np.empty(len(x))
     for half, where in ((plus, x > 0.0), (minus, x <= 0.0)):
         sign = 1.0 if half.bend == "UP" else -1.0
-        out[where] = sign * math.radians(half.fold_angle_deg)
+        angle = material.crease_set_angle(half.fold_angle_deg)
+        if not 0.0 < angle < 180.0:
+            raise InvalidParameterError(
+                "crease_overbend", f"{material.crease_overbend:g} deg sets crease half {half.name} "
+                f"({half.fold_angle_deg:.4g} deg) to {angle:.4g} deg: the set angle must be "
+                "above 0 and below 180 deg"
+            )  # fmt: skip
+        out[where] = sign * math.radians(angle)
     return out
 
 
@@ -299,7 +312,7 @@ def sheet_model(
     )
     designed = folded.map_points(mesh.nodes / scale) * scale
     normals = _director_normals(folded, mesh, scale)
-    angles = _crease_angles(folded, mesh)
+    angles = _crease_angles(folded, mesh, design.material)
     if crease == "held":
         stiffness = np.full(
             len(angles), HELD_STIFFNESS * material.bending_stiffness / material.thickness

@@ -221,7 +221,8 @@ class Simulation:
     Attributes:
         unit: the design's length unit.
         supports: 'anchored' or 'frictionless'; ``reference``: 'flat' or
-            'designed'; ``crease``: 'held' or 'elastic'.
+            'designed'; ``crease``: 'held' or 'elastic'; ``crease_overbend_deg``:
+            how far past its fold angle the crease is set (deg).
         weight_N: the sheet's weight.
         nodes, triangles, h_max: the mesh (h_max in the design's unit).
         yield_stress_MPa, youngs_modulus_GPa, poisson, thickness: the values used.
@@ -286,6 +287,7 @@ class Simulation:
     law: str = "moment"
     hardening_modulus_MPa: float = 0.0
     kinematic_hardening: float = 0.0
+    crease_overbend_deg: float = 0.0
     fields: dict[str, Any] | None = field(default=None, repr=False)
     stage_positions: dict[str, Array] | None = field(default=None, repr=False)
     pending_reserve: ReserveCheck | None = field(default=None, repr=False)
@@ -297,6 +299,7 @@ class Simulation:
             "supports": self.supports,
             "reference": self.reference,
             "crease": self.crease,
+            "crease_overbend_deg": self.crease_overbend_deg,
             "law": self.law,
             "material": {
                 "youngs_modulus_GPa": self.youngs_modulus_GPa,

@@ -108,3 +108,24 @@ def test_verbose_adds_newton_s_iterations_and_the_check_is_named():
     lines = proc.stderr.splitlines()
     assert any("released: Newton step 0, residual" in ln for ln in lines)
     assert any(": convergence check: standing done (" in ln for ln in lines), proc.stderr
+
+
+def test_crease_overbend_reaches_the_model_and_is_echoed(cli) -> None:
+    rc, out, err = cli("simulate", NAME, "--mesh", "coarse", "--crease-overbend", "6", "-q")
+    assert rc == 0, err
+    assert out.splitlines()[0].endswith("crease held, set 6 deg past its fold)")
+    rc, out, err = cli("simulate", NAME, "--mesh", "coarse", "--crease-overbend", "6", "-q",
+                       "--json")  # fmt: skip
+    report = json.loads(out)
+    assert report["simulation"]["crease_overbend_deg"] == 6.0
+    assert report["inputs"]["material"]["crease_overbend"] == 6.0
+    # the crease set further closes the released fold: less springback than as designed
+    rc, plain, _ = cli("simulate", NAME, "--mesh", "coarse", "-q", "--json")
+    assert (report["simulation"]["released"]["max_deviation"]
+            < json.loads(plain)["simulation"]["released"]["max_deviation"])  # fmt: skip
+
+
+def test_an_overbend_out_of_range_exits_2_in_one_line(cli) -> None:
+    rc, out, err = cli("simulate", NAME, "--mesh", "coarse", "--crease-overbend", "60")
+    assert rc == 2 and out == ""
+    assert err == "onefold: error: --crease-overbend: must be in [-45, 45] deg, got 60\n"

@@ -1,7 +1,9 @@
 """A stand-in for ``onefold simulate`` whose answer is known: the "steel"
 stands as the designed form of the fold with alpha and beta less by
-:data:`SPRING` (degrees), at the nodes of a small triangulation of the flat
-sheet. Compensating for it must form the fold :data:`SPRING` more; no
+:data:`SPRING` (degrees) and more by :data:`PER_OVERBEND` times the crease
+overbend (degrees), at the nodes of a small triangulation of the flat sheet.
+Compensating for it must form the fold :data:`SPRING` more, or (the
+overbend alone) set the crease :data:`OVERBEND` degrees past the fold; no
 simulation runs (the tests stay fast)."""
 
 from __future__ import annotations
@@ -15,6 +17,10 @@ from onefold_cad.design import Design, fold_design, rest_once
 
 #: How much the fake steel opens the fold (alpha, beta), deg.
 SPRING = (3.0, 2.0)
+#: How much a degree of crease overbend closes the fold (alpha, beta), deg.
+PER_OVERBEND = (0.5, 1.0 / 3.0)
+#: The overbend that alone undoes :data:`SPRING`.
+OVERBEND = 6.0
 
 
 def flat_mesh(design: Design, n: int = 12) -> tuple[np.ndarray, np.ndarray]:
@@ -51,8 +57,12 @@ def fake_standing(design: Design, level: str, check: bool = False, law: str = "m
     is recorded in :data:`LAWS` and changes nothing."""
     LAWS.append(law)
     f = design.frame
+    ob = design.material.crease_overbend or 0.0
     opened = design.with_changes(
-        frame=f.with_changes(alpha=f.alpha - SPRING[0], beta=f.beta - SPRING[1])
+        frame=f.with_changes(
+            alpha=f.alpha - SPRING[0] + PER_OVERBEND[0] * ob,
+            beta=f.beta - SPRING[1] + PER_OVERBEND[1] * ob,
+        )
     )
     folded = fold_design(opened)
     rest = rest_once(folded)

@@ -10,7 +10,7 @@ from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.run import compensate
 from onefold_cad.compensate.target import Target, make_target
 from onefold_cad.templates import find_template, load_template
-from tests.compensate.fake_steel import SPRING, fake_standing
+from tests.compensate.fake_steel import OVERBEND, PER_OVERBEND, SPRING, fake_standing
 
 
 @pytest.fixture
@@ -18,11 +18,14 @@ def fake(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
 
 
+FOLD = ("alpha", "beta", "h_c")
+
+
 def test_design_target_forms_the_fold_more_by_the_springback(fake: None) -> None:
     design = load_template(find_template("broken-vault"))
     lines: list[str] = []
     with Evaluator(1) as ev:
-        result = compensate(design, make_target(design, "design"), ev, lines.append)
+        result = compensate(design, make_target(design, "design"), ev, lines.append, knobs=FOLD)
     f, f0 = result.compensated.frame, design.frame
     # the fake steel opens the fold by SPRING: the answer is the design plus SPRING
     assert f.alpha == pytest.approx(f0.alpha + SPRING[0], abs=0.05)
@@ -35,7 +38,7 @@ def test_design_target_forms_the_fold_more_by_the_springback(fake: None) -> None
     assert {c["half"] for c in result.crease} == {"plus_x", "minus_x"}
     data = result.to_data()
     assert data["simulations"] == len(result.found.candidates) + 2
-    assert set(data["sensitivity"]) == {"alpha", "beta", "h_c"}
+    assert set(data["sensitivity"]) == set(FOLD)
     # opening alpha lowers the fake steel (a flatter vault): height per deg > 0
     assert data["sensitivity"]["alpha"]["height"] > 0
 
@@ -53,7 +56,44 @@ def test_size_target_is_met_by_the_steel(fake: None) -> None:
     assert result.reached, result.verdict
     assert result.after.height == pytest.approx(steel.height, rel=0.01)
     assert result.after.span == pytest.approx(steel.span, rel=0.01)
-    assert result.found.knobs == ("alpha", "beta", "h_c")
+    assert result.found.knobs == ("alpha", "beta", "h_c", "overbend")
+
+
+def test_the_crease_overbend_alone_compensates_and_sets_the_crease_past_the_fold(
+    fake: None,
+) -> None:
+    from onefold_cad.design import fold_design
+
+    design = load_template(find_template("broken-vault"))
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lambda s: None,
+                            knobs=("overbend",))  # fmt: skip
+    assert result.reached, result.verdict
+    # the fake steel closes the fold by PER_OVERBEND a degree: OVERBEND undoes SPRING
+    assert result.compensated.material.crease_overbend == pytest.approx(OVERBEND, abs=0.05)
+    assert result.compensated.frame == design.frame  # the cones as designed
+    data = result.to_data()
+    assert data["compensated"]["overbend"] == result.compensated.material.crease_overbend
+    assert data["start"]["overbend"] == 0.0
+    # the crease is set to the fold's own angle plus the overbend
+    angles = {c.name: c.fold_angle_deg for c in fold_design(design).crease}
+    for c in result.crease:
+        assert c["fold_to_deg"] == pytest.approx(angles[c["half"]] + OVERBEND, abs=0.05)
+
+
+def test_every_knob_together_reaches_the_design(fake: None) -> None:
+    # alpha, beta and the overbend repeat each other on the fake steel: any of
+    # their combinations that closes the fold by SPRING is an answer
+    design = load_template(find_template("broken-vault"))
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lambda s: None)
+    assert result.found.knobs == ("alpha", "beta", "h_c", "overbend")
+    assert result.reached, result.verdict
+    assert result.after.max_deviation < 0.02 * result.before.max_deviation
+    f, f0 = result.compensated.frame, design.frame
+    ob = result.compensated.material.crease_overbend or 0.0
+    assert f.alpha + PER_OVERBEND[0] * ob == pytest.approx(f0.alpha + SPRING[0], abs=0.1)
+    assert f.beta + PER_OVERBEND[1] * ob == pytest.approx(f0.beta + SPRING[1], abs=0.1)
 
 
 def test_a_target_out_of_the_family_s_reach_says_what_limits_it(monkeypatch) -> None:
@@ -97,7 +137,7 @@ def test_a_start_that_does_not_stand_on_the_coarse_mesh_is_searched_on_the_norma
     design = load_template(find_template("broken-vault"))
     lines: list[str] = []
     with Evaluator(1) as ev:
-        result = compensate(design, make_target(design, "design"), ev, lines.append)
+        result = compensate(design, make_target(design, "design"), ev, lines.append, knobs=FOLD)
     assert result.reached
     assert result.compensated.frame.alpha == pytest.approx(design.frame.alpha + SPRING[0], abs=0.05)
     assert any("the search runs on the normal mesh" in line for line in lines)

@@ -31,13 +31,16 @@ def _press(page, selector: str) -> None:
 
 
 def _reference(server, params: dict[str, str]):
-    """compensate() called here as the explorer runs it: coarse search, coarse
-    checks without the convergence check, in this process."""
+    """compensate() called here as the explorer runs it: coarse search of the
+    sliders' knobs (alpha, beta, h_c: no crease overbend), coarse checks
+    without the convergence check, in this process."""
     design = design_from_params(params, server.templates, server.initial)
     lines: list[str] = []
     with Evaluator(1) as ev:
         c = compensate(design, make_target(design, "design"), ev, lines.append,
-                       coarse="coarse", fine="coarse", check=False)  # fmt: skip
+                       coarse="coarse", fine="coarse", check=False,
+                       knobs=("alpha", "beta", "h_c"))  # fmt: skip
+    assert c.found.knobs == ("alpha", "beta", "h_c")
     return c, lines
 
 
@@ -103,6 +106,7 @@ def test_compensate_in_the_page(browser, server):
         f = c.compensated.frame
         for k in ("alpha", "beta", "h_c"):
             _same(r["compensated"][k], getattr(f, k))
+        assert r["compensated"]["overbend"] == 0.0  # no slider to load an overbend into
         for got, want in zip(r["crease"], c.crease, strict=True):
             assert got["half"] == want["half"] and got["bend"] == want["bend"]
             _same(got["fold_to_deg"], want["fold_to_deg"])

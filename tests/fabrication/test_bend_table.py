@@ -93,6 +93,30 @@ def test_table_has_a_line_per_half_and_is_in_the_notes(asym):
         assert line in flat_pattern_notes(pattern)
 
 
+def test_the_crease_is_set_past_its_fold_by_the_overbend_and_the_table_says_so(tmp_path, asym):
+    from dataclasses import replace
+
+    design, folded, _ = asym
+    over = design.with_changes(material=replace(MAT, crease_overbend=4.25))
+    pattern = flat_pattern(over, folded)
+    rows = bend_rows(pattern)
+    lines = bend_table(pattern).splitlines()
+    for half, row in zip(folded.crease, rows, strict=True):
+        assert row.fold_angle_deg == pytest.approx(half.fold_angle_deg, abs=1e-9)  # the cones
+        assert row.fold_to_deg == pytest.approx(half.fold_angle_deg + 4.25, abs=1e-9)
+        line = next(ln for ln in lines if ln.startswith(half.name + ":"))
+        assert f"set to {half.fold_angle_deg + 4.25:.2f} (overbend +4.25)" in line
+    with (write_bend_csv(pattern, tmp_path / "o.csv")).open(newline="") as f:
+        got = [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(f)]
+    assert [float(r["fold_to_deg"]) for r in got] == pytest.approx(
+        [h.fold_angle_deg + 4.25 for h in folded.crease], abs=0.005 + 1e-9
+    )
+    # without an overbend the crease is set to its fold angle, and the table says nothing more
+    plain = bend_rows(flat_pattern(design, folded))
+    assert [r.fold_to_deg for r in plain] == [r.fold_angle_deg for r in plain]
+    assert "set to" not in bend_table(flat_pattern(design, folded))
+
+
 def test_from_a_design_atomic_and_nothing_on_failure(tmp_path, asym):
     design, folded, pattern = asym
     a = write_bend_csv(design, tmp_path / "a.csv").read_text()
@@ -101,7 +125,8 @@ def test_from_a_design_atomic_and_nothing_on_failure(tmp_path, asym):
         write_bend_csv(pattern, tmp_path / "missing" / "c.csv")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
     none = write_bend_csv(design, tmp_path / "n.csv", folded, compensation="none").read_text()
-    assert ",none," in none and float(none.splitlines()[1].split(",")[18]) == 0.0  # shift_used
+    shift_used = [f.split(" [")[0] for f in none.splitlines()[0].split(",")].index("shift_used")
+    assert ",none," in none and float(none.splitlines()[1].split(",")[shift_used]) == 0.0
 
 
 def test_the_paper_fans_ruling_folds_are_rows_too():
