@@ -140,7 +140,8 @@ def run(template: str, jobs: int, done: Path | None = None) -> dict:
         "height": s["height"], "span": s["span"], "design_height": d["height"],
         "design_span": d["span"], "mesh_change": change, "simulations": c["simulations"],
         "cpu_s": cpu, "wall_s": wall, "alpha": c["compensated"]["alpha"],
-        "beta": c["compensated"]["beta"], "start": c["start"],
+        "beta": c["compensated"]["beta"], "overbend": c["compensated"].get("overbend", 0.0),
+        "start": c["start"],
     }  # fmt: skip
     row["pass"] = bool(
         after_max <= before["max_deviation"] / 5
@@ -167,7 +168,8 @@ def table(rows: list[dict]) -> str:
             f"{r['after_max']:.4g} / {r['after_rms']:.4g} {u} | {r['height']:.5g} "
             f"({r['design_height']:.5g}) {u} | {r['span']:.5g} ({r['design_span']:.5g}) {u} | "
             f"{100 * r['mesh_change']:.2g} % | alpha {r['alpha']:.4g} ({r['start']['alpha']:.4g}), "
-            f"beta {r['beta']:.4g} ({r['start']['beta']:.4g}) deg | {r['simulations']} | "
+            f"beta {r['beta']:.4g} ({r['start']['beta']:.4g}) deg, crease overbend "
+            f"{r.get('overbend', 0.0):.3g} deg | {r['simulations']} | "
             f"{r['cpu_s']:.0f} s / {_wall(r['wall_s'])} | {'PASS' if r['pass'] else 'FAIL'} |"
         )
     return head + "\n".join(lines) + "\n"

@@ -35,3 +35,20 @@ def test_summary_names_the_smallest_max_and_a_fifth_of_the_start() -> None:
     assert row.endswith("| 5 s |")
     fell = (30.0, 30.0, 0.0, None, None, 1.0)
     assert "falls" in cf.summary("t", "coarse", "mm", fell, rows)
+
+
+def test_the_polished_line_names_the_overbend_when_it_was_polished_too() -> None:
+    start = (30.0, 30.0, 0.0, 300.0, 100.0, 2.0)
+    rows = [(32.0, 30.0, 0.5, 180.0, 70.0, 1.0)]
+    polished = (33.0, 29.0, 0.4, 150.0, 60.0, 40.0)
+    plain = cf.summary("t", "coarse", "mm", start, rows, polished)
+    assert plain.splitlines()[-1] == (
+        "Polished from the grid's best by Nelder-Mead on the largest distance itself: "
+        "150 mm at alpha 33, beta 29 deg, h_c 0.4 (40 s CPU)."
+    )
+    both = cf.summary("t", "coarse", "mm", start, rows, polished, -7.5)
+    assert both.splitlines()[-1] == (
+        "Polished from the grid's best by Nelder-Mead on the largest distance itself (the "
+        "crease overbend too): 150 mm at alpha 33, beta 29 deg, h_c 0.4, crease overbend "
+        "-7.5 deg (40 s CPU)."
+    )

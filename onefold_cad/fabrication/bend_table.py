@@ -130,7 +130,7 @@ def bend_rows(pattern: FlatPattern) -> tuple[BendRow, ...]:
         start = half.start + d * (min(pattern.hole_diameter / 2.0, full) / full)
         rows.append(
             _row(half.name, start, half.end, half.values, pattern.shift, pattern.move.compensation,
-                 pattern, pattern.material.crease_set_angle(half.values.angle_deg))
+                 pattern, half.set_angle_deg)
         )  # fmt: skip
     for f in pattern.fold_rulings:
         rows.append(_row(f.name, f.start, f.end, f.values, 0.0, Compensation.NONE, pattern,

@@ -77,6 +77,9 @@ class FoldHalf:
             sheet frame.
         values: the bend model of this half (reference surface, SB, BA, BD,
             shift); all 0 when t = 0.
+        set_angle_deg: the angle the crease half is set to (deg): the fold
+            angle plus the material's crease overbend
+            (:meth:`~onefold_cad.geometry.material.Material.crease_set_angle`).
     """
 
     name: str
@@ -86,6 +89,7 @@ class FoldHalf:
     bend: str
     zone: Array
     values: BendValues
+    set_angle_deg: float
 
     @property
     def layer(self) -> str:
@@ -94,8 +98,12 @@ class FoldHalf:
 
     @property
     def label(self) -> str:
-        """Direction and angle, e.g. 'DOWN 125.23 deg'."""
-        return f"{self.bend} {self.angle_deg:.2f} deg"
+        """Direction and angle, e.g. 'DOWN 125.23 deg' (with a crease overbend
+        'UP 82.82 deg, set to 87.82': the angle to set it to)."""
+        over = self.set_angle_deg != self.angle_deg
+        return f"{self.bend} {self.angle_deg:.2f} deg" + (
+            f", set to {self.set_angle_deg:.2f}" if over else ""
+        )
 
     @property
     def allowance(self) -> float:
@@ -332,6 +340,7 @@ def flat_pattern(
                 crease.bend,
                 zone,
                 b,
+                mat.crease_set_angle(b.angle_deg),
             )
         )
     ends = folded.rulings_flat[:, 1]

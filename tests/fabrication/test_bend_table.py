@@ -106,6 +106,12 @@ def test_the_crease_is_set_past_its_fold_by_the_overbend_and_the_table_says_so(t
         assert row.fold_to_deg == pytest.approx(half.fold_angle_deg + 4.25, abs=1e-9)
         line = next(ln for ln in lines if ln.startswith(half.name + ":"))
         assert f"set to {half.fold_angle_deg + 4.25:.2f} (overbend +4.25)" in line
+    # the bend lines' labels on the drawing, and the notes, give the angle to set
+    for fh, half in zip(pattern.halves, folded.crease, strict=True):
+        want = f"{half.bend} {half.fold_angle_deg:.2f} deg, set to {half.fold_angle_deg + 4.25:.2f}"
+        assert fh.label == want
+        side = "+x" if half.name == "plus_x" else "-x"
+        assert f"fold half {side}: {want} (layer BEND_{half.bend})" in flat_pattern_notes(pattern)
     with (write_bend_csv(pattern, tmp_path / "o.csv")).open(newline="") as f:
         got = [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(f)]
     assert [float(r["fold_to_deg"]) for r in got] == pytest.approx(
@@ -115,6 +121,7 @@ def test_the_crease_is_set_past_its_fold_by_the_overbend_and_the_table_says_so(t
     plain = bend_rows(flat_pattern(design, folded))
     assert [r.fold_to_deg for r in plain] == [r.fold_angle_deg for r in plain]
     assert "set to" not in bend_table(flat_pattern(design, folded))
+    assert all("set to" not in h.label for h in flat_pattern(design, folded).halves)
 
 
 def test_from_a_design_atomic_and_nothing_on_failure(tmp_path, asym):
