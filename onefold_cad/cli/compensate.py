@@ -44,7 +44,7 @@ def _form_line(label: str, f: dict[str, Any], u: str) -> str:
     conv = f["convergence"]
     stands = "stands" if f["stands"] else "does NOT stand"
     return (
-        f"  {label:<14} deviation max {_length(f['max_deviation'], u)}, rms "
+        f"  {label:<16} deviation max {_length(f['max_deviation'], u)}, rms "
         f"{_length(f['rms_deviation'], u)}; height {_length(f['height'], u)}, span "
         f"{_length(f['span'], u)}; {stands}, tipping margin "
         f"{'-' if margin is None else f'{margin:.3g} deg'}"
@@ -76,21 +76,21 @@ def compensation_lines(name: str, c: dict[str, Any]) -> list[str]:
         f"target {aim}",
         _form_line("uncompensated", c["before"], u),
         _form_line("compensated", c["after"], u),
-        f"  {'fold to':<14} alpha {k['alpha']:.5g} deg (was {s['alpha']:.5g}), beta "
+        f"  {'fold to':<16} alpha {k['alpha']:.5g} deg (was {s['alpha']:.5g}), beta "
         f"{k['beta']:.5g} deg (was {s['beta']:.5g}), h_c {k['h_c']:.5g} {u} (was "
         f"{s['h_c']:.5g}), crease overbend {k.get('overbend', 0.0):.3g} deg (was "
         f"{s.get('overbend', 0.0):.3g})",
     ]
     for cr in c["crease"]:
         out.append(
-            f"  {'crease ' + cr['half']:<14} fold to {cr['fold_to_deg']:.4g} deg ({cr['bend']}); "
+            f"  {'crease ' + cr['half']:<16} set to {cr['fold_to_deg']:.4g} deg ({cr['bend']}); "
             f"standing it is {cr['after_springback_deg']:.4g} deg"
         )
     for knob, rec in c["sensitivity"].items():
         unit = "deg" if knob != "h_c" else u
         parts = ", ".join(f"{q} {v:+.3g} {u}" for q, v in rec.items())
-        out.append(f"  {'per ' + unit + ' ' + knob:<14} {parts}")
-    out.append(f"  {'simulations':<14} {c['simulations']} ({c['cpu_s']:.0f} s CPU); {c['verdict']}")
+        out.append(f"  {'per ' + unit + ' ' + knob:<16} {parts}")
+    out.append(f"  {'simulations':<16} {c['simulations']} ({c['cpu_s']:.0f} s CPU); {c['verdict']}")
     return out
 
 

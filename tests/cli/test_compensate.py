@@ -242,11 +242,15 @@ def test_the_text_report_says_before_after_the_fold_and_the_creases(cli, monkeyp
     assert lines[0].startswith(
         f"{NAME}  compensated for springback and weight (the moment law): target its own"
     )
-    assert lines[1].lstrip().startswith("uncompensated  deviation max")
-    assert lines[2].lstrip().startswith("compensated    deviation max")
+    assert lines[1].startswith("  uncompensated    deviation max")
+    assert lines[2].startswith("  compensated      deviation max")
     base = load_template(find_template(NAME)).frame
     assert f"(was {base.alpha:.5g})" in lines[3] and lines[3].lstrip().startswith("fold to")
+    assert "crease overbend" in lines[3] and lines[3].endswith("deg (was 0)")
     assert sum(line.lstrip().startswith("crease ") for line in lines) == 2
+    # one column for every label, the longest ("per deg overbend") included
+    assert any(line.startswith("  per deg overbend ") for line in lines)
+    assert all(line[18] == " " and line[19] != " " for line in lines[1:])
     assert "ETA" in err  # progress on stderr
     assert lines[-1].lstrip().startswith("simulations") and "met:" in lines[-1]
 
