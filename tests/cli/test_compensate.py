@@ -299,3 +299,24 @@ def test_the_pool_hands_the_law_to_its_workers(monkeypatch) -> None:
         ev._pool = ThreadPoolExecutor(2)  # the pool's own map, in this process
         out = ev.map([design, design], "coarse")
     assert len(out) == 2 and LAWS == ["j2", "j2"]
+
+
+def test_an_overbend_answer_reaches_the_template_and_the_bend_sheet(cli, monkeypatch, tmp_path):
+    from onefold_cad.design import fold_design
+    from tests.compensate.fake_steel import OVERBEND
+
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    out = tmp_path / "out"
+    rc, _, err = cli("compensate", NAME, "--knobs", "overbend", "-j", "1", "-q", "-o", str(out))
+    assert rc == 0, err
+    stem = f"{NAME}-compensated"
+    design = load_template(out / f"{stem}.toml")  # every other command takes it
+    assert design.material.crease_overbend == pytest.approx(OVERBEND, abs=0.05)
+    assert design.frame == load_template(find_template(NAME)).frame
+    rows = [{k.split(" [")[0]: v for k, v in r.items()}
+            for r in csv.DictReader((out / f"{stem}-bends.csv").open())]  # fmt: skip
+    folds = {c.name: c.fold_angle_deg for c in fold_design(design).crease}
+    for r in rows:
+        assert float(r["fold_angle_deg"]) == pytest.approx(folds[r["half"]], abs=0.005 + 1e-9)
+        want = folds[r["half"]] + design.material.crease_overbend
+        assert float(r["fold_to_deg"]) == pytest.approx(want, abs=0.005 + 1e-9)
