@@ -20,17 +20,23 @@ the share of the springback the wedges give: 1 without locking.
   strain bend ``s_ss = E' eps``, ``s_yy = nu E' eps``, ``eps = -h / R`` (h
   along the top normal, towards the axis), along the cylinder's tangent at
   the point (``--frame point``) or, as ``calculix_release.py`` does, one
-  tangent per face at its centroid (``--frame face``).
+  tangent per face at its centroid (``--frame face``); with ``--jumps A``
+  each face's stress scaled by its own factor in ``1 +- A``, constant on
+  the face as onefold's formed state is (no closed form then: compared
+  between ``--splits``, each face split into four so often, the factors
+  kept).
 
 Run from the repository root (one ccx at a time, one thread)::
 
     .venv/bin/python benchmarks/ccx_locking.py [--h 0.386 0.193 0.156 0.078] \\
-        [--layers 2] [--linear] [--frame point|face] [--json]
+        [--layers 2] [--linear] [--frame point|face] [--splits 0 1 2] \\
+        [--jumps 0.2] [--json]
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import math
 import sys
 import tempfile
@@ -51,14 +57,18 @@ from ccx_release import GAUSS_WEDGE, initial_strain, point_heights, solid_mesh, 
 THICKNESS, YOUNGS, POISSON, RADIUS = 3.57e-3, 193e9, 0.29, 2.3
 #: The panel: arc length across the rulings, width along them (m).
 LENGTH, WIDTH = 2.0, 1.0
+#: The seed of ``--jumps``' factors.
+JUMP_SEED = 7
 
 
-def panel(h: float, radius: float = RADIUS) -> dict[str, Array]:
+def panel(h: float, radius: float = RADIUS, splits: int = 0) -> dict[str, Array]:
     """The panel's mesh: ``flat`` ``(n, 2)`` (s across the rulings, y along),
     ``x`` ``(n, 3)`` on the cylinder ``(R sin(s/R), y, R (1 - cos(s/R)))``,
     ``normals`` (top, towards the axis), ``triangles`` ``(m, 3)``
     counterclockwise about them, ``edges`` ``(E, 2)``, ``face_edge`` ``(m,
-    3)``, ``mids`` ``(E, 3)`` and ``mid_normals`` on the cylinder."""
+    3)``, ``mids`` ``(E, 3)`` and ``mid_normals`` on the cylinder; each face
+    of Triangle's mesh split ``splits`` times into four (:func:`split4`),
+    ``parent`` ``(m,)`` the face of Triangle's mesh it lies in."""
     import triangle
 
     from onefold_cad.export.simulation.inp_mesh import unique_edges
@@ -74,14 +84,36 @@ def panel(h: float, radius: float = RADIUS) -> dict[str, Array]:
         d[:, 2, 0] - d[:, 0, 0]
     )
     tri[cross < 0] = tri[cross < 0][:, [0, 2, 1]]
+    parent = np.arange(len(tri))
+    for _ in range(splits):
+        flat, tri, up = split4(flat, tri)
+        parent = parent[up]
     edges, face_edge = unique_edges(tri)
     mid_flat = 0.5 * (flat[edges[:, 0]] + flat[edges[:, 1]])
     x, normals = on_cylinder(flat, radius)
     mids, mid_normals = on_cylinder(mid_flat, radius)
     return {
         "flat": flat, "x": x, "normals": normals, "triangles": tri, "edges": edges,
-        "face_edge": face_edge, "mids": mids, "mid_normals": mid_normals,
+        "face_edge": face_edge, "mids": mids, "mid_normals": mid_normals, "parent": parent,
     }  # fmt: skip
+
+
+def split4(flat: Array, triangles: Array) -> tuple[Array, Array, Array]:
+    """``(flat, triangles, parent)``: each face split at its edge midpoints
+    into four (corners first, then the middle one), counterclockwise as it
+    was; the children of face ``f`` are ``4 f .. 4 f + 3``."""
+    from onefold_cad.export.simulation.inp_mesh import unique_edges
+
+    edges, fe = unique_edges(triangles)
+    mid = len(flat) + fe  # (m, 3): the midpoints of edges 01, 12, 20
+    pts = np.concatenate([flat, 0.5 * (flat[edges[:, 0]] + flat[edges[:, 1]])])
+    a, b, c = triangles.T
+    ab, bc, ca = mid.T
+    kids = np.stack(
+        [np.stack(k, axis=1) for k in ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))],
+        axis=1,
+    )
+    return pts, kids.reshape(-1, 3), np.repeat(np.arange(len(triangles)), 4)
 
 
 def on_cylinder(flat: Array, radius: float) -> tuple[Array, Array]:
@@ -153,15 +185,33 @@ def rigid_deviation(moved: Array, target: Array) -> tuple[float, float]:
     return float(dist.max()), float(np.sqrt((dist**2).mean()))
 
 
-def run(h: float, layers: int, linear: bool, frame: str, workdir: Path) -> dict[str, Any]:
+def run(
+    h: float,
+    layers: int,
+    linear: bool,
+    frame: str,
+    workdir: Path,
+    splits: int = 0,
+    jumps: float = 0.0,
+) -> dict[str, Any]:
     """One panel: the held and the released ccx runs, the springback against
-    the exact one."""
-    p = panel(h)
+    the exact one; ``splits``: each face of Triangle's mesh split so often
+    into four; ``jumps``: each of Triangle's faces' stress scaled by its own
+    factor in ``1 +- jumps`` (seeded: the same on every split), the formed
+    stress piecewise constant as onefold's faces give it (then the exact
+    release is not known in closed form: the springback over the uniform
+    bend's is only compared between splits)."""
+    p = panel(h, splits=splits)
     solid = solid_mesh(
         p["x"], p["triangles"], p["normals"], p["mids"], p["mid_normals"], p["face_edge"],
         THICKNESS, layers,
     )  # fmt: skip
     stress = bend_stress(p["flat"], p["triangles"], point_heights(THICKNESS, layers), RADIUS, frame)
+    if jumps:
+        rng = np.random.default_rng(JUMP_SEED)
+        stress *= (1.0 + jumps * rng.uniform(-1.0, 1.0, p["parent"].max() + 1))[p["parent"]][
+            :, None, None
+        ]
     x, flat, n = p["x"], p["flat"], len(p["x"])
     ends = [
         int(np.argmin(np.linalg.norm(flat - q, axis=1))) for q in ([-0.4, 0], [0.4, 0], [0, 0.3])
@@ -174,7 +224,7 @@ def run(h: float, layers: int, linear: bool, frame: str, workdir: Path) -> dict[
         "solid": solid, "model": SimpleNamespace(material=mat), "n": n, "stress": stress,
         "eigen": eps, "support": support_321(x, ends), "elastic": True, "linear": linear,
     }  # fmt: skip
-    name = f"panel_h{h:g}_L{layers}_{frame}" + ("_linear" if linear else "")
+    name = f"panel_h{h:g}_s{splits}_j{jumps:g}_L{layers}_{frame}" + ("_linear" if linear else "")
     write_held(st, workdir / f"{name}_held.inp")
     held, _, cpu1 = run_inp(workdir, f"{name}_held")
     rf = np.zeros((len(solid.nodes), 3))
@@ -190,6 +240,8 @@ def run(h: float, layers: int, linear: bool, frame: str, workdir: Path) -> dict[
     hmax = longest_edges(x, p["triangles"])
     return {
         "h_target_m": h,
+        "splits": splits,
+        "jumps": jumps,
         "faces": len(p["triangles"]),
         "nodes": len(solid.nodes),
         "layers": layers,
@@ -213,6 +265,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--layers", type=int, nargs="+", default=[2])
     ap.add_argument("--linear", action="store_true", help="no NLGEOM (TYPE=STRESS)")
     ap.add_argument("--frame", choices=["point", "face"], default="point")
+    ap.add_argument(
+        "--splits", type=int, nargs="+", default=[0], help="each face split so often into four"
+    )
+    ap.add_argument(
+        "--jumps", type=float, default=0.0, help="each face's stress times 1 +- JUMPS (seeded)"
+    )
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--keep", type=Path, help="keep the ccx files in this directory")
     args = ap.parse_args(argv)
@@ -222,19 +280,18 @@ def main(argv: list[str] | None = None) -> int:
     workdir = args.keep or Path(tempfile.mkdtemp(prefix="ccx_locking_"))
     workdir.mkdir(parents=True, exist_ok=True)
     out: dict[str, Any] = {"radius_m": RADIUS, "thickness_m": THICKNESS, "runs": []}
-    for layers in args.layers:
-        for h in args.h:
-            r = run(h, layers, args.linear, args.frame, workdir)
-            out["runs"].append(r)
-            if not args.json:
-                print(
-                    f"h {r['h_max_median_m']:.3f} m (h^2/(R t) {r['h2_over_Rt_median']:.2f}), "
-                    f"L={layers}, {r['faces']} faces, {r['nodes']} nodes: springback max "
-                    f"{1e3 * r['springback_max_m']:.2f} mm of {1e3 * r['exact_max_m']:.2f} "
-                    f"({r['share_max']:.4f}), rms share {r['share_rms']:.4f}, "
-                    f"ccx {r['cpu_s']:.1f} s CPU",
-                    flush=True,
-                )
+    for layers, h, splits in itertools.product(args.layers, args.h, args.splits):
+        r = run(h, layers, args.linear, args.frame, workdir, splits, args.jumps)
+        out["runs"].append(r)
+        if not args.json:
+            print(
+                f"h {r['h_max_median_m']:.3f} m (h^2/(R t) {r['h2_over_Rt_median']:.2f}), "
+                f"splits {splits}, L={layers}, {r['faces']} faces, {r['nodes']} nodes: "
+                f"springback max {1e3 * r['springback_max_m']:.2f} mm of "
+                f"{1e3 * r['exact_max_m']:.2f} ({r['share_max']:.4f}), rms share "
+                f"{r['share_rms']:.4f}, ccx {r['cpu_s']:.1f} s CPU",
+                flush=True,
+            )
     return finish(out, args.json, bool(args.keep), workdir)
 
 

@@ -93,3 +93,26 @@ def test_rigid_deviation_sees_through_a_rigid_motion_only():
     bumped[7, 2] += 1.0  # one node off by 1: after the fit the rest move a little
     dmax, drms = lk.rigid_deviation(bumped, a)
     assert 0.8 < dmax <= 1.0 and drms == pytest.approx(dmax / math.sqrt(50), rel=0.2)
+
+
+def test_split4_fills_each_face_with_four_of_a_quarter_its_area_each():
+    p = lk.panel(0.386)
+    flat, tri = p["flat"], p["triangles"]
+    pts, kids, parent = lk.split4(flat, tri)
+
+    def areas(xy, t):
+        d = xy[t]
+        return 0.5 * (
+            (d[:, 1, 0] - d[:, 0, 0]) * (d[:, 2, 1] - d[:, 0, 1])
+            - (d[:, 1, 1] - d[:, 0, 1]) * (d[:, 2, 0] - d[:, 0, 0])
+        )
+
+    np.testing.assert_allclose(areas(pts, kids), np.repeat(areas(flat, tri), 4) / 4, rtol=1e-12)
+    np.testing.assert_array_equal(parent, np.repeat(np.arange(len(tri)), 4))
+    centroid = pts[kids].mean(axis=1).reshape(-1, 4, 2).mean(axis=1)
+    np.testing.assert_allclose(centroid, flat[tri].mean(axis=1), atol=1e-12)
+    # shared midpoints: n + E new nodes, no duplicates
+    assert len(pts) == len(flat) + len(p["edges"])
+    twice = lk.panel(0.386, splits=2)
+    assert len(twice["triangles"]) == 16 * len(tri)
+    np.testing.assert_array_equal(twice["parent"], np.repeat(np.arange(len(tri)), 16))
