@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 __all__ = [
     "METRIC_HESSIAN",
     "SlopeTerms",
+    "area_hessian",
     "dihedral",
     "director_slopes",
     "face_heights",
@@ -36,11 +37,15 @@ _LEVI_CIVITA = np.cross(_I3[:, None, :], _I3[None, :, :])
 
 def skew(v: F) -> F:
     """Cross-product matrices: ``skew(v) @ w == cross(v, w)``; (..., 3) -> (..., 3, 3)."""
-    z = np.zeros(v.shape[:-1])
+    out = np.zeros(v.shape[:-1] + (3, 3))
     x, y, w = v[..., 0], v[..., 1], v[..., 2]
-    return np.stack(
-        [np.stack([z, -w, y], -1), np.stack([w, z, -x], -1), np.stack([-y, x, z], -1)], -2
-    )
+    np.negative(w, out=out[..., 0, 1])
+    out[..., 0, 2] = y
+    out[..., 1, 0] = w
+    np.negative(x, out=out[..., 1, 2])
+    np.negative(y, out=out[..., 2, 0])
+    out[..., 2, 1] = x
+    return out
 
 
 def _metric_hessian() -> F:
@@ -106,12 +111,10 @@ def face_metric(x: F) -> tuple[F, F]:
     return a, da
 
 
-def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
-    """``(m, 9, 9)`` the Hessian of ``F = ln |N|`` (N the face's area vector, ``nn
-    = |N|^2``) in the vertex coordinates, from the edges ``(m, 3, 3)`` (edge i
-    opposite vertex i) and ``F``'s gradient ``df`` ``(m, 9)``:
-    ``(dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T``, in blocks (j, l)
-    ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
+def _area_blocks(edge: F, normal: F) -> F:
+    """``(m, 9, 9)`` ``dN^T dN + sum_k N_k d2N_k`` in the vertex coordinates (N the
+    face's area vector; edges ``(m, 3, 3)``, edge i opposite vertex i), in blocks
+    (j, l) ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
     m = len(edge)
     gram = edge @ edge.transpose(0, 2, 1)
     # blocks[m, j, a, l, b], so that the (m, 9, 9) is a view: - E_l[a] E_j[b] first
@@ -122,9 +125,30 @@ def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
     for j in range(3):
         blocks[:, j, :, (j + 2) % 3] += wn
         blocks[:, j, :, (j + 1) % 3] -= wn
-    d2f = blocks.reshape(m, 9, 9)
+    return blocks.reshape(m, 9, 9)
+
+
+def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
+    """``(m, 9, 9)`` the Hessian of ``F = ln |N|`` (N the face's area vector, ``nn
+    = |N|^2``) in the vertex coordinates, from the edges ``(m, 3, 3)`` (edge i
+    opposite vertex i) and ``F``'s gradient ``df`` ``(m, 9)``:
+    ``(dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T``."""
+    d2f = _area_blocks(edge, normal)
     d2f /= nn[:, None, None]
     return d2f - 2 * df[:, :, None] * df[:, None, :]
+
+
+def area_hessian(edge: F, normal: F, nn: F, df: F, weight: F) -> F:
+    """``(m, 9, 9)`` ``weight`` ``(m,)`` times the Hessian of ``M = |N|`` (the
+    face's doubled area; ``nn``, ``df`` as in :func:`log_area_hessian`): ``M (d2F
+    + dF dF^T) = (dN^T dN + sum_k N_k d2N_k) / M - M dF dF^T``, the weight
+    folded into both terms (no (m, 9, 9) temporaries besides the result)."""
+    c = weight * np.sqrt(nn)
+    out = _area_blocks(edge, normal)
+    out *= (c / nn)[:, None, None]
+    cdf = c[:, None] * df
+    out -= cdf[:, :, None] * df[:, None, :]
+    return out
 
 
 def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
@@ -322,8 +346,11 @@ def transported_director(
     q2 += cross_jk.transpose(0, 1, 3, 2)
     d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
     d2d = np.zeros((k, 3, 4, 4))
-    dtt = dt.transpose(0, 2, 1)[:, None]
-    d2d[:, :, :3, :3] = dtt @ d_tt @ dt[:, None] + (d_t @ d2t.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
+    # dt^T d_tt[i] dt for the three i at once: (9, 3) @ (3, 3), then (3, 3) @ (3, 9)
+    right = (d_tt.reshape(k, 9, 3) @ dt).reshape(k, 3, 3, 3)  # [i, b, d]
+    both = dt.transpose(0, 2, 1) @ right.transpose(0, 2, 1, 3).reshape(k, 3, 9)  # [a, (i, d)]
+    d2d[:, :, :3, :3] = both.reshape(k, 3, 3, 3).transpose(0, 2, 1, 3)
+    d2d[:, :, :3, :3] += (d_t @ d2t.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
     mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
     d2d[:, :, :3, 3] = mixed
     d2d[:, :, 3, :3] = mixed
@@ -431,9 +458,7 @@ class SlopeTerms:
         hxd = vx.transpose(0, 1, 3, 2) @ cv[..., 9:]
         hdd = v[..., 9:].transpose(0, 1, 3, 2) @ cv[..., 9:]
         # + (A / B) d2M over the coordinates
-        d2f = log_area_hessian(edge, normal, nn, df)
-        d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
-        hxx += np.einsum("mi,mi->m", w, num / den)[:, None, None] * d2m
+        hxx += area_hessian(edge, normal, nn, df, np.einsum("mi,mi->m", w, num / den))
         # The constant-pattern parts: G d2A - (A M / B^2) d2B; d2A and the d_i part of
         # d2B couple the coordinates with d_i, d2B's x part the coordinates alone.
         d2a, p1, p2 = _SLOPE_PATTERNS

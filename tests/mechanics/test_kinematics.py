@@ -11,6 +11,7 @@ import numpy as np
 from onefold_cad.mechanics.kinematics import (
     METRIC_HESSIAN,
     SlopeTerms,
+    area_hessian,
     dihedral,
     director_slopes,
     face_heights,
@@ -184,3 +185,25 @@ def test_weighted_slope_hessians_are_the_derivative_of_the_weighted_gradient():
             full[s, :9] = hxd[f, i].T
             full[s, s] = hdd[f, i]
         _close(h, full)
+
+
+def test_area_hessian_is_the_weighted_hessian_of_the_doubled_area():
+    """``area_hessian``: weight times the Hessian of |N| (N = e1 x e2), against
+    central differences of |N|'s gradient (itself by central differences of
+    |N|), the edges and |N|'s log-gradient formed as ``SlopeTerms`` forms them."""
+    x = RNG.normal(size=(6, 3, 3))
+    weight = RNG.normal(size=6)
+    edge = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    normal = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
+    nn = np.einsum("ij,ij->i", normal, normal)
+    df = (np.cross(normal[:, None, :], edge) / nn[:, None, None]).reshape(len(x), 9)
+    h = area_hessian(edge, normal, nn, df, weight)
+
+    def size(y):
+        p = y.reshape(3, 3)
+        return np.atleast_1d(np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])))
+
+    for f in range(len(x)):
+        grad = partial(central_difference, size, step=1e-4)
+        hess = central_difference(lambda y: grad(y)[:, 0], x[f].ravel(), 1e-4)
+        _close(h[f], weight[f] * hess)
