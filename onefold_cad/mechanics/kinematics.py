@@ -23,7 +23,6 @@ __all__ = [
     "director_slopes",
     "face_heights",
     "face_metric",
-    "log_area_hessian",
     "skew",
     "transported_director",
     "unit_derivatives",
@@ -37,15 +36,11 @@ _LEVI_CIVITA = np.cross(_I3[:, None, :], _I3[None, :, :])
 
 def skew(v: F) -> F:
     """Cross-product matrices: ``skew(v) @ w == cross(v, w)``; (..., 3) -> (..., 3, 3)."""
-    out = np.zeros(v.shape[:-1] + (3, 3))
+    z = np.zeros(v.shape[:-1])
     x, y, w = v[..., 0], v[..., 1], v[..., 2]
-    np.negative(w, out=out[..., 0, 1])
-    out[..., 0, 2] = y
-    out[..., 1, 0] = w
-    np.negative(x, out=out[..., 1, 2])
-    np.negative(y, out=out[..., 2, 0])
-    out[..., 2, 1] = x
-    return out
+    return np.stack(
+        [np.stack([z, -w, y], -1), np.stack([w, z, -x], -1), np.stack([-y, x, z], -1)], -2
+    )
 
 
 def _metric_hessian() -> F:
@@ -112,10 +107,9 @@ def face_metric(x: F) -> tuple[F, F]:
 
 
 def _area_blocks(edge: F, normal: F) -> F:
-    """``(m, 9, 9)`` ``dN^T dN + sum_k N_k d2N_k`` in the vertex coordinates (N the
-    face's area vector; edges ``(m, 3, 3)``, edge i opposite vertex i), in blocks
-    (j, l) ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
-    m = len(edge)
+    """``(m, 9, 9)`` ``dN^T dN + sum_k N_k d2N_k`` (N the face's area vector) in the
+    vertex coordinates, from the edges ``(m, 3, 3)`` (edge i opposite vertex i): in
+    blocks (j, l) ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
     gram = edge @ edge.transpose(0, 2, 1)
     # blocks[m, j, a, l, b], so that the (m, 9, 9) is a view: - E_l[a] E_j[b] first
     blocks = -edge.transpose(0, 2, 1)[:, None, :, :, None] * edge[:, :, None, None, :]
@@ -125,29 +119,16 @@ def _area_blocks(edge: F, normal: F) -> F:
     for j in range(3):
         blocks[:, j, :, (j + 2) % 3] += wn
         blocks[:, j, :, (j + 1) % 3] -= wn
-    return blocks.reshape(m, 9, 9)
-
-
-def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
-    """``(m, 9, 9)`` the Hessian of ``F = ln |N|`` (N the face's area vector, ``nn
-    = |N|^2``) in the vertex coordinates, from the edges ``(m, 3, 3)`` (edge i
-    opposite vertex i) and ``F``'s gradient ``df`` ``(m, 9)``:
-    ``(dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T``."""
-    d2f = _area_blocks(edge, normal)
-    d2f /= nn[:, None, None]
-    return d2f - 2 * df[:, :, None] * df[:, None, :]
+    return blocks.reshape(len(edge), 9, 9)
 
 
 def area_hessian(edge: F, normal: F, nn: F, df: F, weight: F) -> F:
-    """``(m, 9, 9)`` ``weight`` ``(m,)`` times the Hessian of ``M = |N|`` (the
-    face's doubled area; ``nn``, ``df`` as in :func:`log_area_hessian`): ``M (d2F
-    + dF dF^T) = (dN^T dN + sum_k N_k d2N_k) / M - M dF dF^T``, the weight
-    folded into both terms (no (m, 9, 9) temporaries besides the result)."""
+    """``(m, 9, 9)`` ``weight`` ``(m,)`` times the Hessian of ``M = |N|``: ``M (d2F +
+    dF dF^T) = (dN^T dN + sum_k N_k d2N_k) / M - M dF dF^T`` (no temporaries)."""
     c = weight * np.sqrt(nn)
     out = _area_blocks(edge, normal)
     out *= (c / nn)[:, None, None]
-    cdf = c[:, None] * df
-    out -= cdf[:, :, None] * df[:, None, :]
+    out -= (c[:, None] * df)[:, :, None] * df[:, None, :]
     return out
 
 
@@ -181,7 +162,7 @@ def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
     dh = h[:, :, None] * dlog
     if order == 1:
         return h, dh, None
-    d2f = log_area_hessian(edge, normal, nn, df)
+    d2f = _area_blocks(edge, normal) / nn[:, None, None] - 2 * df[:, :, None] * df[:, None, :]
     d2h = np.broadcast_to(d2f[:, None], (m, 3, 9, 9)).copy()
     d2h += dlog[:, :, :, None] * dlog[:, :, None, :]
     unit = edge / np.sqrt(ll)[:, :, None]
@@ -346,9 +327,9 @@ def transported_director(
     q2 += cross_jk.transpose(0, 1, 3, 2)
     d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
     d2d = np.zeros((k, 3, 4, 4))
-    # dt^T d_tt[i] dt for the three i at once: (9, 3) @ (3, 3), then (3, 3) @ (3, 9)
-    right = (d_tt.reshape(k, 9, 3) @ dt).reshape(k, 3, 3, 3)  # [i, b, d]
-    both = dt.transpose(0, 2, 1) @ right.transpose(0, 2, 1, 3).reshape(k, 3, 9)  # [a, (i, d)]
+    right = (d_tt.reshape(k, 9, 3) @ dt).reshape(k, 3, 3, 3)  # d_tt[i] dt: [i, b, d]
+    right = right.transpose(0, 2, 1, 3).reshape(k, 3, 9)  # [b, (i, d)]
+    both = dt.transpose(0, 2, 1) @ right  # dt^T d_tt[i] dt: [a, (i, d)]
     d2d[:, :, :3, :3] = both.reshape(k, 3, 3, 3).transpose(0, 2, 1, 3)
     d2d[:, :, :3, :3] += (d_t @ d2t.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
     mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
