@@ -19,6 +19,7 @@ __all__ = [
     "METRIC_HESSIAN",
     "SlopeTerms",
     "area_hessian",
+    "area_jacobian",
     "dihedral",
     "director_slopes",
     "face_heights",
@@ -108,21 +109,24 @@ def face_metric(x: F) -> tuple[F, F]:
     return a, da
 
 
-def _area_blocks(edge: F, normal: F) -> F:
-    """``(m, 9, 9)`` ``dN^T dN + sum_k N_k d2N_k`` (N the face's area vector) in the
-    vertex coordinates, from the edges ``(m, 3, 3)`` (edge i opposite vertex i):
-    ``dN / dx_i = [E_i]x``, and ``d2N``'s constant pattern (P1 of ``_slope_patterns``)."""
-    m = len(edge)
-    dn = skew(edge).transpose(0, 2, 1, 3).reshape(m, 3, 9)
-    return dn.transpose(0, 2, 1) @ dn + (normal @ _SLOPE_PATTERNS[1]).reshape(m, 9, 9)
+def area_jacobian(edge: F) -> F:
+    """``(m, 3, 9)`` ``dN / dx_i = [E_i]x``: the area vector ``N = (x1 - x0) x (x2 - x0)``
+    by the vertices, from the edges ``(m, 3, 3)`` (edge i opposite vertex i)."""
+    return skew(edge).transpose(0, 2, 1, 3).reshape(len(edge), 3, 9)
 
 
-def area_hessian(edge: F, normal: F, nn: F, df: F, weight: F) -> F:
-    """``(m, 9, 9)`` ``weight`` ``(m,)`` times the Hessian of ``M = |N|``: ``M (d2F +
-    dF dF^T) = (dN^T dN + sum_k N_k d2N_k) / M - M dF dF^T`` (no temporaries)."""
+def _area_blocks(dn: F, normal: F) -> F:
+    """``(m, 9, 9)`` ``dN^T dN + sum_k N_k d2N_k``: ``dN`` :func:`area_jacobian`,
+    ``d2N``'s constant pattern P1 of ``_slope_patterns``."""
+    return dn.transpose(0, 2, 1) @ dn + (normal @ _SLOPE_PATTERNS[1]).reshape(len(dn), 9, 9)
+
+
+def area_hessian(dn: F, normal: F, nn: F, df: F, weight: F) -> F:
+    """``(m, 9, 9)`` ``weight`` ``(m,)`` times the Hessian of ``M = |N|`` (``dn`` from
+    :func:`area_jacobian`, ``nn = |N|^2``, ``df`` ``(m, 9)`` the gradient of ``ln M``):
+    ``M (d2F + dF dF^T) = (dN^T dN + sum_k N_k d2N_k) / M - M dF dF^T``."""
     c = weight * np.sqrt(nn)
-    out = _area_blocks(edge, normal)
-    out *= (c / nn)[:, None, None]
+    out = _area_blocks(dn, normal) * (c / nn)[:, None, None]
     out -= (c[:, None] * df)[:, :, None] * df[:, None, :]
     return out
 
@@ -157,7 +161,8 @@ def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
     dh = h[:, :, None] * dlog
     if order == 1:
         return h, dh, None
-    d2f = _area_blocks(edge, normal) / nn[:, None, None] - 2 * df[:, :, None] * df[:, None, :]
+    d2f = _area_blocks(area_jacobian(edge), normal) / nn[:, None, None]
+    d2f -= 2 * df[:, :, None] * df[:, None, :]
     d2h = np.broadcast_to(d2f[:, None], (m, 3, 9, 9)).copy()
     d2h += dlog[:, :, :, None] * dlog[:, :, None, :]
     unit = edge / np.sqrt(ll)[:, :, None]
@@ -390,8 +395,8 @@ class SlopeTerms:
         m = len(x)
         edge, normal, nn, norm, f, num, den, u = _slope_values(x, d)
         # |N| = M: dM = M dF (F = ln|N|), d2M = M (d2F + dF dF^T).
-        dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]
-        df = dfx.reshape(m, 9)
+        dn = area_jacobian(edge)
+        df = (normal[:, None, :] @ dn)[:, 0] / nn[:, None]  # N^T dN / |N|^2
         dm = norm[:, None] * df
         da = np.zeros((m, 3, 12))
         db = np.zeros((m, 3, 12))
@@ -400,21 +405,21 @@ class SlopeTerms:
             da[:, i, 3 * i : 3 * i + 3] += d[:, i]
             da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
             da[:, i, 9:] = f[:, i]
-        db[:, :, :9] = np.cross(d[:, :, None, :], edge[:, None, :, :]).reshape(m, 3, 9)
+        db[:, :, :9] = d @ dn  # d_i x E_j over vertex j
         db[:, :, 9:] = normal[:, None, :]
         g = norm[:, None] / den  # G = M / B
         dg = -(norm[:, None] / den**2)[:, :, None] * db
         dg[:, :, :9] += dm[:, None, :] / den[:, :, None]
         self.u: F = u
         self.du: F = g[:, :, None] * da + num[:, :, None] * dg
-        self._x = (edge, normal, nn, norm, num, den, d, df)
+        self._x = (edge, normal, nn, norm, num, den, d, df, dn)
         self._v = (da, dg, dm, db, g)
 
     def hessian(self, w: F) -> tuple[F, F, F]:
         """``sum_i w_i d2u_i`` ((m, 3) weights) in blocks: over the coordinates
         (m, 9, 9) (summed), coordinates by ``d_i`` (m, 3, 9, 3) and ``d_i`` by
         ``d_i`` (m, 3, 3, 3) (each edge's own, times ``w_i``)."""
-        edge, normal, nn, norm, num, den, d, df = self._x
+        edge, normal, nn, norm, num, den, d, df, dn = self._x
         da, dg, dm, db, g = self._v
         m = len(w)
         # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
@@ -434,7 +439,7 @@ class SlopeTerms:
         hxd = vx.transpose(0, 1, 3, 2) @ cv[..., 9:]
         hdd = v[..., 9:].transpose(0, 1, 3, 2) @ cv[..., 9:]
         # + (A / B) d2M over the coordinates
-        hxx += area_hessian(edge, normal, nn, df, np.einsum("mi,mi->m", w, num / den))
+        hxx += area_hessian(dn, normal, nn, df, np.einsum("mi,mi->m", w, num / den))
         # The constant-pattern parts: G d2A - (A M / B^2) d2B; d2A and the d_i part of
         # d2B couple the coordinates with d_i, d2B's x part the coordinates alone.
         d2a, p1, p2 = _SLOPE_PATTERNS

@@ -12,6 +12,7 @@ from onefold_cad.mechanics.kinematics import (
     METRIC_HESSIAN,
     SlopeTerms,
     area_hessian,
+    area_jacobian,
     dihedral,
     director_slopes,
     face_heights,
@@ -220,7 +221,7 @@ def test_area_hessian_is_the_weighted_hessian_of_the_doubled_area():
     rng = np.random.default_rng(12)  # its own draws, whatever ran before
     x, edge, normal, nn, df = _faces(rng, 6)
     weight = rng.normal(size=6)
-    h = area_hessian(edge, normal, nn, df, weight)
+    h = area_hessian(area_jacobian(edge), normal, nn, df, weight)
     for f in range(len(x)):
         expected = weight[f] * _size_hessian(x[f].ravel())
         np.testing.assert_allclose(h[f], expected, atol=1e-7 * np.abs(expected).max())
