@@ -173,6 +173,12 @@ def minimize(
     q = np.array(q0, dtype=float)
     free = ~np.asarray(fixed, dtype=bool)
     scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
+    if not free.any():  # an imposed state: nothing to solve, no Hessian needed
+        energy, grad, _ = fun(q, 1)
+        assert grad is not None
+        if callback is not None:
+            callback(0, 0.0, energy)
+        return NewtonResult(q, energy, grad, 0.0, max(rtol * force_scale, atol), 0)
     energy, grad, hess = fun(q, 2)
     assert grad is not None and hess is not None
     _, block = restrict(hess, free)

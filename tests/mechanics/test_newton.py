@@ -103,3 +103,24 @@ def test_a_refilled_factor_is_a_fresh_one():
     assert reused.factor(a)
     assert np.array_equal(reused.solve(rhs), expected)
     assert np.array_equal(a.data, a_data), "the shift went into the caller's matrix"
+
+
+def test_an_imposed_state_needs_no_hessian():
+    """Every unknown fixed (a form imposed whole): the energy and gradient
+    there, at 0 iterations with the tolerance the loop would give, and no
+    Hessian evaluated."""
+    orders: list[int] = []
+
+    def fun(q, order):
+        orders.append(order)
+        return _rosenbrock(q, order)
+
+    seen: list[tuple] = []
+    result = minimize(fun, [0.5, 4.0], np.ones(2, bool), force_scale=3.0, rtol=1e-6,
+                      atol=1e-9, callback=lambda *a: seen.append(a))  # fmt: skip
+    energy, gradient, _ = _rosenbrock(np.array([0.5, 4.0]), 1)
+    assert orders == [1]
+    assert result.iterations == 0 and result.residual == 0.0
+    assert result.energy == energy and np.array_equal(result.gradient, gradient)
+    assert np.array_equal(result.q, [0.5, 4.0]) and result.tolerance == 3e-6
+    assert seen == [(0, 0.0, energy)]
