@@ -14,11 +14,14 @@ Lengths are in the fold's unit (whatever the points are in).
 
 from __future__ import annotations
 
+import weakref
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from onefold_cad.geometry.cone.cone import ExactCone
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 
@@ -32,22 +35,55 @@ _GRID = 361
 _STEPS = 8
 
 
-def _side_distance(
-    folded: FoldedSheet, w: Array, lower: bool, hole_radius: float, grid: Array
-) -> Array:
+@dataclass(frozen=True, eq=False)
+class _Rulings:
+    """A designed surface's sampled rulings, the same for every call on it.
+
+    Attributes:
+        grid: ``(m,)`` the samples' parameters: the exact cone's arc
+            parameters (its frames there need no flat angle inverted), else
+            the flat angles themselves.
+        u, e: ``(m, 3)`` the rulings' directions and in-surface normals there.
+        reach: ``(2, m)`` the sheet's extent along them on the +y and -y sides.
+        frames: ``u`` and ``e`` at parameters; ``theta``: their flat angles.
+    """
+
+    grid: Array
+    u: Array
+    e: Array
+    reach: Array
+    frames: Callable[[Array], tuple[Array, Array]]
+    theta: Callable[[Array], Array]
+
+
+_RULINGS: weakref.WeakKeyDictionary[FoldedSheet, _Rulings] = weakref.WeakKeyDictionary()
+
+
+def _rulings(folded: FoldedSheet) -> _Rulings:
+    """``folded``'s sampled rulings, made on its first measure and kept with it."""
+    cached = _RULINGS.get(folded)
+    if cached is None:
+        surface = folded.solution.surface
+        angles = np.linspace(0.0, surface.total_angle, _GRID)
+        u, e = surface.frames(angles)
+        reach = np.stack([folded.sheet.ray_lengths(angles), folded.sheet.ray_lengths(-angles)])
+        if isinstance(surface, ExactCone):
+            phi = surface.phi_of_theta(angles)
+            cached = _Rulings(phi, u, e, reach, surface.frames_at_arc, surface.theta_of_phi)
+        else:
+            cached = _Rulings(angles, u, e, reach, surface.frames, lambda t: t)
+        _RULINGS[folded] = cached
+    return cached
+
+
+def _side_distance(folded: FoldedSheet, w: Array, lower: bool, hole_radius: float) -> Array:
     """``(k,)`` distance of the points ``w`` (relative to the apex, ``(k, 3)``,
     mirrored already for the -y side) from one side's cone patch."""
-    surface, sheet = folded.solution.surface, folded.sheet
+    rulings, sheet = _rulings(folded), folded.sheet
     sign = -1.0 if lower else 1.0
-
-    def foot(theta: Array, u: Array) -> Array:
-        reach = sheet.ray_lengths(sign * theta)
-        r = np.clip(np.einsum("ij,ij->i", w, u), hole_radius, reach)
-        return np.linalg.norm(w - r[:, None] * u, axis=1)
-
-    u_grid, e_grid = surface.frames(grid)
-    reach_grid = sheet.ray_lengths(sign * grid)
-    along = w @ u_grid.T  # (k, m): each point's distance along each sampled ruling
+    grid = rulings.grid
+    reach_grid = rulings.reach[int(lower)]
+    along = w @ rulings.u.T  # (k, m): each point's distance along each sampled ruling
     r = np.clip(along, hole_radius, reach_grid[None, :])
     d2 = (
         np.einsum("ij,ij->i", w, w)[:, None] - 2.0 * r * along + r**2  # |w - r u|^2 with |u| = 1
@@ -57,7 +93,7 @@ def _side_distance(
     # the closest ruling lies where g = w . e changes sign (w in the plane of u
     # and the normal), in one of the grid intervals beside the best sample:
     # take the one with the sign change and close in on it (Illinois' method)
-    g_grid = w @ e_grid.T
+    g_grid = w @ rulings.e.T
     rows = np.arange(len(w))
     left = np.maximum(j - 1, 0)
     right = np.minimum(j + 1, len(grid) - 1)
@@ -70,14 +106,16 @@ def _side_distance(
         den = g_hi - g_lo
         mid = np.where(den != 0.0, hi - g_hi * (hi - lo) / np.where(den != 0.0, den, 1.0), lo)
         mid = np.clip(mid, np.minimum(lo, hi), np.maximum(lo, hi))
-        g_mid = np.einsum("ij,ij->i", w, surface.frames(mid)[1])
+        g_mid = np.einsum("ij,ij->i", w, rulings.frames(mid)[1])
         same = np.sign(g_mid) == np.sign(g_hi)
         # Illinois: halve the end that stays, so the interval keeps shrinking
         g_lo = np.where(same, g_lo * 0.5, g_hi)
         lo = np.where(same, lo, hi)
         hi, g_hi = mid, g_mid
-    theta = hi
-    refined = foot(theta, surface.frames(theta)[0])
+    u = rulings.frames(hi)[0]
+    reach = sheet.ray_lengths(sign * rulings.theta(hi))
+    r_foot = np.clip(np.einsum("ij,ij->i", w, u), hole_radius, reach)
+    refined = np.linalg.norm(w - r_foot[:, None] * u, axis=1)
     return np.minimum(best, refined)
 
 
@@ -87,17 +125,17 @@ def surface_distance(folded: FoldedSheet, points: ArrayLike, hole_radius: float 
     side's cone patch, between the relief hole (``hole_radius``) and the
     sheet's edge.
 
-    The closest ruling is bracketed on a grid of flat angles and refined by
-    bisection of ``(p - A) . e(theta) = 0`` (the foot of the perpendicular);
-    where the foot falls beyond the hole or the edge, the distance is to that
-    end of the ruling (an upper bound within the sampled rulings' spacing of
-    the boundary's true nearest point).
+    The closest ruling is bracketed on a grid of flat angles (sampled once per
+    ``folded`` and kept with it) and refined by Illinois' method on
+    ``(p - A) . e = 0`` (the foot of the perpendicular), in the exact cone's
+    arc parameter; where the foot falls beyond the hole or the edge, the
+    distance is to that end of the ruling (an upper bound within the sampled
+    rulings' spacing of the boundary's true nearest point).
     """
     p = np.atleast_2d(np.asarray(points, dtype=float))
     w = p - folded.apex
-    grid = np.linspace(0.0, folded.solution.surface.total_angle, _GRID)
-    upper = _side_distance(folded, w, False, hole_radius, grid)
-    lower = _side_distance(folded, w * _MIRROR, True, hole_radius, grid)
+    upper = _side_distance(folded, w, False, hole_radius)
+    lower = _side_distance(folded, w * _MIRROR, True, hole_radius)
     return np.minimum(upper, lower)
 
 

@@ -143,7 +143,7 @@ def _face_terms(shell: Shell, x: F, directors: tuple, faces: slice, order: int):
     if order == 1:
         return e_mem, e_bend, g_face, None
     h_ee, h_er, h_rr = h_blocks()
-    jr = np.einsum("ij,mjk->mik", _B, du)  # d r / d y
+    jr = _B @ du  # d r / d y
     h_face = jr.transpose(0, 2, 1) @ h_rr @ jr
     h_face += _slope_curvature(slopes, w_u, du_z, dd_all[fd], d2d_all[fd], maps, dd_y)
     je = da / 2  # d eps / d x (c, 3, 9)

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
-from onefold_cad.mechanics.energy import evaluate
+from onefold_cad.mechanics.energy import Evaluation, evaluate
 from onefold_cad.mechanics.newton import NewtonResult, Progress, minimize
 from onefold_cad.mechanics.predictor import extrapolate
 from onefold_cad.mechanics.shell import Shell, unpack
@@ -103,8 +103,30 @@ def _residual_scale(shell: Shell, length: float | None) -> F:
     return np.concatenate([np.ones(3 * n), np.full(shell.mesh.n_directors, 1.0 / length)])
 
 
+class _Energy:
+    """``shell``'s energy as Newton calls it, keeping its last evaluation with
+    a gradient: Newton's result is where it last evaluated the Hessian, so the
+    equilibrium's energy, parts and reactions need no second evaluation."""
+
+    def __init__(self, shell: Shell) -> None:
+        self.shell = shell
+        self._last: tuple[F, Evaluation] | None = None
+
+    def __call__(self, state: F, order: int):
+        ev = evaluate(self.shell, state, order)
+        if order >= 1:
+            self._last = (state.copy(), ev)  # a copy: callers move their states in place
+        return ev.energy, ev.gradient, ev.hessian
+
+    def at(self, q: F) -> Evaluation:
+        """The energy and gradient at ``q``: the last evaluation if it was there."""
+        if self._last is not None and np.array_equal(self._last[0], q):
+            return self._last[1]
+        return evaluate(self.shell, q, 1)
+
+
 def _newton(
-    shell: Shell,
+    fun: _Energy,
     q: F,
     fixed: NDArray[np.bool_],
     *,
@@ -115,10 +137,7 @@ def _newton(
     start_scales: bool,
     callback: Progress | None,
 ) -> NewtonResult:
-    def fun(state: F, order: int):
-        ev = evaluate(shell, state, order)
-        return ev.energy, ev.gradient, ev.hessian
-
+    shell = fun.shell
     mat = shell.material
     x = unpack(shell.mesh, q)[0]
     # The membrane forces' round-off is about eps E' t |x| (measured: 1.1 times that).
@@ -188,6 +207,7 @@ def solve_equilibrium(
     total_iter = 0
     result = None
     passes = 0
+    energy = _Energy(shell)
     for _ in range(max_passes):
         passes += 1
         fixed_mask = base.copy()
@@ -199,7 +219,7 @@ def solve_equilibrium(
                 fixed_mask[3 * np.flatnonzero(active)] = True
                 fixed_mask[3 * np.flatnonzero(active) + 1] = True
         result = _newton(
-            shell,
+            energy,
             q,
             fixed_mask,
             rtol=rtol,
@@ -227,7 +247,7 @@ def solve_equilibrium(
             iterations=total_iter,
             residual=result.residual if result else float("nan"),
         )
-    ev = evaluate(shell, q, 1)
+    ev = energy.at(q)
     assert ev.gradient is not None
     fixed_final = base.copy()
     if ground is not None:

@@ -18,11 +18,12 @@ from numpy.typing import NDArray
 __all__ = [
     "METRIC_HESSIAN",
     "SlopeTerms",
+    "area_hessian",
+    "area_jacobian",
     "dihedral",
     "director_slopes",
     "face_heights",
     "face_metric",
-    "log_area_hessian",
     "skew",
     "transported_director",
     "unit_derivatives",
@@ -36,11 +37,13 @@ _LEVI_CIVITA = np.cross(_I3[:, None, :], _I3[None, :, :])
 
 def skew(v: F) -> F:
     """Cross-product matrices: ``skew(v) @ w == cross(v, w)``; (..., 3) -> (..., 3, 3)."""
-    z = np.zeros(v.shape[:-1])
+    out = np.zeros(v.shape[:-1] + (3, 3))
     x, y, w = v[..., 0], v[..., 1], v[..., 2]
-    return np.stack(
-        [np.stack([z, -w, y], -1), np.stack([w, z, -x], -1), np.stack([-y, x, z], -1)], -2
-    )
+    out[..., 0, 2], out[..., 1, 0], out[..., 2, 1] = y, w, x
+    np.negative(w, out=out[..., 0, 1])
+    np.negative(x, out=out[..., 1, 2])
+    np.negative(y, out=out[..., 2, 0])
+    return out
 
 
 def _metric_hessian() -> F:
@@ -106,25 +109,26 @@ def face_metric(x: F) -> tuple[F, F]:
     return a, da
 
 
-def log_area_hessian(edge: F, normal: F, nn: F, df: F) -> F:
-    """``(m, 9, 9)`` the Hessian of ``F = ln |N|`` (N the face's area vector, ``nn
-    = |N|^2``) in the vertex coordinates, from the edges ``(m, 3, 3)`` (edge i
-    opposite vertex i) and ``F``'s gradient ``df`` ``(m, 9)``:
-    ``(dN^T dN + sum_k N_k d2N_k) / |N|^2 - 2 dF dF^T``, in blocks (j, l)
-    ``(E_j . E_l) I - E_l E_j^T + [N]x (delta_{l, j+2} - delta_{l, j+1})``."""
-    m = len(edge)
-    gram = edge @ edge.transpose(0, 2, 1)
-    # blocks[m, j, a, l, b], so that the (m, 9, 9) is a view: - E_l[a] E_j[b] first
-    blocks = -edge.transpose(0, 2, 1)[:, None, :, :, None] * edge[:, :, None, None, :]
-    for a in range(3):
-        blocks[:, :, a, :, a] += gram
-    wn = skew(normal)
-    for j in range(3):
-        blocks[:, j, :, (j + 2) % 3] += wn
-        blocks[:, j, :, (j + 1) % 3] -= wn
-    d2f = blocks.reshape(m, 9, 9)
-    d2f /= nn[:, None, None]
-    return d2f - 2 * df[:, :, None] * df[:, None, :]
+def area_jacobian(edge: F) -> F:
+    """``(m, 3, 9)`` ``dN / dx_i = [E_i]x``: the area vector ``N = (x1 - x0) x (x2 - x0)``
+    by the vertices, from the edges ``(m, 3, 3)`` (edge i opposite vertex i)."""
+    return skew(edge).transpose(0, 2, 1, 3).reshape(len(edge), 3, 9)
+
+
+def _area_blocks(dn: F, normal: F) -> F:
+    """``(m, 9, 9)`` ``dN^T dN + sum_k N_k d2N_k``: ``dN`` :func:`area_jacobian`,
+    ``d2N``'s constant pattern P1 of ``_slope_patterns``."""
+    return dn.transpose(0, 2, 1) @ dn + (normal @ _SLOPE_PATTERNS[1]).reshape(len(dn), 9, 9)
+
+
+def area_hessian(dn: F, normal: F, nn: F, df: F, weight: F) -> F:
+    """``(m, 9, 9)`` ``weight`` ``(m,)`` times the Hessian of ``M = |N|`` (``dn`` from
+    :func:`area_jacobian`, ``nn = |N|^2``, ``df`` ``(m, 9)`` the gradient of ``ln M``):
+    ``M (d2F + dF dF^T) = (dN^T dN + sum_k N_k d2N_k) / M - M dF dF^T``."""
+    c = weight * np.sqrt(nn)
+    out = _area_blocks(dn, normal) * (c / nn)[:, None, None]
+    out -= (c[:, None] * df)[:, :, None] * df[:, None, :]
+    return out
 
 
 def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
@@ -157,7 +161,8 @@ def face_heights(x: F, order: int = 2) -> tuple[F, F | None, F | None]:
     dh = h[:, :, None] * dlog
     if order == 1:
         return h, dh, None
-    d2f = log_area_hessian(edge, normal, nn, df)
+    d2f = _area_blocks(area_jacobian(edge), normal) / nn[:, None, None]
+    d2f -= 2 * df[:, :, None] * df[:, None, :]
     d2h = np.broadcast_to(d2f[:, None], (m, 3, 9, 9)).copy()
     d2h += dlog[:, :, :, None] * dlog[:, :, None, :]
     unit = edge / np.sqrt(ll)[:, :, None]
@@ -322,8 +327,11 @@ def transported_director(
     q2 += cross_jk.transpose(0, 1, 3, 2)
     d_tt = cos[:, :, None, None] * r2 + sin[:, :, None, None] * q2
     d2d = np.zeros((k, 3, 4, 4))
-    dtt = dt.transpose(0, 2, 1)[:, None]
-    d2d[:, :, :3, :3] = dtt @ d_tt @ dt[:, None] + (d_t @ d2t.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
+    right = (d_tt.reshape(k, 9, 3) @ dt).reshape(k, 3, 3, 3)  # d_tt[i] dt: [i, b, d]
+    right = right.transpose(0, 2, 1, 3).reshape(k, 3, 9)  # [b, (i, d)]
+    both = dt.transpose(0, 2, 1) @ right  # dt^T d_tt[i] dt: [a, (i, d)]
+    d2d[:, :, :3, :3] = both.reshape(k, 3, 3, 3).transpose(0, 2, 1, 3)
+    d2d[:, :, :3, :3] += (d_t @ d2t.reshape(k, 3, 9)).reshape(k, 3, 3, 3)
     mixed = (-sin[:, :, None] * r1 + cos[:, :, None] * q1) @ dt
     d2d[:, :, :3, 3] = mixed
     d2d[:, :, 3, :3] = mixed
@@ -387,8 +395,8 @@ class SlopeTerms:
         m = len(x)
         edge, normal, nn, norm, f, num, den, u = _slope_values(x, d)
         # |N| = M: dM = M dF (F = ln|N|), d2M = M (d2F + dF dF^T).
-        dfx = np.cross(normal[:, None, :], edge) / nn[:, None, None]
-        df = dfx.reshape(m, 9)
+        dn = area_jacobian(edge)
+        df = (normal[:, None, :] @ dn)[:, 0] / nn[:, None]  # N^T dN / |N|^2
         dm = norm[:, None] * df
         da = np.zeros((m, 3, 12))
         db = np.zeros((m, 3, 12))
@@ -397,21 +405,21 @@ class SlopeTerms:
             da[:, i, 3 * i : 3 * i + 3] += d[:, i]
             da[:, i, 3 * j : 3 * j + 3] -= d[:, i]
             da[:, i, 9:] = f[:, i]
-        db[:, :, :9] = np.cross(d[:, :, None, :], edge[:, None, :, :]).reshape(m, 3, 9)
+        db[:, :, :9] = d @ dn  # d_i x E_j over vertex j
         db[:, :, 9:] = normal[:, None, :]
         g = norm[:, None] / den  # G = M / B
         dg = -(norm[:, None] / den**2)[:, :, None] * db
         dg[:, :, :9] += dm[:, None, :] / den[:, :, None]
         self.u: F = u
         self.du: F = g[:, :, None] * da + num[:, :, None] * dg
-        self._x = (edge, normal, nn, norm, num, den, d, df)
+        self._x = (edge, normal, nn, norm, num, den, d, df, dn)
         self._v = (da, dg, dm, db, g)
 
     def hessian(self, w: F) -> tuple[F, F, F]:
         """``sum_i w_i d2u_i`` ((m, 3) weights) in blocks: over the coordinates
         (m, 9, 9) (summed), coordinates by ``d_i`` (m, 3, 9, 3) and ``d_i`` by
         ``d_i`` (m, 3, 3, 3) (each edge's own, times ``w_i``)."""
-        edge, normal, nn, norm, num, den, d, df = self._x
+        edge, normal, nn, norm, num, den, d, df, dn = self._x
         da, dg, dm, db, g = self._v
         m = len(w)
         # u = A G, G = M / B: d2u = G d2A - (A M / B^2) d2B + (A / B) d2M
@@ -431,9 +439,7 @@ class SlopeTerms:
         hxd = vx.transpose(0, 1, 3, 2) @ cv[..., 9:]
         hdd = v[..., 9:].transpose(0, 1, 3, 2) @ cv[..., 9:]
         # + (A / B) d2M over the coordinates
-        d2f = log_area_hessian(edge, normal, nn, df)
-        d2m = norm[:, None, None] * (d2f + df[:, :, None] * df[:, None, :])
-        hxx += np.einsum("mi,mi->m", w, num / den)[:, None, None] * d2m
+        hxx += area_hessian(dn, normal, nn, df, np.einsum("mi,mi->m", w, num / den))
         # The constant-pattern parts: G d2A - (A M / B^2) d2B; d2A and the d_i part of
         # d2B couple the coordinates with d_i, d2B's x part the coordinates alone.
         d2a, p1, p2 = _SLOPE_PATTERNS

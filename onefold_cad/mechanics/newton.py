@@ -97,26 +97,29 @@ class SymmetricFactor:
         self._keep = np.flatnonzero(keep)
         ptr = np.zeros(n + 1, dtype=np.int64)
         np.cumsum(np.bincount(cols[keep], minlength=n), out=ptr[1:])
-        self._indices, self._indptr, self._n = rows[keep], ptr, n
         diag = np.flatnonzero(rows[keep] == cols[keep])
         if len(diag) != n:
             raise ValueError("the matrix's structure lacks diagonal entries")
         self._diag = diag
+        # The upper triangle's matrix, built once: each factor refills its data
+        # (QDLDL reads only the values on an update).
+        self._upper = sp.csc_matrix((np.zeros(len(self._keep)), rows[keep], ptr), shape=(n, n))
         self._solver: qdldl.Solver | None = None
 
     def factor(self, a: sp.csc_matrix, shift: F | None = None) -> bool:
         """Factor ``a + diag(shift)`` (``a`` of this structure); whether it is
         positive definite (every pivot of ``D`` positive and finite). A
         factorisation that breaks down counts as not definite."""
-        data = a.data[self._keep].copy()
+        upper = self._upper
+        np.take(a.data, self._keep, out=upper.data)
         if shift is not None:
-            data[self._diag] += shift
-        upper = sp.csc_matrix((data, self._indices, self._indptr), shape=(self._n, self._n))
+            upper.data[self._diag] += shift
         try:
             if self._solver is None:
                 self._solver = qdldl.Solver(upper, upper=True)
             else:
                 self._solver.update(upper, upper=True)
+            # D's signs: qdldl gives D only with L (``factors``); no call reads D alone.
             d = self._solver.factors()[1]
         except (ValueError, RuntimeError):
             self._solver = None
@@ -170,6 +173,12 @@ def minimize(
     q = np.array(q0, dtype=float)
     free = ~np.asarray(fixed, dtype=bool)
     scale = np.ones(len(q)) if residual_scale is None else np.asarray(residual_scale, float)
+    if not free.any():  # an imposed state: nothing to solve, no Hessian needed
+        energy, grad, _ = fun(q, 1)
+        assert grad is not None
+        if callback is not None:
+            callback(0, 0.0, energy)
+        return NewtonResult(q, energy, grad, 0.0, max(rtol * force_scale, atol), 0)
     energy, grad, hess = fun(q, 2)
     assert grad is not None and hess is not None
     _, block = restrict(hess, free)

@@ -22,6 +22,7 @@ from onefold_cad.mechanics.material import ShellMaterial, strain_form
 from onefold_cad.mechanics.mesh import SheetMesh
 
 __all__ = [
+    "REFERENCE_CACHES",
     "Shell",
     "director_angles",
     "directors",
@@ -34,6 +35,14 @@ __all__ = [
 ]
 
 F = NDArray[np.float64]
+
+
+#: Shell's cached properties, each a function of its mesh, material and
+#: reference alone (``with_changes`` carries them over while those stay).
+REFERENCE_CACHES = (
+    "ref_metric", "ref_area", "form", "cartesian", "edge_frames", "edge_maps", "node_mass",
+    "crease_length",
+)  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)
@@ -113,8 +122,15 @@ class Shell:
         )
 
     def with_changes(self, **changes: Any) -> Shell:
-        """A copy with some fields replaced (arrays are taken as given)."""
-        return replace(self, **changes)
+        """A copy with some fields replaced (arrays are taken as given). While the
+        mesh, material and reference stay, the copy keeps the quantities already
+        derived from them (:data:`REFERENCE_CACHES`) instead of deriving them anew."""
+        new = replace(self, **changes)
+        if not changes.keys() & {"mesh", "material", "reference"}:
+            for name in REFERENCE_CACHES:
+                if name in self.__dict__:
+                    new.__dict__[name] = self.__dict__[name]
+        return new
 
     @cached_property
     def ref_metric(self) -> F:

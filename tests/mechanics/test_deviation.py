@@ -11,6 +11,7 @@ from matplotlib.path import Path
 from onefold_cad.design import fold_design
 from onefold_cad.mechanics.deviation import best_fit, surface_distance
 from onefold_cad.templates import load_template
+from tests.counting import count_calls
 
 
 @pytest.fixture(scope="module")
@@ -74,3 +75,22 @@ def test_best_fit_of_noisy_points_leaves_their_noise():
     noise = rng.normal(scale=1e-3, size=p.shape)
     fit = best_fit(p + noise, p)
     assert fit.rms == pytest.approx(np.sqrt(np.mean(np.sum(noise**2, axis=1))), rel=0.01)
+
+
+def test_the_sampled_rulings_are_each_folds_own_and_made_once(patkau, monkeypatch):
+    """The rulings sampled for the closest-ruling search are kept with their
+    fold: a second measure of the same fold inverts no flat angle (no call of
+    ``frames``), and another design's fold (broken-vault, alternated with
+    patkau) gets its own: the points on each surface are on it, not on the
+    other."""
+    design, folded = patkau
+    other_design = load_template("broken-vault")
+    other = fold_design(other_design)
+    xy, xy_other = _inside(design, 400, 6, 20.0), _inside(other_design, 400, 7, 2.0)
+    on, on_other = folded.map_points(xy), other.map_points(xy_other)
+    for fold, points, d in ((folded, on, design), (other, on_other, other_design)) * 2:
+        assert np.max(surface_distance(fold, points, 0.0)) <= 1e-9 * d.sheet.size
+    assert np.min(surface_distance(other, on, 0.0)) > 1.0  # patkau's points are off it
+    calls = count_calls(monkeypatch, type(folded.solution.surface), "frames")
+    surface_distance(folded, on, 9.57)
+    assert calls == [], "the flat angles of the sampled rulings or of the search again"

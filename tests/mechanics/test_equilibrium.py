@@ -203,3 +203,37 @@ def test_a_step_grows_only_when_may_grow_says_so(strip):
         solves[answer] = seen.count(0)
     assert solves[False] == 8
     assert solves[True] == 4  # 1/8, 1/4, 1/2 and the rest (1/8)
+
+
+def test_the_equilibrium_is_read_from_newtons_last_evaluation(strip, monkeypatch):
+    """The energy, its parts and the reactions come from Newton's last
+    evaluation (the Hessian's, at the converged state): no evaluation after
+    it, and they are bit for bit those of a fresh evaluation there, through
+    contact passes that move the state in place between solves."""
+    from onefold_cad.mechanics import equilibrium
+    from onefold_cad.mechanics.energy import evaluate
+
+    g = _gravity_for(1e-3)
+    q = STEEL0.density * g * STEEL0.thickness
+    h0 = q * LENGTH**4 / (16 * STEEL0.bending_stiffness)
+    shell, fixed = cantilever(strip, STEEL0, g, height=h0)
+    start = _start(strip)
+    start[2 : 3 * strip.n_nodes : 3] = h0
+    touching = strip.nodes[:, 0] > 0.9 * LENGTH
+    orders: list[int] = []
+
+    def counted(sh, state, order=2):
+        orders.append(order)
+        return evaluate(sh, state, order)
+
+    monkeypatch.setattr(equilibrium, "evaluate", counted)
+    eq = solve_equilibrium(shell, start, fixed=fixed, ground=Ground("anchored"), contacts=touching)
+    assert eq.passes > 1, "the case should take several contact passes"
+    assert orders[-1] == 2 and 1 not in orders, "no evaluation after Newton's last"
+    fresh = evaluate(shell, eq.q, 1)
+    assert eq.energy == fresh.energy and eq.parts == fresh.parts
+    assert fresh.gradient is not None
+    z = 3 * np.flatnonzero(eq.contacts) + 2
+    assert np.array_equal(eq.reactions[eq.contacts, 2], fresh.gradient[z])
+    reactions = np.concatenate([eq.reactions.ravel(), eq.director_reactions])
+    assert np.array_equal(reactions[fixed], fresh.gradient[fixed])

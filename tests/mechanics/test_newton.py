@@ -8,6 +8,7 @@ import scipy.sparse as sp
 
 from onefold_cad.errors import ConvergenceError, OneFoldError
 from onefold_cad.mechanics import minimize, solve_equilibrium
+from onefold_cad.mechanics.newton import SymmetricFactor
 from tests.mechanics.helpers import cantilever, rectangle
 from tests.mechanics.test_equilibrium import STEEL0, _gravity_for, _start
 
@@ -64,3 +65,62 @@ def test_a_predicted_start_does_not_loosen_the_tolerance():
                       max_iter=100, start_scales=False)  # fmt: skip
     assert strict.tolerance == 1e-6
     assert strict.residual <= 1e-6
+
+
+def _spd(seed: int, n: int = 40) -> sp.csc_matrix:
+    """A random sparse symmetric matrix, diagonally dominant, of one fixed structure."""
+    rng = np.random.default_rng(0)
+    mask = rng.random((n, n)) < 0.1
+    mask = mask | mask.T | np.eye(n, dtype=bool)
+    values = np.random.default_rng(seed).standard_normal((n, n))
+    a = np.where(mask, values + values.T, 0.0)
+    a[np.diag_indices(n)] = np.abs(a).sum(axis=1) + 1.0
+    m = sp.csc_matrix(mask.astype(float))
+    m.data[:] = a[mask.T].ravel()  # CSC stores column by column: a[mask.T] in that order
+    assert np.array_equal(m.toarray(), a)
+    return m
+
+
+def test_a_refilled_factor_is_a_fresh_one():
+    """Each factorisation refills one upper-triangle matrix: after other
+    matrices, a shifted one and an indefinite one, its solution is bit for bit
+    that of a factor made for the matrix alone, and the matrices are untouched."""
+    a, b = _spd(1), _spd(2)
+    n = a.shape[0]
+    rhs = np.arange(1.0, n + 1)
+    fresh = SymmetricFactor(a)
+    assert fresh.factor(a)
+    expected = fresh.solve(rhs)
+    np.testing.assert_allclose(a @ expected, rhs, rtol=1e-12)
+    a_data = a.data.copy()
+    reused = SymmetricFactor(a)
+    assert reused.factor(b)
+    assert reused.factor(a, np.full(n, 5.0))
+    assert not np.array_equal(reused.solve(rhs), expected)  # the shift is in this one
+    indefinite = a.copy()
+    indefinite.data = -indefinite.data
+    assert not reused.factor(indefinite)
+    assert reused.factor(a)
+    assert np.array_equal(reused.solve(rhs), expected)
+    assert np.array_equal(a.data, a_data), "the shift went into the caller's matrix"
+
+
+def test_an_imposed_state_needs_no_hessian():
+    """Every unknown fixed (a form imposed whole): the energy and gradient
+    there, at 0 iterations with the tolerance the loop would give, and no
+    Hessian evaluated."""
+    orders: list[int] = []
+
+    def fun(q, order):
+        orders.append(order)
+        return _rosenbrock(q, order)
+
+    seen: list[tuple] = []
+    result = minimize(fun, [0.5, 4.0], np.ones(2, bool), force_scale=3.0, rtol=1e-6,
+                      atol=1e-9, callback=lambda *a: seen.append(a))  # fmt: skip
+    energy, gradient, _ = _rosenbrock(np.array([0.5, 4.0]), 1)
+    assert orders == [1]
+    assert result.iterations == 0 and result.residual == 0.0
+    assert result.energy == energy and np.array_equal(result.gradient, gradient)
+    assert np.array_equal(result.q, [0.5, 4.0]) and result.tolerance == 3e-6
+    assert seen == [(0, 0.0, energy)]

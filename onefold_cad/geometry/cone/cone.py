@@ -396,10 +396,16 @@ class ExactCone(DirectionSurface):
 
     def frames(self, theta: ArrayLike) -> tuple[Array, Array]:
         _, plus, s = self._split(theta)
-        u, e = self._vectors(plus, s)
-        e -= np.einsum("ij,ij->i", e, u)[:, None] * u
-        e /= np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
-        return u, e
+        return _orthonormal(*self._vectors(plus, s))
+
+    def frames_at_arc(self, phi: Array) -> tuple[Array, Array]:
+        """:meth:`frames` at arc parameters ``phi`` ``(k,)`` (radians) instead of
+        flat angles: no flat angle to invert (``phi_of_theta`` maps one to the other)."""
+        p0, p1 = arc_range(self.frame)
+        plus = phi - p0 <= 0.5 * self.geometry.span
+        return _orthonormal(
+            *self._vectors(plus, np.maximum(np.where(plus, phi - p0, p1 - phi), 0.0))
+        )
 
     def frame_at(self, theta: float) -> tuple[list[float], list[float]]:
         """``u`` and ``e`` of :meth:`frames` at one flat angle, as floats
@@ -412,3 +418,10 @@ class ExactCone(DirectionSurface):
             return u[0].tolist(), e[0].tolist()
         u, e = self.frames(np.array([theta]))
         return u[0].tolist(), e[0].tolist()
+
+
+def _orthonormal(u: Array, e: Array) -> tuple[Array, Array]:
+    """``u`` and ``e`` made normal to it and unit (``e`` in place)."""
+    e -= np.einsum("ij,ij->i", e, u)[:, None] * u
+    e /= np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
+    return u, e

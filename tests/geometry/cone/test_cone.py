@@ -73,3 +73,16 @@ def test_the_ruling_at_a_flat_angle_develops_to_it_independently() -> None:
         for t, ui in zip(theta, u, strict=True):
             got = mp_ref.developed_angle(frame, cone.height, tuple(ui))
             assert abs(got - t) <= 1e-14, (alpha, beta, place, t, got - t)
+
+
+def test_frames_at_arc_parameters_are_the_frames_at_their_flat_angles() -> None:
+    # frames_at_arc(phi) is frames(theta) at phi = phi_of_theta(theta) (frames
+    # is checked against mpmath above) without inverting theta, both ends and
+    # both halves of the arc included
+    for alpha, beta, place in ((32.0, 34.0, 0.68), (50.0, 45.0, 0.0), (80.0, 10.0, -0.95)):
+        _, cone = _cone(alpha, beta, place)
+        theta = _angles(cone.total_angle, 5)
+        u, e = cone.frames_at_arc(cone.phi_of_theta(theta))
+        u0, e0 = cone.frames(theta)
+        np.testing.assert_allclose(u, u0, rtol=0, atol=2e-15)
+        np.testing.assert_allclose(e, e0, rtol=0, atol=2e-15)
