@@ -42,6 +42,18 @@ def _start(mesh):
     return pack(flat_positions(mesh), np.zeros(mesh.n_directors))
 
 
+def _propped(mesh):
+    """The propped cantilever: clamped at h0 = q L^4 / (16 D) above the ground,
+    its last tenth starting on it. Returns (shell, fixed, start, touching, q)."""
+    g = _gravity_for(1e-3)
+    q = STEEL0.density * g * STEEL0.thickness
+    h0 = q * LENGTH**4 / (16 * STEEL0.bending_stiffness)
+    shell, fixed = cantilever(mesh, STEEL0, g, height=h0)
+    start = _start(mesh)
+    start[2 : 3 * mesh.n_nodes : 3] = h0
+    return shell, fixed, start, mesh.nodes[:, 0] > 0.9 * LENGTH, q
+
+
 def _tip(mesh, positions):
     at_tip = mesh.nodes[:, 0] > LENGTH - 1e-12
     return -positions[at_tip, 2].mean(), LENGTH - positions[at_tip, 0].mean()
@@ -81,14 +93,8 @@ def test_propped_by_the_ground(strip):
     rest on it, and the ground carries 3 q L / 16 (a propped cantilever with the prop
     settled by h0; contact at the tip only since h0 > q L^4 / (72 D)). The nodes of the
     last tenth start on the ground: those that pull are released."""
-    g = _gravity_for(1e-3)
-    q = STEEL0.density * g * STEEL0.thickness
-    h0 = q * LENGTH**4 / (16 * STEEL0.bending_stiffness)
     for mode in ("anchored", "frictionless"):
-        shell, fixed = cantilever(strip, STEEL0, g, height=h0)
-        start = _start(strip)
-        start[2 : 3 * strip.n_nodes : 3] = h0
-        touching = strip.nodes[:, 0] > 0.9 * LENGTH
+        shell, fixed, start, touching, q = _propped(strip)
         eq = solve_equilibrium(shell, start, fixed=fixed, ground=Ground(mode), contacts=touching)
         at_tip = strip.nodes[:, 0] > LENGTH - 1e-12
         assert np.array_equal(eq.contacts, at_tip)
@@ -156,13 +162,7 @@ def test_a_predicted_path_keeps_anchored_feet_where_they_stand(strip):
     without ``predict=2``: the same nodes end on the ground, where the
     unpredicted path anchored them (a prediction moves only the free
     unknowns), and the same equilibrium."""
-    g = _gravity_for(1e-3)
-    q = STEEL0.density * g * STEEL0.thickness
-    h0 = q * LENGTH**4 / (16 * STEEL0.bending_stiffness)
-    shell, fixed = cantilever(strip, STEEL0, g, height=h0)
-    start = _start(strip)
-    start[2 : 3 * strip.n_nodes : 3] = h0
-    touching = strip.nodes[:, 0] > 0.9 * LENGTH
+    shell, fixed, start, touching, q = _propped(strip)
     runs = [
         solve_path(
             lambda s: shell.with_changes(gravity=s * shell.gravity),
@@ -213,13 +213,7 @@ def test_the_equilibrium_is_read_from_newtons_last_evaluation(strip, monkeypatch
     from onefold_cad.mechanics import equilibrium
     from onefold_cad.mechanics.energy import evaluate
 
-    g = _gravity_for(1e-3)
-    q = STEEL0.density * g * STEEL0.thickness
-    h0 = q * LENGTH**4 / (16 * STEEL0.bending_stiffness)
-    shell, fixed = cantilever(strip, STEEL0, g, height=h0)
-    start = _start(strip)
-    start[2 : 3 * strip.n_nodes : 3] = h0
-    touching = strip.nodes[:, 0] > 0.9 * LENGTH
+    shell, fixed, start, touching, q = _propped(strip)
     orders: list[int] = []
 
     def counted(sh, state, order=2):
