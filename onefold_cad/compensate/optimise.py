@@ -42,7 +42,7 @@ from onefold_cad.design import Design
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.numeric import Array
 
-__all__ = ["KNOBS", "Candidate", "Search", "knob_strengths", "search"]
+__all__ = ["KNOBS", "Candidate", "Search", "fold_knobs", "formed_to", "knob_strengths", "search"]
 
 #: The knobs: name, unit, forward-difference step, lower and upper bound
 #: (h_c as a fraction of R cos(alpha)).
@@ -111,22 +111,38 @@ class Search:
         return min(ok, key=lambda c: c.cost) if ok else None
 
 
+def formed_to(base: Design, knobs: dict[str, float]) -> Design:
+    """``base`` formed to ``knobs`` (:func:`fold_knobs`' keys: alpha, beta (deg),
+    h_c (design unit), overbend (deg))."""
+    frame = base.frame.with_changes(alpha=knobs["alpha"], beta=knobs["beta"], h_c=knobs["h_c"])
+    material = replace(base.material, crease_overbend=knobs["overbend"] or None)
+    return base.with_changes(frame=frame, material=material)
+
+
+def fold_knobs(design: Design) -> dict[str, float]:
+    """The knobs ``design`` is formed to: alpha, beta (deg), h_c (design unit),
+    overbend (deg; 0 when none is given)."""
+    f = design.frame
+    return {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c,
+            "overbend": design.material.crease_overbend or 0.0}  # fmt: skip
+
+
+def _half(alpha: float, base: Design) -> float:
+    """h_c's limit R cos(alpha): the unit of the search's h_c."""
+    return base.frame.radius * math.cos(math.radians(alpha))
+
+
 def _design_at(base: Design, names: tuple[str, ...], y: Array, fixed: dict[str, float]) -> Design:
     """``base`` with the knobs ``names`` set to ``y`` (h_c as its fraction)."""
     v = dict(fixed)
     v.update(dict(zip(names, (float(a) for a in y), strict=True)))
-    half = base.frame.radius * math.cos(math.radians(v["alpha"]))
-    frame = base.frame.with_changes(alpha=v["alpha"], beta=v["beta"], h_c=v["h_c"] * half)
-    material = replace(base.material, crease_overbend=v["overbend"] or None)
-    return base.with_changes(frame=frame, material=material)
+    return formed_to(base, v | {"h_c": v["h_c"] * _half(v["alpha"], base)})
 
 
 def knob_values(design: Design) -> dict[str, float]:
     """The knobs of ``design`` (h_c as a fraction of R cos(alpha))."""
-    f = design.frame
-    half = f.radius * math.cos(math.radians(f.alpha))
-    overbend = design.material.crease_overbend or 0.0
-    return {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c / half, "overbend": overbend}
+    v = fold_knobs(design)
+    return v | {"h_c": v["h_c"] / _half(v["alpha"], design)}
 
 
 class _Problem:
@@ -171,9 +187,7 @@ class _Problem:
             cost = math.inf if r is None else 0.5 * float(r @ r)
             if not isinstance(s, str):
                 self.found.cpu_s += s.cpu_s
-            knobs = {"alpha": d.frame.alpha, "beta": d.frame.beta, "h_c": d.frame.h_c,
-                     "overbend": d.material.crease_overbend or 0.0}  # fmt: skip
-            self.found.candidates.append(Candidate(knobs, level, s, cost, mx, rms))
+            self.found.candidates.append(Candidate(fold_knobs(d), level, s, cost, mx, rms))
             out.append(np.full(self.size_r, self.penalty) if r is None else r)
         self.report(level)
         return out

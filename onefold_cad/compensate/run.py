@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -24,7 +24,7 @@ from onefold_cad.compensate.evaluate import (
     node_weights,
     standing_measures,
 )
-from onefold_cad.compensate.optimise import Search, search
+from onefold_cad.compensate.optimise import Search, fold_knobs, formed_to, search
 from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.target import Target
 from onefold_cad.design import Design, fold_design, rest_once
@@ -121,7 +121,6 @@ class Compensation:
 
     def to_data(self) -> dict[str, Any]:
         """The report's ``compensation`` section."""
-        f0, f1 = self.start.frame, self.compensated.frame
         u = self.compensated.units.value
         return {
             "units": u,
@@ -129,18 +128,8 @@ class Compensation:
             "designed": self.designed,
             "before": self.before.to_data(),
             "after": self.after.to_data(),
-            "start": {
-                "alpha": f0.alpha,
-                "beta": f0.beta,
-                "h_c": f0.h_c,
-                "overbend": self.start.material.crease_overbend or 0.0,
-            },
-            "compensated": {
-                "alpha": f1.alpha,
-                "beta": f1.beta,
-                "h_c": f1.h_c,
-                "overbend": self.compensated.material.crease_overbend or 0.0,
-            },
+            "start": fold_knobs(self.start),
+            "compensated": fold_knobs(self.compensated),
             "knobs": list(self.found.knobs),
             "sensitivity": self.found.sensitivity,
             "crease": [dict(c) for c in self.crease],
@@ -219,12 +208,7 @@ def compensate(
             iterations=len(found.candidates),
             residual=math.nan,
         )
-    k = best.knobs
-    frame = start.frame.with_changes(alpha=k["alpha"], beta=k["beta"], h_c=k["h_c"])
-    material = replace(start.material, crease_overbend=k["overbend"] or None)
-    compensated = start.with_changes(
-        frame=frame, material=material, name=f"{design.name}-compensated"
-    )
+    compensated = formed_to(start, best.knobs).with_changes(name=f"{design.name}-compensated")
     say(f"checking the compensated fold and the uncompensated one on the {fine} mesh")
     before_sim, after_sim = evaluator.map([start, compensated], fine, check=check)
     for s in (before_sim, after_sim):
