@@ -31,6 +31,7 @@ __all__ = [
     "Standing",
     "StandingMeasures",
     "crease_springback",
+    "designed_sizes",
     "node_weights",
     "simulate_standing",
     "standing_measures",
@@ -198,6 +199,14 @@ def _vertex_normals(x: Array, faces: Index) -> Array:
     for i in range(3):
         np.add.at(out, faces[:, i], n)
     return out / np.maximum(np.linalg.norm(out, axis=1), 1e-300)[:, None]
+
+
+def designed_sizes(target: Design) -> dict[str, float]:
+    """The target design's own height, span and depth as it rests (its
+    resting placement; design unit): what a design target's standing steel
+    is measured against."""
+    rest = rest_once(fold_design(target))
+    return {"height": rest.height, "span": rest.width, "depth": rest.depth}
 
 
 def target_form(target: Design, flat: Array) -> Array:

@@ -21,13 +21,14 @@ import numpy as np
 from onefold_cad.compensate.evaluate import (
     Standing,
     crease_springback,
+    designed_sizes,
     node_weights,
     standing_measures,
 )
 from onefold_cad.compensate.optimise import Search, fold_knobs, formed_to, search
 from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.target import Target
-from onefold_cad.design import Design, fold_design, rest_once
+from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ConvergenceError
 from onefold_cad.geometry.numeric import Array
 
@@ -223,8 +224,7 @@ def compensate(
     weights = node_weights(before_sim.flat, before_sim.faces)
     before = _form(target, samples, weights, before_sim)
     after = _form(target, samples, weights, after_sim)
-    rest = rest_once(fold_design(target.form))
-    designed = {"height": rest.height, "span": rest.width, "depth": rest.depth}
+    designed = designed_sizes(target.form)
     reached, verdict = _verdict(target, designed, before, after, found)
     if not reached and found.limits:
         verdict += "; within the family of folds: " + "; ".join(found.limits)

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import pytest
 
-from onefold_cad.compensate import parallel
+from onefold_cad.compensate import optimise, parallel
 from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.run import compensate
 from onefold_cad.compensate.target import Target, make_target
+from onefold_cad.design import fold_design
+from onefold_cad.geometry.resting.placement import rest_form
 from onefold_cad.templates import find_template, load_template
 from tests.compensate.fake_steel import OVERBEND, PER_OVERBEND, SPRING, fake_standing
 
@@ -167,3 +169,35 @@ def test_knob_strengths_weigh_each_knob_by_its_step() -> None:
     # two knobs that repeat each other per step leave a zero direction
     same = knob_strengths(np.array([[2.0, 1.0], [4.0, 2.0]]), np.array([0.5, 1.0]))
     assert same == pytest.approx([1.0, 0.0], abs=1e-12)
+
+
+def test_a_design_target_s_residual_ends_with_its_size_penalty() -> None:
+    # the fake steel of broken-vault stands as the fold opened by SPRING: its
+    # residual's last two rows are its height's and span's misses against the
+    # design as it rests, less SIZE_SLACK of the design's, times SIZE_WEIGHT
+    design = load_template(find_template("broken-vault"))
+    steel = fake_standing(design, "coarse")
+    rest = rest_form(fold_design(design), None)
+    problem = optimise._Problem(make_target(design, "design"), None, optimise.Search(), print)
+    rows, _, _ = problem.residual(steel)
+    assert steel.height is not None and steel.span is not None
+    want = []
+    for got, design_size in ((steel.height, rest.height), (steel.span, rest.width)):
+        beyond = abs(got - design_size) - optimise.SIZE_SLACK * design_size
+        want.append(optimise.SIZE_WEIGHT * max(beyond, 0.0) * (1 if got > design_size else -1))
+    assert any(w != 0.0 for w in want)  # a miss past the slack to see
+    assert rows[-2:] == pytest.approx(want, rel=1e-12)
+    assert len(rows) == len(steel.flat) + 2
+
+
+@pytest.mark.parametrize("off", [-0.004, 0.0, 0.0049])
+def test_a_size_within_the_slack_costs_nothing(off: float) -> None:
+    sizes = {"height": 100.0, "span": 250.0}
+    assert list(optimise.size_rows(100.0 * (1 + off), 250.0 * (1 - off), sizes)) == [0.0, 0.0]
+
+
+def test_a_size_past_the_slack_costs_its_excess_signed() -> None:
+    sizes = {"height": 100.0, "span": 250.0}
+    slack, w = optimise.SIZE_SLACK, optimise.SIZE_WEIGHT
+    rows = optimise.size_rows(100.0 + 100.0 * slack + 2.0, 250.0 - 250.0 * slack - 3.0, sizes)
+    assert rows == pytest.approx([2.0 * w, -3.0 * w], rel=1e-9)
