@@ -168,7 +168,7 @@ def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
 
     f0, f1 = result.start.frame, result.compensated.frame
     u = result.compensated.units.value
-    ob = result.compensated.material.crease_overbend or 0.0
+    ob = result.compensated.material.overbend_deg
     lines = [
         f"springback compensated (onefold compensate): formed to alpha {f1.alpha:.4f}, beta "
         f"{f1.beta:.4f} deg, h_c {f1.h_c:.4g} {u} (design: alpha {f0.alpha:.4g}, beta "

@@ -148,7 +148,7 @@ def fold_knobs(design: Design) -> dict[str, float]:
     overbend (deg; 0 when none is given)."""
     f = design.frame
     return {"alpha": f.alpha, "beta": f.beta, "h_c": f.h_c,
-            "overbend": design.material.crease_overbend or 0.0}  # fmt: skip
+            "overbend": design.material.overbend_deg}  # fmt: skip
 
 
 def _half(alpha: float, base: Design) -> float:

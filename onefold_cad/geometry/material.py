@@ -129,10 +129,15 @@ class Material:
             ))  # fmt: skip
         self._check_elastic_plastic()
 
+    @property
+    def overbend_deg(self) -> float:
+        """:attr:`crease_overbend` as a number (deg; 0 when none is given)."""
+        return 0.0 if self.crease_overbend is None else float(self.crease_overbend)
+
     def crease_set_angle(self, fold_angle_deg: float) -> float:
         """The angle (deg) a crease half of fold angle ``fold_angle_deg`` is set
-        to: the fold angle plus :attr:`crease_overbend`."""
-        return fold_angle_deg + (self.crease_overbend or 0.0)
+        to: the fold angle plus :attr:`overbend_deg`."""
+        return fold_angle_deg + self.overbend_deg
 
     def _check_elastic_plastic(self) -> None:
         """Validate Young's modulus, Poisson's ratio and the yield stress (each

@@ -303,7 +303,7 @@ def run(
             if mat.hardening_iso + mat.hardening_kin > 0
             else 0.0
         ),
-        crease_overbend_deg=design.material.crease_overbend or 0.0,
+        crease_overbend_deg=design.material.overbend_deg,
         fields=fields,
         stage_positions=stage_positions,
         warnings=warnings,

@@ -57,7 +57,7 @@ def fake_standing(design: Design, level: str, check: bool = False, law: str = "m
     is recorded in :data:`LAWS` and changes nothing."""
     LAWS.append(law)
     f = design.frame
-    ob = design.material.crease_overbend or 0.0
+    ob = design.material.overbend_deg
     opened = design.with_changes(
         frame=f.with_changes(
             alpha=f.alpha - SPRING[0] + PER_OVERBEND[0] * ob,

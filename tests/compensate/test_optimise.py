@@ -93,7 +93,7 @@ def test_every_knob_together_reaches_the_design(fake: None) -> None:
     assert result.reached, result.verdict
     assert result.after.max_deviation < 0.02 * result.before.max_deviation
     f, f0 = result.compensated.frame, design.frame
-    ob = result.compensated.material.crease_overbend or 0.0
+    ob = result.compensated.material.overbend_deg
     assert f.alpha + PER_OVERBEND[0] * ob == pytest.approx(f0.alpha + SPRING[0], abs=0.1)
     assert f.beta + PER_OVERBEND[1] * ob == pytest.approx(f0.beta + SPRING[1], abs=0.1)
 

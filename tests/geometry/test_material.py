@@ -86,3 +86,18 @@ def test_the_stainless_template_has_its_data_and_writes_it_back():
 def test_a_material_without_them_writes_none():
     data = design_to_data(load_template("paper-square"))["material"]
     assert not {"youngs_modulus", "poisson", "yield_stress"} & set(data)
+
+
+@pytest.mark.parametrize(
+    ("overbend", "number"), [(None, 0.0), (0.0, 0.0), (6.0, 6.0), (-45.0, -45.0)]
+)
+def test_the_overbend_is_a_number_and_sets_the_crease_past_its_fold(overbend, number) -> None:
+    m = Material(thickness=3.0, crease_overbend=overbend)
+    assert m.overbend_deg == number
+    assert m.crease_set_angle(82.5) == 82.5 + number
+
+
+@pytest.mark.parametrize("overbend", [-45.01, 45.01, float("nan")])
+def test_an_overbend_past_its_range_is_refused_naming_it(overbend) -> None:
+    with pytest.raises(InvalidParameterError, match="crease_overbend"):
+        Material(thickness=3.0, crease_overbend=overbend)
