@@ -142,3 +142,22 @@ def test_a_hardened_j2_stress_above_yield_is_called_the_flow_stress(sim):
     assert "at most the flow stress, yield + 507 MPa x plastic strain" in _stress_caption(j2, scale)
     for other in (above, replace(j2, hardening_modulus_MPa=0.0)):
         assert "flow stress" not in _stress_caption(other, scale)
+
+
+def test_the_moment_law_s_stress_past_yield_is_called_an_estimate(sim):
+    """The moment law takes the membrane and the unloading elastic, so its
+    stress past yield (patkau's coarse run: some 25 times it by H) is one
+    no steel can be in: the picture's caption says so and names the law
+    that gives the stress the steel can be in; below yield, or under J2,
+    it says nothing of it."""
+    from dataclasses import replace
+
+    from onefold_cad.export.simulation.pictures import _flat_areas, _stress_caption
+
+    assert sim.law == "moment" and sim.standing.utilisation > 1.0
+    scale = stress_scale(sim.face_stress_MPa, _flat_areas(sim), sim.yield_stress_MPa)
+    said = "past yield the moment law's elastic estimate, a stress the steel cannot be in"
+    assert said in _stress_caption(sim, scale)
+    below = replace(sim, standing=replace(sim.standing, utilisation=0.9))
+    for other in (below, replace(sim, law="j2")):
+        assert "estimate" not in _stress_caption(other, scale)
