@@ -71,8 +71,9 @@ def _line(text: object) -> str:
 
 
 def simulation_numbers(sim: Simulation) -> dict[str, Any]:
-    """The numbers the page prints (design unit, MPa, shares 0..1); None where
-    the simulation has none (no standing equilibrium, reference 'designed');
+    """The numbers the page prints (design unit, MPa, shares 0..1; ``law``: the
+    bending law, 'moment' or 'j2'); None where the simulation has none (no
+    standing equilibrium, reference 'designed');
     ``checking``: its reserve check is still to come (:func:`check_state`)."""
     s = sim.standing
     return {
@@ -90,6 +91,7 @@ def simulation_numbers(sim: Simulation) -> dict[str, Any]:
         "max_stress_MPa": s.max_stress_MPa,
         "yield_stress_MPa": sim.yield_stress_MPa,
         "utilisation": s.utilisation,
+        "law": sim.law,
         "weight_N": sim.weight_N,
         "nodes": sim.nodes,
         "triangles": sim.triangles,

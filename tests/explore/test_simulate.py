@@ -129,6 +129,9 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
         assert n["uncertain"] and tab.text("#sim-stands") == f"uncertain: {n['uncertain']}"
         assert tab.text("#sim-size") == f"{_fmt(n['height'])} mm · {_fmt(n['span'])} mm"
         assert _fmt(n["max_stress_MPa"]) in tab.text("#sim-stress")
+        # the moment law's 25 times yield by H: called its estimate, not a stress
+        assert n["law"] == "moment" and n["utilisation"] > 1
+        assert tab.text("#sim-stress").endswith("past yield the moment law's elastic estimate)")
         assert (
             tab.text("#sim-springback") == f"max deviation {_fmt(n['springback_max_deviation'])} mm"
         )

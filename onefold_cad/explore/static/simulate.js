@@ -152,8 +152,12 @@ export function createSimulation({ scene, form, render, query }) {
       : `max deviation ${len(n.springback_max_deviation)}`;
     $('sim-plastic').textContent = n.plastic_area_share === null ? '–'
       : `${fmt(100 * n.plastic_area_share, 3)} % of the area`;
+    // past yield the moment law's stress is its elastic estimate, not a stress
+    // the steel can be in (the stress picture and the warning say the same)
+    const estimate = n.law === 'moment' && n.utilisation > 1
+      ? '; past yield the moment law\'s elastic estimate' : '';
     $('sim-stress').textContent = n.max_stress_MPa === null ? '–'
-      : `${fmt(n.max_stress_MPa)} MPa (${fmt(n.utilisation, 3)} × yield ${fmt(n.yield_stress_MPa)} MPa)`;
+      : `${fmt(n.max_stress_MPa)} MPa (${fmt(n.utilisation, 3)} × yield ${fmt(n.yield_stress_MPa)} MPa${estimate})`;
     const box = $('sim-warnings');
     const list = box.querySelector('ul');
     list.replaceChildren(...sim.warnings.map((w) => {
