@@ -173,8 +173,9 @@ def test_knob_strengths_weigh_each_knob_by_its_step() -> None:
 
 def test_a_design_target_s_residual_ends_with_its_size_penalty() -> None:
     # the fake steel of broken-vault stands as the fold opened by SPRING: its
-    # residual's last two rows are its height's and span's misses against the
-    # design as it rests, less SIZE_SLACK of the design's, times SIZE_WEIGHT
+    # residual's last two rows are its height's and span's relative misses
+    # against the design as it rests, less SIZE_SLACK, times SIZE_WEIGHT and
+    # the mean of the design's height and span
     design = load_template(find_template("broken-vault"))
     steel = fake_standing(design, "coarse")
     rest = rest_form(fold_design(design), None)
@@ -182,9 +183,11 @@ def test_a_design_target_s_residual_ends_with_its_size_penalty() -> None:
     rows, _, _ = problem.residual(steel)
     assert steel.height is not None and steel.span is not None
     want = []
+    length = (rest.height + rest.width) / 2
     for got, design_size in ((steel.height, rest.height), (steel.span, rest.width)):
-        beyond = abs(got - design_size) - optimise.SIZE_SLACK * design_size
-        want.append(optimise.SIZE_WEIGHT * max(beyond, 0.0) * (1 if got > design_size else -1))
+        beyond = abs(got / design_size - 1) - optimise.SIZE_SLACK
+        sign = 1 if got > design_size else -1
+        want.append(optimise.SIZE_WEIGHT * length * max(beyond, 0.0) * sign)
     assert any(w != 0.0 for w in want)  # a miss past the slack to see
     assert rows[-2:] == pytest.approx(want, rel=1e-12)
     assert len(rows) == len(steel.flat) + 2
@@ -196,8 +199,11 @@ def test_a_size_within_the_slack_costs_nothing(off: float) -> None:
     assert list(optimise.size_rows(100.0 * (1 + off), 250.0 * (1 - off), sizes)) == [0.0, 0.0]
 
 
-def test_a_size_past_the_slack_costs_its_excess_signed() -> None:
+def test_a_size_past_the_slack_costs_its_relative_excess_signed() -> None:
+    # 2 % high and 1 % narrow: 1.5 % and 0.5 % past the slack, each weighed
+    # on the mean of the design's height and span (175)
     sizes = {"height": 100.0, "span": 250.0}
-    slack, w = optimise.SIZE_SLACK, optimise.SIZE_WEIGHT
-    rows = optimise.size_rows(100.0 + 100.0 * slack + 2.0, 250.0 - 250.0 * slack - 3.0, sizes)
-    assert rows == pytest.approx([2.0 * w, -3.0 * w], rel=1e-9)
+    assert optimise.SIZE_SLACK == 0.005
+    rows = optimise.size_rows(102.0, 247.5, sizes)
+    w = optimise.SIZE_WEIGHT * 175.0
+    assert rows == pytest.approx([0.015 * w, -0.005 * w], rel=1e-9)
