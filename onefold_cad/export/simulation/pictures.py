@@ -274,11 +274,11 @@ def _stress_caption(sim: Simulation, scale: StressScale) -> str:
             f"hardened: at most the flow stress, yield + {sim.hardening_modulus_MPa:.4g} MPa "
             "x plastic strain\n"
         )
-    elsewhere = ""
+    estimate = ""
     if sim.law == "moment" and (s.utilisation or 0.0) > 1.0:
         # the 1D law takes the membrane and the unloading elastic: past yield
         # its stress is an estimate no steel carries (issue 35, docs/mechanics.md)
-        elsewhere = (
+        estimate = (
             "past yield the moment law's elastic estimate, a stress the steel cannot be in "
             "(--law j2: the stress it can be in)\n"
         )
@@ -286,7 +286,7 @@ def _stress_caption(sim: Simulation, scale: StressScale) -> str:
         f"von Mises stress at the sheet's faces as it stands: {cause}\n"
         f"largest {s.max_stress_MPa:.4g} MPa ({s.utilisation:.3g} x the yield stress "
         f"{sim.yield_stress_MPa:.4g} MPa){where}\n"
-        f"{hardened}{elsewhere}colours: {scale.note}"
+        f"{hardened}{estimate}colours: {scale.note}"
     )
 
 
