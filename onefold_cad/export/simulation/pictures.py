@@ -277,7 +277,7 @@ def _stress_caption(sim: Simulation, scale: StressScale) -> str:
     estimate = ""
     if sim.law == "moment" and (s.utilisation or 0.0) > 1.0:
         # the 1D law takes the membrane and the unloading elastic: past yield
-        # its stress is an estimate no steel carries (issue 35, docs/mechanics.md)
+        # its stress is an estimate no steel carries (docs/mechanics.md, Limits)
         estimate = (
             "past yield the moment law's elastic estimate, a stress the steel cannot be in "
             "(--law j2: the stress it can be in)\n"
