@@ -17,11 +17,13 @@ mesh. Prints the grid and a markdown summary (docs/compensate.md's block
 root::
 
     .venv/bin/python benchmarks/compensate_family.py [TEMPLATE] [--alpha 30:40:2]
-        [--beta 26:36:2] [--hc=0] [--mesh coarse] [--polish N [--overbend]] [-j 2]
+        [--beta 26:36:2] [--hc=0] [--overbend-grid=0] [--mesh coarse]
+        [--polish N [--overbend]] [-j 2]
         [--write-docs]
 
-``--overbend`` polishes over the crease overbend too (the command's fourth
-knob, from 0 at the grid's best; the grid itself is of the fold only).
+``--overbend-grid`` grids the command's fourth knob too (the crease set
+that many deg past the fold; negative: short of it); ``--overbend`` polishes
+over it as well (from the grid's best fold's overbend).
 """
 
 from __future__ import annotations
@@ -44,7 +46,8 @@ ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "compensate.md"
 BLOCK = "compensate-family"
 
-Row = tuple[float, float, float, float | None, float | None, float]
+#: (alpha, beta, h_c fraction, max or None, rms or None, CPU s, crease overbend deg)
+Row = tuple[float, float, float, float | None, float | None, float, float]
 
 
 def grid(text: str) -> list[float]:
@@ -55,21 +58,24 @@ def grid(text: str) -> list[float]:
     return [float(v) for v in text.split(",")]
 
 
-def one(args: tuple[str, str, float, float, float], overbend: float = 0.0) -> Row:
+def one(args: tuple[str, str, float, float, float] | tuple[str, str, float, float, float, float],
+        overbend: float = 0.0) -> Row:  # fmt: skip
     """Simulate the template folded to (alpha, beta, h_c as a fraction of
     R cos(alpha)), its crease set ``overbend`` deg further, and measure it
     against the template's design: (alpha, beta, h_c fraction, max, rms or
-    None, CPU s)."""
-    name, mesh, alpha, beta, hc = args
+    None, CPU s, overbend); a sixth entry of ``args`` is the overbend."""
+    name, mesh, alpha, beta, hc = args[:5]
+    if len(args) == 6:
+        overbend = float(args[5])  # type: ignore[misc]
     design = load_template(find_template(name))
     half = design.frame.radius * math.cos(math.radians(alpha))
     frame = design.frame.with_changes(alpha=alpha, beta=beta, h_c=hc * half)
     material = replace(design.material, crease_overbend=overbend or None)
     s = simulate_standing(design.with_changes(frame=frame, material=material), mesh)
     if not s.stands or s.positions is None:
-        return alpha, beta, hc, None, None, s.cpu_s
+        return alpha, beta, hc, None, None, s.cpu_s, overbend
     m = standing_measures(design, s.flat, node_weights(s.flat, s.faces), s)
-    return alpha, beta, hc, m.max_deviation, m.rms_deviation, s.cpu_s
+    return alpha, beta, hc, m.max_deviation, m.rms_deviation, s.cpu_s, overbend
 
 
 def polish(
@@ -92,14 +98,14 @@ def polish(
         return math.inf if row[3] is None else float(row[3])
 
     steps = [1.0, 1.0, 0.15] + ([3.0] if overbend else [])
-    x0 = np.array(list(best[:3]) + ([0.0] if overbend else []))
+    x0 = np.array(list(best[:3]) + ([best[6]] if overbend else []))
     simplex = np.vstack([x0] + [x0 + np.eye(len(x0))[i] * st for i, st in enumerate(steps)])
     minimize(cost, x0, method="Nelder-Mead",
              options={"maxfev": evaluations, "initial_simplex": simplex})  # fmt: skip
     keys = [k for k, r in seen.items() if r[3] is not None]
     top = min(keys, key=lambda k: seen[k][3])  # type: ignore[arg-type,return-value]
     cpu = sum(r[5] for r in seen.values())
-    return (*seen[top][:5], cpu), (top[3] if overbend else None)
+    return (*seen[top][:5], cpu, top[3]), (top[3] if overbend else None)
 
 
 def summary(
@@ -112,22 +118,27 @@ def summary(
         return f"{name} ({mesh} mesh): the template's own fold or every fold scanned falls."
     best = min(standing, key=lambda r: r[3])  # type: ignore[arg-type,return-value]
     best_rms = min(standing, key=lambda r: r[4])  # type: ignore[arg-type,return-value]
-    span = [sorted({r[k] for r in rows}) for k in range(3)]
+    span = [sorted({r[k] for r in rows}) for k in (0, 1, 2, 6)]
     ranges = ", ".join(
         f"{n} {v[0]:g}..{v[-1]:g}" if len(v) > 1 else f"{n} {v[0]:g}"
-        for n, v in zip(("alpha", "beta", "h_c"), span, strict=True)
+        for n, v in zip(("alpha", "beta", "h_c", "overbend"), span, strict=True)
     )
+    knobs = "alpha, beta, h_c" + (", overbend" if len(span[3]) > 1 else "")
+
+    def at(r: Row) -> str:
+        return f"{r[0]:g}, {r[1]:g}, {r[2]:g}" + (f", {r[6]:g}" if len(span[3]) > 1 else "")
+
     assert start[4] is not None
     return "\n".join(
         [
-            "| template, mesh | grid (alpha, beta deg; h_c of R cos(alpha)) | folds standing | "
-            "uncompensated max / rms | a fifth of it | smallest max on the grid (alpha, beta, "
-            "h_c) | smallest rms (alpha, beta, h_c) | CPU |",
+            "| template, mesh | grid (alpha, beta, overbend deg; h_c of R cos(alpha)) | folds "
+            f"standing | uncompensated max / rms | a fifth of it | smallest max on the grid "
+            f"({knobs}) | smallest rms ({knobs}) | CPU |",
             "|---|---|---|---|---|---|---|---|",
             f"| {name}, {mesh} | {ranges} ({len(rows)}) | {len(standing)} | {start[3]:.4g} / "
             f"{start[4]:.4g} {unit} | {start[3] / 5:.4g} {unit} | {best[3]:.4g} {unit} "
-            f"({best[0]:g}, {best[1]:g}, {best[2]:g}) | {best_rms[4]:.4g} {unit} ({best_rms[0]:g}, "
-            f"{best_rms[1]:g}, {best_rms[2]:g}) | {sum(r[5] for r in rows) + start[5]:.0f} s |",
+            f"({at(best)}) | {best_rms[4]:.4g} {unit} ({at(best_rms)}) | "
+            f"{sum(r[5] for r in rows) + start[5]:.0f} s |",
         ]
         + (
             []
@@ -160,21 +171,25 @@ def main() -> None:
         "--polish", type=int, default=0, metavar="N", help="then Nelder-Mead, N simulations"
     )
     ap.add_argument("--overbend", action="store_true", help="polish the crease overbend too")
+    ap.add_argument(
+        "--overbend-grid", default="0", help="the crease overbend's grid (deg), as --alpha"
+    )
     ap.add_argument("-j", "--jobs", type=int, default=2)
     ap.add_argument("--write-docs", action="store_true")
     ns = ap.parse_args()
     design = load_template(find_template(ns.template))
     f = design.frame
-    knobs = itertools.product(grid(ns.alpha), grid(ns.beta), grid(ns.hc))
-    tasks = [(ns.template, ns.mesh, a, b, h) for a, b, h in knobs]
+    knobs = itertools.product(grid(ns.alpha), grid(ns.beta), grid(ns.hc), grid(ns.overbend_grid))
+    tasks = [(ns.template, ns.mesh, a, b, h, o) for a, b, h, o in knobs]
     own_hc = f.h_c / (f.radius * math.cos(math.radians(f.alpha)))
     t0 = time.monotonic()
     with ProcessPoolExecutor(ns.jobs) as ex:
         start = ex.submit(one, (ns.template, ns.mesh, f.alpha, f.beta, own_hc))
         rows = list(ex.map(one, tasks))
-    for a, b, h, mx, rms, cpu in rows:
+    for a, b, h, mx, rms, cpu, o in rows:
         got = "falls" if mx is None else f"max {mx:8.4g}  rms {rms:8.4g}"
-        print(f"alpha {a:5.1f}  beta {b:5.1f}  h_c {h:+.2f}  {got}  ({cpu:.1f} s CPU)")
+        print(f"alpha {a:5.1f}  beta {b:5.1f}  h_c {h:+.2f}  overbend {o:+5.1f}  {got}  "
+              f"({cpu:.1f} s CPU)")  # fmt: skip
     standing = [r for r in rows if r[3] is not None]
     polished, overbend = None, None
     if ns.polish and standing:
@@ -188,7 +203,9 @@ def main() -> None:
 
         command = (
             f".venv/bin/python benchmarks/compensate_family.py {ns.template} --alpha {ns.alpha} "
-            f"--beta {ns.beta} --hc={ns.hc} --mesh {ns.mesh} --polish {ns.polish}"
+            f"--beta {ns.beta} --hc={ns.hc}"
+            + ("" if ns.overbend_grid == "0" else f" --overbend-grid={ns.overbend_grid}")
+            + f" --mesh {ns.mesh} --polish {ns.polish}"
             + (" --overbend" if ns.overbend else "")
             + " --write-docs"
         )
