@@ -156,3 +156,23 @@ def test_contacts_along_an_edge_leave_no_micrometre_edges():
     length = np.linalg.norm(model.mesh.nodes[e[:, 1]] - model.mesh.nodes[e[:, 0]], axis=1)
     # the finest edge the grading asks for: 0.6 hole radii at the rim (x 1.5 coarse)
     assert length.min() > 0.1 * 1.5 * 0.6 * model.hole_radius
+
+
+def test_the_stages_tolerance_leaves_the_answer_where_a_tight_one_puts_it(monkeypatch):
+    """Newton stops at ``stages.RTOL`` of the weight; solved to a thousandth of
+    that instead (1e-9 of the weight: below the round-off floor, where
+    Newton's ``atol`` takes over), patkau-one-fold's springback and standing
+    move by less than a micrometre per metre of the sheet."""
+    design, folded = _design("patkau-one-fold", {})
+    loose = run(design, folded, level="coarse", reserve=False)
+    monkeypatch.setattr(stages, "RTOL", stages.RTOL / 1000)
+    tight = run(design, folded, level="coarse", reserve=False)
+    assert tight.released.iterations > loose.released.iterations  # it did solve further
+    size = 7315.2  # mm, the sheet's long side
+    for a, b in (
+        (loose.released.max_deviation, tight.released.max_deviation),
+        (loose.standing.max_deviation, tight.standing.max_deviation),
+        (loose.standing.height, tight.standing.height),
+        (loose.standing.span, tight.standing.span),
+    ):
+        assert abs(a - b) <= 1e-6 * size
