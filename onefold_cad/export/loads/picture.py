@@ -22,6 +22,7 @@ import numpy as np
 from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
+    heading,
     label_axes,
     save_png,
     shaded_surface,
@@ -91,7 +92,7 @@ def render_governing(result: Any, path: str | os.PathLike[str], title: str = "")
     fit_axes(ax, np.vstack([x0, moved, feet]), ground=True, elev=elev, azim=azim, zoom=1.05)
     label_axes(ax, result.unit)
     head = f"governing case {case.name}"
-    fig.suptitle(f"{title}: {head}" if title else head, fontsize=11, y=0.985)
+    heading(fig, f"{title}: {head}" if title else head)
     bar = fig.add_axes((0.86, 0.2, 0.025, 0.6))
     over = bool(np.any(util * 100.0 > top))
     fig.colorbar(mpl.cm.ScalarMappable(norm=norm, cmap=cmap), cax=bar,

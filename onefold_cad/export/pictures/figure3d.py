@@ -11,6 +11,7 @@ functions only (importing this module costs nothing).
 from __future__ import annotations
 
 import os
+import textwrap
 from pathlib import Path
 from typing import Any
 
@@ -21,11 +22,14 @@ from onefold_cad.export.atomic import atomic_output
 from onefold_cad.geometry.numeric import Array, Mask
 
 __all__ = [
+    "HEADING_WIDTH",
     "LIGHT",
     "agg_figure",
     "fit_axes",
+    "heading",
     "label_axes",
     "lambert",
+    "legend_below",
     "save_png",
     "shaded_surface",
     "view_direction",
@@ -70,6 +74,29 @@ def shaded_surface(ax: Any, tri: Array, rgb: Array, view: Array, zorder: float =
     surface = Poly3DCollection(tri, facecolors=rgba, edgecolors="none", antialiased=False)
     surface.set_zorder(zorder)
     ax.add_collection3d(surface)
+
+
+#: Characters of a picture's heading per line: a design named by its flags
+#: (``patkau-one-fold-alpha56.4-beta9.705-...``) wraps instead of running
+#: off the picture or across its legend.
+HEADING_WIDTH = 90
+
+
+def heading(fig: Any, text: str, fontsize: float = 11) -> Any:
+    """``text`` as the figure's heading, centred at the top, wrapped at
+    :data:`HEADING_WIDTH` characters; returns its matplotlib ``Text``."""
+    return fig.suptitle(textwrap.fill(text, HEADING_WIDTH), fontsize=fontsize, y=0.985, va="top")
+
+
+def legend_below(fig: Any, handles: list[Any], head: Any | None, fontsize: float = 8) -> None:
+    """The legend of ``handles`` at the figure's top right, below the heading
+    ``head`` (:func:`heading`) however many lines it has (None: at the top)."""
+    top = 0.995
+    if head is not None:
+        box = head.get_window_extent(fig.canvas.get_renderer())
+        top = box.y0 / fig.bbox.height - 0.006
+    fig.legend(handles=handles, loc="upper right", bbox_to_anchor=(0.995, top),
+               fontsize=fontsize, frameon=False)  # fmt: skip
 
 
 def agg_figure(size_px: tuple[int, int], dpi: int = 100) -> Any:

@@ -36,8 +36,10 @@ from onefold_cad.design import rest_once
 from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
+    heading,
     label_axes,
     lambert,
+    legend_below,
     save_png,
     view_direction,
 )
@@ -266,8 +268,7 @@ def _figure(
         ax.set_axis_off()
         return fig
     label_axes(ax, units)
-    if title:
-        fig.suptitle(title, fontsize=11, y=0.985)
+    head = heading(fig, title) if title else None
     handles = [
         Patch(color=_TOP_RGB, label="top face (+z of the flat sheet)"),
         Patch(color=_BOTTOM_RGB, label="bottom face"),
@@ -280,7 +281,7 @@ def _figure(
             Patch(facecolor=_SUPPORT, alpha=0.5, edgecolor=_SUPPORT, label="support polygon"),
             Line2D([], [], color=_COM, marker="o", ls=":", label="centre of mass"),
         ]
-    fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
+    legend_below(fig, handles, head)
     fig.text(0.015, 0.015, _caption(folded, rest, units, frame), fontsize=8.5, va="bottom")
 
     return fig

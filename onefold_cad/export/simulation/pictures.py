@@ -33,10 +33,12 @@ from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
     label_axes,
+    legend_below,
     save_png,
     shaded_surface,
     view_direction,
 )
+from onefold_cad.export.pictures.figure3d import heading as heading_text
 from onefold_cad.export.simulation.colour_scale import (
     DEVIATION_STOPS,
     STEEL_GREY,
@@ -105,9 +107,10 @@ def _length(x: float | None, unit: str) -> str:
 
 def _new_figure(
     sim: Simulation, heading: str, title: str, size_px: tuple[int, int], elev: float, azim: float
-) -> tuple[Any, Any, Array, str, Array]:
+) -> tuple[Any, Any, Array, str, Array, Any]:
     """The figure with its 3D axes (room right for the colour bar, below for the
-    caption) and the designed outline drawn: ``(fig, ax, view, kind, points)``."""
+    caption), the designed outline drawn and the heading (wrapped):
+    ``(fig, ax, view, kind, points, heading_text)``."""
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     kind, points = _form(sim)
@@ -123,12 +126,8 @@ def _new_figure(
         ax.add_collection3d(outline)
     fit_axes(ax, np.vstack([points, designed]), ground=True, elev=elev, azim=azim, zoom=1.1)
     label_axes(ax, sim.unit)
-    fig.suptitle(f"{title}: {heading}" if title else heading, fontsize=11, y=0.985)
-    return fig, ax, view_direction(elev, azim), kind, points
-
-
-def _legend(fig: Any, handles: list[Any]) -> None:
-    fig.legend(handles=handles, loc="upper right", fontsize=8, frameon=False)
+    head = heading_text(fig, f"{title}: {heading}" if title else heading)
+    return fig, ax, view_direction(elev, azim), kind, points, head
 
 
 def _outline_handle(kind: str) -> list[Any]:
@@ -213,7 +212,7 @@ def render_deviation(
     from matplotlib.colors import LinearSegmentedColormap, Normalize
 
     heading = "the standing form's deviation from the design"
-    fig, ax, view, kind, points = _new_figure(sim, heading, title, size_px, elev, azim)
+    fig, ax, view, kind, points, head = _new_figure(sim, heading, title, size_px, elev, azim)
     if kind == "standing" and sim.deviation is not None:
         dev = np.asarray(sim.deviation, dtype=float)
         lo, hi = deviation_range(dev)
@@ -226,7 +225,7 @@ def render_deviation(
         cax.tick_params(labelsize=7)
     else:
         _no_equilibrium(fig, ax, sim, kind, points, view)
-    _legend(fig, _outline_handle(kind))
+    legend_below(fig, _outline_handle(kind), head)
     fig.text(0.015, 0.012, _deviation_caption(sim), fontsize=8.5, va="bottom")
     return save_png(fig, path, "deviation picture")
 
@@ -328,7 +327,7 @@ def render_stress(
     from matplotlib.lines import Line2D
 
     heading = "stress in the standing form"
-    fig, ax, view, kind, points = _new_figure(sim, heading, title, size_px, elev, azim)
+    fig, ax, view, kind, points, head = _new_figure(sim, heading, title, size_px, elev, azim)
     handles = _outline_handle(kind)
     if kind == "standing" and sim.face_stress_MPa is not None and sim.standing.max_stress_MPa:
         stress = np.asarray(sim.face_stress_MPa, dtype=float)
@@ -347,6 +346,6 @@ def render_stress(
     else:
         _no_equilibrium(fig, ax, sim, kind, points, view)
         caption = f"no stress to show: {_NO_STAND}"
-    _legend(fig, handles)
+    legend_below(fig, handles, head)
     fig.text(0.015, 0.012, caption, fontsize=8.5, va="bottom")
     return save_png(fig, path, "stress picture")

@@ -20,8 +20,10 @@ import numpy as np
 from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
+    heading,
     label_axes,
     lambert,
+    legend_below,
     save_png,
     view_direction,
 )
@@ -85,9 +87,9 @@ def render_site_picture(
     ax.add_collection3d(surface)
     fit_axes(ax, np.concatenate(everything), ground=True, elev=elev, azim=azim, zoom=1.12)
     label_axes(ax, ctx.units)
-    fig.suptitle(f"site {ctx.name}: {len(ctx.sheets)} sheets as they stand", fontsize=12, y=0.985)
+    head = heading(fig, f"site {ctx.name}: {len(ctx.sheets)} sheets as they stand", fontsize=12)
     handles.append(Line2D([], [], color=_GROUND, lw=0.8, label="outline on the ground"))
-    fig.legend(handles=handles, loc="upper right", fontsize=9, frameon=False)
+    legend_below(fig, handles, head, fontsize=9)
     c = ctx.clearance
     p = None if c is None else c.smallest
     if p is not None:
