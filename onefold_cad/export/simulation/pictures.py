@@ -32,13 +32,13 @@ from onefold_cad.errors import ExportError
 from onefold_cad.export.pictures.figure3d import (
     agg_figure,
     fit_axes,
+    heading,
     label_axes,
     legend_below,
     save_png,
     shaded_surface,
     view_direction,
 )
-from onefold_cad.export.pictures.figure3d import heading as heading_text
 from onefold_cad.export.simulation.colour_scale import (
     DEVIATION_STOPS,
     STEEL_GREY,
@@ -106,11 +106,11 @@ def _length(x: float | None, unit: str) -> str:
 
 
 def _new_figure(
-    sim: Simulation, heading: str, title: str, size_px: tuple[int, int], elev: float, azim: float
+    sim: Simulation, subject: str, title: str, size_px: tuple[int, int], elev: float, azim: float
 ) -> tuple[Any, Any, Array, str, Array, Any]:
     """The figure with its 3D axes (room right for the colour bar, below for the
     caption), the designed outline drawn and the heading (wrapped):
-    ``(fig, ax, view, kind, points, heading_text)``."""
+    ``(fig, ax, view, kind, points, head)``."""
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     kind, points = _form(sim)
@@ -126,7 +126,7 @@ def _new_figure(
         ax.add_collection3d(outline)
     fit_axes(ax, np.vstack([points, designed]), ground=True, elev=elev, azim=azim, zoom=1.1)
     label_axes(ax, sim.unit)
-    head = heading_text(fig, f"{title}: {heading}" if title else heading)
+    head = heading(fig, f"{title}: {subject}" if title else subject)
     return fig, ax, view_direction(elev, azim), kind, points, head
 
 
@@ -211,8 +211,8 @@ def render_deviation(
     from matplotlib.cm import ScalarMappable
     from matplotlib.colors import LinearSegmentedColormap, Normalize
 
-    heading = "the standing form's deviation from the design"
-    fig, ax, view, kind, points, head = _new_figure(sim, heading, title, size_px, elev, azim)
+    subject = "the standing form's deviation from the design"
+    fig, ax, view, kind, points, head = _new_figure(sim, subject, title, size_px, elev, azim)
     if kind == "standing" and sim.deviation is not None:
         dev = np.asarray(sim.deviation, dtype=float)
         lo, hi = deviation_range(dev)
@@ -326,8 +326,8 @@ def render_stress(
     """
     from matplotlib.lines import Line2D
 
-    heading = "stress in the standing form"
-    fig, ax, view, kind, points, head = _new_figure(sim, heading, title, size_px, elev, azim)
+    subject = "stress in the standing form"
+    fig, ax, view, kind, points, head = _new_figure(sim, subject, title, size_px, elev, azim)
     handles = _outline_handle(kind)
     if kind == "standing" and sim.face_stress_MPa is not None and sim.standing.max_stress_MPa:
         stress = np.asarray(sim.face_stress_MPa, dtype=float)
