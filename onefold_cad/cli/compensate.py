@@ -218,6 +218,8 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
         )  # fmt: skip
     if not result.reached:
         warn(f"compensate: target {result.verdict}")
+    for line in result.after_sim.warnings:  # what onefold simulate says of the compensated steel
+        warn(f"compensate: the compensated steel: {line}")
     comp = result.compensated
     report = design_report(comp, fold_design(comp), sources=job.sources)
     report["name"] = design.name

@@ -139,6 +139,7 @@ class Compensation:
             "reached": self.reached,
             "verdict": self.verdict,
             "limits": list(self.found.limits),
+            "warnings": list(self.after_sim.warnings),
         }
 
 

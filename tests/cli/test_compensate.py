@@ -15,7 +15,7 @@ import trimesh
 
 from onefold_cad.compensate import parallel
 from onefold_cad.templates import find_template, load_template
-from tests.compensate.fake_steel import LAWS, SPRING, fake_standing
+from tests.compensate.fake_steel import LAWS, SPRING, fake_standing, fake_warning
 
 NAME = "broken-vault"
 
@@ -266,6 +266,18 @@ def test_law_j2_reaches_every_simulation_and_the_report(cli, monkeypatch) -> Non
     assert out.splitlines()[0].startswith(
         f"{NAME}  compensated for springback and weight (J2 through the thickness): target"
     )
+
+
+@pytest.mark.parametrize("law", ["moment", "j2"])
+def test_what_simulate_says_of_the_compensated_steel_is_said_again(cli, monkeypatch, law) -> None:
+    """The compensated steel's simulation warnings (the moment law's: its
+    springback is short) reach stderr and the report, once each."""
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    rc, out, err = cli("compensate", NAME, "--law", law, "-j", "1", "--json")
+    assert rc == 0, err
+    said = f"onefold: warning: compensate: the compensated steel: {fake_warning(law)}"
+    assert err.splitlines().count(said) == 1
+    assert json.loads(out)["compensation"]["warnings"] == [fake_warning(law)]
 
 
 def test_the_picture_names_the_law_it_was_compensated_by(cli, monkeypatch, tmp_path) -> None:

@@ -72,5 +72,11 @@ def fake_standing(design: Design, level: str, check: bool = False, law: str = "m
         stands=True, reason="", flat=flat, faces=faces, positions=x,
         height=rest.height, span=rest.width, depth=rest.depth,
         tipping_margin_deg=10.0, self_max_deviation=None,
-        convergence=0.01 if check else None, cpu_s=0.0, warnings=(),
+        convergence=0.01 if check else None, cpu_s=0.0, warnings=(fake_warning(law),),
     )  # fmt: skip
+
+
+def fake_warning(law: str) -> str:
+    """The one warning the fake steel's simulation gives (as ``simulate``
+    gives its own), naming its law."""
+    return f"the fake steel of the {law} law springs back as it is told"
