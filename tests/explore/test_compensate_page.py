@@ -137,6 +137,12 @@ def test_compensate_in_the_page(browser, server):
         assert f"{_fmt(b.height)} mm → {_fmt(a.height)} mm" in panel
         assert f"{_fmt(b.span)} mm → {_fmt(a.span)} mm" in panel
         assert c.verdict in panel
+        # what simulate warns of the compensated steel, each in the panel
+        assert r["warnings"] == list(c.after_sim.warnings)
+        assert any("the springback is underestimated" in w for w in r["warnings"])
+        flat = " ".join(panel.split())
+        for w in c.after_sim.warnings:
+            assert " ".join(w.split()) in flat
         assert "coarse preview: onefold compensate's search and checks on the coarse mesh" in panel
         assert tab.text("#comp-status").startswith("compensated (coarse preview) in ")
         assert tab.text("#comp-status").endswith("the sliders hold the compensated values")

@@ -77,6 +77,8 @@ export function createCompensation({ query, load }) {
       ...r.crease.map((c) => [`crease ${c.half}`,
         `fold to ${fmt(c.fold_to_deg)}° (${c.bend}), standing ${fmt(c.after_springback_deg)}°`]),
       ['verdict', r.verdict],
+      // what onefold simulate warns of the compensated steel (the moment law: its springback is short)
+      ...(r.warnings || []).map((w) => ['warning', w]),
       ['work', `${r.simulations} simulations, ${fmt(r.cpu_s, 3)} s CPU`],
       ['method', 'coarse preview: onefold compensate\'s search and checks on the coarse mesh, '
         + 'without its convergence check; for the normal mesh (minutes) download the TOML '
