@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.mechanics.energy import Evaluation, evaluate
-from onefold_cad.mechanics.newton import NewtonResult, Progress, minimize
+from onefold_cad.mechanics.newton import FactorReuse, NewtonResult, Progress, minimize
 from onefold_cad.mechanics.predictor import extrapolate
 from onefold_cad.mechanics.shell import Shell, unpack
 
@@ -136,6 +136,7 @@ def _newton(
     length_scale: float | None,
     start_scales: bool,
     callback: Progress | None,
+    reuse: FactorReuse | None,
 ) -> NewtonResult:
     shell = fun.shell
     mat = shell.material
@@ -154,6 +155,7 @@ def _newton(
         max_iter=max_iter,
         start_scales=start_scales,
         callback=callback,
+        reuse=reuse,
     )
 
 
@@ -171,6 +173,7 @@ def solve_equilibrium(
     length_scale: float | None = None,
     start_scales: bool = True,
     callback: Progress | None = None,
+    reuse: FactorReuse | None = None,
 ) -> Equilibrium:
     """The equilibrium nearest ``q0`` (Newton from it), with supports and ground.
 
@@ -188,6 +191,8 @@ def solve_equilibrium(
         start_scales: whether ``q0``'s residual may raise the tolerance
             (``newton.minimize``; False for a predicted start).
         callback: progress, ``callback(iteration, residual N, energy J)``.
+        reuse: the factors of earlier solves (``newton.FactorReuse``); default:
+            one for this solve's contact passes.
 
     Raises:
         ConvergenceError: a Newton solve or the contact iteration did not converge.
@@ -208,6 +213,7 @@ def solve_equilibrium(
     result = None
     passes = 0
     energy = _Energy(shell)
+    reuse = FactorReuse() if reuse is None else reuse
     for _ in range(max_passes):
         passes += 1
         fixed_mask = base.copy()
@@ -228,6 +234,7 @@ def solve_equilibrium(
             length_scale=length_scale,
             start_scales=start_scales,
             callback=callback,
+            reuse=reuse,
         )
         total_iter += result.iterations
         q = result.q
@@ -329,7 +336,9 @@ def solve_path(
     alone (not raised by the predicted start's residual).
     ``accepted(s, equilibrium)`` is called after each step the path keeps
     (a path-dependent material moves its internal variables on there, so
-    ``shell_at`` gives the next step's shell with them).
+    ``shell_at`` gives the next step's shell with them). The steps share one
+    ``newton.FactorReuse`` (unless ``options`` give one): each structure of
+    their Hessians is ordered and analysed once.
 
     Raises:
         PathStalled: the step fell below ``min_step``, or ``max_solves`` solves
@@ -338,6 +347,7 @@ def solve_path(
     """
     q = np.asarray(q0, dtype=float)
     s, ds, total, failed = 0.0, first_step, 0, float("nan")
+    options.setdefault("reuse", FactorReuse())  # every step's structures analysed once
     last: Equilibrium | None = None
     passed: list[tuple[float, F]] = [(s, q)]
     for _ in range(max_solves):

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import ConvergenceError
 
-__all__ = ["NewtonResult", "Progress", "SymmetricFactor", "minimize", "restrict"]
+__all__ = ["FactorReuse", "NewtonResult", "Progress", "SymmetricFactor", "minimize", "restrict"]
 
 F = NDArray[np.float64]
 #: ``fun(q, order) -> (energy, gradient, hessian)``, gradient and Hessian None below
@@ -132,6 +132,31 @@ class SymmetricFactor:
         return np.asarray(self._solver.solve(b), dtype=float)
 
 
+class FactorReuse:
+    """The :class:`SymmetricFactor` of each sparsity structure a run of solves
+    meets (a load path's steps, a contact iteration's passes), so a structure
+    seen before is refactored numerically only: QDLDL's ordering and symbolic
+    analysis (about as long as a factorisation again) are done once per
+    structure. Holds at most ``size`` structures, the most recent; not shared
+    between threads (a factor holds its last factorisation).
+    """
+
+    def __init__(self, size: int = 4) -> None:
+        self._size = size
+        self._kept: list[tuple[NDArray[np.int32], NDArray[np.int32], SymmetricFactor]] = []
+
+    def factor_for(self, a: sp.csc_matrix) -> SymmetricFactor:
+        """A factor for matrices of ``a``'s structure: the one kept for it, or a new one."""
+        for i, (indptr, indices, factor) in enumerate(self._kept):
+            if np.array_equal(indptr, a.indptr) and np.array_equal(indices, a.indices):
+                self._kept.append(self._kept.pop(i))
+                return factor
+        factor = SymmetricFactor(a)
+        self._kept.append((a.indptr.copy(), a.indices.copy(), factor))
+        del self._kept[: -self._size]
+        return factor
+
+
 def minimize(
     fun: EnergyFunction,
     q0: ArrayLike,
@@ -145,6 +170,7 @@ def minimize(
     watchdog: int = 6,
     start_scales: bool = True,
     callback: Progress | None = None,
+    reuse: FactorReuse | None = None,
 ) -> NewtonResult:
     """Minimise ``fun`` over the free unknowns, starting from ``q0``.
 
@@ -165,6 +191,8 @@ def minimize(
             tolerance (False for a start predicted along a load path: its
             residual measures the prediction's error, not the load).
         callback: ``callback(iteration, residual, energy)`` before every step.
+        reuse: the factors of earlier solves, to refactor a structure they met
+            numerically only (None: a new factor, analysed anew).
 
     Raises:
         ConvergenceError: no convergence in ``max_iter`` steps, or no step that
@@ -182,7 +210,8 @@ def minimize(
     energy, grad, hess = fun(q, 2)
     assert grad is not None and hess is not None
     _, block = restrict(hess, free)
-    factors = SymmetricFactor(block(hess))
+    first = block(hess)
+    factors = SymmetricFactor(first) if reuse is None else reuse.factor_for(first)
 
     def residual(g: F) -> float:
         return float(np.max(np.abs(g[free] * scale[free]), initial=0.0))

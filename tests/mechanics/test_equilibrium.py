@@ -7,12 +7,14 @@ import math
 
 import numpy as np
 import pytest
+import qdldl
 
 from onefold_cad.mechanics import (
     Ground,
     Shell,
     ShellMaterial,
     flat_positions,
+    newton,
     pack,
     rigid_dofs,
     solve_equilibrium,
@@ -231,3 +233,24 @@ def test_the_equilibrium_is_read_from_newtons_last_evaluation(strip, monkeypatch
     assert np.array_equal(eq.reactions[eq.contacts, 2], fresh.gradient[z])
     reactions = np.concatenate([eq.reactions.ravel(), eq.director_reactions])
     assert np.array_equal(reactions[fixed], fresh.gradient[fixed])
+
+
+def test_a_path_analyses_each_structure_once(strip, monkeypatch):
+    """A load path's steps share their factors: QDLDL orders and analyses the
+    Hessian's structure once, however many steps and iterations."""
+    made = []
+    real = qdldl.Solver
+
+    def counted(*args, **kwargs):
+        made.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(newton.qdldl, "Solver", counted)
+    mesh = strip
+    shell, fixed = cantilever(mesh, STEEL0, _gravity_for(2.0))
+    steps: list[float] = []
+    eq = solve_path(lambda s: shell.with_changes(gravity=s * shell.gravity), _start(mesh),
+                    fixed=fixed, first_step=0.125, grow_iter=0,
+                    accepted=lambda s, e: steps.append(s))  # fmt: skip
+    assert len(steps) >= 3 and eq.iterations > len(steps)
+    assert len(made) == 1

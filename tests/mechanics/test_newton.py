@@ -8,7 +8,7 @@ import scipy.sparse as sp
 
 from onefold_cad.errors import ConvergenceError, OneFoldError
 from onefold_cad.mechanics import minimize, solve_equilibrium
-from onefold_cad.mechanics.newton import SymmetricFactor
+from onefold_cad.mechanics.newton import FactorReuse, SymmetricFactor
 from tests.mechanics.helpers import cantilever, rectangle
 from tests.mechanics.test_equilibrium import STEEL0, _gravity_for, _start
 
@@ -124,3 +124,26 @@ def test_an_imposed_state_needs_no_hessian():
     assert result.energy == energy and np.array_equal(result.gradient, gradient)
     assert np.array_equal(result.q, [0.5, 4.0]) and result.tolerance == 3e-6
     assert seen == [(0, 0.0, energy)]
+
+
+def test_factor_reuse_keeps_one_factor_per_structure():
+    """A structure met before gets its factor back (numeric refactorisation
+    only), bit for bit the answer of a fresh one; another structure a new
+    factor; at most ``size`` structures are kept, the most recent."""
+    a, b = _spd(1), _spd(2)  # one structure, two matrices
+    other = _spd(3, n=41)
+    rhs = np.arange(1.0, a.shape[0] + 1)
+    reuse = FactorReuse(size=2)
+    first = reuse.factor_for(a)
+    assert first.factor(a)
+    assert reuse.factor_for(b) is first
+    assert first.factor(b)
+    fresh = SymmetricFactor(b)
+    assert fresh.factor(b)
+    assert np.array_equal(first.solve(rhs), fresh.solve(rhs))
+    assert reuse.factor_for(other) is not first
+    assert reuse.factor_for(a.copy()) is first, "equal structures, not the same object"
+    third = _spd(4, n=42)
+    reuse.factor_for(third)  # the oldest, ``other``'s, goes
+    assert reuse.factor_for(a) is first
+    assert reuse.factor_for(other) is not reuse.factor_for(third)
