@@ -8,7 +8,7 @@
   ``u_i = h_i tan(phi_i)``, ``phi_i`` the angle of edge i's director from the face
   normal (``kinematics.director_slopes``); a director is its edge's reference
   director transported to the edge's current direction and turned by the
-  director angle about it (``kinematics.transported_director``); energy
+  director angle about it (``transport.transported_director``); energy
   ``Abar D / 2 Q(b - bbar)``, or with the faces' accumulated plastic curvature
   (``Shell.accumulated``) the elastic-plastic law's ``Abar W(sqrt(Q(b - bbar)))``
   (``plastic.moment``);
@@ -36,10 +36,10 @@ from onefold_cad.mechanics.kinematics import (
     SlopeTerms,
     director_slopes,
     face_metric,
-    transported_director,
 )
 from onefold_cad.mechanics.plastic import moment
 from onefold_cad.mechanics.shell import Shell, unpack
+from onefold_cad.mechanics.transport import transported_director
 
 __all__ = ["Evaluation", "evaluate", "second_fundamental_form", "section_response"]
 
