@@ -6,8 +6,8 @@ never the files' writers or the CLI above it.
 
 - ``mesh``: the triangulation (``mesh_sheet``, ``build_mesh``, ``SheetMesh``);
 - ``material``, ``shell``: the material and the model (``ShellMaterial``, ``Shell``);
-- ``kinematics``, ``energy``, ``assembly``: the energies with exact gradients and
-  sparse Hessians (``evaluate``);
+- ``kinematics/``, ``energy``, ``assembly``: the local geometry (faces, edges,
+  directors), the energies with exact gradients and sparse Hessians (``evaluate``);
 - ``plastic``: the 1D moment law (elastic-perfectly-plastic bending) and the
   faces' states;
 - ``j2/``: J2 plasticity at points, through the thickness, on every face,

@@ -6,7 +6,7 @@
   ``Abar E' t / 2 * Q(eps)``, ``eps = (a - abar) / 2``;
 - bending (mid-edge directors): per face ``b = 2 [[u0 + u1, u0], [u0, u0 + u2]]``,
   ``u_i = h_i tan(phi_i)``, ``phi_i`` the angle of edge i's director from the face
-  normal (``kinematics.director_slopes``); a director is its edge's reference
+  normal (``kinematics.triangles.director_slopes``); a director is its edge's reference
   director transported to the edge's current direction and turned by the
   director angle about it (``transport.transported_director``); energy
   ``Abar D / 2 Q(b - bbar)``, or with the faces' accumulated plastic curvature
@@ -31,7 +31,8 @@ from numpy.typing import NDArray
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.mechanics.assembly import pattern_of
 from onefold_cad.mechanics.j2.section import SectionResponse
-from onefold_cad.mechanics.kinematics import (
+from onefold_cad.mechanics.kinematics.transport import transported_director
+from onefold_cad.mechanics.kinematics.triangles import (
     METRIC_HESSIAN,
     SlopeTerms,
     director_slopes,
@@ -39,7 +40,6 @@ from onefold_cad.mechanics.kinematics import (
 )
 from onefold_cad.mechanics.plastic import moment
 from onefold_cad.mechanics.shell import Shell, unpack
-from onefold_cad.mechanics.transport import transported_director
 
 __all__ = ["Evaluation", "evaluate", "second_fundamental_form", "section_response"]
 

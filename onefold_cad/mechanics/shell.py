@@ -17,10 +17,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.mechanics.j2.layered import Plasticity, cartesian_map
-from onefold_cad.mechanics.kinematics import face_metric
+from onefold_cad.mechanics.kinematics.transport import transported_director
+from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.material import ShellMaterial, strain_form
 from onefold_cad.mechanics.mesh import SheetMesh
-from onefold_cad.mechanics.transport import transported_director
 
 __all__ = [
     "REFERENCE_CACHES",

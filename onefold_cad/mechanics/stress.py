@@ -26,7 +26,7 @@ import numpy as np
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics import plastic
 from onefold_cad.mechanics.energy import second_fundamental_form
-from onefold_cad.mechanics.kinematics import face_metric
+from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.shell import Shell, unpack
 
 __all__ = ["face_stress", "von_mises"]

@@ -21,7 +21,7 @@ from onefold_cad.mechanics import (
 )
 from onefold_cad.mechanics.assembly import pattern_of
 from onefold_cad.mechanics.energy import _directors
-from onefold_cad.mechanics.kinematics import face_metric
+from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.material import invert_metric
 from tests.mechanics.helpers import central_difference, cylinder, rectangle
 

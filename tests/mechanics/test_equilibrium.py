@@ -20,7 +20,7 @@ from onefold_cad.mechanics import (
     solve_equilibrium,
     solve_path,
 )
-from onefold_cad.mechanics.kinematics import dihedral
+from onefold_cad.mechanics.kinematics.triangles import dihedral
 from tests.mechanics.helpers import cantilever, rectangle
 from tests.mechanics.reference import heavy_elastica_tip
 

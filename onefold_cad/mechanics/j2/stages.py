@@ -32,7 +32,7 @@ from onefold_cad.mechanics.equilibrium import Equilibrium, solve_path
 from onefold_cad.mechanics.j2.law import J2Law, von_mises
 from onefold_cad.mechanics.j2.layered import Plasticity, form_along
 from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule
-from onefold_cad.mechanics.kinematics import face_metric
+from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.shell import Shell, director_angles, pack, rigid_dofs, unpack

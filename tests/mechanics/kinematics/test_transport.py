@@ -1,4 +1,4 @@
-"""Transported directors (mechanics/transport.py) against finite differences and
+"""Transported directors (mechanics/kinematics/transport.py) against finite differences and
 hand values."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from functools import partial
 
 import numpy as np
 
-from onefold_cad.mechanics.transport import transported_director
+from onefold_cad.mechanics.kinematics.transport import transported_director
 from tests.mechanics.helpers import central_difference
 
 RNG = np.random.default_rng(7)

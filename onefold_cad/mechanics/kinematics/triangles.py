@@ -6,7 +6,7 @@ coordinates ``(x0, x1, x2)`` (3 each, in that order); an edge's 12 are
 ``(a, b, c, d)``: the edge ``a -> b`` as it runs in its first face ``T0 = (a, b, c)``,
 and ``d`` the vertex opposite it in ``T1 = (b, a, d)``; a director's 4 are its
 edge vector and its angle. Derivations are in docs/mechanics.md;
-tests/mechanics/test_kinematics.py checks every derivative against finite
+tests/mechanics/kinematics/test_triangles.py checks every derivative against finite
 differences.
 """
 

@@ -4,7 +4,7 @@ its edge vector and its angle, with gradient and Hessian.
 Each edge carries a director, a unit vector normal to it: the reference director
 ``r0`` parallel-transported from the reference edge direction ``t0`` to the
 current one, then turned about the edge by its angle. Vectorised over edges;
-tests/mechanics/test_transport.py checks every derivative against finite
+tests/mechanics/kinematics/test_transport.py checks every derivative against finite
 differences.
 """
 

@@ -1,4 +1,4 @@
-"""Local geometric functions (mechanics/kinematics.py) against finite differences and
+"""Local geometric functions (mechanics/kinematics/triangles.py) against finite differences and
 hand values."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from functools import partial
 
 import numpy as np
 
-from onefold_cad.mechanics.kinematics import (
+from onefold_cad.mechanics.kinematics.triangles import (
     METRIC_HESSIAN,
     SlopeTerms,
     area_hessian,
