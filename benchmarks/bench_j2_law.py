@@ -12,9 +12,11 @@ Run from the repository root::
 
     .venv/bin/python benchmarks/bench_j2_law.py [TEMPLATE] [--levels coarse normal]
         [--rounds 1] [--baseline 8921478] [--before main] [--digits 4]
+        [--check-mesh finer|coarser]
 
-The normal level runs with its convergence check (``simulate``'s default), the
-coarse preview without. Prints only.
+The normal level runs with its convergence check (``simulate``'s default;
+``--check-mesh coarser``: today's runs check against the coarse level's mesh),
+the coarse preview without. Prints only.
 """
 
 from __future__ import annotations
@@ -47,7 +49,15 @@ def _row(sim) -> dict[str, float | None]:
         "standing max": s.max_deviation,
         "largest stress MPa": s.max_stress_MPa,
         "iterations": (r.iterations or 0) + (s.iterations or 0),
+        "mesh change %": _change(sim),
     }
+
+
+def _change(sim) -> float | None:
+    """The convergence check's relative change in percent (None without one)."""
+    conv = getattr(sim, "convergence", None) or {}
+    change = conv.get("max_deviation_change")
+    return None if change is None else 100 * change
 
 
 def _before_runs(commit: str, template: str) -> dict:
@@ -78,14 +88,22 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--baseline", default="8921478")
     ap.add_argument("--before", default=None)
     ap.add_argument("--digits", type=int, default=4)
+    ap.add_argument(
+        "--check-mesh", default="finer", choices=["finer", "coarser"],
+        help="today's convergence check's mesh (the baseline's and --before's: finer)",
+    )  # fmt: skip
     args = ap.parse_args(argv)
+    mesh = args.check_mesh
     old, why = load(args.baseline)
     if old is None:
         print(f"no baseline: {why}")
+    today = "today" if mesh == "finer" else "today, checked on the coarser mesh"
     runs = {
-        "J2 (today)": lambda d, f, lvl, chk: simulate(d, f, level=lvl, convergence=chk, law="j2"),
-        "moment (today)": lambda d, f, lvl, chk: simulate(
-            d, f, level=lvl, convergence=chk, law="moment"
+        f"J2 ({today})": lambda d, f, lvl, chk: simulate(
+            d, f, level=lvl, convergence=chk, law="j2", check_mesh=mesh if chk else "finer"
+        ),
+        f"moment ({today})": lambda d, f, lvl, chk: simulate(
+            d, f, level=lvl, convergence=chk, law="moment", check_mesh=mesh if chk else "finer"
         ),
     }
     if old is not None:
@@ -115,7 +133,8 @@ def main(argv: list[str] | None = None) -> int:
     design = load_template(args.template)
     folded = fold_design(design)
     print(f"{args.template}: CPU s of simulate (median of {args.rounds}), interleaved")
-    heads = ["plastic share", "springback max", "standing max", "largest stress MPa", "iterations"]
+    heads = ["plastic share", "springback max", "standing max", "largest stress MPa", "iterations",
+             "mesh change %"]  # fmt: skip
     print("| level | law | CPU s | x baseline | " + " | ".join(heads) + " |")
     print("|---" * (4 + len(heads)) + "|")
     for level in args.levels:

@@ -299,6 +299,8 @@ def simulate(
     crease: Crease | str = "held",
     mesh: MeshLevel | str = "normal",
     check: bool | None = None,
+    law: Law | str = "moment",
+    check_mesh: CheckMesh | str = "finer",
 ) -> Simulation:
     """The sheet of ``design`` as steel, as ``onefold simulate`` computes it.
 
@@ -309,7 +311,11 @@ def simulate(
             'designed' (the designed form's check under its weight).
         crease: 'held' (each half keeps its angle) or 'elastic'.
         mesh: 'coarse', 'normal' or 'fine'.
-        check: solve again on a finer mesh (default: on every mesh but coarse).
+        check: solve again on a second mesh (default: on every mesh but coarse).
+        law: 'moment' (the 1D moment law) or 'j2' (J2 plasticity through the
+            thickness, several times the CPU).
+        check_mesh: the check's mesh: 'finer' (about twice the nodes) or
+            'coarser' (the next coarser level's; not below coarse).
 
     Returns:
         The result with its stages: ``formed``, ``released``, ``standing``,
@@ -321,7 +327,7 @@ def simulate(
         InvalidParameterError: a bad option or a design that cannot be simulated.
         ConvergenceError: a stage did not converge.
     """
-    from onefold_cad.choices import Crease, MeshLevel, Reference, Supports
+    from onefold_cad.choices import CheckMesh, Crease, Law, MeshLevel, Reference, Supports
     from onefold_cad.design import fold_design
     from onefold_cad.mechanics.simulate import simulate as run
 
@@ -334,6 +340,8 @@ def simulate(
         crease=Crease.parse(crease).value,
         level=level.value,
         convergence=level.checked if check is None else check,
+        law=Law.parse(law).value,
+        check_mesh=CheckMesh.parse(check_mesh).value,
     )
 
 
@@ -388,8 +396,10 @@ if TYPE_CHECKING:  # static type checkers and IDEs see the names directly
     # ruff: noqa: F401
     from onefold_cad.choices import (
         Body,
+        CheckMesh,
         Compensation,
         Crease,
+        Law,
         MeshLevel,
         Model,
         Placement,

@@ -16,6 +16,7 @@ from onefold_cad.errors import InvalidParameterError
 
 __all__ = [
     "Body",
+    "CheckMesh",
     "Choice",
     "Compensation",
     "Crease",
@@ -215,6 +216,25 @@ class MeshLevel(Choice):
         """Whether simulate solves again on a finer mesh by default (its
         convergence check): on every level but the coarse preview."""
         return self is not MeshLevel.COARSE
+
+    @property
+    def coarser(self) -> MeshLevel | None:
+        """The next coarser level (None for the coarse preview)."""
+        return {MeshLevel.FINE: MeshLevel.NORMAL, MeshLevel.NORMAL: MeshLevel.COARSE}.get(self)
+
+
+class CheckMesh(Choice):
+    """The mesh ``onefold simulate``'s convergence check solves again on.
+
+    FINER: every target edge divided by sqrt 2, about twice the nodes (the
+    default). COARSER: the next coarser level's own mesh (normal: coarse;
+    fine: normal), a fraction of the cost; for a discretisation of second
+    order its change overstates the answer's error, where the finer mesh's
+    understates it (docs/mechanics.md, "The convergence check's mesh").
+    """
+
+    FINER = "finer"
+    COARSER = "coarser"
 
 
 #: ``onefold simulate``'s default settings (the convergence check's: :attr:`MeshLevel.checked`).

@@ -108,3 +108,22 @@ def test_importing_the_package_loads_no_numpy_and_no_cad_library():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_simulate_takes_the_law_and_the_check_s_mesh_as_the_command_does(monkeypatch):
+    """``of.simulate`` passes the law and the check's mesh on, in any case,
+    and refuses a name that is not one before any simulation."""
+    from onefold_cad.mechanics import simulate as sim_module
+
+    seen: dict = {}
+    monkeypatch.setattr(sim_module, "simulate", lambda *a, **k: seen.update(k) or "sim")
+    d = of.load_template("patkau-one-fold")
+    assert of.simulate(d, law="J2", check_mesh="Coarser") == "sim"
+    assert seen["law"] == "j2" and seen["check_mesh"] == "coarser"
+    assert seen["level"] == "normal" and seen["convergence"] is True
+    of.simulate(d, mesh="coarse")
+    assert seen["law"] == "moment" and seen["check_mesh"] == "finer"
+    assert seen["convergence"] is False
+    for bad in ({"law": "tresca"}, {"check_mesh": "sideways"}):
+        with pytest.raises(InvalidParameterError):
+            of.simulate(d, **bad)

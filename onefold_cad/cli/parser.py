@@ -264,7 +264,18 @@ def _simulate_parser() -> FlagParser:
         allow_abbrev=False,
     )
     _template_argument(p, "template", "?")
-    simulation_options(p.add_argument_group("simulation"), defaults=True)
+    from onefold_cad.choices import CheckMesh
+
+    g = p.add_argument_group("simulation")
+    simulation_options(g, defaults=True)
+    words = tuple(c.value for c in CheckMesh)
+    g.add_argument(
+        "--check-mesh", type=parse_choice(words), default=CheckMesh.FINER.value,
+        metavar="|".join(words),
+        help="the convergence check's mesh: about twice the nodes (default), or the next "
+        "coarser level's (normal: coarse), a fraction of the CPU, its change a more "
+        "cautious bound on the answer's error",
+    )  # fmt: skip
     o = p.add_argument_group("output")
     o.add_argument("--json", action="store_true",
                    help="print the JSON report with its simulation section")  # fmt: skip

@@ -94,10 +94,10 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
     )
     conv = sim.get("convergence")
     if conv and conv.get("max_deviation_change") is not None:
-        fine = conv["finer_mesh"]
+        other = conv["check_mesh"]
         text += (
-            f"; on {fine['nodes']} nodes {conv['quantity']} changes by "
-            f"{100 * conv['max_deviation_change']:.3g} %"
+            f"; on {other['nodes']} nodes ({conv['check']} check) {conv['quantity']} "
+            f"changes by {100 * conv['max_deviation_change']:.3g} %"
         )
     out.append(f"  {'mesh':<24} {text}")
     if "formed" in sim:
@@ -226,6 +226,7 @@ def cmd_simulate(ns: argparse.Namespace) -> int:
         law=ns.law,
         level=ns.mesh,
         convergence=check,
+        check_mesh=ns.check_mesh,
         progress=progress,
         stage_done=None if progress is None else progress.stage_done,
     )

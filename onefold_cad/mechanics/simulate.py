@@ -1,8 +1,9 @@
 """``onefold simulate``'s computation: a design's sheet as steel.
 
 :func:`simulate` runs the stages on the mesh of the chosen level and again on
-the next finer one (twice the nodes) and reports the first with the second's
-change of the largest deviation (``convergence.max_deviation_change``).
+the next finer one (twice the nodes; or, with ``check_mesh='coarser'``, on the
+next coarser level's mesh) and reports the first with the change of the
+largest deviation between the two (``convergence.max_deviation_change``).
 
 - reference 'flat' (default): the sheet is cut flat and stress-free, bent into
   the design (``formed``: where it yields), let go (``released``: the
@@ -24,8 +25,9 @@ from dataclasses import replace
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from onefold_cad.choices import Law, MeshLevel, Reference, Supports
+from onefold_cad.choices import CheckMesh, Law, MeshLevel, Reference, Supports
 from onefold_cad.design import Design
+from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.mechanics.equilibrium import PathStalled
 from onefold_cad.mechanics.j2.simulate import form_j2, run_j2
@@ -332,6 +334,21 @@ def _measure(sim: Simulation) -> tuple[str, float | None]:
     return "standing.load_factor", sim.standing.load_factor
 
 
+def _check_level(level: str, h_max: float | None, check_mesh: str) -> MeshLevel | None:
+    """The level a 'coarser' check runs on (None: the check is 'finer');
+    refuses a mesh with no coarser level below it."""
+    if CheckMesh.parse(check_mesh) is CheckMesh.FINER:
+        return None
+    coarser = MeshLevel.parse(level).coarser
+    if coarser is None or h_max is not None:
+        raise InvalidParameterError(
+            "check_mesh",
+            "'coarser' checks a normal or fine mesh against the level below it; the coarse "
+            "mesh and a mesh of a given h_max have none (use 'finer')",
+        )
+    return coarser
+
+
 def simulate(
     design: Design,
     folded: FoldedSheet,
@@ -339,20 +356,26 @@ def simulate(
     convergence: bool = True,
     level: str = "normal",
     h_max: float | None = None,
+    check_mesh: str = "finer",
     progress: Progress | None = None,
     stage_done: StageDone | None = None,
     **options: object,
 ) -> Simulation:
-    """:func:`run` on the level's mesh and, with ``convergence``, on the next
-    finer one: the first's results with the relative change of their largest
-    deviation on the second (``convergence.max_deviation_change``). The
-    second run's stages reach ``progress`` and ``stage_done`` named
-    ``convergence check: STAGE``.
+    """:func:`run` on the level's mesh and, with ``convergence``, on a second
+    mesh: the first's results with the relative change of their largest
+    deviation on the second (``convergence.max_deviation_change``, relative to
+    the finer mesh's value). The second mesh is the next finer one (every
+    edge / sqrt 2, ``check_mesh`` 'finer') or the next coarser level's
+    ('coarser': normal against coarse, fine against normal). The second run's
+    stages reach ``progress`` and ``stage_done`` named ``convergence check:
+    STAGE``.
 
     Raises:
-        InvalidParameterError: the design cannot be simulated (named value).
+        InvalidParameterError: the design cannot be simulated (named value), or
+            ``check_mesh`` is 'coarser' on the coarse level or a given ``h_max``.
         ConvergenceError: a stage did not converge (never an unconverged result).
     """
+    coarser = _check_level(level, h_max, check_mesh)
     base = run(
         design, folded, level=level, h_max=h_max, progress=progress, stage_done=stage_done,
         **options,
@@ -363,27 +386,37 @@ def simulate(
     check = run(
         design,
         folded,
-        level=level,
+        level=level if coarser is None else coarser.value,
         h_max=h_max,
-        refine=FINER,
+        refine=FINER if coarser is None else 1.0,
         progress=None if progress is None else lambda st, i, r: progress(named(st), i, r),
         stage_done=None if stage_done is None else lambda st, t: stage_done(named(st), t),
         **options,
     )
     name, a = _measure(base)
-    _, b = _measure(check)
-    change = None if a is None or b is None or b == 0 else abs(a - b) / abs(b)
+    other, b = _measure(check)
+    change = None
+    if name == other and a is not None and b is not None:
+        finer = b if coarser is None else a  # relative to the finer mesh's value
+        change = abs(a - b) / abs(finer) if finer != 0 else None
     data = {
         "quantity": name,
         "value": a,
-        "finer_mesh": {"nodes": check.nodes, "triangles": check.triangles, "h_max": check.h_max},
-        "finer_value": b,
+        "check": "finer" if coarser is None else "coarser",
+        "check_mesh": {"nodes": check.nodes, "triangles": check.triangles, "h_max": check.h_max},
+        "check_value": b if name == other else None,
         "max_deviation_change": change,
     }
     times = dict(base.timings_s)
     times["convergence_check"] = float(sum(check.timings_s.values()))
     warnings = list(base.warnings)
-    if change is not None and change > CONVERGED:
+    if name != other:  # a standing form on one mesh, none on the other
+        warnings.append(
+            f"not mesh-converged: the check's mesh of {check.nodes} nodes has {other} where "
+            f"this one has {name} (a standing equilibrium on one mesh and none on the "
+            f"other); a finer --mesh is closer"
+        )
+    elif change is not None and change > CONVERGED:
         warnings.append(
             f"not mesh-converged: {name} changes by {100 * change:.3g} % on a mesh of "
             f"{check.nodes} nodes (more than {100 * CONVERGED:g} %); a finer --mesh is closer"

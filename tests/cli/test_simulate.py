@@ -74,6 +74,9 @@ BAD = [
     (["--supports", "floor"], "supports", "anchored, frictionless"),
     (["--reference", "built"], "reference", "flat, designed"),
     (["--mesh", "huge"], "mesh", "coarse, normal, fine"),
+    (["--check-mesh", "coarsest"], "check-mesh", "finer, coarser"),
+    # the coarse mesh has no coarser level to check against
+    (["--check-mesh", "coarser"], "check_mesh", "'coarser' checks a normal or fine mesh"),
 ]
 TEMPLATES = [
     ("star-polygon", "thickness", "thickness > 0"),  # a paper design: no solid to bend

@@ -25,6 +25,7 @@ from onefold_cad.design import fold_design
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.mechanics import equilibrium
+from onefold_cad.mechanics import simulate as sim_module
 from onefold_cad.mechanics.simulate import formed_only, run, simulate
 from onefold_cad.templates import load_template
 
@@ -182,12 +183,51 @@ def test_the_convergence_check_reports_the_change(patkau):
     design, folded = patkau
     sim = simulate(design, folded, level="coarse", convergence=True, law="moment")
     conv = sim.convergence
-    assert conv["quantity"] == "standing.max_deviation"
-    assert conv["finer_mesh"]["nodes"] > 1.5 * sim.nodes
-    change = abs(conv["value"] - conv["finer_value"]) / conv["finer_value"]
+    assert conv["quantity"] == "standing.max_deviation" and conv["check"] == "finer"
+    assert conv["check_mesh"]["nodes"] > 1.5 * sim.nodes
+    change = abs(conv["value"] - conv["check_value"]) / conv["check_value"]
     assert conv["max_deviation_change"] == pytest.approx(change)
     warned = any(w.startswith("not mesh-converged") for w in sim.warnings)
     assert warned == (change > 0.02)
+
+
+def test_a_coarser_check_is_the_coarse_level_s_own_simulation(patkau):
+    """``check_mesh='coarser'`` on the normal mesh solves again on the coarse
+    level's mesh: the check's value is the coarse simulation's, the change
+    relative to the normal mesh's value."""
+    design, folded = patkau
+    sim = simulate(design, folded, level="normal", check_mesh="coarser", law="moment")
+    coarse = simulate(design, folded, level="coarse", convergence=False, law="moment")
+    conv = sim.convergence
+    assert conv["check"] == "coarser" and conv["quantity"] == "standing.max_deviation"
+    assert conv["check_mesh"]["nodes"] == coarse.nodes < sim.nodes / 2
+    assert conv["check_value"] == coarse.standing.max_deviation
+    a, b = sim.standing.max_deviation, coarse.standing.max_deviation
+    assert conv["max_deviation_change"] == pytest.approx(abs(a - b) / a, rel=1e-12)
+    assert "convergence_check" in sim.timings_s
+
+
+def test_a_check_whose_mesh_does_not_stand_is_not_a_change():
+    """broken-vault stands on the normal mesh and finds no standing
+    equilibrium on the coarse one: the two meshes measure different
+    quantities, so no change is reported, and a warning says why."""
+    design = load_template("broken-vault")
+    sim = simulate(design, fold_design(design), level="normal", check_mesh="coarser",
+                   law="moment")  # fmt: skip
+    conv = sim.convergence
+    assert sim.standing.stands and conv["quantity"] == "standing.max_deviation"
+    assert conv["max_deviation_change"] is None and conv["check_value"] is None
+    (warning,) = [w for w in sim.warnings if w.startswith("not mesh-converged")]
+    assert "released.max_deviation" in warning and "none on the other" in warning
+
+
+def test_coarser_on_the_coarse_mesh_is_refused_before_any_simulation(patkau, monkeypatch):
+    design, folded = patkau
+    monkeypatch.setattr(sim_module, "run", lambda *a, **k: pytest.fail("simulated"))
+    with pytest.raises(InvalidParameterError, match="check_mesh: 'coarser'"):
+        simulate(design, folded, level="coarse", check_mesh="coarser")
+    with pytest.raises(InvalidParameterError, match="check_mesh"):
+        simulate(design, folded, level="normal", check_mesh="sideways")
 
 
 @pytest.mark.parametrize(
