@@ -193,6 +193,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     from onefold_cad.compensate.run import compensate
     from onefold_cad.compensate.target import make_target
     from onefold_cad.design import fold_design
+    from onefold_cad.fabrication.bend_checks import bend_error, check_bends
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
     from onefold_cad.sweep.backends import default_workers
 
@@ -200,6 +201,9 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     design = job.design
     if ns.outdir is not None:
         check_outdir(ns.outdir)
+        refusal = bend_error(check_bends(fold_design(design), design.material, design.units))
+        if refusal is not None:  # -o writes build's files, which would refuse at the end
+            raise refusal
     if ns.jobs is not None and ns.jobs < 1:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
     sized = any(v is not None for v in (ns.height, ns.span, ns.depth))

@@ -76,6 +76,16 @@ class Standing:
     warnings: tuple[str, ...]
 
 
+def bend_refusal(design: Design) -> str | None:
+    """The one line ``onefold build`` would refuse ``design``'s flat pattern
+    with (its bends, :func:`~onefold_cad.fabrication.bend_checks.check_bends`,
+    compensated sharp, as ``compensate -o`` writes them), or None."""
+    from onefold_cad.fabrication.bend_checks import bend_error, check_bends
+
+    error = bend_error(check_bends(fold_design(design), design.material, design.units))
+    return None if error is None else "not buildable: " + " ".join(str(error).split())
+
+
 def simulate_standing(
     design: Design, level: str, check: bool = False, law: str = "moment"
 ) -> Standing:

@@ -38,6 +38,7 @@ import numpy as np
 from onefold_cad.choices import Knob
 from onefold_cad.compensate.evaluate import (
     Standing,
+    bend_refusal,
     designed_sizes,
     node_weights,
     standing_measures,
@@ -187,6 +188,8 @@ class _Problem:
         self.by_key: dict[tuple[str, tuple[float, ...]], Candidate] = {}
         self.start = time.monotonic()
         self.planned = 0
+        #: only folds ``build`` can write are candidates (where the start is one)
+        self.buildable = False
 
     def residual(self, s: Standing | str) -> tuple[Array | None, float | None, float | None]:
         if isinstance(s, str) or not s.stands or s.positions is None:
@@ -208,9 +211,14 @@ class _Problem:
 
     def evaluate(self, designs: list[Design], level: str) -> list[Array]:
         """Simulate ``designs`` side by side; their residuals (penalised when
-        one does not stand)."""
+        one does not stand, or, where the start is buildable, when ``build``
+        would refuse its bends: that one is not simulated)."""
         out = []
-        for d, s in zip(designs, self.evaluator.map(designs, level), strict=True):
+        refused = [bend_refusal(d) if self.buildable else None for d in designs]
+        todo = [d for d, r in zip(designs, refused, strict=True) if r is None]
+        ran = iter(self.evaluator.map(todo, level) if todo else [])
+        standings = [next(ran) if r is None else r for r in refused]
+        for d, s in zip(designs, standings, strict=True):
             r, mx, rms = self.residual(s)
             if r is not None:
                 self.size_r = len(r)
@@ -291,6 +299,7 @@ def search(
     upper = np.array([spec[n][4] for n in names])
     steps = np.array([spec[n][2] for n in names])
     problem = _Problem(target, evaluator, found, say)
+    problem.buildable = bend_refusal(start) is None
     problem.planned = (COARSE_STEPS + 1) * (len(names) + 1) + NORMAL_STEPS
     y0 = np.clip(np.array([fixed[n] for n in names]), lower, upper)
     jac_kept: dict[str, Array] = {}

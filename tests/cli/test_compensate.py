@@ -47,6 +47,21 @@ def test_bad_input_exits_2_in_one_line_before_any_simulation(
     assert out == "" and not (tmp_path / "out").exists()
 
 
+def test_with_o_a_design_build_would_refuse_is_refused_before_any_simulation(
+    cli, monkeypatch, tmp_path
+) -> None:
+    """-o writes build's files: a design whose bends build refuses (patkau's
+    blank too wide across one half with these flags, as `onefold build`
+    says) exits 2 at once, not after the search."""
+    monkeypatch.setattr(parallel, "simulate_standing", _never)
+    flags = ("--alpha", "36.86", "--beta", "36.68", "--hc", "58.02")
+    rc, _, built = cli("build", "patkau-one-fold", *flags, "-o", str(tmp_path / "b"))
+    assert rc == 2 and "too wide across it" in built  # the premise
+    rc, out, err = cli("compensate", "patkau-one-fold", *flags, "-o", str(tmp_path / "out"))
+    assert rc == 2 and err == built and out == ""
+    assert not (tmp_path / "out").exists()
+
+
 def test_a_design_without_steel_data_is_refused_naming_the_value(cli, monkeypatch) -> None:
     monkeypatch.setattr(parallel, "simulate_standing", _never)
     rc, _, err = cli("compensate", "paper-square")

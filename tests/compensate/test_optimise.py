@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from onefold_cad.compensate import optimise, parallel
@@ -207,3 +208,35 @@ def test_a_size_past_the_slack_costs_its_relative_excess_signed() -> None:
     rows = optimise.size_rows(102.0, 247.5, sizes)
     w = optimise.SIZE_WEIGHT * 175.0
     assert rows == pytest.approx([0.015 * w, -0.005 * w], rel=1e-9)
+
+
+def test_a_fold_build_would_refuse_is_not_simulated_where_the_start_is_buildable() -> None:
+    """patkau's 6 mm bends leave its blank too wide across one half once h_c
+    folds the halves apart (a compensate -j 2 --law j2 search ended there,
+    and -o then failed to write): such a candidate is refused unsimulated,
+    at an infinite cost, so the search steps back from it."""
+    start = load_template(find_template("patkau-one-fold"))
+    names = ("alpha", "beta", "h_c", "overbend")
+    fixed = optimise.knob_values(start)
+    bad = optimise._design_at(start, names, np.array([36.86, 36.68, 0.7252, -0.74]), fixed)
+    assert optimise.bend_refusal(start) is None and bad.frame.h_c > 50.0  # the premise
+
+    class Recording:
+        def __init__(self) -> None:
+            self.seen: list[object] = []
+
+        def map(self, designs, level):
+            self.seen += designs
+            return ["stand-in"] * len(designs)  # refused by the steel too: no residual
+
+    ev = Recording()
+    problem = optimise._Problem(make_target(start, "design"), ev, optimise.Search(), print)
+    problem.buildable = True
+    problem.evaluate([start, bad], "coarse")
+    assert ev.seen == [start]
+    refused = problem.found.candidates[1]
+    assert isinstance(refused.standing, str) and refused.cost == float("inf")
+    assert refused.standing.startswith("not buildable: bend_radius: ")
+    problem.buildable = False  # a start build refuses: the search is not held to it
+    problem.evaluate([bad], "coarse")
+    assert ev.seen == [start, bad]
