@@ -324,10 +324,25 @@ def search(
             yi[i] += step
             ys.append(yi)
         rs = problem.evaluate([_design_at(start, names, yi, fixed) for yi in ys], coarse)
-        jac = np.column_stack([(r - r0) / (yi - y).sum() for r, yi in zip(rs, ys, strict=True)])
+        moved = found.candidates[-len(ys) :]
+        # a step onto a fold that does not stand or cannot be built has no
+        # derivative: step the other way (within the bounds), else leave the
+        # knob out of this Jacobian (a zero column), never a penalty's slope
+        back = [i for i, c in enumerate(moved) if not math.isfinite(c.cost)
+                and lower[i] <= 2 * y[i] - ys[i][i] <= upper[i]]  # fmt: skip
+        if back:
+            for i in back:
+                ys[i] = 2 * y - ys[i]  # the same step the other way (only knob i moved)
+            again = problem.evaluate([_design_at(start, names, ys[i], fixed) for i in back], coarse)
+            for i, r, c in zip(back, again, found.candidates[-len(back) :], strict=True):
+                rs[i], moved[i] = r, c
+        jac = np.column_stack([
+            (r - r0) / (yi - y).sum() if math.isfinite(c.cost) else np.zeros_like(r0)
+            for r, yi, c in zip(rs, ys, moved, strict=True)
+        ])  # fmt: skip
         jac_kept["J"] = jac
         base = problem.by_key[(coarse, _key(y))]
-        _sensitivity(found, names, base, found.candidates[-len(ys) :])
+        _sensitivity(found, names, base, moved)
         return jac
 
     fun_at(coarse)(y0)

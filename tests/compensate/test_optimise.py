@@ -240,3 +240,24 @@ def test_a_fold_build_would_refuse_is_not_simulated_where_the_start_is_buildable
     problem.buildable = False  # a start build refuses: the search is not held to it
     problem.evaluate([bad], "coarse")
     assert ev.seen == [start, bad]
+
+
+def test_a_jacobian_step_onto_an_unbuildable_fold_steps_the_other_way(
+    fake: None, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Folds past the answer's alpha cannot be built (a stand-in for build's
+    refusal): the forward differences there step back instead of taking the
+    penalty's slope, and the search still lands on the answer."""
+    design = load_template(find_template("broken-vault"))
+    wall = design.frame.alpha + SPRING[0] + 0.2  # the answer's alpha, then a wall
+    monkeypatch.setattr(
+        optimise, "bend_refusal", lambda d: "not buildable" if d.frame.alpha > wall else None
+    )
+    with Evaluator(1) as ev:
+        result = compensate(design, make_target(design, "design"), ev, lambda s: None, knobs=FOLD)
+    refused = [c for c in result.found.candidates if c.standing == "not buildable"]
+    assert refused  # the premise: the search met the wall
+    f = result.compensated.frame
+    assert f.alpha == pytest.approx(design.frame.alpha + SPRING[0], abs=0.05)
+    assert f.beta == pytest.approx(design.frame.beta + SPRING[1], abs=0.05)
+    assert result.reached
