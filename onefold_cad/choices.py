@@ -226,15 +226,23 @@ class MeshLevel(Choice):
 class CheckMesh(Choice):
     """The mesh ``onefold simulate``'s convergence check solves again on.
 
-    FINER: every target edge divided by sqrt 2, about twice the nodes (the
-    default). COARSER: the next coarser level's own mesh (normal: coarse;
-    fine: normal), a fraction of the cost; for a discretisation of second
-    order its change overstates the answer's error, where the finer mesh's
+    FINER: every target edge divided by sqrt 2, about twice the nodes.
+    COARSER: the next coarser level's own mesh (normal: coarse; fine:
+    normal), a fraction of the cost; for a discretisation of second order
+    its change overstates the answer's error, where the finer mesh's
     understates it (docs/mechanics.md, "The convergence check's mesh").
+    The default is :meth:`default_for`'s.
     """
 
     FINER = "finer"
     COARSER = "coarser"
+
+    @staticmethod
+    def default_for(level: str, h_max: float | None = None) -> CheckMesh:
+        """The check's default mesh: the next coarser level's where the
+        ``level`` has one and no ``h_max`` is given, else the finer mesh."""
+        coarser = MeshLevel.parse(level).coarser
+        return CheckMesh.COARSER if coarser is not None and h_max is None else CheckMesh.FINER
 
 
 #: ``onefold simulate``'s default settings (the convergence check's: :attr:`MeshLevel.checked`).

@@ -180,7 +180,8 @@ def run(
 
     With ``reserve`` False the coarse preview's reserve check is left for later
     (``Simulation.pending_reserve``; ``verdicts.settle_reserve`` runs it):
-    until then a standing sheet is "uncertain" (``verdicts.RESERVE_PENDING``).
+    until then a standing sheet is "uncertain" (``verdicts.RESERVE_PENDING``;
+    J2's is not kept for later: it stays "uncertain").
 
     BLAS runs on one thread meanwhile (``threadpoolctl``): the model's dense
     algebra is thousands of tiny products, where OpenBLAS's threads only spin
@@ -219,6 +220,8 @@ def run(
         j2 = run_j2(
             model, folded, supports, design.units.value,
             lambda stage: _stage_progress(progress, stage), lap,
+            coarse=MeshLevel.parse(level) is MeshLevel.COARSE and refine == 1.0,
+            reserve=reserve,
         )  # fmt: skip
         formed_result, released, standing = j2.formed, j2.released, j2.standing
         stress, dev, released_at = j2.stress_MPa, j2.deviation, j2.released_at / s
@@ -334,9 +337,12 @@ def _measure(sim: Simulation) -> tuple[str, float | None]:
     return "standing.load_factor", sim.standing.load_factor
 
 
-def _check_level(level: str, h_max: float | None, check_mesh: str) -> MeshLevel | None:
-    """The level a 'coarser' check runs on (None: the check is 'finer');
-    refuses a mesh with no coarser level below it."""
+def _check_level(level: str, h_max: float | None, check_mesh: str | None) -> MeshLevel | None:
+    """The level a 'coarser' check runs on (None: the check is 'finer'; a
+    ``check_mesh`` of None: :meth:`CheckMesh.default_for`'s); refuses a mesh
+    with no coarser level below it."""
+    if check_mesh is None:
+        check_mesh = CheckMesh.default_for(level, h_max).value
     if CheckMesh.parse(check_mesh) is CheckMesh.FINER:
         return None
     coarser = MeshLevel.parse(level).coarser
@@ -356,7 +362,7 @@ def simulate(
     convergence: bool = True,
     level: str = "normal",
     h_max: float | None = None,
-    check_mesh: str = "finer",
+    check_mesh: str | None = None,
     progress: Progress | None = None,
     stage_done: StageDone | None = None,
     **options: object,
@@ -366,7 +372,8 @@ def simulate(
     deviation on the second (``convergence.max_deviation_change``, relative to
     the finer mesh's value). The second mesh is the next finer one (every
     edge / sqrt 2, ``check_mesh`` 'finer') or the next coarser level's
-    ('coarser': normal against coarse, fine against normal; where that mesh
+    ('coarser': normal against coarse, fine against normal; the default
+    where there is one and no ``h_max`` is given; where that mesh
     stands and this one does not, or the other way round, it cannot bound this
     one's error, and the check runs on the finer mesh instead, with a
     warning). The second run's stages reach ``progress`` and ``stage_done``
@@ -393,6 +400,7 @@ def simulate(
             level=level if coarser is None else coarser.value,
             h_max=h_max,
             refine=FINER if coarser is None else 1.0,
+            reserve=False,  # the check wants its deviation, not the coarse verdict's reserve
             progress=None if progress is None else lambda st, i, r: progress(named(st), i, r),
             stage_done=None if stage_done is None else lambda st, t: stage_done(named(st), t),
             **options,

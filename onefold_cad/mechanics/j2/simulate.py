@@ -8,7 +8,7 @@ each stage says (:mod:`onefold_cad.mechanics.j2.measures`).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -27,6 +27,7 @@ from onefold_cad.mechanics.j2.measures import (
 from onefold_cad.mechanics.j2.stages import J2Stage
 from onefold_cad.mechanics.model import SheetModel
 from onefold_cad.mechanics.newton import Progress
+from onefold_cad.mechanics.reserve import COARSE_RESERVE
 from onefold_cad.mechanics.results import FormedResult, Released, Standing
 from onefold_cad.mechanics.shell import Shell, unpack
 from onefold_cad.mechanics.stages import place
@@ -36,6 +37,7 @@ from onefold_cad.mechanics.standing_measures import (
     stalled,
     standing_result,
 )
+from onefold_cad.mechanics.verdicts import RESERVE_PENDING, with_reserve
 
 __all__ = ["J2Formed", "J2Run", "form_j2", "run_j2"]
 
@@ -116,9 +118,16 @@ def run_j2(
     unit: str,
     progress_for: ProgressFor,
     lap: Callable[[str], None],
+    coarse: bool = False,
+    reserve: bool = True,
 ) -> J2Run:
     """Form, release and stand ``model``'s sheet with J2 sections; ``lap(stage)``
-    after each stage (its CPU time).
+    after each stage (its CPU time). On the ``coarse`` preview mesh a sheet
+    that stands must carry :data:`~onefold_cad.mechanics.reserve.COARSE_RESERVE`
+    times its weight to be a plain yes (:func:`j2_stages.carries`), else it is
+    "uncertain: run --mesh normal", as the moment law's preview; with
+    ``reserve`` False the check is not run and such a sheet stays "uncertain"
+    (:data:`~onefold_cad.mechanics.verdicts.RESERVE_PENDING`).
 
     Raises:
         ConvergenceError: the release did not converge, or a return mapping
@@ -170,6 +179,13 @@ def run_j2(
         max_plastic_strain_at=at_s,
         plastic_area_share=area_share(model, peeq_s > 0),
     )
+    if coarse and standing.stands and not reserve:
+        standing = replace(standing, uncertain=RESERVE_PENDING)
+    elif coarse and standing.stands:
+        ok = j2_stages.carries(
+            model, shell, placed, st, supports, COARSE_RESERVE, progress_for("standing")
+        )
+        standing = with_reserve(standing, COARSE_RESERVE if ok else 1.0)
     lap("standing")
     fields["standing"] = s_surf
     positions["standing"] = st.equilibrium.positions

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.energy import evaluate, second_fundamental_form, section_response
-from onefold_cad.mechanics.equilibrium import Equilibrium, solve_path
+from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled, solve_path
 from onefold_cad.mechanics.j2.law import J2Law, von_mises
 from onefold_cad.mechanics.j2.layered import Plasticity, form_along
 from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule
@@ -46,6 +46,7 @@ __all__ = [
     "RELEASE_PREDICTOR",
     "RELEASE_STEP",
     "J2Stage",
+    "carries",
     "form",
     "form_to",
     "j2_shell",
@@ -262,3 +263,37 @@ def stand(
         ),
     )
     return J2Stage(eq.q, eq, p, resp)
+
+
+def carries(
+    model: SheetModel,
+    shell: Shell,
+    placed: Placed,
+    standing: J2Stage,
+    supports: str,
+    up_to: float,
+    progress: Progress | None = None,
+) -> bool:
+    """Whether the sheet standing in ``standing`` carries ``up_to`` times its
+    weight: gravity from 1 to ``up_to`` in one Newton solve through the law
+    (the stand's internal variables, its contacts), as
+    :func:`onefold_cad.mechanics.reserve.carried` checks the moment law's. A
+    check, not the load path: False may be a sheet that carries more."""
+    g = np.array([0.0, 0.0, -GRAVITY])
+    moved = placed.shell.with_changes(
+        rest_curvature=shell.rest_curvature, plasticity=standing.plasticity
+    )
+    assert standing.equilibrium is not None
+    options = standing_path(model, placed, supports)
+    options.update({"contacts": standing.equilibrium.contacts, "first_step": 1.0,
+                    "max_solves": 1})  # fmt: skip
+    try:
+        solve_path(
+            lambda s: moved.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
+            standing.q,
+            callback=progress,
+            **options,
+        )
+    except PathStalled:
+        return False
+    return True
