@@ -125,9 +125,12 @@ def run(template: str, jobs: int, done: Path | None = None) -> dict:
             # the simulations' CPU only: the command's own process ran elsewhere
             out, own_cpu, wall = done, 0.0, float("nan")
             comp = json.loads((out / f"{template}-compensation.json").read_text())
-        # the command's own process, plus its simulations' CPU as the pool's workers
-        # measured it (-j >= 2: they run there, beyond RUSAGE_CHILDREN's reach)
-        cpu = comp["compensation"]["cpu_s"] + (own_cpu if jobs > 1 else 0.0)
+        # the command's own process (with the simulations it ran itself), plus
+        # those its pool's workers ran, as they measured them (forkserver
+        # children, beyond RUSAGE_CHILDREN's reach); read from a folder, the
+        # simulations' CPU alone
+        c = comp["compensation"]
+        cpu = own_cpu + c.get("cpu_workers_s", 0.0) if done is None else c["cpu_s"]
         toml = out / f"{template}-compensated.toml"
         sim, _, _ = _onefold("simulate", str(toml), "-q", "-o", str(Path(tmp) / "sim"))
         glb = Path(tmp) / "sim" / f"{template}-compensated-standing.glb"

@@ -227,7 +227,10 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     comp = result.compensated
     report = design_report(comp, fold_design(comp), sources=job.sources)
     report["name"] = design.name
-    report["compensation"] = result.to_data() | {"law": evaluator.law}
+    report["compensation"] = result.to_data() | {
+        "law": evaluator.law,
+        "cpu_workers_s": evaluator.worker_cpu_s,
+    }
     check_finite(report)
     if ns.outdir is not None:
         wrote(_write(ns.outdir, report, result, job), ns.quiet)

@@ -77,6 +77,9 @@ class Evaluator:
         self.law = Law.parse(law).value
         self.workers = max(1, int(workers))
         self.scheduler = scheduler
+        #: CPU seconds of the simulations run in other processes (the pool's
+        #: workers, the cluster's): beyond this process's resource usage
+        self.worker_cpu_s = 0.0
         self._pool: Any = None
         self._dask: Any = None
         if scheduler is not None:
@@ -124,8 +127,15 @@ class Evaluator:
             futures = [
                 client.submit(run_one, d, level, check, self.law, pure=False) for d in designs
             ]
-            return list(client.gather(futures))
+            return self._elsewhere(client.gather(futures))
         n = len(designs)
         if self._pool is not None and n > 1:
-            return list(self._pool.map(run_one, designs, [level] * n, [check] * n, [self.law] * n))
+            args = ([level] * n, [check] * n, [self.law] * n)
+            return self._elsewhere(self._pool.map(run_one, designs, *args))
         return [run_one(d, level, check, self.law) for d in designs]
+
+    def _elsewhere(self, results: Any) -> list[Standing | str]:
+        """``results`` of another process, their CPU time counted."""
+        out = list(results)
+        self.worker_cpu_s += sum(s.cpu_s for s in out if not isinstance(s, str))
+        return out

@@ -317,15 +317,21 @@ def test_the_picture_names_the_law_it_was_compensated_by(cli, monkeypatch, tmp_p
 
 def test_the_pool_hands_the_law_to_its_workers(monkeypatch) -> None:
     from concurrent.futures import ThreadPoolExecutor
+    from dataclasses import replace
 
-    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    monkeypatch.setattr(
+        parallel, "simulate_standing", lambda *a: replace(fake_standing(*a), cpu_s=1.5)
+    )
     design = load_template(find_template(NAME))
     LAWS.clear()
     with parallel.Evaluator(2, law="j2") as ev:
         ev._pool.shutdown()
         ev._pool = ThreadPoolExecutor(2)  # the pool's own map, in this process
         out = ev.map([design, design], "coarse")
-    assert len(out) == 2 and LAWS == ["j2", "j2"]
+        assert ev.worker_cpu_s == 3.0  # two run elsewhere: counted
+        ev.map([design], "coarse")  # one design runs in this process: not counted again
+        assert ev.worker_cpu_s == 3.0
+    assert len(out) == 2 and LAWS == ["j2", "j2", "j2"]
 
 
 def test_an_overbend_answer_reaches_the_template_and_the_bend_sheet(cli, monkeypatch, tmp_path):
