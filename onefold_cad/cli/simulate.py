@@ -99,6 +99,8 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
             f"; on {other['nodes']} nodes ({conv['check']} check) {conv['quantity']} "
             f"changes by {100 * conv['max_deviation_change']:.3g} %"
         )
+        if conv.get("coarser_change") is not None:
+            text += f" (on the coarser mesh by {100 * conv['coarser_change']:.3g} %)"
     out.append(f"  {'mesh':<24} {text}")
     if "formed" in sim:
         f = sim["formed"]

@@ -43,7 +43,14 @@ from onefold_cad.mechanics.standing_measures import (
     standing_result,
 )
 from onefold_cad.mechanics.stress import face_stress
-from onefold_cad.mechanics.verdicts import RESERVE_PENDING, simulation_warnings, with_reserve
+from onefold_cad.mechanics.verdicts import (
+    CONVERGED,
+    RESERVE_PENDING,
+    convergence_report,
+    past_converged,
+    simulation_warnings,
+    with_reserve,
+)
 
 __all__ = [
     "CONVERGED",
@@ -55,8 +62,6 @@ __all__ = [
     "simulate",
 ]
 
-#: The convergence check's bound: a larger relative change is warned about.
-CONVERGED = 0.02
 
 SUPPORTS = tuple(c.value for c in Supports)
 REFERENCES = tuple(c.value for c in Reference)
@@ -376,7 +381,9 @@ def simulate(
     where there is one and no ``h_max`` is given; where that mesh
     stands and this one does not, or the other way round, it cannot bound this
     one's error, and the check runs on the finer mesh instead, with a
-    warning). The second run's stages reach ``progress`` and ``stage_done``
+    warning; where it changes the answer by more than :data:`CONVERGED`, the
+    finer mesh decides too, and ``convergence.coarser_change`` keeps the
+    coarser mesh's change). The second run's stages reach ``progress`` and ``stage_done``
     named ``convergence check: STAGE``.
 
     Raises:
@@ -408,43 +415,29 @@ def simulate(
 
     name, a = _measure(base)
     check = again(coarser)
-    notes, spent = [], 0.0
-    if coarser is not None and _measure(check)[0] != name:
-        # the coarser mesh finds another kind of answer (a standing form on one
-        # mesh, none on the other): it cannot bound this one's error
-        notes.append(
-            f"the convergence check's coarser mesh ({check.nodes} nodes) "
-            f"{'stands' if check.standing.stands else 'does not stand'} where this one "
-            f"{'stands' if base.standing.stands else 'does not stand'}: checked on the "
-            f"finer mesh instead"
-        )
-        spent = sum(check.timings_s.values())
-        coarser, check = None, again(None)
-    other, b = _measure(check)
-    change = None
-    if name == other and a is not None and b is not None:
-        finer = b if coarser is None else a  # relative to the finer mesh's value
-        change = abs(a - b) / abs(finer) if finer != 0 else None
-    data = {
-        "quantity": name,
-        "value": a,
-        "check": "finer" if coarser is None else "coarser",
-        "check_mesh": {"nodes": check.nodes, "triangles": check.triangles, "h_max": check.h_max},
-        "check_value": b if name == other else None,
-        "max_deviation_change": change,
-    }
+    notes, spent, bound = [], 0.0, None
+    if coarser is not None:
+        kind, b = _measure(check)
+        if kind != name:
+            # the coarser mesh finds another kind of answer (a standing form on
+            # one mesh, none on the other): it cannot bound this one's error
+            notes.append(
+                f"the convergence check's coarser mesh ({check.nodes} nodes) "
+                f"{'stands' if check.standing.stands else 'does not stand'} where this one "
+                f"{'stands' if base.standing.stands else 'does not stand'}: checked on the "
+                f"finer mesh instead"
+            )
+        else:
+            # past the limit on the coarser mesh, whose change overstates the
+            # error (by far where the coarse mesh is outside the asymptotic
+            # range): the finer mesh decides
+            bound = past_converged(a, b)
+        if kind != name or bound is not None:
+            spent = sum(check.timings_s.values())
+            coarser, check = None, again(None)
+    mesh = {"nodes": check.nodes, "triangles": check.triangles, "h_max": check.h_max}
+    data, warned = convergence_report((name, a), _measure(check), coarser is None, mesh, bound)
     times = dict(base.timings_s)
     times["convergence_check"] = float(spent + sum(check.timings_s.values()))
-    warnings = list(base.warnings) + notes
-    if name != other:  # a standing form on one mesh, none on the other
-        warnings.append(
-            f"not mesh-converged: the check's mesh of {check.nodes} nodes has {other} where "
-            f"this one has {name} (a standing equilibrium on one mesh and none on the "
-            f"other); a finer --mesh is closer"
-        )
-    elif change is not None and change > CONVERGED:
-        warnings.append(
-            f"not mesh-converged: {name} changes by {100 * change:.3g} % on a mesh of "
-            f"{check.nodes} nodes (more than {100 * CONVERGED:g} %); a finer --mesh is closer"
-        )
+    warnings = list(base.warnings) + notes + warned
     return replace(base, convergence=data, timings_s=times, warnings=type(base.warnings)(warnings))

@@ -10,6 +10,8 @@ standing into the check's verdict (a plain yes only with
 left for later (``reserve=False``: the explorer's Steel view shows the form
 first; until then its standing is "uncertain", :data:`RESERVE_PENDING`) and
 gives the simulation a run with the check would have given.
+:func:`convergence_report` is the convergence check's section of the report
+and its warning.
 """
 
 from __future__ import annotations
@@ -17,12 +19,24 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import replace
+from typing import Any
 
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.reserve import COARSE_RESERVE, ReserveCheck, carried
 from onefold_cad.mechanics.results import Released, Simulation, Standing
 
-__all__ = ["RESERVE_PENDING", "settle_reserve", "simulation_warnings", "with_reserve"]
+__all__ = [
+    "CONVERGED",
+    "RESERVE_PENDING",
+    "convergence_report",
+    "past_converged",
+    "settle_reserve",
+    "simulation_warnings",
+    "with_reserve",
+]
+
+#: The convergence check's bound: a larger relative change is warned about.
+CONVERGED = 0.02
 
 #: A coarse standing's ``uncertain`` while its reserve check is left for later:
 #: until the check is done it is never a plain "stands".
@@ -154,3 +168,53 @@ def settle_reserve(
     warnings = said(standing) + tuple(later)
     times = {**sim.timings_s, "reserve": time.process_time() - clock}
     return replace(sim, standing=standing, warnings=warnings, timings_s=times, pending_reserve=None)
+
+
+def past_converged(a: float | None, b: float | None) -> float | None:
+    """The relative change from ``a`` to ``b`` (relative to ``a``) when it is
+    past :data:`CONVERGED`, else None."""
+    if a is None or b is None or a == 0:
+        return None
+    change = abs(a - b) / abs(a)
+    return change if change > CONVERGED else None
+
+
+def convergence_report(
+    measured: tuple[str, float | None],
+    checked: tuple[str, float | None],
+    finer: bool,
+    mesh: dict[str, Any],
+    coarser_change: float | None,
+) -> tuple[dict[str, Any], list[str]]:
+    """The report's ``convergence`` section and its warning (none when the
+    check is within :data:`CONVERGED`): ``measured`` the answer's quantity
+    and value, ``checked`` the check mesh's, ``finer`` whether that mesh is
+    the finer one (the change is relative to the finer mesh's value),
+    ``mesh`` its ``nodes``, ``triangles`` and ``h_max``, ``coarser_change``
+    the coarser mesh's change where it handed the verdict to the finer one."""
+    (name, a), (other, b) = measured, checked
+    change = None
+    if name == other and a is not None and b is not None:
+        ref = b if finer else a
+        change = abs(a - b) / abs(ref) if ref != 0 else None
+    data = {
+        "quantity": name,
+        "value": a,
+        "check": "finer" if finer else "coarser",
+        "check_mesh": mesh,
+        "check_value": b if name == other else None,
+        "max_deviation_change": change,
+        "coarser_change": coarser_change,
+    }
+    if name != other:  # a standing form on one mesh, none on the other
+        return data, [
+            f"not mesh-converged: the check's mesh of {mesh['nodes']} nodes has {other} where "
+            f"this one has {name} (a standing equilibrium on one mesh and none on the "
+            f"other); a finer --mesh is closer"
+        ]
+    if change is not None and change > CONVERGED:
+        return data, [
+            f"not mesh-converged: {name} changes by {100 * change:.3g} % on a mesh of "
+            f"{mesh['nodes']} nodes (more than {100 * CONVERGED:g} %); a finer --mesh is closer"
+        ]
+    return data, []
