@@ -70,10 +70,12 @@ def block(seconds: float | None) -> str:
         + ". Per thickness: the mass; the share of the sheet that yields when bent into the "
         "design; the springback when let go (largest distance from the design); whether it "
         "stands on anchored feet, how far it then lies from the design and how far its "
-        "weight moves it; the largest stress (residual bending and membrane, taken elastic: "
-        "past yield an estimate, as `onefold simulate` warns); the tipping margin of the "
-        "rigid design and of the simulated form; the largest deviation's change on a mesh of "
-        "twice the nodes; and the seconds the design took.",
+        "weight moves it; the largest stress (von Mises at a surface, J2 through the "
+        "thickness, `onefold simulate`'s default law: at most the flow stress); the tipping "
+        "margin of the rigid design and of the simulated form; the largest deviation's "
+        "change on the coarse mesh (on a mesh of twice the nodes where the coarse one "
+        "disagrees on standing or moves it by more than 2 %); and the seconds the design "
+        "took.",
         "",
         "| t (mm) | mass (kg) | yields when formed | springback (mm) | stands | from the "
         "design, standing (mm) | moved by its weight (mm) | largest stress (MPa, x yield) | "

@@ -122,7 +122,8 @@ def test_simulate_takes_the_law_and_the_check_s_mesh_as_the_command_does(monkeyp
     assert seen["law"] == "j2" and seen["check_mesh"] == "coarser"
     assert seen["level"] == "normal" and seen["convergence"] is True
     of.simulate(d, mesh="coarse")
-    assert seen["law"] == "moment" and seen["check_mesh"] == "finer"
+    # J2 by default, the check's mesh left to the level (coarser where it has one)
+    assert seen["law"] == "j2" and seen["check_mesh"] is None
     assert seen["convergence"] is False
     for bad in ({"law": "tresca"}, {"check_mesh": "sideways"}):
         with pytest.raises(InvalidParameterError):

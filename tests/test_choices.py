@@ -5,7 +5,15 @@ from __future__ import annotations
 
 import pytest
 
-from onefold_cad.choices import Compensation, Model, SheetSurface, Units
+from onefold_cad.choices import (
+    SIMULATION_DEFAULTS,
+    CheckMesh,
+    Compensation,
+    Law,
+    Model,
+    SheetSurface,
+    Units,
+)
 from onefold_cad.errors import InvalidParameterError
 
 CHOICES = [
@@ -61,3 +69,20 @@ def test_options_travel_as_their_enums_not_as_strings():
         for line, name in _string_typed_options(path)
     ]
     assert found == []
+
+
+@pytest.mark.parametrize(
+    ("level", "h_max", "expected"),
+    [
+        ("normal", None, CheckMesh.COARSER),
+        ("fine", None, CheckMesh.COARSER),
+        ("coarse", None, CheckMesh.FINER),  # no level below it
+        ("normal", 0.2, CheckMesh.FINER),  # a given edge has no coarser level
+    ],
+)
+def test_the_check_s_default_mesh_is_the_coarser_level_where_there_is_one(level, h_max, expected):
+    assert CheckMesh.default_for(level, h_max) is expected
+
+
+def test_simulate_s_default_law_is_j2():
+    assert SIMULATION_DEFAULTS["law"] is Law.J2

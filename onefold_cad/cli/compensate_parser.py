@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from onefold_cad.choices import Knob
+from onefold_cad.choices import SIMULATION_DEFAULTS, Knob
 from onefold_cad.cli.help_format import fill, raw_formatter
 from onefold_cad.flags.design_flags import parse_choice, parse_float, parse_int
 from onefold_cad.flags.parser import FlagParser, add_design_flags
@@ -68,10 +68,12 @@ def compensate_parser(prog: str) -> FlagParser:
         "leave it out where the crease cannot be set apart from the cones)",
     )  # fmt: skip
     r.add_argument(
-        "--law", type=parse_choice(("moment", "j2")), default="moment", metavar="moment|j2",
-        help="the bending law of every simulation, as onefold simulate's --law: the 1D moment "
-        "law (default) or J2 plasticity through the thickness (the springback CalculiX "
-        "supports, docs/mechanics.md; 3 to 5 times the CPU)",
+        "--law", type=parse_choice(("j2", "moment")), default=SIMULATION_DEFAULTS["law"].value,
+        metavar="j2|moment",
+        help="the bending law of every simulation, as onefold simulate's --law: J2 "
+        "plasticity through the thickness (default; the springback CalculiX supports, "
+        "docs/mechanics.md) or the 1D moment law (a fifth to a half of the CPU; it "
+        "compensates too little)",
     )  # fmt: skip
     r.add_argument(
         "-j", "--jobs", type=parse_int, default=None, metavar="N",

@@ -256,8 +256,8 @@ def _simulate_parser() -> FlagParser:
             "shell model of the sheet calibrated to its Young's modulus, Poisson's ratio, "
             "yield stress, thickness and density (docs/mechanics.md). With --reference "
             "designed the designed form is taken as stress-free and checked under its weight "
-            "on its resting contacts, as an FE program does. It is solved again on a mesh with "
-            "about twice the nodes to say how converged the answer is (not for --mesh coarse, "
+            "on its resting contacts, as an FE program does. It is solved again on the next "
+            "coarser level's mesh to say how converged the answer is (not for --mesh coarse, "
             "a preview)."
         ),
         formatter_class=raw_formatter,
@@ -270,11 +270,11 @@ def _simulate_parser() -> FlagParser:
     simulation_options(g, defaults=True)
     words = tuple(c.value for c in CheckMesh)
     g.add_argument(
-        "--check-mesh", type=parse_choice(words), default=CheckMesh.FINER.value,
-        metavar="|".join(words),
-        help="the convergence check's mesh: about twice the nodes (default), or the next "
-        "coarser level's (normal: coarse), a fraction of the CPU, its change a more "
-        "cautious bound on the answer's error",
+        "--check-mesh", type=parse_choice(words), default=None, metavar="|".join(words),
+        help="the convergence check's mesh: the next coarser level's (normal: coarse; "
+        "fine: normal; the default), a fraction of the CPU, its change a cautious bound "
+        "on the answer's error, or about twice the nodes (the default for a checked "
+        "coarse mesh)",
     )  # fmt: skip
     o = p.add_argument_group("output")
     o.add_argument("--json", action="store_true",
@@ -308,10 +308,11 @@ def simulation_options(g: Any, *, defaults: bool) -> None:
          "default) or the designed form (a structural check)"),
         ("crease", "the crease keeps its set angle (default), or bends with its bend zone's "
          "own stiffness"),
-        ("law", "how the steel yields: the 1D moment law of a rectangular section (default; "
-         "elastic membrane and unloading, its stresses past yield are estimates), or J2 "
-         "(von Mises) plasticity through the thickness, membrane and bending together "
-         "(unloading and reverse yield follow the law; 5 to 10 times the CPU)"),
+        ("law", "how the steel yields: J2 (von Mises) plasticity through the thickness, "
+         "membrane and bending together, unloading and reverse yield following the law "
+         "(default), or the 1D moment law of a rectangular section (a fifth to a half of "
+         "the CPU: elastic membrane and unloading, its springback a third to two fifths "
+         "short, its stresses past yield estimates)"),
         ("mesh", "mesh fineness (default normal; coarse: a quick preview without the "
          "convergence check)"),
     ):  # fmt: skip

@@ -50,6 +50,7 @@ from onefold_cad.compensate.parallel import Evaluator, run_one
 from onefold_cad.design import Design
 from onefold_cad.errors import OneFoldError, memory_message
 from onefold_cad.explore.controls import ParameterProblem, QueryError, page_values, parse_query
+from onefold_cad.explore.simulation import LAW
 
 __all__ = ["KEEP_JOBS", "KEEP_S", "LEVEL", "MAX_LINES", "Compensations"]
 
@@ -94,7 +95,7 @@ class _Watched(Evaluator):
     and starts none once its job is cancelled."""
 
     def __init__(self, job: _Job, lock: threading.Lock) -> None:
-        super().__init__(1)
+        super().__init__(1, law=LAW)
         self.job, self.lock = job, lock
 
     def map(
@@ -105,7 +106,7 @@ class _Watched(Evaluator):
         for d in designs:
             if self.job.stop.is_set():
                 raise _Cancelled
-            out.append(run_one(d, level, check))
+            out.append(run_one(d, level, check, self.law))
             with self.lock:
                 self.job.simulations += 1
         return out

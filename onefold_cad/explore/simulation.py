@@ -47,10 +47,15 @@ from onefold_cad.export.simulation.colour_scale import (
 )
 from onefold_cad.mechanics.results import Simulation
 
-__all__ = ["LEVEL", "SUPERSEDED", "check_state", "simulation_numbers", "simulation_state"]
+__all__ = ["LAW", "LEVEL", "SUPERSEDED", "check_state", "simulation_numbers", "simulation_state"]
 
 #: The mesh level the page simulates on.
 LEVEL = "coarse"
+
+#: The bending law the page simulates with: the moment law, a preview within
+#: the steel view's second (``onefold simulate``'s default is J2, whose
+#: springback is a third to two fifths larger; the page says which law).
+LAW = "moment"
 
 #: The answer's ``error`` for a request given up for a newer one.
 SUPERSEDED = "superseded: a newer design was asked for"
@@ -187,6 +192,7 @@ def simulation_state(
                 design,
                 folded,
                 level=LEVEL,
+                law=LAW,
                 convergence=False,
                 progress=None if cancelled is None else progress,
                 reserve=not check_later,

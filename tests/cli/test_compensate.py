@@ -255,7 +255,7 @@ def test_the_text_report_says_before_after_the_fold_and_the_creases(cli, monkeyp
     assert rc == 0, err
     lines = out.splitlines()
     assert lines[0].startswith(
-        f"{NAME}  compensated for springback and weight (the moment law): target its own"
+        f"{NAME}  compensated for springback and weight (J2 through the thickness): target its own"
     )
     assert lines[1].startswith("  uncompensated    deviation max")
     assert lines[2].startswith("  compensated      deviation max")

@@ -49,9 +49,10 @@ def counted(monkeypatch):
     calls: list[str] = []
     real = compensation.run_one
 
-    def run_one(design, level, check=False):
+    def run_one(design, level, check=False, law="j2"):
+        assert law == "moment"  # the page's preview law, not simulate's default
         calls.append(level)
-        return real(design, level, check)
+        return real(design, level, check, law)
 
     monkeypatch.setattr(compensation, "run_one", run_one)
     return calls
@@ -135,7 +136,7 @@ def test_cancel_stops_the_job_at_its_next_simulation(server, counted):
 def test_finished_jobs_are_kept_for_a_bounded_time_and_count(server, monkeypatch):
     """Jobs that fail at once (every simulation refused: the search's own
     error) are finished jobs as cheap as they come."""
-    monkeypatch.setattr(compensation, "run_one", lambda design, level, check=False: "refused")
+    monkeypatch.setattr(compensation, "run_one", lambda design, level, *rest: "refused")
     now = [0.0]
     jobs = Compensations(clock=lambda: now[0])
     design = design_from_params({}, server.templates, server.initial)

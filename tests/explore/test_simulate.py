@@ -139,6 +139,7 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
         assert "deviation from the design (mm)" in tab.text("#sim-legend")
         assert tab.text("#sim-max") == _fmt(data["scale"]["max"])
         assert tab.text("#sim-status").startswith("simulated in ")
+        assert "coarse mesh, the moment law, " in tab.text("#sim-status")  # the law named
         after = tab.canvas()
         # the panel's numbers and warnings may change the view's height: compare
         # the part both screenshots share

@@ -55,6 +55,7 @@ def test_the_steel_view_follows_the_sliders(browser, server):
         shown = dict(parse_qsl(_wait_steel(page, 1)))
         assert shown["template"] == "patkau-one-fold" and shown["alpha"] == "30"
         assert tab.text("#sim-status").startswith("steel of this design in ")
+        assert "coarse mesh, the moment law, " in tab.text("#sim-status")
         assert page.locator("#sim-legend").is_visible()
         first = tab.text("#sim-deviation")
 

@@ -92,7 +92,7 @@ def test_a_simulated_row_is_what_simulate_json_reports(capfd, settings):
 def test_the_settings_default_to_simulate_s_and_need_the_measure():
     plan = make_plan("patkau-one-fold", ["thickness=3,4"], measures=["simulate"], images=False)
     assert plan.settings == {"supports": "anchored", "reference": "flat", "crease": "held",
-                             "law": "moment", "mesh": "normal", "check": True}  # fmt: skip
+                             "law": "j2", "mesh": "normal", "check": True}  # fmt: skip
     coarse = make_plan("patkau-one-fold", ["thickness=3,4"], measures=["simulate"],
                        simulation={"mesh": "coarse"})  # fmt: skip
     assert coarse.settings["check"] is False  # as `onefold simulate --mesh coarse`

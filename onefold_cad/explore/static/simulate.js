@@ -17,7 +17,7 @@ function fmt(x, digits = 4) {
   return x === null || x === undefined ? '–' : String(Number(Number(x).toPrecision(digits)));
 }
 
-const IDLE = 'steel under its own weight, coarse mesh: a few seconds';
+const IDLE = 'steel under its own weight, coarse mesh, the moment law: a few seconds';
 
 // scene: the three.js scene; form: the design's group (hidden while a simulation
 // shows: the simulation draws the design on its own mesh); render: redraw;
@@ -46,6 +46,11 @@ export function createSimulation({ scene, form, render, query }) {
   });
   const designedEdges = new THREE.LineBasicMaterial({ color: 0x334155, transparent: true, opacity: 0.8 });
   const materials = [standingMaterial, plainMaterial, designedMaterial, designedEdges];
+
+  // the law the answer was simulated with, as the status names it
+  function lawName(law) {
+    return law === 'moment' ? 'the moment law' : law === 'j2' ? 'J2' : law;
+  }
 
   function setStatus(text, error = false) {
     status.textContent = text;
@@ -202,7 +207,7 @@ export function createSimulation({ scene, form, render, query }) {
         showNumbers(sim);
         const s = ((performance.now() - started) / 1000).toFixed(1);
         const form = sim.mesh.form === 'released' ? '; no standing equilibrium: the released form shown' : '';
-        setStatus(`simulated in ${s} s (${sim.level} mesh, ${sim.numbers.nodes} nodes)${form}`);
+        setStatus(`simulated in ${s} s (${sim.level} mesh, ${lawName(sim.numbers.law)}, ${sim.numbers.nodes} nodes)${form}`);
         ok = true;
       }
       render();
@@ -237,6 +242,7 @@ export function createSimulation({ scene, form, render, query }) {
     },
     markStale,
     setStatus,
+    lawName,
     // the Steel view is on (the button waits) or off
     setSteel(on) {
       steel = on;
