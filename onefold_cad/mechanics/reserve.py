@@ -21,9 +21,10 @@ from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled, solve_path
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
+from onefold_cad.mechanics.shell import Shell
 from onefold_cad.mechanics.stages import Placed, standing_path
 
-__all__ = ["COARSE_RESERVE", "ReserveCheck", "carried"]
+__all__ = ["COARSE_RESERVE", "ReserveCheck", "carried", "shows_carried"]
 
 #: The multiple of its weight a coarse sheet must carry for a plain "stands":
 #: the coarse-to-normal ratio of the load carried (1.875 / 0.906 = 2.07,
@@ -41,27 +42,41 @@ def carried(
     progress: Progress | None = None,
 ) -> float:
     """A multiple of its weight the standing sheet is shown to carry: ``up_to``
-    when it does, else 1 (its weight, carried already). Its gravity goes from
-    1 to ``up_to`` in one Newton solve of the standing stage's iterations: a
-    check, not the load path, so a sheet it cannot show to carry ``up_to``
+    when it does, else 1 (its weight, carried already): :func:`shows_carried`
+    with the moment law's shell, so a sheet it cannot show to carry ``up_to``
     may carry more (the answer is then "uncertain", which asks for the
-    normal mesh, never a wrong yes).
-    The moment law's shell, contacts and step limits of the standing stage;
-    ``progress`` hears its Newton steps."""
+    normal mesh, never a wrong yes). ``progress`` hears its Newton steps."""
     base = placed.shell.with_changes(rest_curvature=rest_curvature)
+    return up_to if shows_carried(model, placed, base, standing, supports, up_to, progress) else 1.0
+
+
+def shows_carried(
+    model: SheetModel,
+    placed: Placed,
+    shell: Shell,
+    standing: Equilibrium,
+    supports: str,
+    up_to: float,
+    progress: Progress | None = None,
+) -> bool:
+    """Whether ``shell`` (either law's, in the resting frame) standing in
+    ``standing`` carries ``up_to`` times its weight: its gravity goes from 1
+    to ``up_to`` in one Newton solve of the standing stage's iterations, its
+    contacts and step limits. A check, not the load path: False may be a
+    sheet that carries more."""
     g = np.array([0.0, 0.0, -GRAVITY])
     options = standing_path(model, placed, supports)
     options.update({"contacts": standing.contacts, "first_step": 1.0, "max_solves": 1})
     try:
         solve_path(
-            lambda s: base.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
+            lambda s: shell.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
             standing.q,
             callback=progress,
             **options,
         )
     except PathStalled:
-        return 1.0
-    return up_to
+        return False
+    return True
 
 
 @dataclass(frozen=True, eq=False)

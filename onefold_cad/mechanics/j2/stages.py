@@ -28,13 +28,14 @@ from numpy.typing import ArrayLike
 
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.energy import evaluate, second_fundamental_form, section_response
-from onefold_cad.mechanics.equilibrium import Equilibrium, PathStalled, solve_path
+from onefold_cad.mechanics.equilibrium import Equilibrium, solve_path
 from onefold_cad.mechanics.j2.law import J2Law, von_mises
 from onefold_cad.mechanics.j2.layered import Plasticity, form_along
 from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule
 from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
+from onefold_cad.mechanics.reserve import shows_carried
 from onefold_cad.mechanics.shell import Shell, director_angles, pack, rigid_dofs, unpack
 from onefold_cad.mechanics.stages import RTOL, Placed, standing_path
 
@@ -279,21 +280,8 @@ def carries(
     (the stand's internal variables, its contacts), as
     :func:`onefold_cad.mechanics.reserve.carried` checks the moment law's. A
     check, not the load path: False may be a sheet that carries more."""
-    g = np.array([0.0, 0.0, -GRAVITY])
     moved = placed.shell.with_changes(
         rest_curvature=shell.rest_curvature, plasticity=standing.plasticity
-    )
+    )  # the stand's internal variables, held through the check's solve
     assert standing.equilibrium is not None
-    options = standing_path(model, placed, supports)
-    options.update({"contacts": standing.equilibrium.contacts, "first_step": 1.0,
-                    "max_solves": 1})  # fmt: skip
-    try:
-        solve_path(
-            lambda s: moved.with_changes(gravity=(1.0 + s * (up_to - 1.0)) * g),
-            standing.q,
-            callback=progress,
-            **options,
-        )
-    except PathStalled:
-        return False
-    return True
+    return shows_carried(model, placed, moved, standing.equilibrium, supports, up_to, progress)
