@@ -189,11 +189,11 @@ def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
 
 def cmd_compensate(ns: argparse.Namespace) -> int:
     """Compensate one design; print it; with ``-o`` write its files."""
+    from onefold_cad.compensate.evaluate import bend_problem
     from onefold_cad.compensate.parallel import Evaluator
     from onefold_cad.compensate.run import compensate
     from onefold_cad.compensate.target import make_target
     from onefold_cad.design import fold_design
-    from onefold_cad.fabrication.bend_checks import bend_error, check_bends
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
     from onefold_cad.sweep.backends import default_workers
 
@@ -201,7 +201,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     design = job.design
     if ns.outdir is not None:
         check_outdir(ns.outdir)
-        refusal = bend_error(check_bends(fold_design(design), design.material, design.units))
+        refusal = bend_problem(design)
         if refusal is not None:  # -o writes build's files, which would refuse at the end
             raise refusal
     if ns.jobs is not None and ns.jobs < 1:

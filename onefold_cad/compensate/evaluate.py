@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from onefold_cad.design import Design, fold_design, rest_once
+from onefold_cad.errors import FabricationError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.numeric import Array, Index
 from onefold_cad.mechanics.deviation import surface_distance
@@ -76,13 +77,18 @@ class Standing:
     warnings: tuple[str, ...]
 
 
-def bend_refusal(design: Design) -> str | None:
-    """The one line ``onefold build`` would refuse ``design``'s flat pattern
-    with (its bends, :func:`~onefold_cad.fabrication.bend_checks.check_bends`,
+def bend_problem(design: Design) -> FabricationError | None:
+    """The error ``onefold build`` would refuse ``design``'s flat pattern with
+    (its bends, :func:`~onefold_cad.fabrication.bend_checks.check_bends`,
     compensated sharp, as ``compensate -o`` writes them), or None."""
     from onefold_cad.fabrication.bend_checks import bend_error, check_bends
 
-    error = bend_error(check_bends(fold_design(design), design.material, design.units))
+    return bend_error(check_bends(fold_design(design), design.material, design.units))
+
+
+def bend_refusal(design: Design) -> str | None:
+    """:func:`bend_problem`'s one line, as a refused candidate's answer."""
+    error = bend_problem(design)
     return None if error is None else "not buildable: " + " ".join(str(error).split())
 
 
