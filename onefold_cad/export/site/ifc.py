@@ -105,7 +105,10 @@ def _units(f: Any, units: str) -> None:
         length = unit.add_conversion_based_unit(f, name={"in": "inch", "ft": "foot"}[units])
     area = unit.add_si_unit(f, unit_type="AREAUNIT")
     mass = unit.add_si_unit(f, unit_type="MASSUNIT", prefix="KILO")
-    unit.assign_unit(f, units=[length, area, mass])
+    assignment = unit.assign_unit(f, units=[length, area, mass])
+    # IfcOpenShell's API gathers the units in a set: their order changed from
+    # run to run, and with it the file's bytes.
+    assignment.Units = (length, area, mass)
 
 
 def _triangulated(f: Any, sheet: SiteSheet, context: Any) -> tuple[Any, float, int]:
