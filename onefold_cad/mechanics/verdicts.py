@@ -170,13 +170,19 @@ def settle_reserve(
     return replace(sim, standing=standing, warnings=warnings, timings_s=times, pending_reserve=None)
 
 
+def relative_change(a: float | None, b: float | None, ref: float | None) -> float | None:
+    """|a - b| / |ref| (dimensionless), or None where a value is missing or
+    ``ref`` is zero: the one measure of a convergence check's change."""
+    if a is None or b is None or ref is None or ref == 0:
+        return None
+    return abs(a - b) / abs(ref)
+
+
 def past_converged(a: float | None, b: float | None) -> float | None:
     """The relative change from ``a`` to ``b`` (relative to ``a``) when it is
     past :data:`CONVERGED`, else None."""
-    if a is None or b is None or a == 0:
-        return None
-    change = abs(a - b) / abs(a)
-    return change if change > CONVERGED else None
+    change = relative_change(a, b, a)
+    return change if change is not None and change > CONVERGED else None
 
 
 def convergence_report(
@@ -193,10 +199,7 @@ def convergence_report(
     ``mesh`` its ``nodes``, ``triangles`` and ``h_max``, ``coarser_change``
     the coarser mesh's change where it handed the verdict to the finer one."""
     (name, a), (other, b) = measured, checked
-    change = None
-    if name == other and a is not None and b is not None:
-        ref = b if finer else a
-        change = abs(a - b) / abs(ref) if ref != 0 else None
+    change = relative_change(a, b, b if finer else a) if name == other else None
     data = {
         "quantity": name,
         "value": a,

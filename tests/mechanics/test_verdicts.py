@@ -2,7 +2,9 @@
 the explorer's Steel view shows the form first) gives, once
 ``settle_reserve`` ran it, the simulation ``run`` gives with the check in
 line: every number, the verdict and the warnings equal (the same solves on
-the same states); until then the standing is never a plain "stands"."""
+the same states); until then the standing is never a plain "stands". The
+convergence check's change, measured from the finer mesh's value, and its
+warning past 2 %."""
 
 from __future__ import annotations
 
@@ -13,7 +15,12 @@ import pytest
 from onefold_cad.design import fold_design
 from onefold_cad.mechanics.reserve import COARSE_RESERVE
 from onefold_cad.mechanics.simulate import run
-from onefold_cad.mechanics.verdicts import RESERVE_PENDING, settle_reserve
+from onefold_cad.mechanics.verdicts import (
+    RESERVE_PENDING,
+    convergence_report,
+    past_converged,
+    settle_reserve,
+)
 from onefold_cad.templates import load_template
 
 
@@ -56,3 +63,23 @@ def test_a_check_left_for_later_settles_to_the_run_with_it(thickness, reference,
         *inline.warnings,
         "not mesh-converged: ...",
     )
+
+
+def test_a_change_past_two_percent_is_measured_from_the_first_value():
+    assert past_converged(100.0, 103.0) == pytest.approx(0.03)
+    assert past_converged(100.0, 98.5) is None  # 1.5 %: converged
+    assert past_converged(0.0, 1.0) is None and past_converged(None, 1.0) is None
+
+
+@pytest.mark.parametrize(("finer", "change"), [(True, 25 / 125), (False, 25 / 100)])
+def test_the_check_measures_its_change_from_the_finer_meshs_value(finer, change):
+    mesh = {"nodes": 1234, "triangles": 2300, "h_max": 0.3}
+    data, warned = convergence_report(("max", 100.0), ("max", 125.0), finer, mesh, None)
+    assert data["max_deviation_change"] == pytest.approx(change)
+    assert data["check"] == ("finer" if finer else "coarser")
+    assert warned == [
+        f"not mesh-converged: max changes by {100 * change:.3g} % on a mesh of 1234 nodes "
+        "(more than 2 %); a finer --mesh is closer"
+    ]
+    data, warned = convergence_report(("max", 100.0), ("max", 101.0), finer, mesh, None)
+    assert warned == [] and data["max_deviation_change"] < 0.02
