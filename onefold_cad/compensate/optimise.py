@@ -71,8 +71,6 @@ KNOBS = (
 #: Steps of the least squares on each mesh (function evaluations).
 COARSE_STEPS = 8
 NORMAL_STEPS = 4
-#: A size target is met when every miss is below this (relative).
-SIZE_TOLERANCE = 0.01
 #: A design target's residual rows for its height and span: the part of the
 #: relative miss beyond ``SIZE_SLACK``, times ``SIZE_WEIGHT`` and the
 #: design's mean of height and span (design unit), against the form's rows,
