@@ -30,7 +30,8 @@ Run from the repository root::
     .venv/bin/python benchmarks/bench_simulate.py --commands [--repeat 3] [--write-docs]
 
 ``--commands`` times the whole ``onefold simulate`` processes instead (the
-normal mesh with its convergence check, and the coarse preview): CPU, wall
+normal mesh with its convergence check, and the coarse preview; each with
+the default law, J2, and with the moment law, in one run): CPU, wall
 and peak memory against the issue's bounds (60 s, 5 s, 2 GB), block
 ``simulate-commands``.
 """
@@ -203,10 +204,13 @@ def table(results: dict[str, list[Point]]) -> tuple[str, dict[str, object]]:
     return "\n".join(lines), summary
 
 
-#: The commands the issue times, with its bounds: (label, argv tail, CPU s bound).
+#: The commands the issue times, with its bounds: (label, argv tail, CPU s bound);
+#: the moment law's beside the default (J2), timed in the same run.
 COMMANDS = (
     ("normal, convergence check", ["--json"], 60.0),
     ("coarse preview", ["--mesh", "coarse", "--json"], 5.0),
+    ("normal, moment law", ["--law", "moment", "--json"], 60.0),
+    ("coarse preview, moment law", ["--mesh", "coarse", "--law", "moment", "--json"], 5.0),
 )
 MEMORY_BOUND = 2 * 1024**3
 
@@ -220,12 +224,16 @@ def commands(template: str, repeat: int) -> str:
         "| command | CPU (s) | wall (s) | peak memory (MB) | bound |",
         "|---|---|---|---|---|",
     ]
-    for label, tail, bound in COMMANDS:
-        argv = [exe, "simulate", template, *tail, "-q"]
-        runs = [run_process(argv) for _ in range(repeat)]
-        if any(r.returncode for r in runs):
-            raise SystemExit(f"{' '.join(argv)} failed")
-        cpu = statistics.median(r.cpu for r in runs)
+    argvs = [[exe, "simulate", template, *tail, "-q"] for _, tail, _ in COMMANDS]
+    timed: list[list] = [[] for _ in COMMANDS]
+    for _ in range(repeat):  # interleaved: a change of load falls on every command
+        for argv, runs in zip(argvs, timed, strict=True):
+            runs.append(run_process(argv))
+            if runs[-1].returncode:
+                raise SystemExit(f"{' '.join(argv)} failed")
+    cpus = {}
+    for (label, tail, bound), runs in zip(COMMANDS, timed, strict=True):
+        cpu = cpus[label] = statistics.median(r.cpu for r in runs)
         wall = statistics.median(r.wall for r in runs)
         peak = max(r.peak_rss for r in runs)
         ok = cpu < bound and peak < MEMORY_BOUND
@@ -236,8 +244,15 @@ def commands(template: str, repeat: int) -> str:
         )
         print(rows[-1], file=sys.stderr, flush=True)
     load = os.getloadavg()[0]
+    ratios = (
+        f"J2 against the moment law, CPU: "
+        f"{cpus['normal, convergence check'] / cpus['normal, moment law']:.2f} times on the "
+        f"normal mesh, {cpus['coarse preview'] / cpus['coarse preview, moment law']:.2f} "
+        f"times on the coarse."
+    )
     return "\n".join(rows) + (
-        f"\n\nMedians of {repeat} runs; load average {load:.1f} at the end. " + machine_line()
+        f"\n\n{ratios} Medians of {repeat} interleaved runs; load average {load:.1f} at "
+        f"the end. " + machine_line()
     )
 
 
