@@ -6,7 +6,9 @@ order (the same load for each), with alpha moved by 1 to 3 degrees from the desi
 shown every time (up, and down past 40 degrees):
 
 * **Simulate press**: the value typed (its state drawn first), then a click of
-  Simulate, to the frame that shows the steel (``explore:simulated``);
+  Simulate, to the frame that shows the steel (``explore:simulated``; J2
+  through the thickness since 7 December, the moment law before; the Steel
+  view's is the moment law);
 * **Steel view release**: the Steel view on, alpha's slider moved and released
   (``input``, ``change``) to the frame that shows the new design's steel
   (``explore:steel``; the state's update comes first, then the simulation);

@@ -66,7 +66,7 @@ from onefold_cad.explore.controls import (
 )
 from onefold_cad.explore.downloads import KINDS, make_download
 from onefold_cad.explore.page import STATIC, TEXT, csp, static_files
-from onefold_cad.explore.simulation import simulation_state
+from onefold_cad.explore.simulation import SIMULATE_LAW, simulation_state
 from onefold_cad.explore.state import design_state, problem_state
 from onefold_cad.explore.steel import LastSteel, LatestOnly
 
@@ -247,7 +247,7 @@ class ExploreHandler(BaseHTTPRequestHandler):
             elif path == "/api/state":
                 self._state(query)
             elif path == "/api/simulate":
-                self._simulate(query, lambda _, design: simulation_state(design))
+                self._simulate(query, lambda _, d: simulation_state(d, law=SIMULATE_LAW))
             elif path == "/api/steel":
                 self._simulate(query, self.server.last_steel.simulate)
             elif path == "/api/steel/check":

@@ -1,7 +1,9 @@
 """The page's Simulate button: a coarse simulation of the current design.
 
 :func:`simulation_state` runs :func:`onefold_cad.mechanics.simulate.simulate`
-on the coarse mesh without its convergence check (seconds, not minutes) and
+on the coarse mesh without its convergence check (seconds, not minutes), with
+the law it is given (the Simulate button: :data:`SIMULATE_LAW`, ``onefold
+simulate``'s J2; the Steel view: :data:`LAW`, the faster moment law), and
 returns what the page draws: the standing form (or, without a standing
 equilibrium, the released form) and the designed form on the simulation's
 own mesh, both in its resting frame (z up, ground z = 0, design units), each
@@ -36,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from onefold_cad.choices import SIMULATION_DEFAULTS
 from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import OneFoldError
 from onefold_cad.export.simulation.colour_scale import (
@@ -47,15 +50,28 @@ from onefold_cad.export.simulation.colour_scale import (
 )
 from onefold_cad.mechanics.results import Simulation
 
-__all__ = ["LAW", "LEVEL", "SUPERSEDED", "check_state", "simulation_numbers", "simulation_state"]
+__all__ = [
+    "LAW",
+    "LEVEL",
+    "SIMULATE_LAW",
+    "SUPERSEDED",
+    "check_state",
+    "simulation_numbers",
+    "simulation_state",
+]
 
 #: The mesh level the page simulates on.
 LEVEL = "coarse"
 
-#: The bending law the page simulates with: the moment law, a preview within
-#: the steel view's second (``onefold simulate``'s default is J2, whose
-#: springback is a third to two fifths larger; the page says which law).
+#: The bending law of the Steel view and the page's Compensate preview: the
+#: moment law, a preview within the view's second (J2's springback is a
+#: third to two fifths larger; the page says which law).
 LAW = "moment"
+
+#: The bending law of the Simulate button: ``onefold simulate``'s own (J2
+#: through the thickness), so a press gives ``onefold simulate --mesh
+#: coarse``'s numbers, its stresses within the flow stress.
+SIMULATE_LAW = SIMULATION_DEFAULTS["law"].value
 
 #: The answer's ``error`` for a request given up for a newer one.
 SUPERSEDED = "superseded: a newer design was asked for"
@@ -145,6 +161,7 @@ def simulation_state(
     design: Design,
     cancelled: Callable[[], bool] | None = None,
     *,
+    law: str,
     check_later: bool = False,
     keep: Callable[[Simulation], None] | None = None,
 ) -> dict[str, Any]:
@@ -152,6 +169,8 @@ def simulation_state(
 
     Args:
         design: the design.
+        law: the bending law, :data:`SIMULATE_LAW` (the Simulate button) or
+            :data:`LAW` (the Steel view).
         cancelled: asked before the simulation starts (after the one before it
             ended) and at each of its Newton steps; True gives it up (None:
             never given up).
@@ -192,7 +211,7 @@ def simulation_state(
                 design,
                 folded,
                 level=LEVEL,
-                law=LAW,
+                law=law,
                 convergence=False,
                 progress=None if cancelled is None else progress,
                 reserve=not check_later,

@@ -129,9 +129,11 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
         assert n["uncertain"] and tab.text("#sim-stands") == f"uncertain: {n['uncertain']}"
         assert tab.text("#sim-size") == f"{_fmt(n['height'])} mm · {_fmt(n['span'])} mm"
         assert _fmt(n["max_stress_MPa"]) in tab.text("#sim-stress")
-        # the moment law's 25 times yield by H: called its estimate, not a stress
-        assert n["law"] == "moment" and n["utilisation"] > 1
-        assert tab.text("#sim-stress").endswith("past yield the moment law's elastic estimate)")
+        # onefold simulate's law, J2: a stress the steel can be in, hardened
+        # past yield (215 + 507 eps_p MPa, eps_p about 0.3 by H), not the
+        # moment law's elastic estimate of 25 times yield
+        assert n["law"] == "j2" and 1 < n["utilisation"] < 2
+        assert tab.text("#sim-stress").endswith("the flow stress, hardened past yield)")
         assert (
             tab.text("#sim-springback") == f"max deviation {_fmt(n['springback_max_deviation'])} mm"
         )
@@ -139,7 +141,7 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
         assert "deviation from the design (mm)" in tab.text("#sim-legend")
         assert tab.text("#sim-max") == _fmt(data["scale"]["max"])
         assert tab.text("#sim-status").startswith("simulated in ")
-        assert "coarse mesh, the moment law, " in tab.text("#sim-status")  # the law named
+        assert "coarse mesh, J2 through the thickness, " in tab.text("#sim-status")
         after = tab.canvas()
         # the panel's numbers and warnings may change the view's height: compare
         # the part both screenshots share

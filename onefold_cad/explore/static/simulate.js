@@ -17,7 +17,8 @@ function fmt(x, digits = 4) {
   return x === null || x === undefined ? '–' : String(Number(Number(x).toPrecision(digits)));
 }
 
-const IDLE = 'steel under its own weight, coarse mesh, the moment law: a few seconds';
+// Simulate's law is onefold simulate's (J2); the Steel view's the moment law
+const IDLE = 'steel under its own weight, coarse mesh, J2 through the thickness: a few seconds';
 
 // scene: the three.js scene; form: the design's group (hidden while a simulation
 // shows: the simulation draws the design on its own mesh); render: redraw;
@@ -49,7 +50,7 @@ export function createSimulation({ scene, form, render, query }) {
 
   // the law the answer was simulated with, as the status names it
   function lawName(law) {
-    return law === 'moment' ? 'the moment law' : law === 'j2' ? 'J2' : law;
+    return law === 'moment' ? 'the moment law' : law === 'j2' ? 'J2 through the thickness' : law;
   }
 
   function setStatus(text, error = false) {
@@ -159,8 +160,10 @@ export function createSimulation({ scene, form, render, query }) {
       : `${fmt(100 * n.plastic_area_share, 3)} % of the area`;
     // past yield the moment law's stress is its elastic estimate, not a stress
     // the steel can be in (the stress picture and the warning say the same)
-    const estimate = n.law === 'moment' && n.utilisation > 1
-      ? '; past yield the moment law\'s elastic estimate' : '';
+    // J2's stress past yield is the hardened flow stress at its plastic strain
+    const estimate = n.utilisation <= 1 ? ''
+      : n.law === 'moment' ? '; past yield the moment law\'s elastic estimate'
+      : n.law === 'j2' ? '; the flow stress, hardened past yield' : '';
     $('sim-stress').textContent = n.max_stress_MPa === null ? '–'
       : `${fmt(n.max_stress_MPa)} MPa (${fmt(n.utilisation, 3)} × yield ${fmt(n.yield_stress_MPa)} MPa${estimate})`;
     const box = $('sim-warnings');
