@@ -169,11 +169,11 @@ def simulation_state(
 
     Args:
         design: the design.
-        law: the bending law, :data:`SIMULATE_LAW` (the Simulate button) or
-            :data:`LAW` (the Steel view).
         cancelled: asked before the simulation starts (after the one before it
             ended) and at each of its Newton steps; True gives it up (None:
             never given up).
+        law: the bending law, :data:`SIMULATE_LAW` (the Simulate button) or
+            :data:`LAW` (the Steel view).
         check_later: leave the reserve check for :func:`check_state` (the
             answer's ``numbers.checking`` says whether there is one).
         keep: called with the simulation when it is done (its check, if
