@@ -44,7 +44,7 @@ from onefold_cad.design import fold_design
 from onefold_cad.mechanics.energy import second_fundamental_form
 from onefold_cad.mechanics.j2 import stages as j2_stages
 from onefold_cad.mechanics.j2.measures import surfaces
-from onefold_cad.mechanics.model import _director_normals, sheet_model
+from onefold_cad.mechanics.model import director_normals, sheet_model
 from onefold_cad.mechanics.shell import director_angles, pack
 from onefold_cad.mechanics.standing_measures import area_share
 from onefold_cad.templates import find_template, load_template
@@ -57,7 +57,7 @@ def _curvature_at(model: Any, shell: Any, design: Any, s: float) -> np.ndarray:
     folded = fold_design(dataclasses.replace(design, frame=frame))
     mesh, scale = model.mesh, model.scale
     x = folded.map_points(mesh.nodes / scale) * scale
-    normals = _director_normals(folded, mesh, scale)
+    normals = director_normals(folded, mesh, scale)
     q = pack(x, director_angles(shell, x, normals))
     return np.einsum("mij,mj->mi", shell.cartesian, second_fundamental_form(shell, q))
 

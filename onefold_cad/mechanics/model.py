@@ -43,6 +43,7 @@ __all__ = [
     "SheetModel",
     "FINER",
     "check_simulable",
+    "director_normals",
     "sheet_model",
     "shell_material",
 ]
@@ -203,10 +204,12 @@ def _hole_radius(design: Design, folded: FoldedSheet) -> float:
     return 0.5 * d
 
 
-def _director_normals(folded: FoldedSheet, mesh: SheetMesh, scale: float) -> Array:
-    """``(n_dir, 3)`` the designed top normal at each director's edge midpoint, on
-    the side of its face: sampled a millionth of the edge towards the face's
-    centroid, so a crease's two directors get their own side's normal."""
+def director_normals(folded: FoldedSheet, mesh: SheetMesh, scale: float) -> Array:
+    """``(n_dir, 3)`` the top normal of ``folded``'s form (the design, or any
+    form of the same flat sheet) at each director's edge midpoint of ``mesh``
+    (flat nodes in m; ``scale``: metres per design unit), on the side of its
+    face: sampled a millionth of the edge towards the face's centroid, so a
+    crease's two directors get their own side's normal."""
     edge = np.concatenate([np.arange(mesh.n_edges), mesh.crease_edges])
     face = np.concatenate([mesh.edge_faces[:, 0], mesh.edge_faces[mesh.crease_edges, 1]])
     mid = 0.5 * (mesh.nodes[mesh.edges[edge, 0]] + mesh.nodes[mesh.edges[edge, 1]])
@@ -311,7 +314,7 @@ def sheet_model(
         boundary_points=_contact_points(folded, rest, h_min / scale) * scale,
     )
     designed = folded.map_points(mesh.nodes / scale) * scale
-    normals = _director_normals(folded, mesh, scale)
+    normals = director_normals(folded, mesh, scale)
     angles = _crease_angles(folded, mesh, design.material)
     if crease == "held":
         stiffness = np.full(
