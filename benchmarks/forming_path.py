@@ -41,7 +41,6 @@ from typing import Any
 import numpy as np
 
 from onefold_cad.design import fold_design
-from onefold_cad.mechanics.energy import second_fundamental_form
 from onefold_cad.mechanics.j2 import stages as j2_stages
 from onefold_cad.mechanics.j2.measures import surfaces
 from onefold_cad.mechanics.model import director_normals, sheet_model
@@ -58,8 +57,7 @@ def _curvature_at(model: Any, shell: Any, design: Any, s: float) -> np.ndarray:
     mesh, scale = model.mesh, model.scale
     x = folded.map_points(mesh.nodes / scale) * scale
     normals = director_normals(folded, mesh, scale)
-    q = pack(x, director_angles(shell, x, normals))
-    return np.einsum("mij,mj->mi", shell.cartesian, second_fundamental_form(shell, q))
+    return j2_stages.cartesian_curvatures(shell, pack(x, director_angles(shell, x, normals)))
 
 
 def run(template: str, level: str, steps: list[int]) -> dict[str, Any]:
@@ -101,8 +99,8 @@ def run(template: str, level: str, steps: list[int]) -> dict[str, Any]:
             s = i / n
             resp = p.respond(zero, _curvature_at(model, shell, design, s))
             p = p.moved_on(resp.state)
-            stage = j2_stages.J2Stage(proportional.q, None, p, resp)
             if i % max(1, n // 8) == 0 or i == n:
+                stage = j2_stages.J2Stage(proportional.q, None, p, resp)
                 growth.append((s, measured(stage)["plastic_area_share"]))
         assert resp is not None
         stage = j2_stages.J2Stage(proportional.q, None, p, resp)

@@ -48,6 +48,7 @@ __all__ = [
     "RELEASE_STEP",
     "J2Stage",
     "carries",
+    "cartesian_curvatures",
     "form",
     "form_to",
     "j2_shell",
@@ -147,7 +148,7 @@ def form_to(shell: Shell, q: Array) -> J2Stage:
     x = unpack(mesh, q)[0]
     eps = (face_metric(x[mesh.triangles])[0] - shell.ref_metric) / 2
     membrane = np.einsum("mij,mj->mi", shell.cartesian, eps)
-    resp = form_along(shell.plasticity, membrane, _curvatures(shell, q), FORMING_STEPS)
+    resp = form_along(shell.plasticity, membrane, cartesian_curvatures(shell, q), FORMING_STEPS)
     return J2Stage(q, None, shell.plasticity.moved_on(resp.state), resp)
 
 
@@ -158,7 +159,7 @@ def form(model: SheetModel, shell: Shell) -> J2Stage:
     return form_to(shell, q)
 
 
-def _curvatures(shell: Shell, q: Array) -> Array:
+def cartesian_curvatures(shell: Shell, q: Array) -> Array:
     """``(m, 3)`` the faces' Cartesian curvatures at ``q`` about the rest form."""
     b = second_fundamental_form(shell, q) - shell.rest_curvature
     return np.einsum("mij,mj->mi", shell.cartesian, b)
