@@ -32,7 +32,8 @@ The model (SI units; the deck in ``ccx_deck.py``, the driven path in
   which an isometric forming should not cause), the springback (the released
   nodes brought onto the designed ones by ``deviation.best_fit``, weighted by
   area, then ``deviation.surface_distance``, as ``simulate`` measures it), the
-  share that yields again on release.
+  share that yields again on release; the share the bending alone yields
+  (the membrane stress of the S6's own stretching taken out: ``ccx_split``).
 * **Mesh convergence**: several ``--h`` of a constant ratio, Richardson's
   extrapolation of each measure.
 * **onefold's side** (``--onefold``): ``onefold simulate TEMPLATE --json``
@@ -84,6 +85,7 @@ from ccx_deck import (  # noqa: E402
 from ccx_mesh import graded_sheet  # noqa: E402
 from ccx_onefold import onefold_side  # noqa: E402
 from ccx_path import corner_edges, graded_steps, half_edges, s6_membrane_strain  # noqa: E402
+from ccx_split import formed_split, level_heights  # noqa: E402
 from ccx_strip import strip  # noqa: E402
 from kratos_shell import mesh_sheet  # noqa: E402
 
@@ -223,6 +225,8 @@ def template_run(
     n, ne = len(deck.x0), len(deck.tri6)
     end = round(float(deck.s[-1]), 6)
     formed = surface_state(res["form"], end, layers, deck.t, deck.sy, ne)
+    sp = formed_split(res["form"], end, layers, deck.t, ne)  # membrane taken out
+    outer = float(level_heights(deck.t, layers)[-1])
     w_pt = np.repeat(st["area"][:, None] / 3.0, 3, axis=1)
     share = lambda mask: float(w_pt[mask].sum() / w_pt.sum())  # noqa: E731
     xf = deck.x0 + displacements(res["form"], end, n)
@@ -239,6 +243,9 @@ def template_run(
         "plastic_share": share(formed["yielded"]),
         "plastic_share_outer_point": share((formed["peeq_bottom"] > 0) | (formed["peeq_top"] > 0)),
         "mid_plane_yielded_share": share(formed["mid_yielded"]),
+        "bending_share": share(sp.bending_yielded(0.5 * deck.t, deck.sy)),
+        "bending_share_outer_point": share(sp.bending_yielded(outer, deck.sy)),
+        "membrane_at_yield_edge_mpa": sp.membrane_at_edge(deck.t, deck.sy) / 1e6,
         "peeq_max_formed": float(formed["peeq"].max()),
         "drive": drive,
         "formed_vs_driven_max": float(
@@ -329,7 +336,10 @@ def _print_template(r: dict[str, Any]) -> None:
         f"h {r['h_m']:g} m: {r['nodes']} nodes, {r['elements']} S6, {r['steps']} steps to "
         f"s = {r['s_max']:g} (ramp strain <= {r['ramp_strain_max']:.2g}); plastic share "
         f"{r['plastic_share']:.4f} (outermost point {r['plastic_share_outer_point']:.4f}, "
-        f"mid-plane {r['mid_plane_yielded_share']:.4f}), peeq max {r['peeq_max_formed']:.3g}"
+        f"mid-plane {r['mid_plane_yielded_share']:.4f}), peeq max {r['peeq_max_formed']:.3g}; "
+        f"the bending alone {r['bending_share']:.4f} (outermost point "
+        f"{r['bending_share_outer_point']:.4f}; membrane at its yield edge "
+        f"{r['membrane_at_yield_edge_mpa']:.3g} MPa)"
     )
     if "springback_max" in r:
         line += (
@@ -423,7 +433,7 @@ def main(argv: list[str] | None = None) -> int:
             if not args.json:
                 _print_template(r)
         hs = [r["h_m"] for r in out["runs"]]
-        for key in ("plastic_share", "springback_max", "yields_again_share"):
+        for key in ("plastic_share", "bending_share", "springback_max", "yields_again_share"):
             vals = [r.get(key) for r in out["runs"]]
             if None not in vals:
                 val, p = richardson(hs, vals)
