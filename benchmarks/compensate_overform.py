@@ -19,8 +19,8 @@ Nelder-Mead on the largest distance from the design (the command's measure,
 ``standing_measures``) from the same start over (alpha, beta, overbend) with
 ``F = 1`` (the family) and over (F, alpha, beta, overbend), the same number
 of simulations each, on the coarse mesh. An experiment, not a knob of the
-package: ``F`` is applied by replacing ``j2.stages.form_to`` in this
-process. Run from the repository root::
+package: ``F`` is applied by replacing ``j2.stages.cartesian_curvatures``
+(what ``form_to`` forms each face to) in this process. Run from the repository root::
 
     .venv/bin/python benchmarks/compensate_overform.py [TEMPLATE] [--mesh coarse]
         [--start F,ALPHA,BETA,OVERBEND] [--evaluations 70]
@@ -39,29 +39,21 @@ import onefold_cad.mechanics.j2.stages as j2_stages
 from onefold_cad.compensate.evaluate import node_weights, simulate_standing, standing_measures
 from onefold_cad.compensate.optimise import fold_knobs, formed_to
 from onefold_cad.errors import OneFoldError
-from onefold_cad.mechanics.j2.layered import form_along
-from onefold_cad.mechanics.kinematics.triangles import face_metric
-from onefold_cad.mechanics.shell import Shell, unpack
+from onefold_cad.mechanics.shell import Shell
 from onefold_cad.templates import find_template, load_template
 
-_FORM_TO = j2_stages.form_to
+_CURVATURES = j2_stages.cartesian_curvatures
 
 
-def scaled_forming(factor: float) -> Callable[[Shell, np.ndarray], j2_stages.J2Stage]:
-    """``j2.stages.form_to`` with the curvature formed to ``factor`` times the
-    state's (the membrane strain as it is)."""
+def scaled_curvatures(factor: float) -> Callable[[Shell, np.ndarray], np.ndarray]:
+    """``j2.stages.cartesian_curvatures`` times ``factor``: what ``form_to``,
+    its one caller, forms each face to (the release and the stand take their
+    curvatures from the energy, not from it)."""
 
-    def form_to(shell: Shell, q: np.ndarray) -> j2_stages.J2Stage:
-        assert shell.plasticity is not None
-        mesh = shell.mesh
-        x = unpack(mesh, q)[0]
-        eps = (face_metric(x[mesh.triangles])[0] - shell.ref_metric) / 2
-        membrane = np.einsum("mij,mj->mi", shell.cartesian, eps)
-        kappa = factor * j2_stages.cartesian_curvatures(shell, q)
-        resp = form_along(shell.plasticity, membrane, kappa, j2_stages.FORMING_STEPS)
-        return j2_stages.J2Stage(q, None, shell.plasticity.moved_on(resp.state), resp)
+    def curvatures(shell: Shell, q: np.ndarray) -> np.ndarray:
+        return factor * _CURVATURES(shell, q)
 
-    return form_to
+    return curvatures
 
 
 def deviation(name: str, mesh: str, factor: float, alpha: float, beta: float,
@@ -72,13 +64,13 @@ def deviation(name: str, mesh: str, factor: float, alpha: float, beta: float,
     base = load_template(find_template(name))
     design = formed_to(base, fold_knobs(base) | {"alpha": alpha, "beta": beta,
                                                  "overbend": overbend})  # fmt: skip
-    j2_stages.form_to = _FORM_TO if factor == 1.0 else scaled_forming(factor)  # type: ignore[assignment]
+    j2_stages.cartesian_curvatures = scaled_curvatures(factor)  # type: ignore[assignment]
     try:
         s = simulate_standing(design, mesh, law="j2")
     except OneFoldError:
         return None
     finally:
-        j2_stages.form_to = _FORM_TO  # type: ignore[assignment]
+        j2_stages.cartesian_curvatures = _CURVATURES
     if not s.stands:
         return None
     m = standing_measures(base, s.flat, node_weights(s.flat, s.faces), s)
