@@ -18,14 +18,16 @@ from tests.explore.conftest import TIMEOUT_MS, Page, get
 SLOW_MS = 16
 DRAG_SCALE = 0.5
 
-# Records every update's frame quality and the canvas's drawing-buffer width at
-# the moment the update is shown, and every settled frame.
+# Records every update's frame quality and drawing-buffer width (the update's
+# own, as drawn: sampled when the event fires, the canvas may already show the
+# full frame the settle timer drew after it on a loaded machine), and every
+# settled frame with the canvas's width then.
 RECORD = """() => {
   window.__frames = [];
   const canvas = document.getElementById('view');
   for (const name of ['explore:updated', 'explore:settled']) {
-    window.addEventListener(name, (e) => window.__frames.push(
-      { event: name, quality: e.detail.quality, width: canvas.width }));
+    window.addEventListener(name, (e) => window.__frames.push({
+      event: name, quality: e.detail.quality, width: e.detail.width ?? canvas.width }));
   }
 }"""
 READOUT = ["#fold-angles", "#apex-height", "#form-height", "#form-span", "#form-footprint",

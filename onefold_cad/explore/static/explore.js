@@ -382,6 +382,7 @@ const MARKS = ['explore:request', 'explore:answer', 'explore:parsed', 'explore:f
 let inflight = false;
 let pending = null; // {templateOnly, fit}
 let frameQuality = null; // the quality of the frame the last update drew
+let frameWidth = null; // that frame's drawing-buffer width (px)
 let sliding = false; // a slider is held (its input events, until its change)
 let settledOn = { q: '', ok: false }; // the design of the last state drawn
 
@@ -398,6 +399,7 @@ async function run() {
   const started = performance.now();
   const q = query(job.templateOnly);
   frameQuality = null;
+  frameWidth = null;
   $('status').textContent = 'solving…';
   try {
     for (const m of MARKS) performance.clearMarks(m);
@@ -411,7 +413,7 @@ async function run() {
     $('status').textContent = state.ok
       ? `updated in ${Math.round(ms)} ms (server ${Math.round(state.server_ms)} ms)`
       : 'the design has an error: see the messages';
-    finish(started, state.ok, state.server_ms, frameQuality);
+    finish(started, state.ok, state.server_ms, frameQuality, frameWidth);
   } catch (err) {
     showMessages([{ level: 'error', text: `no answer from the server (${err})`, controls: [] }]);
     $('status').textContent = 'server not reachable';
@@ -445,15 +447,18 @@ function apply(state, job, q) {
     || '<p class="no-flat">No flat pattern for these values: see the messages.</p>';
   setDownloads(query(), true);
   frameQuality = render();
+  frameWidth = $('view').width;
   performance.mark('explore:drawn');
 }
 
-function finish(started, ok, serverMs = null, frame = null) {
+function finish(started, ok, serverMs = null, frame = null, width = null) {
   requestAnimationFrame(() => {
     updates += 1;
     document.body.dataset.updates = String(updates);
     window.dispatchEvent(new CustomEvent('explore:updated', {
-      detail: { started, done: performance.now(), ok, server_ms: serverMs, quality: frame },
+      detail: {
+        started, done: performance.now(), ok, server_ms: serverMs, quality: frame, width,
+      },
     }));
   });
 }
