@@ -19,6 +19,7 @@ __all__ = [
     "CheckMesh",
     "Choice",
     "Compensation",
+    "ConeForming",
     "Crease",
     "Knob",
     "Law",
@@ -191,18 +192,34 @@ class Law(Choice):
     MOMENT = "moment"
 
 
+class ConeForming(Choice):
+    """What curvature the machine forms the cones to.
+
+    DESIGN: the design's own; the sheet then springs back from it.
+    COMPENSATED: at every point, the curvature whose springback leaves the
+    design's (the J2 section bent in plane strain and released:
+    :mod:`onefold_cad.mechanics.j2.springback`); ``onefold build`` writes
+    the radii per ruling station, ``NAME-cones.csv``.
+    """
+
+    DESIGN = "design"
+    COMPENSATED = "compensated"
+
+
 class Knob(Choice):
     """What ``onefold compensate`` may change in the fold it forms.
 
     ALPHA, BETA: the frame curve's angles (deg). H_C: its height h_c.
-    OVERBEND: the crease set past the fold angle (``crease_overbend``, deg),
-    the cones formed as designed.
+    OVERBEND: the crease set past the fold angle (``crease_overbend``, deg).
+    CONES: the cones formed past their springback (``cone_forming =
+    "compensated"``) instead of to the design's curvature.
     """
 
     ALPHA = "alpha"
     BETA = "beta"
     H_C = "h_c"
     OVERBEND = "overbend"
+    CONES = "cones"
 
 
 class MeshLevel(Choice):

@@ -100,6 +100,7 @@ _MATERIAL: dict[str, str] = {
     "yield_stress": _NUMBER,
     **{k: _NUMBER for k in ("hardening_modulus", "kinematic_hardening")},
     "crease_overbend": _NUMBER,
+    "cone_forming": "str",
 }
 _HARDENING = ("hardening_modulus", "kinematic_hardening")
 _SHEET_KINDS = ("quadrilateral", "polygon", "rectangle")
@@ -437,6 +438,8 @@ def design_to_data(design: Design) -> dict[str, Any]:
     optional = ("relief_hole", "density", "youngs_modulus", "poisson", "yield_stress", *_HARDENING,
                 "crease_overbend")  # fmt: skip
     material |= {k: getattr(m, k) for k in optional if getattr(m, k) is not None}  # unset: left out
+    if m.cone_forming is not None:
+        material["cone_forming"] = m.cone_forming.value
     return {
         "name": design.name,
         "description": design.description,

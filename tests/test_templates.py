@@ -135,6 +135,15 @@ def test_design_to_data_round_trips(name):
     np.testing.assert_array_equal(again.sheet.vertices, d.sheet.vertices)
 
 
+def test_cone_forming_round_trips_and_is_left_out_when_unset():
+    d = load_template("patkau-one-fold")
+    assert "cone_forming" not in design_to_data(d)["material"]
+    past = d.with_changes(material=d.material.with_changes(cone_forming="compensated"))
+    data = design_to_data(past)
+    assert data["material"]["cone_forming"] == "compensated"
+    assert design_from_data(data).material.cones_compensated
+
+
 def test_find_template_by_name_and_by_path(tmp_path):
     assert find_template("table1-row1") == find_template(REPO_TEMPLATES / "table1-row1.toml")
     with pytest.raises(InvalidParameterError, match="template: no such file") as exc:
@@ -187,6 +196,11 @@ def _error(data: dict) -> InvalidParameterError:
         ),
         (lambda d: d.update(material={"k_factor": 2}), "material.k_factor", "[0, 1]"),
         (lambda d: d.update(material={"relief_hole": -1}), "material.relief_hole", ">= 0"),
+        (
+            lambda d: d.update(material={"cone_forming": "tight"}),
+            "material.cone_forming",
+            "design, compensated",
+        ),  # fmt: skip
         (lambda d: d.update(units="furlong"), "units", "mm, m, in, ft"),
         (lambda d: d.update(model="fan"), "model", "paper, exact"),
         (lambda d: d.update(name="no spaces"), "name", "letters"),

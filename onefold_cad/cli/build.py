@@ -314,7 +314,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
     from onefold_cad.export.atomic import Staging
     from onefold_cad.export.files import stage_files
-    from onefold_cad.export.writers import parse_formats
+    from onefold_cad.export.writers import parse_formats, with_cone_sheet
 
     refs = list(ns.templates)
     if ns.name is not None and len(refs) > 1:
@@ -324,6 +324,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     formats = parse_formats(ns.formats)
     body = None if ns.body == "auto" else Body.parse(ns.body)
     jobs = load_jobs(refs, design_flag_values(ns), ns.name, skip_site=warn)
+    formats = with_cone_sheet(formats, [j.design for j in jobs], ns.formats)
     stems = [j.design.name for j in jobs]
     dup = sorted({s for s in stems if stems.count(s) > 1})
     if dup:

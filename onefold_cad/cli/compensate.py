@@ -81,6 +81,11 @@ def compensation_lines(name: str, c: dict[str, Any]) -> list[str]:
         f"{s['h_c']:.5g}), crease overbend {k.get('overbend', 0.0):.3g} deg (was "
         f"{s.get('overbend', 0.0):.3g})",
     ]
+    cf = c.get("cone_forming", {})
+    if cf.get("compensated") == "compensated":
+        was = "" if cf.get("start") == "compensated" else " (was formed to the design's)"
+        out.append(f"  {'cones':<16} formed past their springback{was}: the radius to form "
+                   "each station to is in NAME-cones.csv")  # fmt: skip
     for cr in c["crease"]:
         out.append(
             f"  {'crease ' + cr['half']:<16} set to {cr['fold_to_deg']:.4g} deg ({cr['bend']}); "
@@ -116,14 +121,19 @@ def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[
     from onefold_cad.export.build_context import BuildContext
     from onefold_cad.export.compensation_picture import Panel, render_compensation
     from onefold_cad.export.standing_form import write_form_glb, write_form_step
-    from onefold_cad.export.writers import file_names, parse_formats, write_design
+    from onefold_cad.export.writers import (
+        file_names,
+        parse_formats,
+        with_cone_sheet,
+        write_design,
+    )
     from onefold_cad.fabrication.report import report_json
     from onefold_cad.templates import design_to_data
 
     design = result.compensated
     stem = design.name
     base = report["name"] if "name" in report else stem
-    formats = parse_formats(None)
+    formats = with_cone_sheet(parse_formats(None), [design], None)
     own = [f"{stem}.toml", f"{stem}-standing.glb", f"{stem}-standing.step",
            f"{base}-compensation.png", f"{base}-compensation.json"]  # fmt: skip
     names = [*own, *file_names(stem, formats)]
@@ -174,6 +184,9 @@ def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
         f"{f1.beta:.4f} deg, h_c {f1.h_c:.4g} {u} (design: alpha {f0.alpha:.4g}, beta "
         f"{f0.beta:.4g} deg, h_c {f0.h_c:.4g} {u}); the crease set {ob:.2f} deg past the fold",
     ]
+    if result.compensated.material.cones_compensated:
+        lines.append(f"cones formed past their springback: the radius to form each station to "
+                     f"is in {stem}-cones.csv")  # fmt: skip
     for c in result.crease:
         lines.append(
             f"fold half {c['half']} to {c['fold_to_deg']:.2f} deg ({c['bend']}); after "
@@ -191,10 +204,11 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     """Compensate one design; print it; with ``-o`` write its files."""
     from onefold_cad.compensate.evaluate import bend_problem
     from onefold_cad.compensate.parallel import Evaluator
-    from onefold_cad.compensate.run import compensate
+    from onefold_cad.compensate.run import compensate, cones_knob
     from onefold_cad.compensate.target import make_target
     from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
+    from onefold_cad.mechanics.simulate import check_cone_forming
     from onefold_cad.sweep.backends import default_workers
 
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), None)
@@ -204,6 +218,8 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
         refusal = bend_problem(design)
         if refusal is not None:  # -o writes build's files, which would refuse at the end
             raise refusal
+    cones_knob(ns.knobs, ns.law)  # 'cones' with the moment law: refused before any simulation
+    check_cone_forming(design, ns.law, "flat")
     if ns.jobs is not None and ns.jobs < 1:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
     sized = any(v is not None for v in (ns.height, ns.span, ns.depth))

@@ -40,8 +40,9 @@ def compensate_parser(prog: str) -> FlagParser:
             "its weight (as onefold simulate computes it), takes the target form: the design "
             "itself (default: the least squares of the standing mid-surface's distance from "
             "the designed form as it stands) or a height and span. The knobs are the fold the "
-            "sheet is formed to (alpha, beta, h_c); the crease is formed to the compensated "
-            "fold's angle. Coarse mesh first, the normal mesh to finish; the answer and the "
+            "sheet is formed to (alpha, beta, h_c), the crease set past it (overbend) and, with "
+            "J2, the cones formed past their springback at every point (cones). Coarse mesh "
+            "first, the normal mesh to finish; the answer and the "
             "uncompensated fold are checked on the normal mesh with its convergence check "
             "(docs/compensate.md)."
         ),
@@ -63,9 +64,11 @@ def compensate_parser(prog: str) -> FlagParser:
     r = p.add_argument_group("evaluations")
     r.add_argument(
         "--knobs", type=parse_knobs, default=None, metavar="K[,K...]",
-        help="what the search may change, of " + ", ".join(KNOB_NAMES) + " (default: all): "
-        "the fold's angles and height, and the crease set past its fold angle (overbend; "
-        "leave it out where the crease cannot be set apart from the cones)",
+        help="what the search may change, of " + ", ".join(KNOB_NAMES) + " (default: all; "
+        "cones only with --law j2): the fold's angles and height, the crease set past its "
+        "fold angle (overbend; leave it out where the crease cannot be set apart from the "
+        "cones) and the cones formed past their springback (cones: each station's radius in "
+        "NAME-cones.csv)",
     )  # fmt: skip
     r.add_argument(
         "--law", type=parse_choice(("j2", "moment")), default=SIMULATION_DEFAULTS["law"].value,

@@ -68,6 +68,13 @@ def _overbend(sim: dict[str, Any]) -> str:
     return f", set {ob:g} deg past its fold" if ob else ""
 
 
+def _cones(sim: dict[str, Any]) -> str:
+    """', cones formed past their springback' or ''."""
+    return (
+        ", cones formed past their springback" if sim.get("cone_forming") == "compensated" else ""
+    )
+
+
 def _peeq(value: float | None, at: list[float] | None, unit: str) -> str:
     """'; largest plastic strain 0.17 at (x, y) unit' or ''."""
     if value is None:
@@ -84,7 +91,7 @@ def simulation_lines(name: str, sim: dict[str, Any]) -> list[str]:
         f"{name}  simulated as steel (E {m['youngs_modulus_GPa']:g} GPa, nu {m['poisson']:g}, "
         f"yield stress {m['yield_stress_MPa']:g} MPa{_hardening(m)}, t {m['thickness']:g} {u}; "
         f"law {sim.get('law', 'moment')}, reference {sim['reference']}, supports "
-        f"{sim['supports']}, crease {sim['crease']}{_overbend(sim)})",
+        f"{sim['supports']}, crease {sim['crease']}{_overbend(sim)}{_cones(sim)})",
         f"  {'weight':<24} {sim['weight_N']:.6g} N",
     ]
     mesh = sim["mesh"]

@@ -284,7 +284,8 @@ def search(
         say: one progress line at a time (stderr).
         coarse, fine: the mesh levels of the two stages.
         knobs: the knobs moved, in :data:`KNOBS`'s order (None: all); the
-            others stay at ``start``'s values.
+            others stay at ``start``'s values (``cones`` is not searched: it
+            is ``start``'s ``cone_forming``, :func:`~onefold_cad.compensate.run.compensate`'s).
     """
     from scipy.optimize import least_squares
 
@@ -355,6 +356,15 @@ def search(
             "target", f"the fold as given does not stand on the {fine} mesh ({why}): there is "
             "no standing steel to compensate from"
         )  # fmt: skip
+    if not names:  # the cones alone (knobs 'cones'): nothing to search
+        if fine != coarse:
+            fun_at(fine)(y0)
+        found.limits.append(
+            "no knob of the fold moved (--knobs names none of "
+            + ", ".join(k[0] for k in KNOBS)
+            + ")"
+        )
+        return found
     x_scale = steps / steps[0]
     if target.kind == "size":
         done = {"ftol": 1e-4, "xtol": 1e-4, "gtol": 1e-8}

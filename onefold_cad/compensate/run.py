@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from onefold_cad.choices import ConeForming, Knob, Law
 from onefold_cad.compensate.evaluate import (
     Standing,
     crease_springback,
@@ -29,7 +30,7 @@ from onefold_cad.compensate.optimise import Search, fold_knobs, formed_to, searc
 from onefold_cad.compensate.parallel import Evaluator
 from onefold_cad.compensate.target import Target
 from onefold_cad.design import Design, fold_design
-from onefold_cad.errors import ConvergenceError
+from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.geometry.numeric import Array
 
 __all__ = ["SIZE_TOLERANCE", "Compensation", "FormReport", "compensate"]
@@ -131,6 +132,10 @@ class Compensation:
             "after": self.after.to_data(),
             "start": fold_knobs(self.start),
             "compensated": fold_knobs(self.compensated),
+            "cone_forming": {
+                "start": _cone_forming(self.start),
+                "compensated": _cone_forming(self.compensated),
+            },
             "knobs": list(self.found.knobs),
             "sensitivity": self.found.sensitivity,
             "crease": [dict(c) for c in self.crease],
@@ -141,6 +146,36 @@ class Compensation:
             "limits": list(self.found.limits),
             "warnings": list(self.after_sim.warnings),
         }
+
+
+def _cone_forming(design: Design) -> str:
+    return "compensated" if design.material.cones_compensated else "design"
+
+
+def cones_knob(knobs: tuple[str, ...] | None, law: str) -> bool:
+    """Whether the search forms the cones past their springback: where the
+    knobs name ``cones``, or are all (None) and the law is J2 (the moment
+    law has no springback the table inverts).
+
+    Raises:
+        InvalidParameterError: ``cones`` named with the moment law.
+    """
+    if knobs is None:
+        return Law.parse(law) is Law.J2
+    if Knob.CONES.value not in knobs:
+        return False
+    if Law.parse(law) is not Law.J2:
+        raise InvalidParameterError(
+            "knobs", f"'cones' forms the cones past the J2 law's springback; with --law {law} "
+            "leave it out (--knobs alpha,beta,h_c,overbend) or use --law j2"
+        )  # fmt: skip
+    return True
+
+
+def with_compensated_cones(design: Design) -> Design:
+    """``design`` with its cones formed past their springback."""
+    material = design.material.with_changes(cone_forming=ConeForming.COMPENSATED)
+    return design.with_changes(material=material)
 
 
 def _form(target: Target, samples: Array, weights: Array, s: Standing) -> FormReport:
@@ -202,7 +237,11 @@ def compensate(
         ConvergenceError: neither the start nor any candidate stands on ``fine``.
     """
     start = target.form if target.kind == "size" else design
-    found = search(start, target, evaluator, say, coarse=coarse, fine=fine, knobs=knobs)
+    cones = cones_knob(knobs, evaluator.law)
+    forming = with_compensated_cones(start) if cones else start
+    found = search(forming, target, evaluator, say, coarse=coarse, fine=fine, knobs=knobs)
+    if cones:
+        found.knobs = (*found.knobs, Knob.CONES.value)
     best = found.best(fine) or found.best(coarse)
     if best is None:
         raise ConvergenceError(
@@ -210,7 +249,7 @@ def compensate(
             iterations=len(found.candidates),
             residual=math.nan,
         )
-    compensated = formed_to(start, best.knobs).with_changes(name=f"{design.name}-compensated")
+    compensated = formed_to(forming, best.knobs).with_changes(name=f"{design.name}-compensated")
     say(f"checking the compensated fold and the uncompensated one on the {fine} mesh")
     before_sim, after_sim = evaluator.map([start, compensated], fine, check=check)
     for s in (before_sim, after_sim):

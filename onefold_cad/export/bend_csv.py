@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 from dataclasses import astuple, fields
 from pathlib import Path
@@ -22,7 +23,7 @@ from onefold_cad.fabrication.bend_table import BendRow, bend_rows
 from onefold_cad.fabrication.flat_pattern import FlatPattern, flat_pattern_once
 from onefold_cad.geometry.folding import FoldedSheet
 
-__all__ = ["bend_csv", "write_bend_csv"]
+__all__ = ["bend_csv", "csv_rows", "write_bend_csv"]
 
 
 #: Decimals of a rounded length, by the design's unit (0.01 mm, 0.001 in, 0.0001 ft).
@@ -33,42 +34,49 @@ ANGLE_DECIMALS = 2
 _AS_GIVEN = ("inside_radius", "thickness", "k_factor")
 
 
-def _decimals(name: str, units: str) -> int | None:
+def _decimals(name: str, units: str, as_given: tuple[str, ...]) -> int | None:
     """The decimals column ``name`` is rounded to (None: written as given or text)."""
     if name.endswith("_deg"):
         return ANGLE_DECIMALS
-    if name in _AS_GIVEN:
+    if name in as_given:
         return None
     return LENGTH_DECIMALS[units]
 
 
-def _header(name: str, units: str, value: object) -> str:
-    d = _decimals(name, units)
-    if d is None or not isinstance(value, float):
-        return name
-    return f"{name} [{10.0**-d:.{d}f} {'deg' if name.endswith('_deg') else units}]"
+def csv_rows(names: list[str], rows: list[tuple[object, ...]], units: str,
+             as_given: tuple[str, ...] = ()) -> str:  # fmt: skip
+    """CSV text: a header row naming each column's rounding step (``length
+    [0.01 mm]``, ``angle_deg [0.01 deg]``; text, and the columns ``as_given``,
+    plain), then ``rows`` rounded so (lengths in ``units``: columns not
+    ending in ``_deg``; ``inf`` written as ``inf``)."""
 
+    def header(name: str, value: object) -> str:
+        d = _decimals(name, units, as_given)
+        if d is None or not isinstance(value, float):
+            return name
+        return f"{name} [{10.0**-d:.{d}f} {'deg' if name.endswith('_deg') else units}]"
 
-def _cell(name: str, units: str, value: object) -> object:
-    d = _decimals(name, units)
-    if d is None or not isinstance(value, float):
-        return value
-    return f"{round(value, d) + 0.0:.{d}f}"  # + 0.0: no '-0.00'
+    def cell(name: str, value: object) -> object:
+        d = _decimals(name, units, as_given)
+        if d is None or not isinstance(value, float) or math.isinf(value):
+            return value
+        return f"{round(value, d) + 0.0:.{d}f}"  # + 0.0: no '-0.00'
+
+    sample = rows[0] if rows else (None,) * len(names)
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow([header(n, v) for n, v in zip(names, sample, strict=True)])
+    for row in rows:
+        writer.writerow([cell(n, v) for n, v in zip(names, row, strict=True)])
+    return out.getvalue()
 
 
 def bend_csv(pattern: FlatPattern) -> str:
     """The bend sheet as CSV text: a header row naming each column's rounding
     step, then one row per crease half (and per ruling fold)."""
-    units = pattern.units.value
     rows = [astuple(row) for row in bend_rows(pattern)]
     names = [f.name for f in fields(BendRow)]
-    sample = rows[0] if rows else (None,) * len(names)
-    out = io.StringIO()
-    writer = csv.writer(out, lineterminator="\n")
-    writer.writerow([_header(n, units, v) for n, v in zip(names, sample, strict=True)])
-    for row in rows:
-        writer.writerow([_cell(n, units, v) for n, v in zip(names, row, strict=True)])
-    return out.getvalue()
+    return csv_rows(names, rows, pattern.units.value, _AS_GIVEN)
 
 
 def write_bend_csv(

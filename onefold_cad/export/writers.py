@@ -68,6 +68,9 @@ class Writer:
             naming it is refused.
         extra: the package's optional extra that brings ``requires``
             (``pip install 'onefold_cad[EXTRA]'``).
+        in_all: whether ``--formats all`` (the default) names it; one that
+            is not is written when named (and ``cones`` where the cones are
+            formed past their springback: :func:`with_cone_sheet`).
     """
 
     name: str
@@ -80,6 +83,7 @@ class Writer:
     what: str = ""
     requires: str = ""
     extra: str = ""
+    in_all: bool = True
 
     @property
     def available(self) -> bool:
@@ -121,6 +125,12 @@ def _bends(ctx: BuildContext, path: Path) -> Any:
     from onefold_cad.export import bend_csv
 
     return bend_csv.write_bend_csv(ctx.pattern, path)
+
+
+def _cones(ctx: BuildContext, path: Path) -> Any:
+    from onefold_cad.export import cone_csv
+
+    return cone_csv.write_cone_csv(ctx.design, path, ctx.folded)
 
 
 def _fold(ctx: BuildContext, path: Path) -> Any:
@@ -252,6 +262,17 @@ register(
 )
 register(
     Writer(
+        "cones",
+        "-cones.csv",
+        "cone forming sheet",
+        _cones,
+        what="the cones' radii per ruling station, designed and to form to (past the "
+        "springback with cone_forming = compensated; all names it only then)",
+        in_all=False,
+    )
+)
+register(
+    Writer(
         "fold",
         ".fold",
         "FOLD",
@@ -323,6 +344,18 @@ def files_help() -> str:
     )
 
 
+def with_cone_sheet(formats: Sequence[str], designs: Sequence[Design], text: str | None
+                    ) -> tuple[str, ...]:  # fmt: skip
+    """``formats`` (from ``--formats`` ``text``) with ``cones`` added where the
+    text names all (None or 'all') and a design's cones are formed past their
+    springback: its forming radii are what the machine needs."""
+    every = text is None or text.strip().lower() == "all"
+    if not every or "cones" in formats or not any(d.material.cones_compensated for d in designs):
+        return tuple(formats)
+    order = [n for n in WRITERS if n in formats or n == "cones"]
+    return tuple(order)
+
+
 def parse_formats(
     text: str | None, registry: Mapping[str, Any] | None = None, flag: str = "--formats"
 ) -> tuple[str, ...]:
@@ -339,7 +372,7 @@ def parse_formats(
     writers: Mapping[str, Any] = WRITERS if registry is None else registry
     allowed = ", ".join(writers)
     if text is None or text.strip().lower() == "all":
-        names = [n for n, w in writers.items() if w.available]
+        names = [n for n, w in writers.items() if w.available and getattr(w, "in_all", True)]
     else:
         names = [n.strip().lower() for n in text.split(",") if n.strip()]
         if not names:
@@ -379,6 +412,10 @@ def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
             raise problem
     if any(WRITERS[n].needs_flat_pattern for n in formats):
         ctx.pattern  # noqa: B018 - computed (and cached) to raise now
+    if "cones" in formats:
+        from onefold_cad.mechanics.cone_forming import check_cone_sheet
+
+        check_cone_sheet(ctx.design)
     if part:
         _check_part(ctx)
 

@@ -10,7 +10,15 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from onefold_cad.choices import Body, Compensation, Model, Placement, SheetSurface, Units
+from onefold_cad.choices import (
+    Body,
+    Compensation,
+    ConeForming,
+    Model,
+    Placement,
+    SheetSurface,
+    Units,
+)
 
 if TYPE_CHECKING:
     pass
@@ -18,6 +26,7 @@ if TYPE_CHECKING:
 __all__ = [
     "BODIES",
     "COMPENSATIONS",
+    "CONE_FORMINGS",
     "DESIGN_FLAGS",
     "FLAG_OF",
     "MODELS",
@@ -38,6 +47,7 @@ UNITS = tuple(u.value for u in Units)
 SURFACES = tuple(s.value for s in SheetSurface)
 BODIES = ("auto", Body.SOLID.value, Body.SHELL.value)
 COMPENSATIONS = tuple(c.value for c in Compensation)
+CONE_FORMINGS = tuple(c.value for c in ConeForming)
 PLACEMENTS = tuple(p.value for p in Placement)
 
 
@@ -158,6 +168,10 @@ DESIGN_FLAGS: tuple[Flag, ...] = (
     Flag("crease_overbend", "--crease-overbend", parse_float, "how much further than its fold "
          "angle each crease half is set, in degrees, in [-45, 45] (the cones formed as designed; "
          "for `simulate` and the bend sheet)", _MAT, "DEG"),
+    Flag("cone_forming", "--cone-forming", parse_choice(CONE_FORMINGS), "the curvature the "
+         "cones are formed to: design (the design's) or compensated (past its springback at "
+         "every point, NAME-cones.csv; for `simulate --law j2` and `build`)", _MAT,
+         "design|compensated"),
     Flag("sheet_surface", "--sheet-surface", parse_choice(SURFACES, upper=True), "the sheet face "
          "the designed surface is: INSIDE, OUTSIDE or MID", _MAT, "INSIDE|OUTSIDE|MID"),
 )  # fmt: skip

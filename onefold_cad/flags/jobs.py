@@ -36,6 +36,7 @@ MATERIAL_KEYS = (
     "hardening_modulus",
     "kinematic_hardening",
     "crease_overbend",
+    "cone_forming",
 )
 
 

@@ -38,6 +38,7 @@ class Overrides:
         "material.hardening_modulus": "--hardening-modulus",
         "material.kinematic_hardening": "--kinematic-hardening",
         "material.crease_overbend": "--crease-overbend",
+        "material.cone_forming": "--cone-forming",
     }
     _QUAD = {
         "x_plus": "--x-plus",
@@ -216,6 +217,8 @@ def derived_name(base: str, flags: dict[str, Any]) -> str:
             parts.append(f"{w:g}x{h:g}")
         elif f.dest in ("model", "units", "sheet_surface"):
             parts.append(str(v).lower())
+        elif f.dest == "cone_forming":
+            parts.append(f"cones-{v}")
         else:
             parts.append(f"{_SHORT.get(f.dest, f.dest)}{v:g}")
     name = "".join(c for c in "-".join(parts) if c.isalnum() or c in "._-")

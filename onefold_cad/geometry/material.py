@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-from onefold_cad.choices import SheetSurface
+from onefold_cad.choices import ConeForming, SheetSurface
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.checks import closed_interval, finite, shown
 
@@ -78,6 +78,9 @@ class Material:
             formed as designed; the crease alone is set past them (a press
             brake on the crease line), so the steel stands between the two:
             ``onefold compensate``'s fourth knob.
+        cone_forming: the curvature the cones are formed to
+            (:class:`~onefold_cad.choices.ConeForming`: the design's, or past
+            its springback at every point), or None (the design's).
 
     The elastic-plastic values are what ``onefold simulate`` needs
     (:mod:`onefold_cad.mechanics`); nothing else reads them.
@@ -97,6 +100,7 @@ class Material:
     hardening_modulus: float | None = None
     kinematic_hardening: float | None = None
     crease_overbend: float | None = None
+    cone_forming: ConeForming | None = None
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -127,7 +131,14 @@ class Material:
             set_(self, "crease_overbend", closed_interval(
                 "crease_overbend", self.crease_overbend, -OVERBEND_MAX, OVERBEND_MAX, " deg"
             ))  # fmt: skip
+        if self.cone_forming is not None:
+            set_(self, "cone_forming", ConeForming.parse(self.cone_forming))
         self._check_elastic_plastic()
+
+    @property
+    def cones_compensated(self) -> bool:
+        """Whether the cones are formed past their springback."""
+        return self.cone_forming is ConeForming.COMPENSATED
 
     @property
     def overbend_deg(self) -> float:

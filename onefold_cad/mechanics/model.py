@@ -90,6 +90,8 @@ class SheetModel:
         hole_radius: the relief hole's radius (m).
         h_max: the mesh's largest target edge (m).
         crease: the crease model (:data:`CREASES`).
+        cones_compensated: the cones are formed past their springback (the
+            material's ``cone_forming``; the J2 forming reads it).
     """
 
     mesh: SheetMesh
@@ -103,6 +105,7 @@ class SheetModel:
     hole_radius: float
     h_max: float
     crease: str
+    cones_compensated: bool = False
 
     @property
     def size(self) -> float:
@@ -339,6 +342,7 @@ def sheet_model(
         hole_radius=hole,
         h_max=h / refine,
         crease=crease,
+        cones_compensated=design.material.cones_compensated,
     )
 
 

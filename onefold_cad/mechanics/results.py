@@ -288,6 +288,7 @@ class Simulation:
     hardening_modulus_MPa: float = 0.0
     kinematic_hardening: float = 0.0
     crease_overbend_deg: float = 0.0
+    cone_forming: str = "design"
     fields: dict[str, Any] | None = field(default=None, repr=False)
     stage_positions: dict[str, Array] | None = field(default=None, repr=False)
     pending_reserve: ReserveCheck | None = field(default=None, repr=False)
@@ -300,6 +301,7 @@ class Simulation:
             "reference": self.reference,
             "crease": self.crease,
             "crease_overbend_deg": self.crease_overbend_deg,
+            "cone_forming": self.cone_forming,
             "law": self.law,
             "material": {
                 "youngs_modulus_GPa": self.youngs_modulus_GPa,

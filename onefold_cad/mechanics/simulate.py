@@ -90,6 +90,22 @@ def _formed_result(model: SheetModel, formed) -> FormedResult:
     )
 
 
+def check_cone_forming(design: Design, law: str, reference: str) -> None:
+    """Refuse cones formed past their springback (``cone_forming =
+    "compensated"``) with the moment law: only the J2 section's springback
+    is inverted (:mod:`onefold_cad.mechanics.j2.springback`).
+
+    Raises:
+        InvalidParameterError: naming ``cone_forming``.
+    """
+    if design.material.cones_compensated and reference == "flat" and law != Law.J2.value:
+        raise InvalidParameterError(
+            "cone_forming",
+            f"'compensated' forms the cones past the J2 law's springback; with --law {law} "
+            "use --law j2 (or --cone-forming design)",
+        )
+
+
 def formed_only(
     design: Design,
     folded: FoldedSheet,
@@ -102,6 +118,7 @@ def formed_only(
     """The ``formed`` stage alone (the flat sheet bent into the design: where it
     yields and the work of bending), on the mesh :func:`run` would use; the
     same numbers as ``run(...).formed`` without the stages after it."""
+    check_cone_forming(design, Law.parse(law).value, Reference.FLAT.value)
     model = sheet_model(design, folded, h_max=h_max, level=level, yield_stress_MPa=yield_stress_MPa)
     if Law.parse(law) is Law.J2:
         return form_j2(model).result
@@ -195,6 +212,7 @@ def run(
     supports = Supports.parse(supports).value
     reference = Reference.parse(reference).value
     law = Law.parse(law).value
+    check_cone_forming(design, law, reference)
     times: dict[str, float] = {}
     clock = time.process_time()
 
@@ -314,6 +332,7 @@ def run(
             else 0.0
         ),
         crease_overbend_deg=design.material.overbend_deg,
+        cone_forming="compensated" if model.cones_compensated else "design",
         fields=fields,
         stage_positions=stage_positions,
         warnings=warnings,

@@ -34,6 +34,8 @@ def _never(*args: object, **kwargs: object) -> None:
         (["--youngs-modulus", "nan"], "--youngs-modulus"),
         (["-j", "0"], "--jobs: must be >= 1, got 0"),
         (["--law", "plastic"], "--law"),
+        (["--knobs", "alpha,cones", "--law", "moment"], "knobs: 'cones' forms the cones past"),
+        (["--cone-forming", "compensated", "--law", "moment"], "cone_forming: 'compensated'"),
     ],
 )
 def test_bad_input_exits_2_in_one_line_before_any_simulation(
@@ -353,3 +355,39 @@ def test_an_overbend_answer_reaches_the_template_and_the_bend_sheet(cli, monkeyp
         assert float(r["fold_angle_deg"]) == pytest.approx(folds[r["half"]], abs=0.005 + 1e-9)
         want = folds[r["half"]] + design.material.crease_overbend
         assert float(r["fold_to_deg"]) == pytest.approx(want, abs=0.005 + 1e-9)
+
+
+def test_the_cones_knob_forms_past_the_springback_and_writes_the_forming_sheet(
+    cli, monkeypatch, tmp_path
+) -> None:
+    """With J2 (the default) and every knob, the compensated template's cones
+    are formed past their springback; -o writes its forming sheet and the DXF
+    says so. With the moment law, the cones stay as designed."""
+    monkeypatch.setattr(parallel, "simulate_standing", fake_standing)
+    out = tmp_path / "out"
+    rc, text, err = cli("compensate", NAME, "-j", "1", "-q", "-o", str(out), "--json")
+    assert rc == 0, err
+    c = json.loads(text)["compensation"]
+    assert c["cone_forming"] == {"start": "design", "compensated": "compensated"}
+    assert "cones" in c["knobs"]
+    stem = f"{NAME}-compensated"
+    assert load_template(out / f"{stem}.toml").material.cones_compensated
+    rows = list(csv.DictReader((out / f"{stem}-cones.csv").open()))
+    assert rows and all(float(r["form_radius [0.001 in]"]) < float(r["cone_radius [0.001 in]"])
+                        for r in rows)  # fmt: skip
+    assert f"{stem}-cones.csv" in (out / f"{stem}.dxf").read_text(encoding="utf-8")
+    rc, text, err = cli("compensate", NAME, "-j", "1", "-q", "--json", "--law", "moment")
+    assert rc == 0, err
+    c = json.loads(text)["compensation"]
+    assert c["cone_forming"]["compensated"] == "design" and "cones" not in c["knobs"]
+
+
+@pytest.mark.parametrize(
+    ("knobs", "law", "cones"),
+    [(None, "j2", True), (None, "moment", False), (("alpha",), "j2", False),
+     (("cones",), "j2", True), (("alpha", "cones"), "j2", True)],
+)  # fmt: skip
+def test_the_cones_knob_is_on_by_default_with_j2_alone(knobs, law, cones) -> None:
+    from onefold_cad.compensate.run import cones_knob
+
+    assert cones_knob(knobs, law) is cones

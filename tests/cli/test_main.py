@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import csv
 import fcntl
 import importlib.metadata
 import json
@@ -114,7 +115,11 @@ def test_build_help_names_every_file_it_writes_and_its_format():
     text = run("build", "--help").stdout
     files = text[text.index("files (--formats") :].splitlines()[1:]
     formats = ("step", "dxf", "cut", "bends", "fold", "glb", "3dm", "json", "png", "svg")
-    assert len(files) == len(SUFFIXES) == len(formats)  # one line each
+    # one line each, and the cones' forming sheet's (written when named, or
+    # by default where the cones are formed past their springback)
+    assert len(files) == len(SUFFIXES) + 1 == len(formats) + 1
+    (cones,) = [ln for ln in files if " NAME-cones.csv " in ln]
+    assert cones.split()[0] == "cones" and "springback" in cones
     for suffix in SUFFIXES:  # the files a build writes (see the build tests)
         (line,) = [ln for ln in files if f" NAME{suffix} " in ln]
         fmt = line.split()[0]
@@ -947,3 +952,40 @@ def test_the_fold_files_crease_is_the_designs_and_nothing_is_said(tmp_path):
         assert c["fold_angle_deg"] == pytest.approx(report["fold_angles_deg"][key], abs=1e-9)
     assert "warning" not in proc.stderr and ".fold file" not in proc.stderr
     assert fold["onefold:notes"] == [] and report["warnings"] == []
+
+
+def test_cones_formed_past_their_springback_add_their_forming_sheet(tmp_path, cli):
+    """With the cones formed past their springback, the default formats add
+    NAME-cones.csv; named formats are written as named; the forming sheet of
+    a design formed as designed is written when named, its radii the cone's."""
+    rc, _, err = cli("build", "patkau-one-fold", "--cone-forming", "compensated", "--formats",
+                     "dxf,json", "-o", str(tmp_path / "a"), "-q")  # fmt: skip
+    assert rc == 0, err
+    assert sorted(p.name for p in (tmp_path / "a").iterdir()) == [
+        "patkau-one-fold-cones-compensated.dxf",
+        "patkau-one-fold-cones-compensated.json",
+    ]
+    rc, _, err = cli("build", "patkau-one-fold", "--formats", "cones,json", "-o",
+                     str(tmp_path / "b"), "-q")  # fmt: skip
+    assert rc == 0, err
+    rows = list(csv.DictReader((tmp_path / "b" / "patkau-one-fold-cones.csv").open()))
+    assert len(rows) > 100
+    assert all(r["form_radius [0.01 mm]"] == r["cone_radius [0.01 mm]"] for r in rows)
+
+
+def test_with_cone_sheet_adds_the_sheet_to_all_only_where_the_cones_are_compensated():
+    from onefold_cad.export.writers import parse_formats, with_cone_sheet
+
+    plain = load_template("patkau-one-fold")
+    past = plain.with_changes(material=plain.material.with_changes(cone_forming="compensated"))
+    every = parse_formats(None)
+    assert "cones" not in every
+    got = with_cone_sheet(every, [plain, past], None)
+    assert got == (*every[:4], "cones", *every[4:]) and got[-1] == "json"
+    assert with_cone_sheet(every, [plain], "all") == every
+    assert with_cone_sheet(("dxf", "json"), [past], "dxf,json") == ("dxf", "json")
+
+
+def test_the_paper_model_s_cone_sheet_is_refused_before_any_file(tmp_path):
+    proc = run("build", "table1-row1", "--formats", "cones,json", "-o", str(tmp_path / "o"))
+    refused(proc, "model", "must be 'exact' for the cones' forming sheet", tmp_path)

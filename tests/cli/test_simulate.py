@@ -77,6 +77,9 @@ BAD = [
     (["--check-mesh", "coarsest"], "check-mesh", "finer, coarser"),
     # the coarse mesh has no coarser level to check against
     (["--check-mesh", "coarser"], "check_mesh", "'coarser' checks a normal or fine mesh"),
+    (["--cone-forming", "tight"], "cone-forming", "design, compensated"),
+    # only the J2 section's springback is inverted
+    (["--cone-forming", "compensated", "--law", "moment"], "cone_forming", "use --law j2"),
 ]
 TEMPLATES = [
     ("star-polygon", "thickness", "thickness > 0"),  # a paper design: no solid to bend
@@ -132,3 +135,14 @@ def test_an_overbend_out_of_range_exits_2_in_one_line(cli) -> None:
     rc, out, err = cli("simulate", NAME, "--mesh", "coarse", "--crease-overbend", "60")
     assert rc == 2 and out == ""
     assert err == "onefold: error: --crease-overbend: must be in [-45, 45] deg, got 60\n"
+
+
+def test_cones_formed_past_their_springback_are_echoed_and_reported(cli) -> None:
+    rc, out, err = cli("simulate", NAME, "--mesh", "coarse", "--cone-forming", "compensated",
+                       "-q", "--json")  # fmt: skip
+    assert rc == 0, err
+    report = json.loads(out)
+    assert report["simulation"]["cone_forming"] == "compensated"
+    assert report["inputs"]["material"]["cone_forming"] == "compensated"
+    rc, out, err = cli("simulate", NAME, "--mesh", "coarse", "--cone-forming", "compensated", "-q")
+    assert "crease held, cones formed past their springback)" in out.splitlines()[0]

@@ -42,7 +42,7 @@ def test_default_is_every_writer_with_the_report_last():
         (
             "step,pdf",
             "unknown format 'pdf' "
-            "(allowed: step, dxf, cut, bends, fold, glb, 3dm, png, svg, json, or all)",
+            "(allowed: step, dxf, cut, bends, cones, fold, glb, 3dm, png, svg, json, or all)",
         ),
         ("dxf,dxf", "'dxf' is named twice"),
         (" , ", "names no format"),

@@ -36,7 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
-from onefold_cad.mechanics.material import check_hardening
+from onefold_cad.mechanics.material import ShellMaterial, check_hardening
 
 __all__ = ["P", "J2Law", "J2Response", "J2State", "elastic_matrix", "update", "von_mises"]
 
@@ -83,6 +83,12 @@ class J2Law:
         if not self.yield_stress > 0:
             raise InvalidParameterError("yield_stress", f"must be > 0, got {self.yield_stress!r}")
         check_hardening(self.hardening_iso, self.hardening_kin)
+
+    @classmethod
+    def of(cls, material: ShellMaterial) -> J2Law:
+        """The law of a sheet's ``material`` (its E, nu, sigma_y and hardening)."""
+        m = material
+        return cls(m.youngs_modulus, m.poisson, m.yield_stress, m.hardening_iso, m.hardening_kin)
 
     @property
     def plane_modulus(self) -> float:

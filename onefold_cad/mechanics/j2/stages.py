@@ -32,6 +32,7 @@ from onefold_cad.mechanics.equilibrium import Equilibrium, solve_path
 from onefold_cad.mechanics.j2.law import J2Law, von_mises
 from onefold_cad.mechanics.j2.layered import Plasticity, form_along
 from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule
+from onefold_cad.mechanics.j2.springback import SpringbackTable, compensated_curvatures
 from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
@@ -128,9 +129,7 @@ def j2_shell(model: SheetModel, points: int | None = None) -> Shell:
     thickness, the section's default if None; the material's hardening) and
     no rest curvature: the plastic strains carry the formed curvature."""
     mat = model.material
-    law = J2Law(
-        mat.youngs_modulus, mat.poisson, mat.yield_stress, mat.hardening_iso, mat.hardening_kin
-    )
+    law = J2Law.of(mat)
     rule = ThicknessRule(mat.thickness) if points is None else ThicknessRule(mat.thickness, points)
     shell = model.shell
     return shell.with_changes(
@@ -139,24 +138,39 @@ def j2_shell(model: SheetModel, points: int | None = None) -> Shell:
     )
 
 
-def form_to(shell: Shell, q: Array) -> J2Stage:
+def form_to(shell: Shell, q: Array, compensated: bool = False) -> J2Stage:
     """Bend the flat sheet into the state ``q`` (imposed: nodes and directors)
     along the proportional path, its J2 sections from ``shell.plasticity``;
-    the membrane strain is the one at ``q`` about the shell's reference."""
+    the membrane strain is the one at ``q`` about the shell's reference.
+
+    With ``compensated``, each face is formed past ``q``'s curvature to the
+    one whose springback leaves it (:func:`springback.compensated_curvatures`)
+    and the stage is the sheet held at ``q`` from there (the machine brings it
+    back to the design's form before it lets go: the sections unload along
+    the law)."""
     assert shell.plasticity is not None
     mesh = shell.mesh
     x = unpack(mesh, q)[0]
     eps = (face_metric(x[mesh.triangles])[0] - shell.ref_metric) / 2
     membrane = np.einsum("mij,mj->mi", shell.cartesian, eps)
-    resp = form_along(shell.plasticity, membrane, cartesian_curvatures(shell, q), FORMING_STEPS)
-    return J2Stage(q, None, shell.plasticity.moved_on(resp.state), resp)
+    kappa = cartesian_curvatures(shell, q)
+    if not compensated:
+        resp = form_along(shell.plasticity, membrane, kappa, FORMING_STEPS)
+        return J2Stage(q, None, shell.plasticity.moved_on(resp.state), resp)
+    p = shell.plasticity
+    table = SpringbackTable.of(p.law, p.rule, FORMING_STEPS)
+    past = form_along(p, membrane, compensated_curvatures(kappa, table), FORMING_STEPS)
+    p = p.moved_on(past.state)
+    resp = p.respond(membrane, kappa)
+    return J2Stage(q, None, p.moved_on(resp.state), resp)
 
 
 def form(model: SheetModel, shell: Shell) -> J2Stage:
     """Bend the flat sheet into the design (``shell``: :func:`j2_shell`, whose
-    membrane reference is the designed triangles: no membrane strain)."""
+    membrane reference is the designed triangles: no membrane strain); past
+    the springback where ``model.cones_compensated``."""
     q = pack(model.designed, director_angles(shell, model.designed, model.normals))
-    return form_to(shell, q)
+    return form_to(shell, q, compensated=model.cones_compensated)
 
 
 def cartesian_curvatures(shell: Shell, q: Array) -> Array:
