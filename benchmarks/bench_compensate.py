@@ -150,6 +150,7 @@ def run(template: str, jobs: int, done: Path | None = None) -> dict:
         "cpu_s": cpu, "wall_s": wall, "alpha": c["compensated"]["alpha"],
         "beta": c["compensated"]["beta"], "overbend": c["compensated"].get("overbend", 0.0),
         "start": c["start"],
+        "cones": c.get("cone_forming", {}).get("compensated") == "compensated",
     }  # fmt: skip
     row["pass"] = bool(
         after_max <= before_max / 5
@@ -179,7 +180,8 @@ def table(rows: list[dict]) -> str:
             f"({r['design_height']:.5g}) {u} | {r['span']:.5g} ({r['design_span']:.5g}) {u} | "
             f"{100 * r['mesh_change']:.2g} % | alpha {r['alpha']:.4g} ({r['start']['alpha']:.4g}), "
             f"beta {r['beta']:.4g} ({r['start']['beta']:.4g}) deg, crease overbend "
-            f"{r.get('overbend', 0.0):.3g} deg | {r['simulations']} | "
+            f"{r.get('overbend', 0.0):.3g} deg{', cones past springback' if r.get('cones') else ''}"
+            f" | {r['simulations']} | "
             f"{r['cpu_s']:.0f} s / {_wall(r['wall_s'])} | {'PASS' if r['pass'] else 'FAIL'} |"
         )
     return head + "\n".join(lines) + "\n"

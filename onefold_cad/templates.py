@@ -436,10 +436,8 @@ def design_to_data(design: Design) -> dict[str, Any]:
         "sheet_surface": m.sheet_surface.value,
     }
     optional = ("relief_hole", "density", "youngs_modulus", "poisson", "yield_stress", *_HARDENING,
-                "crease_overbend")  # fmt: skip
+                "crease_overbend", "cone_forming")  # fmt: skip
     material |= {k: getattr(m, k) for k in optional if getattr(m, k) is not None}  # unset: left out
-    if m.cone_forming is not None:
-        material["cone_forming"] = m.cone_forming.value
     return {
         "name": design.name,
         "description": design.description,

@@ -132,8 +132,9 @@ def test_pdoc_builds_the_api_reference(reference, tmp_path):
 
 
 FILES = {  # what `onefold build` writes, by --formats name
-    "step": ".step", "dxf": ".dxf", "cut": "-cut.dxf", "bends": "-bends.csv", "fold": ".fold",
-    "glb": ".glb", "3dm": ".3dm", "json": ".json", "png": "-3d.png", "svg": "-flat.svg",
+    "step": ".step", "dxf": ".dxf", "cut": "-cut.dxf", "bends": "-bends.csv",
+    "cones": "-cones.csv", "fold": ".fold", "glb": ".glb", "3dm": ".3dm", "json": ".json",
+    "png": "-3d.png", "svg": "-flat.svg",
 }  # fmt: skip
 
 

@@ -203,7 +203,8 @@ def check_jobs(
             when there are several).
     """
     from onefold_cad.design import fold_design
-    from onefold_cad.export.writers import BuildContext, check_before_writing
+    from onefold_cad.export.write_checks import check_before_writing
+    from onefold_cad.export.writers import BuildContext
     from onefold_cad.fabrication.report import design_warnings
 
     body = None if ns.body == "auto" else Body.parse(ns.body)
@@ -314,17 +315,17 @@ def cmd_build(ns: argparse.Namespace) -> int:
     """Write the files of every design of the call, all or nothing."""
     from onefold_cad.export.atomic import Staging
     from onefold_cad.export.files import stage_files
-    from onefold_cad.export.writers import parse_formats, with_cone_sheet
+    from onefold_cad.export.writers import parse_formats
 
     refs = list(ns.templates)
     if ns.name is not None and len(refs) > 1:
         raise InvalidParameterError("--name", f"needs exactly one template, got {len(refs)}")
     if ns.jobs < 1:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
-    formats = parse_formats(ns.formats)
+    parse_formats(ns.formats)  # a bad name: refused before any template is read
     body = None if ns.body == "auto" else Body.parse(ns.body)
     jobs = load_jobs(refs, design_flag_values(ns), ns.name, skip_site=warn)
-    formats = with_cone_sheet(formats, [j.design for j in jobs], ns.formats)
+    formats = parse_formats(ns.formats, designs=[j.design for j in jobs])
     stems = [j.design.name for j in jobs]
     dup = sorted({s for s in stems if stems.count(s) > 1})
     if dup:

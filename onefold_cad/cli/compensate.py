@@ -121,19 +121,14 @@ def _write(outdir: Path, report: dict[str, Any], result: Any, job: Any) -> list[
     from onefold_cad.export.build_context import BuildContext
     from onefold_cad.export.compensation_picture import Panel, render_compensation
     from onefold_cad.export.standing_form import write_form_glb, write_form_step
-    from onefold_cad.export.writers import (
-        file_names,
-        parse_formats,
-        with_cone_sheet,
-        write_design,
-    )
+    from onefold_cad.export.writers import file_names, parse_formats, write_design
     from onefold_cad.fabrication.report import report_json
     from onefold_cad.templates import design_to_data
 
     design = result.compensated
     stem = design.name
     base = report["name"] if "name" in report else stem
-    formats = with_cone_sheet(parse_formats(None), [design], None)
+    formats = parse_formats(None, designs=[design])
     own = [f"{stem}.toml", f"{stem}-standing.glb", f"{stem}-standing.step",
            f"{base}-compensation.png", f"{base}-compensation.json"]  # fmt: skip
     names = [*own, *file_names(stem, formats)]
@@ -208,7 +203,7 @@ def cmd_compensate(ns: argparse.Namespace) -> int:
     from onefold_cad.compensate.target import make_target
     from onefold_cad.design import fold_design
     from onefold_cad.fabrication.report import check_finite, design_report, report_json
-    from onefold_cad.mechanics.simulate import check_cone_forming
+    from onefold_cad.mechanics.model import check_cone_forming
     from onefold_cad.sweep.backends import default_workers
 
     (job,) = load_jobs([ns.template] if ns.template else [], design_flag_values(ns), None)

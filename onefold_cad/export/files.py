@@ -22,13 +22,8 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.export.atomic import Staging, check_targets, recover
 from onefold_cad.export.build_context import BuildContext
 from onefold_cad.export.commit_steps import FileSet, pause_point
-from onefold_cad.export.writers import (
-    WRITERS,
-    check_before_writing,
-    file_names,
-    parse_formats,
-    write_design,
-)
+from onefold_cad.export.write_checks import check_before_writing
+from onefold_cad.export.writers import WRITERS, file_names, parse_formats, write_design
 
 __all__ = ["SUFFIXES", "export_file", "stage_files", "write_files"]
 
@@ -132,7 +127,7 @@ def write_files(
         ExportError: a file could not be written (the folder is as it was).
     """
     names = formats if formats is None or isinstance(formats, str) else ",".join(formats)
-    chosen = parse_formats(names, flag="formats")
+    chosen = parse_formats(names, flag="formats", designs=[design])
     ctx = _context(design, body, compensation, placement)
     check_before_writing(ctx, chosen)
     out = Path(folder)

@@ -70,7 +70,7 @@ class Writer:
             (``pip install 'onefold_cad[EXTRA]'``).
         in_all: whether ``--formats all`` (the default) names it; one that
             is not is written when named (and ``cones`` where the cones are
-            formed past their springback: :func:`with_cone_sheet`).
+            formed past their springback: :func:`parse_formats`).
     """
 
     name: str
@@ -344,24 +344,17 @@ def files_help() -> str:
     )
 
 
-def with_cone_sheet(formats: Sequence[str], designs: Sequence[Design], text: str | None
-                    ) -> tuple[str, ...]:  # fmt: skip
-    """``formats`` (from ``--formats`` ``text``) with ``cones`` added where the
-    text names all (None or 'all') and a design's cones are formed past their
-    springback: its forming radii are what the machine needs."""
-    every = text is None or text.strip().lower() == "all"
-    if not every or "cones" in formats or not any(d.material.cones_compensated for d in designs):
-        return tuple(formats)
-    order = [n for n in WRITERS if n in formats or n == "cones"]
-    return tuple(order)
-
-
 def parse_formats(
-    text: str | None, registry: Mapping[str, Any] | None = None, flag: str = "--formats"
+    text: str | None,
+    registry: Mapping[str, Any] | None = None,
+    flag: str = "--formats",
+    designs: Sequence[Design] = (),
 ) -> tuple[str, ...]:
     """The writers named by ``--formats`` ('step,dxf,...'; None or 'all' for
     every one whose required package is installed), in writing order with
-    the report last. ``registry``: the writers to pick from (default
+    the report last; all leaves out the writers not ``in_all``, but names
+    ``cones`` where one of ``designs`` has its cones formed past their
+    springback. ``registry``: the writers to pick from (default
     :data:`WRITERS`; ``onefold site`` passes its own), each with ``available``
     and ``requires``; ``flag`` names the option in errors.
 
@@ -372,7 +365,12 @@ def parse_formats(
     writers: Mapping[str, Any] = WRITERS if registry is None else registry
     allowed = ", ".join(writers)
     if text is None or text.strip().lower() == "all":
-        names = [n for n, w in writers.items() if w.available and getattr(w, "in_all", True)]
+        cones = any(d.material.cones_compensated for d in designs)
+        names = [
+            n
+            for n, w in writers.items()
+            if w.available and (getattr(w, "in_all", True) or (n == "cones" and cones))
+        ]
     else:
         names = [n.strip().lower() for n in text.split(",") if n.strip()]
         if not names:
@@ -394,53 +392,6 @@ def parse_formats(
 def file_names(stem: str, formats: Sequence[str]) -> list[str]:
     """The file names ``formats`` give for the design named ``stem``."""
     return [f"{stem}{WRITERS[n].suffix}" for n in formats]
-
-
-def check_before_writing(ctx: BuildContext, formats: Sequence[str]) -> None:
-    """Raise what a writer of ``formats`` would refuse, before any file exists:
-    a relief hole that does not fit
-    (:func:`~onefold_cad.fabrication.relief_hole.relief_hole_problem`),
-    the flat pattern (FabricationError or InvalidParameterError), a STEP
-    shell the kernel cannot be given and, with ``--compensation sharp``, a
-    STEP solid past the bend model's limits."""
-    part = any(WRITERS[n].builds_part for n in formats)
-    if part or any(WRITERS[n].cuts_sheet for n in formats):
-        from onefold_cad.fabrication.relief_hole import relief_hole_problem
-
-        problem = relief_hole_problem(ctx.design, ctx.folded)
-        if problem is not None:
-            raise problem
-    if any(WRITERS[n].needs_flat_pattern for n in formats):
-        ctx.pattern  # noqa: B018 - computed (and cached) to raise now
-    if "cones" in formats:
-        from onefold_cad.mechanics.cone_forming import check_cone_sheet
-
-        check_cone_sheet(ctx.design)
-    if part:
-        _check_part(ctx)
-
-
-def _check_part(ctx: BuildContext) -> None:
-    """The refusals the part's builder gives before any kernel call
-    (:func:`onefold_cad.export.brep.part.build_part`), raised before anything is
-    written: a shell's H too close to the sheet's boundary or a relief hole
-    below the kernel's resolution
-    (:func:`~onefold_cad.export.brep.step_checks.shell_problem`), a solid past
-    the bend model's limits
-    (:func:`~onefold_cad.fabrication.rules.solid_bend_problem`)."""
-    if (ctx.body or _default_body(ctx.design)) != "solid":
-        from onefold_cad.export.brep.step_checks import shell_problem
-        from onefold_cad.fabrication.relief_hole import relief_hole_diameter
-
-        shell = shell_problem(ctx.folded, relief_hole_diameter(ctx.design, ctx.folded))
-        if shell is not None:
-            raise shell
-        return
-    from onefold_cad.fabrication.rules import solid_bend_problem
-
-    problem = solid_bend_problem(ctx.design, ctx.folded, ctx.compensation)
-    if problem is not None:
-        raise problem
 
 
 def write_design(

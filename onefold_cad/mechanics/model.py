@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from onefold_cad.choices import Crease, MeshLevel, Model
+from onefold_cad.choices import Crease, Law, MeshLevel, Model
 from onefold_cad.design import Design, rest_once
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter, solid_min_relief_hole
@@ -42,6 +42,7 @@ __all__ = [
     "MESH_LEVELS",
     "SheetModel",
     "FINER",
+    "check_cone_forming",
     "check_simulable",
     "director_normals",
     "sheet_model",
@@ -266,6 +267,22 @@ def _contact_points(folded: FoldedSheet, rest: RestingPlacement, gap: float) -> 
 
 #: The convergence check's mesh: every edge length divided by this (twice the nodes).
 FINER = math.sqrt(2.0)
+
+
+def check_cone_forming(design: Design, law: str, reference: str) -> None:
+    """Refuse cones formed past their springback (``cone_forming =
+    "compensated"``) with the moment law: only the J2 section's springback
+    is inverted (:mod:`onefold_cad.mechanics.j2.springback`).
+
+    Raises:
+        InvalidParameterError: naming ``cone_forming``.
+    """
+    if design.material.cones_compensated and reference == "flat" and law != Law.J2.value:
+        raise InvalidParameterError(
+            "cone_forming",
+            f"'compensated' forms the cones past the J2 law's springback; with --law {law} "
+            "use --law j2 (or --cone-forming design)",
+        )
 
 
 def sheet_model(

@@ -222,7 +222,9 @@ class Simulation:
         unit: the design's length unit.
         supports: 'anchored' or 'frictionless'; ``reference``: 'flat' or
             'designed'; ``crease``: 'held' or 'elastic'; ``crease_overbend_deg``:
-            how far past its fold angle the crease is set (deg).
+            how far past its fold angle the crease is set (deg);
+            ``cone_forming``: 'compensated' where the cones were formed past
+            their springback (J2, from the flat sheet), else 'design'.
         weight_N: the sheet's weight.
         nodes, triangles, h_max: the mesh (h_max in the design's unit).
         yield_stress_MPa, youngs_modulus_GPa, poisson, thickness: the values used.

@@ -31,7 +31,7 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.mechanics.equilibrium import PathStalled
 from onefold_cad.mechanics.j2.simulate import form_j2, run_j2
-from onefold_cad.mechanics.model import FINER, SheetModel, sheet_model
+from onefold_cad.mechanics.model import FINER, SheetModel, check_cone_forming, sheet_model
 from onefold_cad.mechanics.reserve import ReserveCheck, carried
 from onefold_cad.mechanics.results import Designed, FormedResult, Released, Simulation
 from onefold_cad.mechanics.shell import director_angles, pack, unpack
@@ -88,22 +88,6 @@ def _formed_result(model: SheetModel, formed) -> FormedResult:
         plastic_area_share=float(area[yielded].sum() / area.sum()),
         plastic_radius_max=float(radius[yielded].max() / model.scale) if yielded.any() else 0.0,
     )
-
-
-def check_cone_forming(design: Design, law: str, reference: str) -> None:
-    """Refuse cones formed past their springback (``cone_forming =
-    "compensated"``) with the moment law: only the J2 section's springback
-    is inverted (:mod:`onefold_cad.mechanics.j2.springback`).
-
-    Raises:
-        InvalidParameterError: naming ``cone_forming``.
-    """
-    if design.material.cones_compensated and reference == "flat" and law != Law.J2.value:
-        raise InvalidParameterError(
-            "cone_forming",
-            f"'compensated' forms the cones past the J2 law's springback; with --law {law} "
-            "use --law j2 (or --cone-forming design)",
-        )
 
 
 def formed_only(
@@ -332,7 +316,7 @@ def run(
             else 0.0
         ),
         crease_overbend_deg=design.material.overbend_deg,
-        cone_forming="compensated" if model.cones_compensated else "design",
+        cone_forming="compensated" if model.cones_compensated and reference == "flat" else "design",
         fields=fields,
         stage_positions=stage_positions,
         warnings=warnings,

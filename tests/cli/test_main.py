@@ -973,17 +973,16 @@ def test_cones_formed_past_their_springback_add_their_forming_sheet(tmp_path, cl
     assert all(r["form_radius [0.01 mm]"] == r["cone_radius [0.01 mm]"] for r in rows)
 
 
-def test_with_cone_sheet_adds_the_sheet_to_all_only_where_the_cones_are_compensated():
-    from onefold_cad.export.writers import parse_formats, with_cone_sheet
+def test_all_names_the_cone_sheet_only_where_the_cones_are_compensated():
+    from onefold_cad.export.writers import parse_formats
 
     plain = load_template("patkau-one-fold")
     past = plain.with_changes(material=plain.material.with_changes(cone_forming="compensated"))
     every = parse_formats(None)
-    assert "cones" not in every
-    got = with_cone_sheet(every, [plain, past], None)
+    assert "cones" not in every and parse_formats("all", designs=[plain]) == every
+    got = parse_formats(None, designs=[plain, past])
     assert got == (*every[:4], "cones", *every[4:]) and got[-1] == "json"
-    assert with_cone_sheet(every, [plain], "all") == every
-    assert with_cone_sheet(("dxf", "json"), [past], "dxf,json") == ("dxf", "json")
+    assert parse_formats("dxf,json", designs=[past]) == ("dxf", "json")
 
 
 def test_the_paper_model_s_cone_sheet_is_refused_before_any_file(tmp_path):

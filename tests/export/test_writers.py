@@ -9,11 +9,11 @@ import pytest
 from onefold_cad import Design, FabricationError, FrameCurve, Material, Sheet, fold_design
 from onefold_cad.errors import InvalidParameterError
 from onefold_cad.export import writers
+from onefold_cad.export.write_checks import check_before_writing
 from onefold_cad.export.writers import (
     WRITERS,
     BuildContext,
     Writer,
-    check_before_writing,
     file_names,
     parse_formats,
     register,

@@ -20,7 +20,8 @@ from onefold_cad.mechanics.j2.law import J2Law
 from onefold_cad.mechanics.j2.section import ThicknessRule
 from onefold_cad.mechanics.j2.springback import released_curvature
 from onefold_cad.mechanics.j2.stages import FORMING_STEPS
-from onefold_cad.mechanics.simulate import check_cone_forming, run
+from onefold_cad.mechanics.model import check_cone_forming
+from onefold_cad.mechanics.simulate import run
 from onefold_cad.templates import load_template
 
 
