@@ -197,7 +197,11 @@ def _verdict(target: Target, designed: dict[str, float], before: FormReport,
              after: FormReport, found: Search) -> tuple[bool, str]:  # fmt: skip
     u = target.form.units.value
     if not after.stands:
-        return False, "the compensated fold does not stand"
+        reach = ""
+        if before.stands and before.height is not None and before.span is not None:
+            reach = (f" (uncompensated, the start stands {before.height:.5g} {u} high and "
+                     f"{before.span:.5g} {u} wide)")  # fmt: skip
+        return False, "the compensated fold does not stand" + reach
     if target.kind == "size":
         misses = {k: _miss(getattr(after, k), v) for k, v in target.sizes().items()}
         ok = all(m <= SIZE_TOLERANCE for m in misses.values())
