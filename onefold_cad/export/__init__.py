@@ -7,6 +7,7 @@ adapter that needs it.
 The registry, the staging and the one-module formats:
 
 - :mod:`.writers`: the files ``onefold build`` can write, one ``Writer`` each.
+- :mod:`.write_checks`: what the writers would refuse, raised before any file exists.
 - :mod:`.build_context`: one design being built: its fold, options and shared parts.
 - :mod:`.atomic`: all-or-nothing file output (a staging folder, then one commit).
 - :mod:`.commit_steps`: the steps of a commit of staged files.
@@ -14,6 +15,7 @@ The registry, the staging and the one-module formats:
   and the scripting API's ``write_files``, one path).
 - :mod:`.report_file`: NAME.json, the report written atomically.
 - :mod:`.bend_csv`: NAME-bends.csv, the bend table's rows.
+- :mod:`.cone_csv`: NAME-cones.csv, the cones' radii per ruling station.
 - :mod:`.glb`: NAME.glb, the folded form as binary glTF 2.0.
 - :mod:`.aligned_plane`: a planar face's plane with its axes along the face
   (so OCCT's default integration measures it).

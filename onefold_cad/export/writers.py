@@ -266,8 +266,7 @@ register(
         "-cones.csv",
         "cone forming sheet",
         _cones,
-        what="the cones' radii per ruling station, designed and to form to (past the "
-        "springback with cone_forming = compensated; all names it only then)",
+        what="the cones' radii, designed and to form to (all: if formed past springback)",
         in_all=False,
     )
 )
