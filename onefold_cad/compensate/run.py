@@ -133,8 +133,8 @@ class Compensation:
             "start": fold_knobs(self.start),
             "compensated": fold_knobs(self.compensated),
             "cone_forming": {
-                "start": _cone_forming(self.start),
-                "compensated": _cone_forming(self.compensated),
+                "start": self.start.material.cones_formed,
+                "compensated": self.compensated.material.cones_formed,
             },
             "knobs": list(self.found.knobs),
             "sensitivity": self.found.sensitivity,
@@ -146,10 +146,6 @@ class Compensation:
             "limits": list(self.found.limits),
             "warnings": list(self.after_sim.warnings),
         }
-
-
-def _cone_forming(design: Design) -> str:
-    return "compensated" if design.material.cones_compensated else "design"
 
 
 def cones_knob(knobs: tuple[str, ...] | None, law: str) -> bool:

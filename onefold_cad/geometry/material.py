@@ -141,6 +141,11 @@ class Material:
         return self.cone_forming is ConeForming.COMPENSATED
 
     @property
+    def cones_formed(self) -> str:
+        """:attr:`cone_forming`'s name ('design' when none is given)."""
+        return (self.cone_forming or ConeForming.DESIGN).value
+
+    @property
     def overbend_deg(self) -> float:
         """:attr:`crease_overbend` as a number (deg; 0 when none is given)."""
         return 0.0 if self.crease_overbend is None else float(self.crease_overbend)

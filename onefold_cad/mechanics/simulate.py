@@ -316,7 +316,7 @@ def run(
             else 0.0
         ),
         crease_overbend_deg=design.material.overbend_deg,
-        cone_forming="compensated" if model.cones_compensated and reference == "flat" else "design",
+        cone_forming=design.material.cones_formed if reference == "flat" else "design",
         fields=fields,
         stage_positions=stage_positions,
         warnings=warnings,
