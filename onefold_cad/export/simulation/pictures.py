@@ -154,9 +154,13 @@ def _no_equilibrium(fig: Any, ax: Any, sim: Simulation, kind: str, points: Array
 
 
 def _stands_words(sim: Simulation) -> str:
+    """The verdict in the caption's words (the report's warning says why a
+    coarse preview's is uncertain)."""
     s = sim.standing
     if not s.stands:
         return "it does NOT stand: " + (s.reason or "no equilibrium")
+    if s.uncertain:
+        return "whether it stands is uncertain: run --mesh normal"
     margin = s.tipping_margin_deg
     return "it stands" + (f" (tipping margin {margin:.1f}\N{DEGREE SIGN})" if margin else "")
 

@@ -161,3 +161,19 @@ def test_the_moment_law_s_stress_past_yield_is_called_an_estimate(sim):
     below = replace(sim, standing=replace(sim.standing, utilisation=0.9))
     for other in (below, replace(sim, law="j2")):
         assert "estimate" not in _stress_caption(other, scale)
+
+
+def test_a_coarse_preview_s_uncertain_standing_is_not_captioned_as_standing(sim):
+    """The caption says what the report's verdict says: a coarse 'stands'
+    that its reserve check leaves uncertain is no 'it stands'."""
+    from onefold_cad.export.simulation.pictures import _deviation_caption
+    from onefold_cad.mechanics.verdicts import with_reserve
+
+    assert sim.standing.stands
+    doubt = replace(sim, standing=with_reserve(replace(sim.standing, uncertain=""), 1.0))
+    assert doubt.standing.verdict == "uncertain"
+    text = _deviation_caption(doubt)
+    assert "whether it stands is uncertain: run --mesh normal" in text
+    assert "it stands (" not in text and "; it stands" not in text
+    sure = replace(sim, standing=with_reserve(replace(sim.standing, uncertain=""), 3.0))
+    assert "; it stands" in _deviation_caption(sure)
