@@ -360,6 +360,16 @@ def read_dat(path: Path) -> dict[tuple[str, float], Array]:
     return {k: np.array(v) for k, v in blocks.items() if v}
 
 
+def level_fields(blocks: dict, when: float, layers: int, n_elem: int) -> tuple[Array, Array]:
+    """The stresses ``(m, levels, 3, 6)`` and equivalent plastic strains
+    ``(m, levels, 3)`` ``read_dat`` read at total time ``when``: element,
+    level through the thickness (bottom up), in-plane point."""
+    levels = 2 * layers
+    sig = blocks[("stresses", when)][:, 2:8].reshape(n_elem, levels, 3, 6)
+    peeq = blocks[("equivalent plastic strain", when)][:, 2].reshape(n_elem, levels, 3)
+    return sig, peeq
+
+
 def surface_state(
     blocks: dict, when: float, layers: int, t: float, sy: float, n_elem: int
 ) -> dict[str, Array]:
@@ -369,11 +379,7 @@ def surface_state(
     the outer layer's two points to the surface at or above the yield
     stress), and whether the mid-plane has (a point of the two innermost
     levels with plastic strain: membrane yielding)."""
-    st = blocks[("stresses", when)]
-    pe = blocks[("equivalent plastic strain", when)]
-    levels = 2 * layers
-    sig = st[:, 2:8].reshape(n_elem, levels, 3, 6)  # element, level (bottom up), in-plane point
-    peeq = pe[:, 2].reshape(n_elem, levels, 3)
+    sig, peeq = level_fields(blocks, when, layers, n_elem)
     h = t / layers
     z0, z1 = -0.5 * t + 0.5 * h * (1 - GAUSS), -0.5 * t + 0.5 * h * (1 + GAUSS)
     f = (-0.5 * t - z0) / (z1 - z0)  # extrapolation to the bottom surface; the top mirrors it

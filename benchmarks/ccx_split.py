@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from ccx_deck import GAUSS, mises
+from ccx_deck import GAUSS, level_fields, mises
 from numpy.typing import NDArray
 
 Array = NDArray[np.float64]
@@ -93,7 +93,5 @@ def split(sig: Array, peeq: Array, t: float) -> Split:
 def formed_split(blocks: dict, when: float, layers: int, t: float, n_elem: int) -> Split:
     """:func:`split` of the stresses and plastic strains ``ccx_deck.read_dat``
     read at total time ``when``."""
-    levels = 2 * layers
-    sig = blocks[("stresses", when)][:, 2:8].reshape(n_elem, levels, 3, 6)
-    peeq = blocks[("equivalent plastic strain", when)][:, 2].reshape(n_elem, levels, 3)
+    sig, peeq = level_fields(blocks, when, layers, n_elem)
     return split(sig, peeq, t)

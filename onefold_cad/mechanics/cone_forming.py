@@ -28,10 +28,8 @@ from onefold_cad.errors import InvalidParameterError
 from onefold_cad.fabrication.relief_hole import relief_hole_diameter
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.thick.thick_map import SideMap
-from onefold_cad.mechanics.j2.law import J2Law
-from onefold_cad.mechanics.j2.section import ThicknessRule
 from onefold_cad.mechanics.j2.springback import SpringbackTable
-from onefold_cad.mechanics.j2.stages import FORMING_STEPS
+from onefold_cad.mechanics.j2.stages import FORMING_STEPS, j2_section
 from onefold_cad.mechanics.model import shell_material
 
 __all__ = ["RULING_STEP_DEG", "STATIONS", "ConeStation", "check_cone_sheet", "cone_stations"]
@@ -87,14 +85,15 @@ def cone_stations(design: Design, folded: FoldedSheet) -> list[ConeStation]:
         edge = side.edge_radius(theta)
         for t, kk, e in zip(theta, k, edge, strict=True):
             r = np.linspace(hole, e, STATIONS)
-            cone_r = np.where(kk > 0, r / np.where(kk > 0, kk, 1.0), math.inf)
-            if table is None:
-                form_r = cone_r
+            if kk == 0.0:  # flat (past a crease)
+                cone_r = form_r = np.full(STATIONS, math.inf)
             else:
-                kappa = np.where(kk > 0, kk / (r * metres), 0.0)  # 1/m
-                formed = table.forming(kappa)
-                form_r = np.where(formed > 0, 1.0 / np.where(formed > 0, formed, 1.0) / metres,
-                                  math.inf)  # fmt: skip
+                cone_r = r / kk
+                form_r = (
+                    cone_r
+                    if table is None
+                    else 1.0 / table.forming(1.0 / (cone_r * metres)) / metres
+                )
             y = -1.0 if lower else 1.0
             for ri, dr, fr in zip(r, cone_r, form_r, strict=True):
                 rows.append(ConeStation(
@@ -119,5 +118,4 @@ def check_cone_sheet(design: Design) -> SpringbackTable | None:
         )  # fmt: skip
     if not design.material.cones_compensated:
         return None
-    mat = shell_material(design)
-    return SpringbackTable.of(J2Law.of(mat), ThicknessRule(mat.thickness), FORMING_STEPS)
+    return SpringbackTable.of(*j2_section(shell_material(design)), FORMING_STEPS)

@@ -19,6 +19,7 @@ SI units: curvatures in 1/m.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -99,11 +100,10 @@ class SpringbackTable:
     @classmethod
     def of(cls, law: J2Law, rule: ThicknessRule, steps: int) -> SpringbackTable:
         """The table of ``law`` for sections of ``rule`` formed in ``steps``
-        return mappings (as the sheet is: ``j2.stages.FORMING_STEPS``)."""
-        first = first_yield_curvature(law, rule.thickness)
-        formed = first * np.geomspace(*TABLE_RANGE, TABLE_POINTS)
-        kept = np.maximum.accumulate(released_curvature(law, rule, formed, steps))
-        return cls(formed, kept)
+        return mappings (as the sheet is: ``j2.stages.FORMING_STEPS``);
+        computed once per law, rule and steps (a process's simulations of one
+        material share it: a compensation runs dozens)."""
+        return _tabulated(law, rule, steps)
 
     def forming(self, kept: F) -> F:
         """The curvatures (1/m) to form to so that ``kept`` (>= 0) is kept
@@ -113,6 +113,15 @@ class SpringbackTable:
         inside = np.interp(k, self.kept, self.formed)
         beyond = k + (self.formed[-1] - self.kept[-1])
         return np.where(k > 0, np.where(k > self.kept[-1], beyond, inside), 0.0)
+
+
+@functools.lru_cache(maxsize=16)
+def _tabulated(law: J2Law, rule: ThicknessRule, steps: int) -> SpringbackTable:
+    first = first_yield_curvature(law, rule.thickness)
+    formed = first * np.geomspace(*TABLE_RANGE, TABLE_POINTS)
+    kept = np.maximum.accumulate(released_curvature(law, rule, formed, steps))
+    formed.flags.writeable = kept.flags.writeable = False  # shared: read only
+    return SpringbackTable(formed, kept)
 
 
 def compensated_curvatures(curvatures: F, table: SpringbackTable) -> F:

@@ -34,6 +34,7 @@ from onefold_cad.mechanics.j2.layered import Plasticity, form_along
 from onefold_cad.mechanics.j2.section import SectionResponse, ThicknessRule
 from onefold_cad.mechanics.j2.springback import SpringbackTable, compensated_curvatures
 from onefold_cad.mechanics.kinematics.triangles import face_metric
+from onefold_cad.mechanics.material import ShellMaterial
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
 from onefold_cad.mechanics.reserve import shows_carried
@@ -52,6 +53,7 @@ __all__ = [
     "cartesian_curvatures",
     "form",
     "form_to",
+    "j2_section",
     "j2_shell",
     "release",
     "release_from",
@@ -124,13 +126,17 @@ class J2Stage:
         return np.maximum(e[:, 0], e[:, -1])
 
 
-def j2_shell(model: SheetModel, points: int | None = None) -> Shell:
-    """The model's shell with virgin J2 sections (``points`` through the
-    thickness, the section's default if None; the material's hardening) and
-    no rest curvature: the plastic strains carry the formed curvature."""
-    mat = model.material
-    law = J2Law.of(mat)
+def j2_section(mat: ShellMaterial, points: int | None = None) -> tuple[J2Law, ThicknessRule]:
+    """The J2 law of ``mat`` (its hardening) and its sections' rule
+    (``points`` through the thickness, the section's default if None)."""
     rule = ThicknessRule(mat.thickness) if points is None else ThicknessRule(mat.thickness, points)
+    return J2Law.of(mat), rule
+
+
+def j2_shell(model: SheetModel, points: int | None = None) -> Shell:
+    """The model's shell with virgin J2 sections (:func:`j2_section`) and
+    no rest curvature: the plastic strains carry the formed curvature."""
+    law, rule = j2_section(model.material, points)
     shell = model.shell
     return shell.with_changes(
         rest_curvature=np.zeros_like(shell.rest_curvature),
