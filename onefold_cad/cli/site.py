@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import os
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -32,6 +33,7 @@ from onefold_cad.cli.output import one_line, warn
 from onefold_cad.errors import InvalidParameterError, not_installed
 
 if TYPE_CHECKING:
+    from onefold_cad.design import Design
     from onefold_cad.export.site.context import SiteContext
     from onefold_cad.geometry.resting.placement import RestingPlacement
 
@@ -69,12 +71,15 @@ def _say(quiet: bool, name: str, text: str) -> None:
         os.write(2, f"[site] {name}: {one_line(text)}\n".encode())
 
 
-def _sheet_formats(text: str | None) -> tuple[str, ...]:
+def _sheet_formats(text: str | None, designs: Sequence[Design] = ()) -> tuple[str, ...]:
+    """The sheets' writers of ``--sheet-formats`` (``none``: no sheet files); all
+    of them name the cones' forming sheet where one of ``designs`` has its cones
+    formed past their springback, as ``onefold build`` does."""
     from onefold_cad.export.writers import parse_formats
 
     if text is not None and text.strip().lower() == "none":
         return ()
-    return parse_formats(text, flag="--sheet-formats")
+    return parse_formats(text, flag="--sheet-formats", designs=designs)
 
 
 def _site_context(spec: Any, jobs: list[Any], built: list[SheetBuilt]) -> SiteContext:
@@ -109,11 +114,12 @@ def cmd_site(ns: argparse.Namespace) -> int:
     if ns.jobs < 1:
         raise InvalidParameterError("--jobs", f"must be >= 1, got {ns.jobs}")
     formats = parse_formats(ns.formats, SITE_WRITERS)
-    sheet_formats = _sheet_formats(ns.sheet_formats)
+    _sheet_formats(ns.sheet_formats)  # a bad name: refused before the site is read
     spec = read_site(ns.site)
     outdir = Path(ns.outdir)
     check_outdir(outdir)
     jobs = site_jobs(spec)
+    sheet_formats = _sheet_formats(ns.sheet_formats, [j.design for j in jobs])
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
     if not ns.allow_touching:  # sheets whose surfaces cross: refused before building them

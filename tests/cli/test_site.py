@@ -320,3 +320,21 @@ def test_site_help_has_its_usage_and_names_every_site_file(capsys):
         assert flag in text
     assert main(["--help"]) == 0
     assert "  site  " in capsys.readouterr().out
+
+
+def test_a_sheet_with_compensated_cones_gets_its_forming_sheet_by_default(site_cli, built):
+    # the DXF notes of such a sheet name NAME-cones.csv: `all` must write it, as
+    # `onefold build` does; the shipped site's sheets, formed to the design, get none
+    one = (
+        'name = "one"\nunits = "mm"\n\n[[sheet]]\nname = "solo"\ntemplate = "patkau-one-fold"\n'
+        'flags = { cone_forming = "compensated" }\nx = 0.0\ny = 0.0\n'
+    )
+    rc, stdout, lines, out = site_cli(one, "--formats", "order", "-q")
+    assert rc == 0, lines
+    assert str(out / "solo" / "solo-cones.csv") in stdout.split()
+    assert main(["build", "patkau-one-fold", "--cone-forming", "compensated", "--formats",
+                 "cones", "--name", "solo", "-o", str(out.parent / "b"), "-q"]) == 0  # fmt: skip
+    built_alone = (out.parent / "b" / "solo-cones.csv").read_text(encoding="utf-8")
+    assert (out / "solo" / "solo-cones.csv").read_text(encoding="utf-8") == built_alone
+    for name in NAMES:
+        assert not list((built / name).glob("*-cones.csv"))
