@@ -32,6 +32,7 @@ from onefold_cad.compensate.target import Target
 from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import ConvergenceError, InvalidParameterError
 from onefold_cad.geometry.numeric import Array
+from onefold_cad.mechanics.verdicts import CONVERGED
 
 __all__ = ["SIZE_TOLERANCE", "Compensation", "FormReport", "compensate"]
 
@@ -203,7 +204,7 @@ def _verdict(target: Target, designed: dict[str, float], before: FormReport,
         ok = all(m <= SIZE_TOLERANCE for m in misses.values())
         text = ", ".join(f"{k} {getattr(after, k):.5g} {u} ({100 * m:.2g} % off)"
                          for k, m in misses.items())  # fmt: skip
-        return ok, ("met: " if ok else "not met: ") + text
+        return _converged(ok, text, before, after)
     sizes = {k: _miss(getattr(after, k), designed[k]) for k in ("height", "span")}
     assert after.max_deviation is not None
     shrink = math.inf if not before.max_deviation else before.max_deviation / after.max_deviation
@@ -213,7 +214,24 @@ def _verdict(target: Target, designed: dict[str, float], before: FormReport,
         f"uncompensated (needed {SHRINK:g}); height {100 * sizes['height']:.2g} % and span "
         f"{100 * sizes['span']:.2g} % off the design's"
     )
-    return ok, ("met: " if ok else "not met: ") + text
+    return _converged(ok, text, before, after)
+
+
+def _converged(ok: bool, text: str, before: FormReport, after: FormReport) -> tuple[bool, str]:
+    """``ok, text`` said as "met" or "not met", unless a checked form's mesh is
+    not converged (its largest deviation changes by more than
+    :data:`~onefold_cad.mechanics.verdicts.CONVERGED` on the finer mesh): then a
+    "met" is only "uncertain", not reached, and the text says which change."""
+    loose = [
+        f"the {name} fold's largest deviation changes {100 * f.convergence:.2g} % on the "
+        f"finer mesh (more than {100 * CONVERGED:g} %)"
+        for name, f in (("uncompensated", before), ("compensated", after))
+        if f.convergence is not None and f.convergence > CONVERGED
+    ]
+    if not loose:
+        return ok, ("met: " if ok else "not met: ") + text
+    why = "; not mesh-converged: " + " and ".join(loose)
+    return False, ("uncertain: " if ok else "not met: ") + text + why
 
 
 def compensate(
