@@ -50,7 +50,7 @@ from onefold_cad.compensate.parallel import Evaluator, run_one
 from onefold_cad.design import Design
 from onefold_cad.errors import OneFoldError, memory_message
 from onefold_cad.explore.controls import ParameterProblem, QueryError, page_values, parse_query
-from onefold_cad.explore.simulation import LAW
+from onefold_cad.explore.simulation import steel_law
 
 __all__ = ["KEEP_JOBS", "KEEP_S", "LEVEL", "MAX_LINES", "Compensations"]
 
@@ -94,8 +94,8 @@ class _Watched(Evaluator):
     """This process's evaluator, one simulation at a time, that counts them
     and starts none once its job is cancelled."""
 
-    def __init__(self, job: _Job, lock: threading.Lock) -> None:
-        super().__init__(1, law=LAW)
+    def __init__(self, job: _Job, lock: threading.Lock, law: str) -> None:
+        super().__init__(1, law=law)
         self.job, self.lock = job, lock
 
     def map(
@@ -236,10 +236,10 @@ class Compensations:
 
         state, result, error = "done", None, None
         try:
-            with _Watched(job, self._lock) as evaluator:
+            with _Watched(job, self._lock, steel_law(design)) as evaluator:
                 c = compensate(design, target, evaluator, self._say(job), coarse=LEVEL,
                                fine=LEVEL, check=False, knobs=SEARCHED)  # fmt: skip
-            result = _plain(c.to_data())
+            result = _plain(c.to_data()) | {"law": evaluator.law}
             start = {k: v for k, v in job.params.items() if k != "template"}
             result["values"] = {**start, **_knobs(c.compensated)}
             result["start_values"] = {**start, **_knobs(c.start)}

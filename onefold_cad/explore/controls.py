@@ -64,6 +64,7 @@ PAGE_FLAGS: dict[str, str] = {
     "polygon": "--polygon",
     "thickness": "--thickness",
     "bend_radius": "--bend-radius",
+    "cone_forming": "--cone-forming",
 }
 #: The query names besides the controls: the template, and (``/api/state`` only) the
 #: :func:`~onefold_cad.explore.state.design_state` ``mesh_key`` of the triangles the
@@ -148,6 +149,19 @@ def _cli_flags(params: Mapping[str, str]) -> dict[str, Any]:
         raise ParameterProblem(text, _controls_of(flag)) from None
 
 
+def _without_default_forming(
+    params: Mapping[str, str], template: Mapping[str, Any]
+) -> Mapping[str, str]:
+    """``params`` without a ``cone_forming`` of 'design' where the template
+    gives none: the page sends every control, and the template's cones are
+    formed to the design already (so the value changes nothing of it)."""
+    material = template.get("material")
+    given = material.get("cone_forming") if isinstance(material, dict) else None
+    if params.get("cone_forming") == "design" and given is None:
+        return {k: v for k, v in params.items() if k != "cone_forming"}
+    return params
+
+
 def design_from_params(
     params: Mapping[str, str], templates: Mapping[str, Mapping[str, Any]], default: str
 ) -> Design:
@@ -170,9 +184,10 @@ def design_from_params(
             f"template: no such template {key!r} (choose one of: {', '.join(sorted(templates))})",
             ("template",),
         )
+    template = dict(templates[key])
+    params = _without_default_forming(params, template)
     flags = _cli_flags(params)
     try:
-        template = dict(templates[key])
         data, names = Overrides(**flags).apply(template)
         # the page sends every control: only those that changed a value describe the design
         changed = changed_flags(design_to_data(design_from_data(template)), data, names)
@@ -210,6 +225,7 @@ def page_values(design: Design) -> dict[str, Any]:
         "divisions": str(frame["divisions"]),
         "thickness": _text(material["thickness"]),
         "bend_radius": _text(material["bend_radius"]),
+        "cone_forming": design.material.cones_formed,
     }
     kind = design.sheet.kind
     sheet = data["sheet"][kind]

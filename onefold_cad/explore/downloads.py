@@ -1,5 +1,5 @@
 """The page's downloads: the current design as DXF, STEP, Rhino 3DM, JSON
-report or TOML.
+report, TOML or the cones' forming sheet (``NAME-cones.csv``).
 
 Each file is made by the package's own writer (the same calls as ``onefold
 build``) into a private temporary folder and returned as bytes; no path
@@ -27,6 +27,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "3dm": (".3dm", "model/vnd.3dm"),
     "json": (".json", "application/json"),
     "toml": (".toml", "application/toml"),
+    "cones": ("-cones.csv", "text/csv"),
 }
 
 _KERNEL = threading.Lock()  # OCC is not known to be thread-safe
@@ -42,7 +43,7 @@ class Download:
 
 
 def make_download(kind: str, design: Design) -> Download:
-    """The file of ``kind`` ('dxf', 'step', '3dm', 'json' or 'toml') for ``design``.
+    """The file of ``kind`` ('dxf', 'step', '3dm', 'json', 'toml' or 'cones') for ``design``.
 
     Raises:
         KeyError: an unknown kind.
@@ -61,6 +62,10 @@ def make_download(kind: str, design: Design) -> Download:
         from onefold_cad.fabrication.report import design_report, report_json
 
         return Download(name, mime, report_json(design_report(design, folded)).encode("utf-8"))
+    if kind == "cones":
+        from onefold_cad.export.cone_csv import cone_csv
+
+        return Download(name, mime, cone_csv(design, folded).encode("utf-8"))
     with tempfile.TemporaryDirectory(prefix="onefold-explore-") as tmp:
         path = Path(tmp) / name
         if kind == "dxf":

@@ -18,7 +18,7 @@ It listens on 127.0.0.1 and answers GET requests only:
   ``/api/steel/check?...`` (:mod:`onefold_cad.explore.steel`);
 - ``/api/compensate/{start,progress,cancel}?...``: the Compensate action's
   background job (:mod:`onefold_cad.explore.compensation`);
-- ``/download/{dxf,step,3dm,json,toml}?...``: the design's file.
+- ``/download/{dxf,step,3dm,json,toml,cones}?...``: the design's file.
 
 The last :data:`RECENT_DESIGNS` designs asked for are kept by their query
 (``functools.lru_cache``): a design's fold, resting placement and flat pattern

@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from onefold_cad.choices import SIMULATION_DEFAULTS
+from onefold_cad.choices import SIMULATION_DEFAULTS, Law
 from onefold_cad.design import Design, fold_design
 from onefold_cad.errors import OneFoldError
 from onefold_cad.export.simulation.colour_scale import (
@@ -58,6 +58,7 @@ __all__ = [
     "check_state",
     "simulation_numbers",
     "simulation_state",
+    "steel_law",
 ]
 
 #: The mesh level the page simulates on.
@@ -65,13 +66,23 @@ LEVEL = "coarse"
 
 #: The bending law of the Steel view and the page's Compensate preview: the
 #: moment law, a preview within the view's second (J2's springback is a
-#: third to two fifths larger; the page says which law).
+#: third to two fifths larger; the page says which law), but for cones
+#: formed past their springback (:func:`steel_law`).
 LAW = "moment"
 
 #: The bending law of the Simulate button: ``onefold simulate``'s own (J2
 #: through the thickness), so a press gives ``onefold simulate --mesh
 #: coarse``'s numbers, its stresses within the flow stress.
 SIMULATE_LAW = SIMULATION_DEFAULTS["law"].value
+
+
+def steel_law(design: Design) -> str:
+    """The Steel view's and the page Compensate's law for ``design``: :data:`LAW`,
+    or J2 (:data:`SIMULATE_LAW`) where its cones are formed past their
+    springback, which the moment law cannot form (``onefold simulate --law
+    moment`` refuses them)."""
+    return Law.J2.value if design.material.cones_compensated else LAW
+
 
 #: The answer's ``error`` for a request given up for a newer one.
 SUPERSEDED = "superseded: a newer design was asked for"
@@ -93,7 +104,8 @@ def _line(text: object) -> str:
 
 def simulation_numbers(sim: Simulation) -> dict[str, Any]:
     """The numbers the page prints (design unit, MPa, shares 0..1; ``law``: the
-    bending law, 'moment' or 'j2'); None where the simulation has none (no
+    bending law, 'moment' or 'j2'; ``cone_forming``: 'design' or
+    'compensated', the cones formed past their springback); None where the simulation has none (no
     standing equilibrium, reference 'designed');
     ``checking``: its reserve check is still to come (:func:`check_state`)."""
     s = sim.standing
@@ -113,6 +125,7 @@ def simulation_numbers(sim: Simulation) -> dict[str, Any]:
         "yield_stress_MPa": sim.yield_stress_MPa,
         "utilisation": s.utilisation,
         "law": sim.law,
+        "cone_forming": sim.cone_forming,
         "weight_N": sim.weight_N,
         "nodes": sim.nodes,
         "triangles": sim.triangles,

@@ -29,7 +29,7 @@ from collections.abc import Callable
 from typing import Any
 
 from onefold_cad.design import Design
-from onefold_cad.explore.simulation import LAW, check_state, simulation_state
+from onefold_cad.explore.simulation import check_state, simulation_state, steel_law
 from onefold_cad.mechanics.results import Simulation
 
 __all__ = ["NOT_LAST", "LastSteel", "LatestOnly"]
@@ -81,7 +81,9 @@ class LastSteel:
             with self._lock:
                 self._last = (key, sim) if sim.pending_reserve is not None else None
 
-        return simulation_state(design, cancelled, law=LAW, check_later=True, keep=keep)
+        return simulation_state(
+            design, cancelled, law=steel_law(design), check_later=True, keep=keep
+        )
 
     def check(self, key: object, design: Design | None = None) -> dict[str, Any]:
         """The reserve check of the last steel simulation if it is of ``key``'s

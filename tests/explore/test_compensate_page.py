@@ -123,7 +123,7 @@ def test_compensate_in_the_page(browser, server):
         assert values == {**start, **{k: values[k] for k in ("alpha", "beta", "hc_fraction")}}
         assert r["start_values"] == start
         for k, text in values.items():  # the job's design (width 3048), the compensated fold
-            plain = k in ("model", "divisions", "radius", "polygon")
+            plain = k in ("model", "divisions", "radius", "polygon", "cone_forming")
             assert page.locator(f"#{k}" if plain else f"#{k}-num").input_value() == text
         assert values["width"] == "3048"
         assert float(values["alpha"]) == pytest.approx(f.alpha, rel=1e-12)
@@ -143,7 +143,9 @@ def test_compensate_in_the_page(browser, server):
         flat = " ".join(panel.split())
         for w in c.after_sim.warnings:
             assert " ".join(w.split()) in flat
-        assert "coarse preview: onefold compensate's search and checks on the coarse mesh" in panel
+        assert r["law"] == "moment"  # cones formed to the design: the page's preview law
+        assert ("coarse preview with the moment law: onefold compensate's search and checks on "
+                "the coarse mesh") in panel  # fmt: skip
         assert tab.text("#comp-status").startswith("compensated (coarse preview) in ")
         assert tab.text("#comp-status").endswith("the sliders hold the compensated values")
 

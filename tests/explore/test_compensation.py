@@ -158,3 +158,21 @@ def test_finished_jobs_are_kept_for_a_bounded_time_and_count(server, monkeypatch
     assert known == [404] + [200] * KEEP_JOBS  # the oldest beyond the count is gone
     now[0] += KEEP_S + 1.0
     assert jobs.answer("progress", f"job={numbers[-1]}", lambda q: design)[0] == 404
+
+
+def test_cones_formed_past_their_springback_are_compensated_with_j2(server, monkeypatch):
+    laws: list[str] = []
+    real = compensation.run_one
+
+    def run_one(design, level, check=False, law="moment"):
+        laws.append(law)
+        return real(design, level, check, law)
+
+    monkeypatch.setattr(compensation, "run_one", run_one)
+    status, started = _answer(server, f"/api/compensate/start?{CHEAP}&cone_forming=compensated")
+    assert status == 200, started
+    job = started["job"]
+    _wait(server, job, lambda p: p["simulations"] >= 1)
+    _answer(server, f"/api/compensate/cancel?job={job}")
+    assert _wait(server, job, lambda p: p["state"] != "running")["state"] == "cancelled"
+    assert laws and set(laws) == {"j2"}

@@ -48,6 +48,7 @@ def _cli_error(capfd, args: list[str]) -> str:
         ({"model": "cone"}, ["--model", "cone"], ("model",)),
         ({"divisions": "0", "model": "paper"}, ["--divisions", "0", "--model", "paper"], ()),
         ({"width": "-5", "height": "7315.2"}, ["--rectangle", "-5x7315.2"], ("width", "height")),
+        ({"cone_forming": "die"}, ["--cone-forming", "die"], ("cone_forming",)),
         ({"apex_fraction": "1"}, ["--apex-fraction", "1"], ("apex_fraction",)),
         ({"thickness": "-1"}, ["--thickness", "-1"], ("thickness",)),
         ({"bend_radius": "nan"}, ["--bend-radius", "nan"], ("bend_radius",)),
@@ -193,3 +194,13 @@ def test_path_like_input_never_reaches_the_file_system(templates, monkeypatch, p
     if "template" in params:
         assert info.value.message.startswith("template: no such template")
         assert info.value.controls == ("template",)
+
+
+def test_the_cones_control_reaches_the_material_and_comes_back(templates):
+    data, _ = templates
+    design = design_from_params({"cone_forming": "compensated"}, data, "patkau-one-fold")
+    assert design.material.cones_compensated
+    assert page_values(design)["values"]["cone_forming"] == "compensated"
+    # 'design', the page's default, changes nothing of a template that gives none
+    plain = design_from_params({"cone_forming": "design"}, data, "patkau-one-fold")
+    assert design_to_data(plain) == design_to_data(design_from_params({}, data, "patkau-one-fold"))

@@ -98,3 +98,24 @@ def test_the_step_of_a_solid_past_the_bend_limits_is_refused_as_build_refuses_it
     with pytest.raises(FabricationError) as err:
         make_download("step", design)
     assert str(err.value) == str(expected)
+
+
+@pytest.mark.parametrize("forming", ["design", "compensated"])
+def test_the_cones_csv_gives_the_radii_to_form_as_the_control_says(forming):
+    import csv
+
+    data, key = load_templates("patkau-one-fold")
+    design = design_from_params({"cone_forming": forming}, data, key)
+    file = make_download("cones", design)
+    assert file.filename == "patkau-one-fold-cones.csv" and file.mime == "text/csv"
+    rows = list(csv.reader(io.StringIO(file.body.decode("utf-8"))))
+    head, body = rows[0], rows[1:]
+    cone, form = head.index("cone_radius [0.01 mm]"), head.index("form_radius [0.01 mm]")
+    pairs = [(float(r[cone]), float(r[form])) for r in body if r[cone] != "inf"]
+    assert len(pairs) > 100
+    if forming == "design":  # formed to the design: the cone's own radius
+        assert all(f == c for c, f in pairs)
+    else:  # past the springback: tighter at every station (first yield is far below)
+        assert all(f < c for c, f in pairs)
+    toml = tomllib.loads(make_download("toml", design).body.decode("utf-8"))
+    assert toml["material"].get("cone_forming", "design") == forming

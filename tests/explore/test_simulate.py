@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import base64
 import json
+from pathlib import Path
 from urllib.parse import parse_qsl, urlencode, urlsplit
 
 import numpy as np
@@ -164,3 +165,31 @@ def test_the_simulate_button_shows_the_standing_form_and_clears_on_a_change(brow
         assert "error" in (page.locator("#sim-status").get_attribute("class") or "")
         assert page.locator("#sim-legend").is_hidden()
         assert tab.errors == [] and tab.foreign == []
+
+
+def test_the_cones_control_simulates_cones_formed_past_their_springback(browser, server, tmp_path):
+    """'cones: past their springback' sends cone_forming=compensated: Simulate
+    answers simulate's J2 of such cones (a springback of millimetres, against
+    some 440 mm formed to the design), the status names it, and the Cones CSV
+    download gives the radii to form to."""
+    with open_page(browser, server) as tab:
+        page = tab.page
+        n_updates = tab.updates()
+        page.locator("#cone_forming").select_option("compensated")
+        tab.wait_for_update(n_updates + 1)
+        with page.expect_response("**/api/simulate?**", timeout=4 * TIMEOUT_MS) as answer:
+            page.locator("#simulate").click()
+        page.locator("body[data-simulations='1']").wait_for(state="attached")
+        query = dict(parse_qsl(urlsplit(answer.value.url).query, keep_blank_values=True))
+        assert query["cone_forming"] == "compensated"
+        n = answer.value.json()["numbers"]
+        assert (n["law"], n["cone_forming"]) == ("j2", "compensated")
+        assert n["springback_max_deviation"] < 20.0  # mm: the radii leave the design's curvature
+        status = tab.text("#sim-status")
+        assert "J2 through the thickness, cones formed past their springback, " in status
+        page.screenshot(path=str(tmp_path / "cones-compensated.png"))
+        with page.expect_download() as dl:
+            page.locator("#download-cones").click()
+        assert dl.value.suggested_filename == "patkau-one-fold-cones.csv"
+        head, first = Path(dl.value.path()).read_text(encoding="utf-8").splitlines()[:2]
+        assert head.startswith("side,ruling_deg") and first.startswith("+y,")

@@ -201,3 +201,20 @@ def test_a_running_check_is_given_up_for_a_newer_steel_request(server, monkeypat
     checking.join(60)
     assert out[0] == (200, {"ok": False, "superseded": True, "error": SUPERSEDED})
     assert status == 200 and second["ok"] is True and second["numbers"]["checking"] is True
+
+
+def test_cones_formed_past_their_springback_are_steel_by_j2(server):
+    """The moment law cannot form such cones (``simulate --law moment``
+    refuses them): the Steel view simulates them with J2, as Simulate does,
+    and gives simulate's own numbers."""
+    params = {"cone_forming": "compensated"}
+    status, form = _ask(server, "steel", params)
+    assert status == 200 and form["ok"] is True, form
+    assert form["numbers"]["law"] == "j2"
+    design = design_from_params(params, server.templates, server.initial)
+    sim = mechanics_simulate.simulate(
+        design, fold_design(design), level="coarse", convergence=False, law="j2"
+    )
+    assert form["numbers"]["max_deviation"] == sim.standing.max_deviation
+    # formed to the design, the view stays with the moment law
+    assert _ask(server, "steel", {"cone_forming": "design"})[1]["numbers"]["law"] == "moment"

@@ -18,8 +18,8 @@ function fmt(x, digits = 4) {
 
 // query: the current design's query string; load(values): set these controls'
 // texts ({alpha: '31.1', ...}: the job's design, compensated or not) and ask for
-// the design's state
-export function createCompensation({ query, load }) {
+// the design's state; lawName(law): how the page names a bending law
+export function createCompensation({ query, load, lawName }) {
   const button = $('compensate');
   const cancel = $('comp-cancel');
   const back = $('comp-back');
@@ -77,12 +77,12 @@ export function createCompensation({ query, load }) {
       ...r.crease.map((c) => [`crease ${c.half}`,
         `fold to ${fmt(c.fold_to_deg)}° (${c.bend}), standing ${fmt(c.after_springback_deg)}°`]),
       ['verdict', r.verdict],
-      // what onefold simulate warns of the compensated steel (the moment law: its springback is short)
+      // what onefold simulate warns of the compensated steel
       ...(r.warnings || []).map((w) => ['warning', w]),
       ['work', `${r.simulations} simulations, ${fmt(r.cpu_s, 3)} s CPU`],
-      ['method', 'coarse preview: onefold compensate\'s search and checks on the coarse mesh, '
-        + 'without its convergence check; for the normal mesh (minutes) download the TOML '
-        + 'template and run onefold compensate on it'],
+      ['method', `coarse preview with ${lawName(r.law)}: onefold compensate's search `
+        + 'and checks on the coarse mesh, without its convergence check; for the normal mesh '
+        + '(minutes) download the TOML template and run onefold compensate on it'],
     ];
     panel.querySelector('dl').replaceChildren(...rows.flatMap(([l, t]) => row(l, t)));
     panel.classList.toggle('met', r.reached);

@@ -17,13 +17,14 @@ const $ = (id) => document.getElementById(id);
 // holds the value sent (it may hold a bad value: the server says what is wrong).
 const SLIDERS = ['alpha', 'beta', 'hc_fraction', 'width', 'height', 'apex_fraction',
   'x_plus', 'x_minus', 'y_plus', 'y_minus', 'thickness', 'bend_radius'];
-const PLAIN = ['model', 'divisions', 'radius', 'polygon'];
+const PLAIN = ['model', 'divisions', 'radius', 'polygon', 'cone_forming'];
 const SHEET_FIELDS = {
   rectangle: ['width', 'height', 'apex_fraction'],
   quadrilateral: ['x_plus', 'x_minus', 'y_plus', 'y_minus'],
   polygon: ['polygon'],
 };
-const COMMON = ['model', 'alpha', 'beta', 'hc_fraction', 'radius', 'divisions', 'thickness', 'bend_radius'];
+const COMMON = ['model', 'alpha', 'beta', 'hc_fraction', 'radius', 'divisions', 'thickness', 'bend_radius',
+  'cone_forming'];
 
 let templateKey = null;
 let sheetKind = 'rectangle';
@@ -307,6 +308,7 @@ const steel = createSteelView({ simulation, render });
 // a compensation's values go into the controls as typed ones would
 createCompensation({
   query: () => query(),
+  lawName: simulation.lawName,
   load: (values) => {
     for (const [k, text] of Object.entries(values)) setValue(k, text);
     request();

@@ -53,6 +53,11 @@ export function createSimulation({ scene, form, render, query }) {
     return law === 'moment' ? 'the moment law' : law === 'j2' ? 'J2 through the thickness' : law;
   }
 
+  // the law and, where so formed, the cones formed past their springback
+  function lawText(n) {
+    return lawName(n.law) + (n.cone_forming === 'compensated' ? ', cones formed past their springback' : '');
+  }
+
   function setStatus(text, error = false) {
     status.textContent = text;
     status.classList.toggle('error', error);
@@ -210,7 +215,7 @@ export function createSimulation({ scene, form, render, query }) {
         showNumbers(sim);
         const s = ((performance.now() - started) / 1000).toFixed(1);
         const form = sim.mesh.form === 'released' ? '; no standing equilibrium: the released form shown' : '';
-        setStatus(`simulated in ${s} s (${sim.level} mesh, ${lawName(sim.numbers.law)}, ${sim.numbers.nodes} nodes)${form}`);
+        setStatus(`simulated in ${s} s (${sim.level} mesh, ${lawText(sim.numbers)}, ${sim.numbers.nodes} nodes)${form}`);
         ok = true;
       }
       render();
@@ -246,6 +251,7 @@ export function createSimulation({ scene, form, render, query }) {
     markStale,
     setStatus,
     lawName,
+    lawText,
     // the Steel view is on (the button waits) or off
     setSteel(on) {
       steel = on;

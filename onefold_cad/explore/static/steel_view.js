@@ -127,7 +127,7 @@ export function createSteelView({ simulation, render }) {
         const s = ((performance.now() - started) / 1000).toFixed(1);
         const form = sim.mesh.form === 'released' ? '; no standing equilibrium: the released form shown' : '';
         said = `steel of this design in ${s} s (server ${(sim.server_ms / 1000).toFixed(1)} s, `
-          + `${sim.level} mesh, ${simulation.lawName(sim.numbers.law)}, ${sim.numbers.nodes} nodes)`
+          + `${sim.level} mesh, ${simulation.lawText(sim.numbers)}, ${sim.numbers.nodes} nodes)`
           + `${form}${sim.numbers.checking ? CHECKING : ''}`;
         simulation.setStatus(said);
         verdictDue = sim.numbers.checking;
