@@ -88,16 +88,27 @@ class ReserveCheck:
         model: the sheet model.
         placed: the form stood on the ground before it carried its weight.
         standing: the standing equilibrium.
-        rest_curvature: ``(m, 3)`` the faces' rest form.
+        shell: the shell the check solves with, in the resting frame (the
+            moment law's with the faces' rest form; J2's with the stand's
+            internal variables too).
         supports: 'anchored' or 'frictionless'.
-        law: the run's law ('moment'; its warnings' wording).
+        law: the run's law ('moment' or 'j2'; its warnings' wording).
         size: the sheet's size (design unit; its warnings' wording).
     """
 
     model: SheetModel
     placed: Placed
     standing: Equilibrium
-    rest_curvature: Array
+    shell: Shell
     supports: str
     law: str
     size: float
+
+    def carried(self, progress: Progress | None = None) -> float:
+        """:data:`COARSE_RESERVE` when the standing sheet is shown to carry it,
+        else 1 (its weight, carried already): :func:`shows_carried`."""
+        ok = shows_carried(
+            self.model, self.placed, self.shell, self.standing, self.supports, COARSE_RESERVE,
+            progress,
+        )  # fmt: skip
+        return COARSE_RESERVE if ok else 1.0

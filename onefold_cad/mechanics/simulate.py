@@ -228,11 +228,12 @@ def run(
             model, folded, supports, design.units.value,
             lambda stage: _stage_progress(progress, stage), lap,
             coarse=MeshLevel.parse(level) is MeshLevel.COARSE and refine == 1.0,
-            reserve=reserve,
+            reserve=reserve, size=design.sheet.size,
         )  # fmt: skip
         formed_result, released, standing = j2.formed, j2.released, j2.standing
         stress, dev, released_at = j2.stress_MPa, j2.deviation, j2.released_at / s
         fields, stage_positions = j2.fields, j2.positions
+        pending = j2.pending
     else:
         if reference == "flat":
             formed = form(model)
@@ -272,9 +273,8 @@ def run(
             reserve=reserve,
         )
         if left is not None:
-            pending = ReserveCheck(
-                model, placed, left, rest_curvature, supports, law, design.sheet.size
-            )
+            shell = placed.shell.with_changes(rest_curvature=rest_curvature)
+            pending = ReserveCheck(model, placed, left, shell, supports, law, design.sheet.size)
         lap("standing")
     if reference == "designed":
         designed = Designed(standing.max_displacement, standing.max_stress_MPa)

@@ -22,7 +22,7 @@ from dataclasses import replace
 from typing import Any
 
 from onefold_cad.mechanics.newton import Progress
-from onefold_cad.mechanics.reserve import COARSE_RESERVE, ReserveCheck, carried
+from onefold_cad.mechanics.reserve import COARSE_RESERVE, ReserveCheck
 from onefold_cad.mechanics.results import Released, Simulation, Standing
 
 __all__ = [
@@ -152,10 +152,7 @@ def settle_reserve(
         progress: hears the check's Newton steps (may raise to give it up).
     """
     clock = time.process_time()
-    reserve = carried(
-        check.model, check.placed, check.standing, check.rest_curvature, check.supports,
-        progress=progress,
-    )  # fmt: skip
+    reserve = check.carried(progress)
     standing = with_reserve(sim.standing, reserve)
 
     def said(s: Standing) -> tuple[str, ...]:

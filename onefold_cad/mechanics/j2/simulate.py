@@ -12,6 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from onefold_cad.choices import Law
 from onefold_cad.geometry.folding import FoldedSheet
 from onefold_cad.geometry.numeric import Array
 from onefold_cad.mechanics.equilibrium import PathStalled
@@ -27,7 +28,7 @@ from onefold_cad.mechanics.j2.measures import (
 from onefold_cad.mechanics.j2.stages import J2Stage
 from onefold_cad.mechanics.model import SheetModel
 from onefold_cad.mechanics.newton import Progress
-from onefold_cad.mechanics.reserve import COARSE_RESERVE
+from onefold_cad.mechanics.reserve import ReserveCheck
 from onefold_cad.mechanics.results import FormedResult, Released, Standing
 from onefold_cad.mechanics.shell import Shell, unpack
 from onefold_cad.mechanics.stages import place
@@ -61,6 +62,8 @@ class J2Run:
             :class:`~onefold_cad.mechanics.j2.measures.Surfaces`.
         positions: per stage its nodes (m; formed and released in the fold
             frame, standing in the resting frame).
+        pending: the coarse preview's reserve check left for later
+            (``reserve`` False), else None.
     """
 
     formed: FormedResult
@@ -71,6 +74,7 @@ class J2Run:
     deviation: Array | None
     fields: dict[str, Surfaces]
     positions: dict[str, Array]
+    pending: ReserveCheck | None = None
 
 
 @dataclass(frozen=True)
@@ -120,14 +124,18 @@ def run_j2(
     lap: Callable[[str], None],
     coarse: bool = False,
     reserve: bool = True,
+    size: float = 1.0,
 ) -> J2Run:
     """Form, release and stand ``model``'s sheet with J2 sections; ``lap(stage)``
     after each stage (its CPU time). On the ``coarse`` preview mesh a sheet
     that stands must carry :data:`~onefold_cad.mechanics.reserve.COARSE_RESERVE`
-    times its weight to be a plain yes (:func:`j2_stages.carries`), else it is
+    times its weight to be a plain yes (:class:`~onefold_cad.mechanics.reserve.ReserveCheck` with
+    :func:`j2_stages.reserve_shell`), else it is
     "uncertain: run --mesh normal", as the moment law's preview; with
-    ``reserve`` False the check is not run and such a sheet stays "uncertain"
-    (:data:`~onefold_cad.mechanics.verdicts.RESERVE_PENDING`).
+    ``reserve`` False the check is left for later: such a sheet stays
+    "uncertain" (:data:`~onefold_cad.mechanics.verdicts.RESERVE_PENDING`) and
+    the run's ``pending`` holds its check (``size``: the sheet's, design
+    unit, for its warnings' wording).
 
     Raises:
         ConvergenceError: the release did not converge, or a return mapping
@@ -179,14 +187,15 @@ def run_j2(
         max_plastic_strain_at=at_s,
         plastic_area_share=area_share(model, peeq_s > 0),
     )
-    if coarse and standing.stands and not reserve:
-        standing = replace(standing, uncertain=RESERVE_PENDING)
-    elif coarse and standing.stands:
-        ok = j2_stages.carries(
-            model, shell, placed, st, supports, COARSE_RESERVE, progress_for("standing")
-        )
-        standing = with_reserve(standing, COARSE_RESERVE if ok else 1.0)
+    pending = None
+    if coarse and standing.stands:
+        moved = j2_stages.reserve_shell(shell, placed, st)
+        check = ReserveCheck(model, placed, st.equilibrium, moved, supports, Law.J2.value, size)
+        if reserve:
+            standing = with_reserve(standing, check.carried(progress_for("standing")))
+        else:
+            standing, pending = replace(standing, uncertain=RESERVE_PENDING), check
     lap("standing")
     fields["standing"] = s_surf
     positions["standing"] = st.equilibrium.positions
-    return J2Run(formed_result, released, xp, standing, stress, dev, fields, positions)
+    return J2Run(formed_result, released, xp, standing, stress, dev, fields, positions, pending)

@@ -37,7 +37,6 @@ from onefold_cad.mechanics.kinematics.triangles import face_metric
 from onefold_cad.mechanics.material import ShellMaterial
 from onefold_cad.mechanics.model import GRAVITY, SheetModel
 from onefold_cad.mechanics.newton import Progress
-from onefold_cad.mechanics.reserve import shows_carried
 from onefold_cad.mechanics.shell import Shell, director_angles, pack, rigid_dofs, unpack
 from onefold_cad.mechanics.stages import RTOL, Placed, standing_path
 
@@ -49,7 +48,6 @@ __all__ = [
     "RELEASE_PREDICTOR",
     "RELEASE_STEP",
     "J2Stage",
-    "carries",
     "cartesian_curvatures",
     "form",
     "form_to",
@@ -57,6 +55,7 @@ __all__ = [
     "j2_shell",
     "release",
     "release_from",
+    "reserve_shell",
     "stand",
 ]
 
@@ -287,22 +286,10 @@ def stand(
     return J2Stage(eq.q, eq, p, resp)
 
 
-def carries(
-    model: SheetModel,
-    shell: Shell,
-    placed: Placed,
-    standing: J2Stage,
-    supports: str,
-    up_to: float,
-    progress: Progress | None = None,
-) -> bool:
-    """Whether the sheet standing in ``standing`` carries ``up_to`` times its
-    weight: gravity from 1 to ``up_to`` in one Newton solve through the law
-    (the stand's internal variables, its contacts), as
-    :func:`onefold_cad.mechanics.reserve.carried` checks the moment law's. A
-    check, not the load path: False may be a sheet that carries more."""
-    moved = placed.shell.with_changes(
+def reserve_shell(shell: Shell, placed: Placed, standing: J2Stage) -> Shell:
+    """The shell a reserve check of ``standing`` solves with: the placed
+    (resting frame) shell with ``shell``'s rest form and the stand's internal
+    variables, held through the check's solve."""
+    return placed.shell.with_changes(
         rest_curvature=shell.rest_curvature, plasticity=standing.plasticity
-    )  # the stand's internal variables, held through the check's solve
-    assert standing.equilibrium is not None
-    return shows_carried(model, placed, moved, standing.equilibrium, supports, up_to, progress)
+    )
