@@ -105,8 +105,8 @@ def _line(text: object) -> str:
 def simulation_numbers(sim: Simulation) -> dict[str, Any]:
     """The numbers the page prints (design unit, MPa, shares 0..1; ``law``: the
     bending law, 'moment' or 'j2'; ``cone_forming``: 'design' or
-    'compensated', the cones formed past their springback); None where the simulation has none (no
-    standing equilibrium, reference 'designed');
+    'compensated', the cones formed past their springback); None where the
+    simulation has none (no standing equilibrium, reference 'designed');
     ``checking``: its reserve check is still to come (:func:`check_state`)."""
     s = sim.standing
     return {

@@ -122,16 +122,18 @@ def run_j2(
     unit: str,
     progress_for: ProgressFor,
     lap: Callable[[str], None],
+    *,
+    size: float,
     coarse: bool = False,
     reserve: bool = True,
-    size: float = 1.0,
 ) -> J2Run:
     """Form, release and stand ``model``'s sheet with J2 sections; ``lap(stage)``
     after each stage (its CPU time). On the ``coarse`` preview mesh a sheet
     that stands must carry :data:`~onefold_cad.mechanics.reserve.COARSE_RESERVE`
-    times its weight to be a plain yes (:class:`~onefold_cad.mechanics.reserve.ReserveCheck` with
-    :func:`j2_stages.reserve_shell`), else it is
-    "uncertain: run --mesh normal", as the moment law's preview; with
+    times its weight to be a plain yes (a
+    :class:`~onefold_cad.mechanics.reserve.ReserveCheck` with
+    :func:`j2_stages.reserve_shell`), else it is "uncertain: run --mesh
+    normal", as the moment law's preview; with
     ``reserve`` False the check is left for later: such a sheet stays
     "uncertain" (:data:`~onefold_cad.mechanics.verdicts.RESERVE_PENDING`) and
     the run's ``pending`` holds its check (``size``: the sheet's, design
