@@ -179,9 +179,6 @@ def _springback_notes(files: list[Path], stem: str, result: Any) -> None:
         f"{f1.beta:.4f} deg, h_c {f1.h_c:.4g} {u} (design: alpha {f0.alpha:.4g}, beta "
         f"{f0.beta:.4g} deg, h_c {f0.h_c:.4g} {u}); the crease set {ob:.2f} deg past the fold",
     ]
-    if result.compensated.material.cones_compensated:
-        lines.append(f"cones formed past their springback: the radius to form each station to "
-                     f"is in {stem}-cones.csv")  # fmt: skip
     for c in result.crease:
         lines.append(
             f"fold half {c['half']} to {c['fold_to_deg']:.2f} deg ({c['bend']}); after "

@@ -1,6 +1,6 @@
 """The text of the DXF's NOTES layer: what the shop needs beside the drawing
-(material, bend directions, compensation, the bend table, kerf, hole, size
-and mass), one line each, from the flat pattern alone (the fabrication
+(material, bend directions, compensation, the bend table, how the cones are
+formed, kerf, hole, size and mass), one line each, from the flat pattern alone (the fabrication
 rules' numbers; nothing is derived here).
 """
 
@@ -53,6 +53,11 @@ def flat_pattern_notes(p: FlatPattern) -> tuple[str, ...]:
             f"{shown[0]:.4f}, {shown[1]:.4f} {u}"
         )
     lines += bend_table(p).splitlines()
+    if mat.cones_compensated:
+        lines.append(
+            "cones: formed past their springback at every point, each station to the radius "
+            f"in {p.name}-cones.csv (tighter than the cone's, which the steel springs back to)"
+        )
     lines.append(f"kerf: {p.kerf:g} {u} (cut contours offset by kerf/2)")
     if p.hole_diameter > 0.0:
         lines.append(f"relief hole: diameter {p.hole_diameter:g} {u} at the apex mark")

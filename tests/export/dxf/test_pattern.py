@@ -705,3 +705,19 @@ def test_random_star_polygons(radii, jitter, t, r, kerf):
         a, b = out[i], out[(i + 1) % len(out)]
         d = (b - a) / np.linalg.norm(b - a)
         assert np.dot(cut[i] - a, [d[1], -d[0]]) == pytest.approx(kerf / 2, abs=1e-9)
+
+
+def test_cones_formed_past_their_springback_are_said_in_the_notes(tmp_path):
+    # a DXF built from a compensated template (onefold build, site) tells the shop
+    # how to form the cones, not only compensate's own -o
+    from onefold_cad.choices import ConeForming
+
+    design, folded = _design("t1d", "thick")
+    formed = design.with_changes(
+        material=design.material.with_changes(cone_forming=ConeForming.COMPENSATED)
+    )
+    text = "\n".join(
+        t.dxf.text for t in entities(write_read(tmp_path, formed, folded), "NOTES", "TEXT")
+    )
+    assert f"each station to the radius in {formed.name}-cones.csv" in text
+    assert "springback" not in "\n".join(flat_pattern_notes(flat_pattern(design, folded)))
