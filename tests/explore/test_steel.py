@@ -11,8 +11,8 @@ from urllib.parse import urlencode
 import pytest
 
 import onefold_cad.design as design_module
+import onefold_cad.mechanics.reserve as mechanics_reserve
 import onefold_cad.mechanics.simulate as mechanics_simulate
-import onefold_cad.mechanics.verdicts as mechanics_verdicts
 from onefold_cad.design import fold_design
 from onefold_cad.explore.controls import design_from_params
 from onefold_cad.explore.server import RECENT_DESIGNS
@@ -181,7 +181,7 @@ def test_a_running_check_is_given_up_for_a_newer_steel_request(server, monkeypat
     ticket: it made no steel request stale)."""
     assert _ask(server, "steel", {"alpha": "31"})[1]["numbers"]["checking"] is True
     started, issued = threading.Event(), threading.Event()
-    real, ticket = mechanics_verdicts.carried, server.steel.ticket
+    real, ticket = mechanics_reserve.ReserveCheck.carried, server.steel.ticket
 
     def watched(*args, **kwargs):  # the check starts once 32's ticket is issued
         started.set()
@@ -193,7 +193,7 @@ def test_a_running_check_is_given_up_for_a_newer_steel_request(server, monkeypat
         issued.set()
         return out
 
-    monkeypatch.setattr(mechanics_verdicts, "carried", watched)
+    monkeypatch.setattr(mechanics_reserve.ReserveCheck, "carried", watched)
     monkeypatch.setattr(server.steel, "ticket", watched_ticket)
     checking, out = _in_thread(_ask, server, "steel/check", {"alpha": "31"})
     assert started.wait(60)
