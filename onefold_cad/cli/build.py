@@ -335,6 +335,7 @@ def cmd_build(ns: argparse.Namespace) -> int:
     outdir = Path(ns.outdir)
     check_outdir(outdir)
     found = check_jobs(jobs, formats, ns)
+    say_cones_left_out([j.design for j in jobs], formats)
     n = len(jobs)
     with output_folder(outdir):
 
@@ -354,6 +355,19 @@ def cmd_build(ns: argparse.Namespace) -> int:
             print(p, flush=True)
         say_removed(removed)
     return 0
+
+
+def say_cones_left_out(designs: Sequence[Design], formats: Sequence[str]) -> None:
+    """One warning per design whose cones are formed past their springback
+    when ``formats`` write its DXF or 3DM (their notes name the forming
+    sheet) but not the sheet itself: the shop would get a drawing that points
+    to a file it does not have."""
+    if "cones" in formats or not {"dxf", "3dm"} & set(formats):
+        return
+    for d in designs:
+        if d.material.cones_compensated:
+            warn(f"{d.name}: its cones are formed past their springback and its notes name "
+                 f"{d.name}-cones.csv, which --formats leaves out: add cones")  # fmt: skip
 
 
 def say_removed(removed: Sequence[Path]) -> None:

@@ -25,6 +25,7 @@ from onefold_cad.cli.build import (
     check_outdir,
     output_folder,
     run_tasks,
+    say_cones_left_out,
     say_removed,
     task_context,
     write_task,
@@ -122,6 +123,7 @@ def cmd_site(ns: argparse.Namespace) -> int:
     sheet_formats = _sheet_formats(ns.sheet_formats, [j.design for j in jobs])
     # the site's STEP, GLB, IFC and clearance need every sheet's part: its checks too
     found = check_jobs(jobs, tuple(dict.fromkeys([*sheet_formats, "step"])), ns)
+    say_cones_left_out([j.design for j in jobs], sheet_formats)
     if not ns.allow_touching:  # sheets whose surfaces cross: refused before building them
         from onefold_cad.site.overlap import check_plan
         from onefold_cad.site.placement import SitePlacement

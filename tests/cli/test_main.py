@@ -965,6 +965,15 @@ def test_cones_formed_past_their_springback_add_their_forming_sheet(tmp_path, cl
         "patkau-one-fold-cones-compensated.dxf",
         "patkau-one-fold-cones-compensated.json",
     ]
+    # the DXF's notes name the forming sheet the named formats leave out: said
+    name = "patkau-one-fold-cones-compensated"
+    assert err.strip().splitlines() == [
+        f"onefold: warning: {name}: its cones are formed past their springback and its notes "
+        f"name {name}-cones.csv, which --formats leaves out: add cones"
+    ]
+    rc, _, err = cli("build", "patkau-one-fold", "--cone-forming", "compensated", "--formats",
+                     "dxf,cones", "-o", str(tmp_path / "c"), "-q")  # fmt: skip
+    assert rc == 0 and err.strip() == ""
     rc, _, err = cli("build", "patkau-one-fold", "--formats", "cones,json", "-o",
                      str(tmp_path / "b"), "-q")  # fmt: skip
     assert rc == 0, err
