@@ -207,19 +207,25 @@ def template_run(
     release: bool = True,
     reuse: bool = False,
     growth: float | None = None,
+    perfectly_plastic: bool = False,
 ) -> dict[str, Any]:
     """Form (to ``s_max``) and, when the forming is complete and ``release``,
     release ``template`` meshed at edge length ``h`` (m); the measures.
-    ``reuse``: a finished forming run in ``workdir`` is read, not rerun."""
+    ``reuse``: a finished forming run in ``workdir`` is read, not rerun;
+    ``perfectly_plastic``: the template's law without its hardening (a state
+    ``calculix_release.py --formed-by`` can hand over)."""
     from onefold_cad.mechanics.deviation import best_fit, surface_distance
 
     st = template_setup(
         template, h, bound=bound, start=start, s_max=s_max, drive=drive, growth=growth
     )
     deck: Deck = dataclasses.replace(st["deck"], layers=layers)
+    if perfectly_plastic:
+        deck = dataclasses.replace(deck, hardening=0.0)
     scale, path = st["scale"], st["path"]
     full = s_max == 1.0 and release
     name = f"{template}_h{h:g}_{drive}" + ("" if growth is None else f"_g{growth:g}")
+    name += "_pp" if perfectly_plastic and st["deck"].hardening > 0 else ""
     name += "" if s_max == 1.0 else f"_s{s_max:g}"
     res = form_and_release(deck, workdir, name, release=full, reuse=reuse)
     n, ne = len(deck.x0), len(deck.tri6)
@@ -373,6 +379,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     ap.add_argument("--growth", type=float, help="grade the mesh toward H: size = growth * r")
     ap.add_argument("--no-release", action="store_true", help="form only")
+    ap.add_argument(
+        "--perfectly-plastic", action="store_true", help="the template's law without hardening"
+    )
     ap.add_argument("--reuse", action="store_true", help="read a finished forming in --keep DIR")
     ap.add_argument("--path-only", action="store_true", help="the driven path's check, no ccx")
     ap.add_argument("--onefold", action="store_true", help="onefold's side, timed in this run")
@@ -428,6 +437,7 @@ def main(argv: list[str] | None = None) -> int:
                 release=not args.no_release,
                 reuse=args.reuse,
                 growth=args.growth,
+                perfectly_plastic=args.perfectly_plastic,
             )
             out["runs"].append(r)
             if not args.json:

@@ -22,6 +22,16 @@ cones without membrane strain on a mesh this machine can run: see
   curvature, ``FORMING_STEPS`` return mappings), given to ccx as the
   eigenstrain ``-C^-1 sigma`` (``*INITIAL CONDITIONS, TYPE=PLASTIC
   STRAIN``; why not ``TYPE=STRESS``: ``ccx_release``'s docstring).
+* **Or CalculiX's own formed state** (``--formed-by DIR``, a
+  ``calculix_forming.py --keep`` folder whose forming finished, perfectly
+  plastic: broken-vault's): the stress its ``S6`` shells left at their
+  integration points, carried to the wedges' points by flat position
+  (``ccx_handover.py``: per side of the crease, linear in the plane and
+  through the thickness), its through-thickness stress taken out as a
+  pressure (the deviator kept: a shell's plane stress), on one column of
+  wedges a face or four. So CalculiX forms and CalculiX releases, the state moved
+  between two meshes as Abaqus's ``*IMPORT`` moves a forming into its
+  springback.
 * **Held run**: every node fixed; the printed stresses must be the initial
   ones (``held_stress_error``, relative to sigma_y) and no point may yield
   (``held_peeq_max``); its reactions are the forming tool's forces.
@@ -40,6 +50,8 @@ Run from the repository root (Debian's ``calculix-ccx``; one thread)::
 
     .venv/bin/python benchmarks/calculix_release.py patkau-one-fold \\
         [--mesh coarse|normal] [--layers 4] [--onefold] [--keep DIR] [--json]
+    .venv/bin/python benchmarks/calculix_release.py broken-vault --mesh normal \\
+        --layers 2 --linear --formed-by FORMING_KEEP_DIR
 """
 
 from __future__ import annotations
@@ -56,6 +68,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from ccx_deck import CCX, displacements, finish, id_lines, run_inp, support_321  # noqa: E402
+from ccx_handover import wedge_state  # noqa: E402
 from ccx_onefold import onefold_side  # noqa: E402
 from ccx_release import (  # noqa: E402
     face_frames,
@@ -83,13 +96,20 @@ MARGIN = 5e-3
 
 
 def setup(
-    template: str, level: str, layers: int, split: int = 1, margin: float = 0.0
+    template: str,
+    level: str,
+    layers: int,
+    split: int = 1,
+    margin: float = 0.0,
+    formed_by: Path | None = None,
 ) -> dict[str, Any]:
     """The pure-numpy part: the perfectly plastic variant's model, its solid
     mesh (each face one column, or with ``split`` 4 four, on the face's curved
     patch as ``NAME.inp`` splits it), the formed stresses at the integration
     points (global, Pa) and their eigenstrains (of the stresses times ``1 -
-    margin``), the 3-2-1 support."""
+    margin``), the 3-2-1 support. ``formed_by``: a ``calculix_forming.py
+    --keep`` folder whose forming's state is handed over
+    (``ccx_handover``) in place of onefold's J2 forming."""
     from onefold_cad.design import fold_design
     from onefold_cad.export.simulation.inp_mesh import curved_midpoints, shell_mesh, unique_edges
     from onefold_cad.mechanics.energy import second_fundamental_form
@@ -136,10 +156,20 @@ def setup(
     vol = wedge_volumes(solid)
     assert plastic_law(shell).hardening_iso == 0.0
     heights = point_heights(t, layers)  # (L, 9)
-    plane, plastic = formed_stress(plastic_law(shell), curvature, heights.ravel(), FORMING_STEPS)
     frames = np.repeat(face_frames(x, tri), split, axis=0)
-    plane = np.repeat(plane, split, axis=0) * (1.0 - margin)  # sub-element c of face c // split
-    stress = to_global(plane, frames)  # (m split, L * 9, 6)
+    handover: dict[str, Any] = {}
+    if formed_by is None:
+        plane, plastic = formed_stress(
+            plastic_law(shell), curvature, heights.ravel(), FORMING_STEPS
+        )
+        plane = np.repeat(plane, split, axis=0) * (1.0 - margin)  # sub-element c of face c // split
+        stress = to_global(plane, frames)  # (m split, L * 9, 6)
+    else:  # each column's corners on the flat sheet: the wedges' points found there
+        corners = where[tri6[:, :3]]
+        plane, plastic, handover = wedge_state(
+            formed_by, folded, model, corners, heights, frames, margin
+        )
+        stress = to_global(plane, frames)
     mat = model.material
     # the support off the crease: next to its two ends, and the highest node
     on_crease = np.flatnonzero(crease[:n])
@@ -164,6 +194,7 @@ def setup(
         "split": split,
         "margin": margin,
         "n": n,
+        "handover": handover,
     }
 
 
@@ -272,18 +303,22 @@ def run(
     margin: float = 0.0,
     field: tuple[float, ...] = (),
     iterations: tuple[int, ...] = (),
+    formed_by: Path | None = None,
 ) -> dict[str, Any]:
     """The held and the released runs and their measures; ``elastic``: the
     release without ``*PLASTIC`` (the formed stresses unloaded elastically);
-    ``linear``: no ``NLGEOM`` (the stresses as ``TYPE=STRESS``)."""
+    ``linear``: no ``NLGEOM`` (the stresses as ``TYPE=STRESS``);
+    ``formed_by``: CalculiX's own forming kept there, handed over."""
     from onefold_cad.mechanics.standing_measures import aligned_deviation, area_share
 
-    st = setup(template, level, layers, split, margin) | {"elastic": elastic, "linear": linear}
+    st = setup(template, level, layers, split, margin, formed_by)
+    st |= {"elastic": elastic, "linear": linear}
     solid, model, mat = st["solid"], st["model"], st["model"].material
     m, n_pts = len(model.mesh.triangles), layers * 9
     cols = m * split
     name = f"{template}_{level}_L{layers}_x{split}" + ("_elastic" if elastic else "")
     name += "_linear" if linear else ""
+    name += "" if formed_by is None else "_ccxformed"
     write_held(st, workdir / f"{name}_held.inp")
     held, wall1, cpu1 = run_inp(workdir, f"{name}_held")
     s_ccx = held[("stresses", 1.0)][:, 2:8].reshape(cols, n_pts, 6)
@@ -303,6 +338,8 @@ def run(
         "controls_field": list(field),
         "controls_iterations": list(iterations),
         "margin": margin,
+        "formed": "onefold" if formed_by is None else "calculix",
+        **st["handover"],
         "faces": m,
         "nodes": len(solid.nodes),
         "elements": len(solid.elements),
@@ -397,6 +434,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument(
         "--split", type=int, choices=[1, 4], default=1, help="columns of wedges per face"
     )
+    ap.add_argument(
+        "--formed-by",
+        type=Path,
+        help="a calculix_forming.py --keep folder: release CalculiX's own (perfectly plastic) "
+        "formed state instead of onefold's (ccx_handover.py)",
+    )
     ap.add_argument("--onefold", action="store_true", help="onefold's side, timed in this run")
     ap.add_argument("--no-ccx", action="store_true", help="onefold's side only")
     ap.add_argument("--json", action="store_true")
@@ -426,6 +469,7 @@ def main(argv: list[str] | None = None) -> int:
             r = run(
                 args.template, level, layers, workdir, args.inc, args.elastic, args.linear,
                 args.split, args.margin, tuple(args.field), tuple(args.iterations),
+                args.formed_by,
             )  # fmt: skip
             out["runs"].append(r)
             if not args.json:
