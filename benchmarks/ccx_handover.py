@@ -217,13 +217,10 @@ def plane_stress(stress: Array, frames: Array) -> tuple[Array, Array]:
     see, so taking it out of all three normal stresses leaves the deviator
     and the yield state as they were and gives the plane stress a shell
     has; the transverse shears are dropped."""
-    from ccx_release import to_frame
+    from ccx_release import tensor, to_frame
 
     e3 = np.broadcast_to(frames[:, None, 2], stress.shape[:-1] + (3,))
-    t = np.empty(stress.shape[:-1] + (3, 3))
-    for (i, j), c in {(0, 0): 0, (1, 1): 1, (2, 2): 2, (0, 1): 3, (0, 2): 4, (1, 2): 5}.items():
-        t[..., i, j] = t[..., j, i] = stress[..., c]
-    normal = np.einsum("mki,mkij,mkj->mk", e3, t, e3)
+    normal = np.einsum("mki,mkij,mkj->mk", e3, tensor(stress), e3)
     plane = to_frame(stress, frames)
     plane[..., :2] -= normal[..., None]
     return plane, normal

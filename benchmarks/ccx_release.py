@@ -102,13 +102,20 @@ def to_global(plane: Array, frames: Array) -> Array:
     )
 
 
+def tensor(stress: Array) -> Array:
+    """``(..., 3, 3)`` the symmetric tensors of ccx's ``(..., 6)``
+    ``(s11, s22, s33, s12, s13, s23)``."""
+    t = np.empty(stress.shape[:-1] + (3, 3))
+    for (i, j), c in {(0, 0): 0, (1, 1): 1, (2, 2): 2, (0, 1): 3, (0, 2): 4, (1, 2): 5}.items():
+        t[..., i, j] = t[..., j, i] = stress[..., c]
+    return t
+
+
 def to_frame(stress: Array, frames: Array) -> Array:
     """The inverse of :func:`to_global` for stresses in the faces' planes:
     ``(m, k, 3)`` ``(s11, s22, s12)`` on ``frames`` of ccx's ``(m, k, 6)``."""
     s = stress
-    t = np.empty(s.shape[:-1] + (3, 3))
-    for (i, j), c in {(0, 0): 0, (1, 1): 1, (2, 2): 2, (0, 1): 3, (0, 2): 4, (1, 2): 5}.items():
-        t[..., i, j] = t[..., j, i] = s[..., c]
+    t = tensor(s)
     e1, e2 = frames[:, None, 0], frames[:, None, 1]
     proj = lambda a, b: np.einsum("mki,mkij,mkj->mk", a, t, b)  # noqa: E731
     e1 = np.broadcast_to(e1, s.shape[:-1] + (3,))
