@@ -24,7 +24,8 @@ cones without membrane strain on a mesh this machine can run: see
   STRAIN``; why not ``TYPE=STRESS``: ``ccx_release``'s docstring).
 * **Or CalculiX's own formed state** (``--formed-by DIR``, a
   ``calculix_forming.py --keep`` folder whose forming finished, perfectly
-  plastic: broken-vault's): the stress its ``S6`` shells left at their
+  plastic: broken-vault's, or patkau-one-fold's formed with
+  ``--perfectly-plastic``): the stress its ``S6`` shells left at their
   integration points, carried to the wedges' points by flat position
   (``ccx_handover.py``: per side of the crease, linear in the plane and
   through the thickness), its through-thickness stress taken out as a
