@@ -171,6 +171,7 @@ def setup(
             formed_by, folded, model, corners, heights, frames, margin
         )
         stress = to_global(plane, frames)
+        plastic = plastic.reshape(len(tri), split, -1).any(axis=1)  # per face, as onefold's
     mat = model.material
     # the support off the crease: next to its two ends, and the highest node
     on_crease = np.flatnonzero(crease[:n])
