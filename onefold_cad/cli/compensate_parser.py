@@ -18,14 +18,17 @@ KNOB_NAMES = tuple(k.value for k in Knob)
 
 
 def parse_knobs(text: str) -> tuple[str, ...]:
-    """``--knobs``: a comma-separated subset of the knobs, at least one, in
-    :class:`~onefold_cad.choices.Knob`'s order."""
+    """``--knobs``: a comma-separated subset of the knobs, at least one, each
+    named once, in :class:`~onefold_cad.choices.Knob`'s order."""
     names = [t.strip().lower() for t in text.split(",") if t.strip()]
     bad = [n for n in names if n not in KNOB_NAMES]
     if bad or not names:
         raise argparse.ArgumentTypeError(
             f"must be one or more of {', '.join(KNOB_NAMES)}, comma-separated, got {text!r}"
         )
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise argparse.ArgumentTypeError(f"{twice[0]!r} is named twice")
     return tuple(k for k in KNOB_NAMES if k in names)
 
 

@@ -36,6 +36,7 @@ def _never(*args: object, **kwargs: object) -> None:
         (["--law", "plastic"], "--law"),
         (["--knobs", "alpha,cones", "--law", "moment"], "knobs: 'cones' forms the cones past"),
         (["--cone-forming", "compensated", "--law", "moment"], "cone_forming: 'compensated'"),
+        (["--knobs", "alpha,cones,Alpha"], "--knobs: 'alpha' is named twice"),
     ],
 )
 def test_bad_input_exits_2_in_one_line_before_any_simulation(
