@@ -73,18 +73,23 @@ def projected_ratio(other: Array, ref: Array) -> Array:
     return _inner(other, ref) / _inner(ref, ref)
 
 
+def _principal(t: Array) -> tuple[Array, Array]:
+    """Principal values ``(m, 2)`` (ascending) and directions ``(m, 2, 2)``
+    (columns) of ``(xx, yy, xy)`` rows."""
+    tens = np.stack([np.stack([t[:, 0], t[:, 2]], 1), np.stack([t[:, 2], t[:, 1]], 1)], 1)
+    values, vectors = np.linalg.eigh(tens)
+    return values, vectors
+
+
 def larger_principal(t: Array) -> Array:
     """``(m,)`` the larger principal value's magnitude of ``(xx, yy, xy)`` rows."""
-    mean = (t[:, 0] + t[:, 1]) / 2
-    rad = np.hypot((t[:, 0] - t[:, 1]) / 2, t[:, 2])
-    return np.maximum(np.abs(mean + rad), np.abs(mean - rad))
+    return np.abs(_principal(t)[0]).max(axis=1)
 
 
 def _along(plane: Array, ref: Array) -> tuple[Array, Array]:
     """``(m, k)`` twice: the stress along each face's principal direction of
     ``ref`` whose value is the larger in magnitude, and across it."""
-    tens = np.stack([np.stack([ref[:, 0], ref[:, 2]], 1), np.stack([ref[:, 2], ref[:, 1]], 1)], 1)
-    values, vectors = np.linalg.eigh(tens)
+    values, vectors = _principal(ref)
     d = vectors[np.arange(len(ref)), :, np.argmax(np.abs(values), axis=1)]  # (m, 2)
     c, s = d[:, None, 0], d[:, None, 1]
     along = plane[..., 0] * c**2 + plane[..., 1] * s**2 + 2 * plane[..., 2] * c * s
@@ -92,14 +97,14 @@ def _along(plane: Array, ref: Array) -> tuple[Array, Array]:
     return along, across
 
 
-def _profiles(ours: Array, theirs: Array, m_ref: Array, heights: Array, r: Array,
-              edges: Array, t: float, sy: float) -> None:  # fmt: skip
+def _profiles(ours: tuple[Array, Array], theirs: tuple[Array, Array], heights: Array,
+              r: Array, edges: Array, t: float, sy: float) -> None:  # fmt: skip
     """Print the mean stress along and across onefold's bending direction at
     each height (over sigma_y, the bending's tension side positive), onefold's
-    and CalculiX's, in bands of two of ``edges``."""
+    and CalculiX's (:func:`_along` of each), in bands of two of ``edges``."""
     levels = np.unique(np.round(heights / t, 9))
     at = [np.flatnonzero(np.isclose(heights / t, z)) for z in levels]
-    pairs = [_along(ours, m_ref), _along(theirs, m_ref)]
+    pairs = [ours, theirs]
     for lo, hi in zip(edges[:-1:2], edges[2::2], strict=True):
         k = (r >= lo) & (r <= hi)
         sign = np.sign(np.einsum("mk,k->m", pairs[0][0][k], heights))[:, None]
@@ -131,6 +136,7 @@ def main(argv: list[str] | None = None) -> int:
     edges = np.quantile(r, np.linspace(0, 1, BANDS + 1))
     my = sy * t**2 / 4
     big = larger_principal(m_ref)
+    ours_along = _along(ours["plane"], m_ref) if args.profile else None
     for keep in args.formings:
         theirs = setup(args.template, args.mesh, args.layers, 1, MARGIN, keep)
         n, m = resultants(theirs["plane"], heights, t)
@@ -152,8 +158,8 @@ def main(argv: list[str] | None = None) -> int:
               f"{np.sum(area * larger_principal(n)) / area.sum() / (sy * t):.4f} sigma_y t "
               f"(area mean; onefold's largest {np.max(larger_principal(n_ref)) / (sy * t):.1g})"
               )  # fmt: skip
-        if args.profile:
-            _profiles(ours["plane"], theirs["plane"], m_ref, heights, r, edges, t, sy)
+        if ours_along is not None:
+            _profiles(ours_along, _along(theirs["plane"], m_ref), heights, r, edges, t, sy)
     return 0
 
 
