@@ -191,3 +191,24 @@ def test_the_closed_form_tangent_solves_the_projection_s_linearised_equations(hi
     sol = np.linalg.solve(jac, rhs)
     expected = theta[:, None, None] * sol[:, :3] + 2 / 3 * hk * xi[:, :, None] * sol[:, 3:]
     np.testing.assert_allclose(r.tangent[k], expected, rtol=1e-9, atol=1e-9 * abs(c).max())
+
+
+@pytest.mark.parametrize("direction", [(1.0, 1.0, 0.0), (1.0, -1.0, 0.0), (0.0, 0.0, 1.0)])
+@pytest.mark.parametrize(("hi", "hk"), [(0.0, 0.0), (5e8, 0.0), (0.0, 5e8), (2e9, 5e9)])
+def test_a_trial_along_an_eigenvector_of_p_returns_in_one_newton_step(
+    monkeypatch, direction, hi, hk
+):
+    """Equibiaxial stress and in-plane pure shear: ``1 / phi`` is linear in
+    ``dgamma`` there, so the return mapping's first Newton step lands on the
+    yield surface (two passes: the step and the check), from 20 yield
+    strains out; a general trial needs more."""
+    monkeypatch.setattr(j2, "MAX_ITERATIONS", 2)
+    law = J2Law(E, NU, SY, hi, hk)
+    c = elastic_matrix(law)
+    stress = 20 * SY * np.array(direction)
+    r = update(law, np.linalg.solve(c, stress), J2State.virgin(()))
+    kappa = SY + hi * r.state.equivalent
+    assert r.plastic
+    assert von_mises(r.stress - r.state.back_stress) / kappa == pytest.approx(1, abs=1e-10)
+    with pytest.raises(ConvergenceError):  # uniaxial stress mixes two eigenvalues
+        update(law, np.linalg.solve(c, 20 * SY * np.array([1.0, 0.0, 0.0])), J2State.virgin(()))
