@@ -173,8 +173,8 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
     where the trial is along one of ``P``'s eigenvectors (equibiaxial stress,
     in-plane pure shear: one Newton step is exact) and nearly so elsewhere, so
     Newton's method from 0 takes 3 or 4 steps where on ``phi - sqrt(2/3)
-    kappa`` it took about 10. Converged
-    when ``|phi - sqrt(2/3) kappa| = |h| phi T <= TOLERANCE T``.
+    kappa`` it took about 10. Converged when ``|phi - sqrt(2/3) kappa| = |h|
+    phi T <= TOLERANCE T``.
     """
     sy, hi, hk = law.yield_stress, law.hardening_iso, law.hardening_kin
     a = 2.0 / 3.0 * hk + law.c_eigen * _P_EIGEN  # xi_i = xt_i / (1 + dgamma a_i)
@@ -191,7 +191,7 @@ def _gamma(law: J2Law, xt: F, alpha: F) -> F:
         return (1.0 - c_hi * dg) / tgt - 1.0 / phi, -c_hi / tgt + dphi / phi2, phi
 
     # h(0) > 0 and h falls monotonically (1 / phi grows): Newton within the
-    # bracket [lo, hi] of the signs seen, bisecting where a step leaves it (hi
+    # bracket [lo, up] of the signs seen, bisecting where a step leaves it (up
     # is infinite until a step overshoots); each pass works on the points not
     # yet converged only.
     k = len(xt)
