@@ -79,6 +79,8 @@ class Flips:
         section.update = update  # type: ignore[assignment]
 
     def __call__(self, iteration: int, residual: float, energy: float) -> None:
+        if iteration == 0:
+            FLOWED.clear()
         flowing = np.concatenate(self.seen)[-self.points :] if self.seen else None
         self.seen = []
         change = "-"
