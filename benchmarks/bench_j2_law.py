@@ -80,6 +80,38 @@ def _before_runs(commit: str, template: str) -> dict:
     return {f"J2 ({commit})": law("j2"), f"moment ({commit})": law("moment")}
 
 
+def baseline_simulate(commit: str, template: str):
+    """``commit``'s ``simulate`` (its default law) on ``template`` as a function
+    ``(level, convergence) -> Simulation``, the design loaded and folded on the
+    first call from the template's file without the keys the commit did not
+    know yet (:data:`NEW_KEYS`); None (the reason printed) when git or the
+    commit is not there."""
+    old, why = load(commit)
+    if old is None:
+        print(f"no baseline: {why}")
+        return None
+    import importlib
+
+    osim = importlib.import_module(old.__name__ + ".mechanics.simulate")
+    odes = importlib.import_module(old.__name__ + ".design")
+    otpl = importlib.import_module(old.__name__ + ".templates")
+    cache: dict[str, object] = {}
+
+    def run(level: str, convergence: bool):
+        if "pair" not in cache:
+            text = find_template(template).read_text(encoding="utf-8")
+            keep = [ln for ln in text.splitlines() if not ln.startswith(NEW_KEYS)]
+            tmp = Path(tempfile.mkdtemp()) / f"{template}.toml"
+            tmp.write_text("\n".join(keep) + "\n", encoding="utf-8")
+            od = otpl.load_template(str(tmp))
+            fold = getattr(odes, "fold_design", None) or odes.build_design  # its old name
+            cache["pair"] = (od, fold(od))
+        od, of = cache["pair"]  # type: ignore[misc]
+        return osim.simulate(od, of, level=level, convergence=convergence)
+
+    return run
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("template", nargs="?", default="patkau-one-fold")
@@ -94,9 +126,7 @@ def main(argv: list[str] | None = None) -> int:
     )  # fmt: skip
     args = ap.parse_args(argv)
     mesh = args.check_mesh
-    old, why = load(args.baseline)
-    if old is None:
-        print(f"no baseline: {why}")
+    baseline = baseline_simulate(args.baseline, args.template)
     today = "today" if mesh == "finer" else "today, checked on the coarser mesh"
     runs = {
         f"J2 ({today})": lambda d, f, lvl, chk: simulate(
@@ -106,28 +136,8 @@ def main(argv: list[str] | None = None) -> int:
             d, f, level=lvl, convergence=chk, law="moment", check_mesh=mesh if chk else "finer"
         ),
     }
-    if old is not None:
-        import importlib
-
-        osim = importlib.import_module(old.__name__ + ".mechanics.simulate")
-        odes = importlib.import_module(old.__name__ + ".design")
-        otpl = importlib.import_module(old.__name__ + ".templates")
-        cache: dict[str, object] = {}
-
-        def baseline(d, f, lvl, chk):
-            if "pair" not in cache:
-                # the template's file without the keys the baseline did not know yet
-                text = find_template(args.template).read_text(encoding="utf-8")
-                keep = [ln for ln in text.splitlines() if not ln.startswith(NEW_KEYS)]
-                tmp = Path(tempfile.mkdtemp()) / f"{args.template}.toml"
-                tmp.write_text("\n".join(keep) + "\n", encoding="utf-8")
-                od = otpl.load_template(str(tmp))
-                fold = getattr(odes, "fold_design", None) or odes.build_design  # its old name
-                cache["pair"] = (od, fold(od))
-            od, of = cache["pair"]  # type: ignore[misc]
-            return osim.simulate(od, of, level=lvl, convergence=chk)
-
-        runs[f"moment ({args.baseline})"] = baseline
+    if baseline is not None:
+        runs[f"moment ({args.baseline})"] = lambda d, f, lvl, chk: baseline(lvl, chk)
     if args.before:
         runs = {**_before_runs(args.before, args.template), **runs}
     design = load_template(args.template)

@@ -38,17 +38,15 @@ the bar's runs keep their own commit's mesh), put back after each run.
 from __future__ import annotations
 
 import argparse
-import importlib
 import statistics
 import sys
-import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from git_baseline import load  # noqa: E402
+from bench_j2_law import baseline_simulate  # noqa: E402
 
 from onefold_cad.choices import MeshLevel  # noqa: E402
 from onefold_cad.design import fold_design  # noqa: E402
@@ -58,10 +56,7 @@ from onefold_cad.mechanics import model as mechanics_model  # noqa: E402
 from onefold_cad.mechanics.j2 import section  # noqa: E402
 from onefold_cad.mechanics.reserve import ReserveCheck  # noqa: E402
 from onefold_cad.mechanics.simulate import simulate  # noqa: E402
-from onefold_cad.templates import find_template, load_template  # noqa: E402
-
-#: Template keys newer than the baseline (its loader refuses them).
-NEW_KEYS = ("hardening_modulus", "kinematic_hardening")
+from onefold_cad.templates import load_template  # noqa: E402
 
 
 class Clock:
@@ -133,24 +128,15 @@ def j2_parts(design, folded, level: str, grading: float | None = None) -> dict[s
 
 
 def baseline_run(commit: str, template: str) -> Callable[[str], float] | None:
-    """``commit``'s moment law on ``template`` (its CPU seconds), or None."""
-    old, why = load(commit)
-    if old is None:
-        print(f"no baseline: {why}")
+    """``commit``'s moment law on ``template``, as a function of the level
+    giving its CPU seconds (``bench_j2_law.baseline_simulate``), or None."""
+    simulate_old = baseline_simulate(commit, template)
+    if simulate_old is None:
         return None
-    osim = importlib.import_module(old.__name__ + ".mechanics.simulate")
-    odes = importlib.import_module(old.__name__ + ".design")
-    otpl = importlib.import_module(old.__name__ + ".templates")
-    text = find_template(template).read_text(encoding="utf-8")
-    keep = [ln for ln in text.splitlines() if not ln.startswith(NEW_KEYS)]
-    tmp = Path(tempfile.mkdtemp()) / f"{template}.toml"
-    tmp.write_text("\n".join(keep) + "\n", encoding="utf-8")
-    od = otpl.load_template(str(tmp))
-    of = (getattr(odes, "fold_design", None) or odes.build_design)(od)
 
     def run(level: str) -> float:
         t = time.process_time()
-        osim.simulate(od, of, level=level, convergence=False)
+        simulate_old(level, False)
         return time.process_time() - t
 
     return run
